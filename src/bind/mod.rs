@@ -1,0 +1,183 @@
+//! Vertex binding (§3): the parameters (θ, t, d, h) that tie a vertex to its sweep, on the f64
+//! reference path. The f32 twin of the GPU kernel is [`crate::cpu::bind`].
+//!
+//! Data flow: rig → sweep → sweep coefficients → **bind** → deform → normals → output.
+//!
+//! For a vertex v, t is the root of f(t) = ⟨v − C(t), N(t)⟩ on [0, 1] nearest to v (smallest
+//! |v − C(t)|); every root is found ([`quintic`]). A vertex with no root lies beyond an end of
+//! the sweep and takes the nearer end, t ∈ {0, 1}. Then, with v̂ = R(t)ᵀ·(v − C(t)):
+//! θ = atan2(v̂_y, v̂_x) ∈ [0, 2π), d = |(v̂_x, v̂_y)| − r(θ, t) and h = v̂_z. For a root h is zero
+//! up to round-off; beyond an end it is the axial offset, so caps follow their sweep.
+
+pub mod quintic;
+
+use std::f64::consts::TAU;
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+use crate::sweep::{AxisPoint, Sweep};
+use quintic::Quintic;
+
+/// Marks a vertex that no sweep owns; it stays where it is.
+pub const UNOWNED: u32 = u32::MAX;
+
+/// The binding parameters of one vertex to one sweep (Eq. 2 extended by h).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct VertexBinding {
+    /// Axis parameter t ∈ [0, 1] of the vertex's cross-section.
+    pub t: f64,
+    /// Angle θ ∈ [0, 2π) in the cross-section plane, counter-clockwise from the local x axis.
+    pub theta: f64,
+    /// Signed distance from the sweep surface along the cross-section's ray at θ, mesh units.
+    pub d: f64,
+    /// Offset along N(t): zero (up to round-off) for a root, the axial offset beyond an end.
+    pub h: f64,
+}
+
+/// A vertex's binding within a mesh: which sweep it follows and how.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Binding {
+    /// Index of the owning sweep in the rig, or [`UNOWNED`].
+    pub sweep: u32,
+    /// The parameters; meaningless when `sweep` is [`UNOWNED`].
+    pub params: VertexBinding,
+}
+
+impl Binding {
+    /// The binding of a vertex no sweep owns.
+    pub const UNOWNED: Binding = Binding { sweep: UNOWNED, params: VertexBinding { t: 0.0, theta: 0.0, d: 0.0, h: 0.0 } };
+}
+
+/// The quintic ⟨v − C(s), n(s)⟩ of one knot interval, less its vertex-dependent part:
+/// `g(s) = w·n0 + (w·n1 − e1)·s + (w·n2 − e2)·s² − e3·s³ − e4·s⁴ − e5·s⁵` with `w = v − p_k`,
+/// `n(s) = n0 + n1·s + n2·s²` the unnormalized normal and `e_i` the coefficients of
+/// ⟨C(s) − p_k, n(s)⟩. Working relative to p_k avoids cancellation far from the origin.
+#[derive(Clone, Copy, Debug)]
+struct SegmentQuintic {
+    origin: DVec3,
+    normal: [DVec3; 3],
+    curve_dot_normal: [f64; 5],
+}
+
+impl SegmentQuintic {
+    fn new(sweep: &Sweep, k: usize) -> SegmentQuintic {
+        let segment = &sweep.segments()[k];
+        let [p, c1, c2, c3] = segment.curve.power_coefficients();
+        let [n0, n1, n2] = segment.orientation.normal_numerator();
+        SegmentQuintic {
+            origin: p,
+            normal: [n0, n1, n2],
+            curve_dot_normal: [
+                c1.dot(n0),
+                c1.dot(n1) + c2.dot(n0),
+                c1.dot(n2) + c2.dot(n1) + c3.dot(n0),
+                c2.dot(n2) + c3.dot(n1),
+                c3.dot(n2),
+            ],
+        }
+    }
+
+    fn for_vertex(&self, v: DVec3) -> Quintic {
+        let w = v - self.origin;
+        let [n0, n1, n2] = self.normal;
+        let e = self.curve_dot_normal;
+        [w.dot(n0), w.dot(n1) - e[0], w.dot(n2) - e[1], -e[2], -e[3], -e[4]]
+    }
+}
+
+/// Binds vertices to one sweep; built once per sweep, then shared by all its vertices.
+#[derive(Clone, Debug)]
+pub struct SweepBinder<'a> {
+    sweep: &'a Sweep,
+    quintics: Vec<SegmentQuintic>,
+}
+
+impl<'a> SweepBinder<'a> {
+    /// Precomputes the per-interval quintics of `sweep`.
+    pub fn new(sweep: &'a Sweep) -> SweepBinder<'a> {
+        let quintics = (0..sweep.segments().len()).map(|k| SegmentQuintic::new(sweep, k)).collect();
+        SweepBinder { sweep, quintics }
+    }
+
+    /// Every root t of ⟨v − C(t), N(t)⟩ in [0, 1], as axis points, increasing.
+    pub fn roots(&self, v: DVec3) -> Vec<AxisPoint> {
+        let mut roots = Vec::new();
+        for (segment, quintic) in self.quintics.iter().enumerate() {
+            quintic::for_each_root(&quintic.for_vertex(v), &mut |s| roots.push(AxisPoint { segment, s }));
+        }
+        roots
+    }
+
+    /// The cross-section that v binds to: the root nearest to v, or the nearer end when there
+    /// is no root.
+    pub fn cross_section(&self, v: DVec3) -> AxisPoint {
+        let segments = self.sweep.segments();
+        let distance = |at: &AxisPoint| segments[at.segment].curve.value(at.s).distance_squared(v);
+        let mut best: Option<(AxisPoint, f64)> = None;
+        for (segment, quintic) in self.quintics.iter().enumerate() {
+            quintic::for_each_root(&quintic.for_vertex(v), &mut |s| {
+                let at = AxisPoint { segment, s };
+                let d2 = distance(&at);
+                if best.is_none_or(|(_, best_d2)| d2 < best_d2) {
+                    best = Some((at, d2));
+                }
+            });
+        }
+        best.map(|(at, _)| at).unwrap_or_else(|| {
+            let start = AxisPoint { segment: 0, s: 0.0 };
+            let end = AxisPoint { segment: segments.len() - 1, s: 1.0 };
+            if distance(&end) < distance(&start) { end } else { start }
+        })
+    }
+
+    /// The binding parameters (θ, t, d, h) of vertex v.
+    pub fn bind(&self, v: DVec3) -> VertexBinding {
+        let at = self.cross_section(v);
+        let segment = &self.sweep.segments()[at.segment];
+        let local = segment.orientation.value(at.s).inverse() * (v - segment.curve.value(at.s));
+        let theta = wrap_angle(local.y.atan2(local.x));
+        let radius = self.sweep.radius_field().value(at.segment, at.s, theta);
+        VertexBinding {
+            t: segment.t0 + at.s * (segment.t1 - segment.t0),
+            theta,
+            d: local.x.hypot(local.y) - radius,
+            h: local.z,
+        }
+    }
+}
+
+/// An angle from atan2, moved into [0, 2π).
+fn wrap_angle(theta: f64) -> f64 {
+    let wrapped = if theta < 0.0 { theta + TAU } else { theta };
+    if wrapped >= TAU { 0.0 } else { wrapped }
+}
+
+/// Binds every vertex to the sweep that owns it (`owners[i]` indexes `sweeps`, or is
+/// [`UNOWNED`]), in parallel. `progress` is called from worker threads with the number of
+/// vertices just finished, every few thousand vertices.
+pub fn bind_vertices(
+    sweeps: &[Sweep],
+    owners: &[u32],
+    positions: &[DVec3],
+    progress: &(dyn Fn(usize) + Sync),
+) -> Vec<Binding> {
+    const CHUNK: usize = 4096;
+    let binders: Vec<SweepBinder> = sweeps.iter().map(SweepBinder::new).collect();
+    let mut bindings = vec![Binding::UNOWNED; positions.len()];
+    bindings
+        .par_chunks_mut(CHUNK)
+        .zip(owners.par_chunks(CHUNK).zip(positions.par_chunks(CHUNK)))
+        .for_each(|(out, (owners, positions))| {
+            for ((binding, &owner), &v) in out.iter_mut().zip(owners).zip(positions) {
+                if owner != UNOWNED {
+                    *binding = Binding { sweep: owner, params: binders[owner as usize].bind(v) };
+                }
+            }
+            progress(out.len());
+        });
+    bindings
+}
+
+#[cfg(test)]
+mod tests;

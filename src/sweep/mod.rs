@@ -1,0 +1,221 @@
+//! The sweep surface model in f64 (§3): the geometry every other stage is computed from.
+//!
+//! Data flow: rig → **sweep** → sweep coefficients → bind → deform → normals → output.
+//!
+//! A [`Sweep`] interpolates key cross-sections X_i ([`Key`]) at knots u_i:
+//!
+//! ```text
+//! S(θ, t) = C(t) + R(t)·(r(θ, t)·cos θ, r(θ, t)·sin θ, 0)
+//! ```
+//!
+//! with C the natural cubic spline through the centers ([`curve`]), R the normalized linear
+//! interpolation of the key quaternions ([`orientation`]) and r the tensor-product spline of the
+//! radii ([`radius`]). Its volume is Eq. 1 ([`Sweep::volume`]).
+
+pub mod cubic;
+pub mod curve;
+mod error;
+mod key;
+pub mod knots;
+pub mod natural_spline;
+pub mod orientation;
+pub mod periodic_spline;
+pub mod quadrature;
+pub mod radius;
+mod volume;
+
+use glam::{DQuat, DVec3};
+
+pub use error::SweepError;
+pub use key::Key;
+
+use curve::{CurvePiece, center_curve};
+use orientation::OrientationPiece;
+use radius::RadiusField;
+
+/// A position on a sweep's axis by knot interval: `t = u_k + s·(u_{k+1} − u_k)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AxisPoint {
+    /// Knot interval k, from 0 to n − 1.
+    pub segment: usize,
+    /// Local parameter s ∈ [0, 1] within the interval.
+    pub s: f64,
+}
+
+/// One knot interval [u_k, u_{k+1}] of a sweep: its piece of C and its orientation ends.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Segment {
+    /// u_k.
+    pub t0: f64,
+    /// u_{k+1}.
+    pub t1: f64,
+    /// C(t) on this interval.
+    pub curve: CurvePiece,
+    /// R(t) on this interval.
+    pub orientation: OrientationPiece,
+}
+
+/// A control sweep surface built from n + 1 ≥ 2 key cross-sections (§3).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sweep {
+    knots: Vec<f64>,
+    segments: Vec<Segment>,
+    radius: RadiusField,
+}
+
+impl Sweep {
+    /// Builds the sweep through `keys` at `knots`, or at the chord-length knots of the key
+    /// centers when `knots` is `None` (see [`knots`]).
+    ///
+    /// Fails, naming the key, on fewer than 2 keys, fewer than 3 radii or a radius count that
+    /// differs from key 0's, a non-finite number, a zero quaternion, a negative radius,
+    /// coincident consecutive centers (when knots are computed) or invalid explicit knots.
+    pub fn try_new(keys: &[Key], knots: Option<&[f64]>) -> Result<Sweep, SweepError> {
+        validate_keys(keys)?;
+        let knots = match knots {
+            Some(knots) => {
+                knots::validate_knots(knots, keys.len())?;
+                knots.to_vec()
+            }
+            None => {
+                let centers: Vec<DVec3> = keys.iter().map(|key| key.center).collect();
+                knots::chord_length_knots(&centers)?
+            }
+        };
+        Ok(Sweep::from_valid(keys, knots))
+    }
+
+    fn from_valid(keys: &[Key], knots: Vec<f64>) -> Sweep {
+        let centers: Vec<DVec3> = keys.iter().map(|key| key.center).collect();
+        let rotations: Vec<DQuat> = keys.iter().map(|key| key.rotation.normalize()).collect();
+        let segments = center_curve(&knots, &centers)
+            .into_iter()
+            .enumerate()
+            .map(|(k, curve)| Segment {
+                t0: knots[k],
+                t1: knots[k + 1],
+                curve,
+                orientation: OrientationPiece::new(rotations[k], rotations[k + 1]),
+            })
+            .collect();
+        let radii: Vec<&[f64]> = keys.iter().map(|key| key.radii.as_slice()).collect();
+        let radius = RadiusField::new(&knots, &radii);
+        Sweep { knots, segments, radius }
+    }
+
+    /// The knots u_0 = 0 < … < u_n = 1.
+    pub fn knots(&self) -> &[f64] {
+        &self.knots
+    }
+
+    /// The n knot intervals.
+    pub fn segments(&self) -> &[Segment] {
+        &self.segments
+    }
+
+    /// r(θ, t) as bicubic patches.
+    pub fn radius_field(&self) -> &RadiusField {
+        &self.radius
+    }
+
+    /// M, the number of radii per key.
+    pub fn radius_samples(&self) -> usize {
+        self.radius.samples()
+    }
+
+    /// The knot interval and local parameter of `t`, clamped to [0, 1]. A knot u_k with
+    /// 0 < k < n belongs to interval k (s = 0); t = 1 belongs to the last interval (s = 1).
+    pub fn locate(&self, t: f64) -> AxisPoint {
+        let t = t.clamp(0.0, 1.0);
+        let last = self.segments.len() - 1;
+        let segment = (self.knots.partition_point(|&u| u <= t).max(1) - 1).min(last);
+        let Segment { t0, t1, .. } = self.segments[segment];
+        AxisPoint { segment, s: ((t - t0) / (t1 - t0)).clamp(0.0, 1.0) }
+    }
+
+    /// The center C(t); exactly p_i at t = u_i.
+    pub fn center(&self, t: f64) -> DVec3 {
+        let at = self.locate(t);
+        self.segments[at.segment].curve.value(at.s)
+    }
+
+    /// C′(t) = dC/dt.
+    pub fn center_derivative(&self, t: f64) -> DVec3 {
+        let at = self.locate(t);
+        self.segments[at.segment].curve.derivative(at.s)
+    }
+
+    /// C″(t) = d²C/dt²; zero at t = 0 and t = 1 (natural end conditions).
+    pub fn center_second_derivative(&self, t: f64) -> DVec3 {
+        let at = self.locate(t);
+        self.segments[at.segment].curve.second_derivative(at.s)
+    }
+
+    /// R(t) as a unit quaternion; R(u_i) is the rotation of q_i.
+    pub fn orientation(&self, t: f64) -> DQuat {
+        let at = self.locate(t);
+        self.segments[at.segment].orientation.value(at.s)
+    }
+
+    /// N(t) = R(t)·e_z, the unit normal of the cross-section plane at t.
+    pub fn normal(&self, t: f64) -> DVec3 {
+        self.orientation(t) * DVec3::Z
+    }
+
+    /// r(θ, t).
+    pub fn radius(&self, theta: f64, t: f64) -> f64 {
+        let at = self.locate(t);
+        self.radius.value(at.segment, at.s, theta)
+    }
+
+    /// The surface point S(θ, t) = C(t) + R(t)·(r cos θ, r sin θ, 0).
+    pub fn surface_point(&self, theta: f64, t: f64) -> DVec3 {
+        self.point(theta, t, 0.0, 0.0)
+    }
+
+    /// The point at binding parameters (θ, t, d, h), Eq. 2 extended by the axial offset h:
+    /// `C(t) + R(t)·((r(θ,t) + d)·cos θ, (r(θ,t) + d)·sin θ, h)`.
+    pub fn point(&self, theta: f64, t: f64, d: f64, h: f64) -> DVec3 {
+        let at = self.locate(t);
+        let segment = &self.segments[at.segment];
+        let rho = self.radius.value(at.segment, at.s, theta) + d;
+        let (sin, cos) = theta.sin_cos();
+        segment.curve.value(at.s) + segment.orientation.value(at.s) * DVec3::new(rho * cos, rho * sin, h)
+    }
+}
+
+fn validate_keys(keys: &[Key]) -> Result<(), SweepError> {
+    if keys.len() < 2 {
+        return Err(SweepError::TooFewKeys { count: keys.len() });
+    }
+    let samples = keys[0].radii.len();
+    for (key, Key { center, rotation, radii }) in keys.iter().enumerate() {
+        if !center.is_finite() {
+            return Err(SweepError::NonFinite { key, field: "center" });
+        }
+        if !rotation.is_finite() {
+            return Err(SweepError::NonFinite { key, field: "rotation" });
+        }
+        if rotation.length_squared() == 0.0 {
+            return Err(SweepError::ZeroRotation { key });
+        }
+        if radii.len() < 3 {
+            return Err(SweepError::TooFewRadii { key, count: radii.len() });
+        }
+        if radii.len() != samples {
+            return Err(SweepError::RadiusCountMismatch { key, expected: samples, found: radii.len() });
+        }
+        for (index, &value) in radii.iter().enumerate() {
+            if !value.is_finite() {
+                return Err(SweepError::NonFinite { key, field: "radius" });
+            }
+            if value < 0.0 {
+                return Err(SweepError::NegativeRadius { key, index, value });
+            }
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,142 @@
+//! The radius function r(θ, t) of a sweep (§3): the tensor-product interpolating cubic spline
+//! of the key radii ρ_ij — periodic C² in θ over the M uniform nodes θ_j = 2πj/M, natural in t
+//! over the knots u_i.
+//!
+//! On knot interval k and angular interval j the function is one bicubic polynomial, a
+//! [`RadiusPatch`], in the local parameters `s = (t − u_k)/(u_{k+1} − u_k)` and
+//! `φ = (θ − θ_j)/(2π/M)`, both in [0, 1].
+
+use std::f64::consts::TAU;
+
+use super::natural_spline::natural_spline_pieces;
+use super::quadrature::gauss_legendre_4;
+use super::periodic_spline::periodic_spline_pieces;
+
+/// r on one (knot interval, angular interval) cell: `r(s, φ) = Σ_p Σ_q c[p][q]·s^p·φ^q`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RadiusPatch {
+    /// Power-basis coefficients, indexed `[power of s][power of φ]`.
+    pub c: [[f64; 4]; 4],
+}
+
+impl RadiusPatch {
+    /// r at local parameters `(s, φ)`.
+    pub fn value(&self, s: f64, phi: f64) -> f64 {
+        let row = |p: usize| {
+            let c = &self.c[p];
+            c[0] + phi * (c[1] + phi * (c[2] + phi * c[3]))
+        };
+        row(0) + s * (row(1) + s * (row(2) + s * row(3)))
+    }
+}
+
+/// The angular interval `j` and local parameter `φ ∈ [0, 1)` of angle `theta` (any real; it is
+/// wrapped into [0, 2π)) on `samples` uniform nodes.
+pub fn angular_cell(theta: f64, samples: usize) -> (usize, f64) {
+    let x = theta.rem_euclid(TAU) / TAU * samples as f64;
+    let j = (x.floor() as usize).min(samples - 1);
+    (j, x - j as f64)
+}
+
+/// All radius patches of one sweep, knot interval by knot interval.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RadiusField {
+    samples: usize,
+    patches: Vec<RadiusPatch>,
+}
+
+impl RadiusField {
+    /// Builds r from `radii[i][j]` = ρ_ij at `knots[i]` and θ_j. The caller guarantees at least
+    /// two keys, increasing knots, and the same number M ≥ 3 of radii on every key.
+    pub fn new(knots: &[f64], radii: &[&[f64]]) -> RadiusField {
+        let samples = radii[0].len();
+        let segments = knots.len() - 1;
+        // Natural spline in t through each angular node: power coefficients a_p(k, j).
+        let mut along_t = vec![[0.0; 4]; segments * samples];
+        for j in 0..samples {
+            let column: Vec<f64> = radii.iter().map(|key| key[j]).collect();
+            for (k, piece) in natural_spline_pieces(knots, &column).iter().enumerate() {
+                along_t[k * samples + j] = piece.power_coefficients();
+            }
+        }
+        // Periodic spline in θ through each power coefficient: the bicubic c[p][q].
+        let step = TAU / samples as f64;
+        let mut patches = vec![RadiusPatch { c: [[0.0; 4]; 4] }; segments * samples];
+        for k in 0..segments {
+            for p in 0..4 {
+                let row: Vec<f64> = (0..samples).map(|j| along_t[k * samples + j][p]).collect();
+                for (j, piece) in periodic_spline_pieces(&row, step).iter().enumerate() {
+                    patches[k * samples + j].c[p] = piece.power_coefficients();
+                }
+            }
+        }
+        RadiusField { samples, patches }
+    }
+
+    /// M, the number of radii per key.
+    pub fn samples(&self) -> usize {
+        self.samples
+    }
+
+    /// The patch on knot interval `segment` and angular interval `j`.
+    pub fn patch(&self, segment: usize, j: usize) -> &RadiusPatch {
+        &self.patches[segment * self.samples + j]
+    }
+
+    /// r(θ, t) on knot interval `segment` at local parameter `s`.
+    pub fn value(&self, segment: usize, s: f64, theta: f64) -> f64 {
+        let (j, phi) = angular_cell(theta, self.samples);
+        self.patch(segment, j).value(s, phi)
+    }
+
+    /// Cross-section area A = ½ ∫₀^{2π} r(θ, t)² dθ on knot interval `segment` at local
+    /// parameter `s`. r² is a polynomial of degree 6 in φ, so four Gauss–Legendre nodes per
+    /// angular interval integrate it exactly.
+    pub fn area(&self, segment: usize, s: f64) -> f64 {
+        let rule = gauss_legendre_4();
+        let step = TAU / self.samples as f64;
+        let integral: f64 = (0..self.samples)
+            .map(|j| {
+                let patch = self.patch(segment, j);
+                rule.integrate(0.0, 1.0, |phi| patch.value(s, phi).powi(2))
+            })
+            .sum();
+        0.5 * integral * step
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    #[test]
+    fn interpolates_every_key_radius() {
+        let knots = [0.0, 0.3, 1.0];
+        let radii: [&[f64]; 3] = [&[1.0, 2.0, 1.5, 0.5], &[0.7, 0.7, 0.9, 1.1], &[2.0, 1.0, 3.0, 2.5]];
+        let field = RadiusField::new(&knots, &radii);
+        for (i, key) in radii.iter().enumerate() {
+            for (j, rho) in key.iter().enumerate() {
+                let theta = TAU * j as f64 / 4.0;
+                let (segment, s) = if i < 2 { (i, 0.0) } else { (1, 1.0) };
+                assert!((field.value(segment, s, theta) - rho).abs() < 1e-14, "key {i}, node {j}");
+            }
+        }
+    }
+
+    #[test]
+    fn constant_radius_has_circle_area() {
+        let field = RadiusField::new(&[0.0, 1.0], &[&[2.0; 6], &[2.0; 6]]);
+        assert!((field.area(0, 0.4) - PI * 4.0).abs() < 1e-13);
+    }
+
+    #[test]
+    fn angular_cell_wraps_negative_and_large_angles() {
+        let (j, phi) = angular_cell(-0.25 * TAU, 4);
+        assert_eq!(j, 3);
+        assert!(phi.abs() < 1e-12);
+        let (j, phi) = angular_cell(2.5 * TAU, 4);
+        assert_eq!(j, 2);
+        assert!(phi.abs() < 1e-12);
+    }
+}
