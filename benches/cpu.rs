@@ -1,1 +1,133 @@
-fn main() {}
+//! CPU throughput of binding and deformation on a synthetic tube (f64 reference path and the
+//! f32 twin of the GPU kernels), with a memory-copy baseline measured in the same run.
+//!
+//! `cargo bench --bench cpu`; criterion reports vertices per second (throughput elements).
+
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use glam::DVec3;
+use sweepffd::bind::{Binding, bind_vertices};
+use sweepffd::coeffs::{SweepCoefficients, bind_segments};
+use sweepffd::cpu;
+use sweepffd::deform::deform_vertices;
+use sweepffd::mesh::Mesh;
+use sweepffd::rig::Rig;
+use sweepffd::sweep::Sweep;
+use sweepffd::synthetic::{BendTwistTaper, Tube, tube_rig};
+
+struct Scene {
+    mesh: Mesh,
+    rig: Rig,
+    owners: Vec<u32>,
+    posed: Vec<Sweep>,
+}
+
+fn scene(vertices: usize) -> Scene {
+    let tube = Tube::with_vertex_count(vertices, 4.0, 0.5);
+    let mesh = tube.mesh();
+    let rig = tube_rig(&tube, 8, 16);
+    let owners = rig.owners(&mesh, "tube").unwrap();
+    let pose = BendTwistTaper {
+        bend: 1.5,
+        twist: 2.0,
+        taper: 0.5,
+    };
+    let posed = rig.pose(&pose.keys(&rig)).unwrap();
+    Scene {
+        mesh,
+        rig,
+        owners,
+        posed,
+    }
+}
+
+fn bind(c: &mut Criterion) {
+    let mut group = c.benchmark_group("bind");
+    group.sample_size(10);
+    for n in [100_000, 1_000_000] {
+        let scene = scene(n);
+        group.throughput(Throughput::Elements(scene.mesh.positions.len() as u64));
+        group.bench_function(BenchmarkId::new("f64", n), |b| {
+            b.iter(|| {
+                bind_vertices(
+                    scene.rig.rest(),
+                    &scene.owners,
+                    &scene.mesh.positions,
+                    &|_| {},
+                )
+            })
+        });
+        let coefficients = SweepCoefficients::new(scene.rig.rest());
+        let tables = bind_segments(scene.rig.rest());
+        let inputs = cpu::bind::BindInputs {
+            segments: &coefficients.segments,
+            patches: &coefficients.patches,
+            bind_segments: &tables,
+            sweeps: &coefficients.sweeps,
+        };
+        let positions: Vec<f32> = scene
+            .mesh
+            .positions
+            .iter()
+            .flat_map(|p| p.as_vec3().to_array())
+            .collect();
+        group.bench_function(BenchmarkId::new("f32_twin", n), |b| {
+            b.iter(|| cpu::bind::bind(&inputs, &scene.owners, &positions))
+        });
+    }
+    group.finish();
+}
+
+fn deform(c: &mut Criterion) {
+    let mut group = c.benchmark_group("deform");
+    for n in [100_000, 1_000_000] {
+        let scene = scene(n);
+        let count = scene.mesh.positions.len();
+        group.throughput(Throughput::Elements(count as u64));
+        let bindings: Vec<Binding> = bind_vertices(
+            scene.rig.rest(),
+            &scene.owners,
+            &scene.mesh.positions,
+            &|_| {},
+        );
+        let mut out = vec![DVec3::ZERO; count];
+        group.bench_function(BenchmarkId::new("f64", n), |b| {
+            b.iter(|| deform_vertices(&scene.posed, &bindings, &scene.mesh.positions, &mut out))
+        });
+        let mut coefficients = SweepCoefficients::new(scene.rig.rest());
+        let tables = bind_segments(scene.rig.rest());
+        let inputs = cpu::bind::BindInputs {
+            segments: &coefficients.segments,
+            patches: &coefficients.patches,
+            bind_segments: &tables,
+            sweeps: &coefficients.sweeps,
+        };
+        let positions: Vec<f32> = scene
+            .mesh
+            .positions
+            .iter()
+            .flat_map(|p| p.as_vec3().to_array())
+            .collect();
+        let gpu_bindings = cpu::bind::bind(&inputs, &scene.owners, &positions);
+        coefficients.update(&scene.posed).unwrap();
+        let mut out32 = positions.clone();
+        group.bench_function(BenchmarkId::new("f32_twin", n), |b| {
+            b.iter(|| {
+                cpu::deform::deform(
+                    &coefficients.segments,
+                    &coefficients.patches,
+                    &gpu_bindings,
+                    &mut out32,
+                )
+            })
+        });
+        // Baseline: moving the bytes the f64 path reads and writes, with no arithmetic.
+        let source = scene.mesh.positions.clone();
+        group.bench_function(BenchmarkId::new("copy_baseline", n), |b| {
+            b.iter(|| out.copy_from_slice(&source))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bind, deform);
+criterion_main!(benches);

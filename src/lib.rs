@@ -13,6 +13,11 @@
 //! - [`deform`]: vertex positions of a posed rig through Eq. 2.
 //! - [`mesh`]: mesh files in and out, enclosed volume.
 
-pub mod sweep;
 pub mod bind;
+pub mod coeffs;
+pub mod cpu;
 pub mod deform;
+pub mod mesh;
+pub mod rig;
+pub mod sweep;
+pub mod synthetic;

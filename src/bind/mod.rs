@@ -9,6 +9,7 @@
 //! θ = atan2(v̂_y, v̂_x) ∈ [0, 2π), d = |(v̂_x, v̂_y)| − r(θ, t) and h = v̂_z. For a root h is zero
 //! up to round-off; beyond an end it is the axial offset, so caps follow their sweep.
 
+pub mod file;
 pub mod quintic;
 
 use std::f64::consts::TAU;
@@ -16,8 +17,8 @@ use std::f64::consts::TAU;
 use glam::DVec3;
 use rayon::prelude::*;
 
+use crate::sweep::plane_quintic::PlaneQuintic;
 use crate::sweep::{AxisPoint, Sweep};
-use quintic::Quintic;
 
 /// Marks a vertex that no sweep owns; it stays where it is.
 pub const UNOWNED: u32 = u32::MAX;
@@ -46,57 +47,28 @@ pub struct Binding {
 
 impl Binding {
     /// The binding of a vertex no sweep owns.
-    pub const UNOWNED: Binding = Binding { sweep: UNOWNED, params: VertexBinding { t: 0.0, theta: 0.0, d: 0.0, h: 0.0 } };
-}
-
-/// The quintic ⟨v − C(s), n(s)⟩ of one knot interval, less its vertex-dependent part:
-/// `g(s) = w·n0 + (w·n1 − e1)·s + (w·n2 − e2)·s² − e3·s³ − e4·s⁴ − e5·s⁵` with `w = v − p_k`,
-/// `n(s) = n0 + n1·s + n2·s²` the unnormalized normal and `e_i` the coefficients of
-/// ⟨C(s) − p_k, n(s)⟩. Working relative to p_k avoids cancellation far from the origin.
-#[derive(Clone, Copy, Debug)]
-struct SegmentQuintic {
-    origin: DVec3,
-    normal: [DVec3; 3],
-    curve_dot_normal: [f64; 5],
-}
-
-impl SegmentQuintic {
-    fn new(sweep: &Sweep, k: usize) -> SegmentQuintic {
-        let segment = &sweep.segments()[k];
-        let [p, c1, c2, c3] = segment.curve.power_coefficients();
-        let [n0, n1, n2] = segment.orientation.normal_numerator();
-        SegmentQuintic {
-            origin: p,
-            normal: [n0, n1, n2],
-            curve_dot_normal: [
-                c1.dot(n0),
-                c1.dot(n1) + c2.dot(n0),
-                c1.dot(n2) + c2.dot(n1) + c3.dot(n0),
-                c2.dot(n2) + c3.dot(n1),
-                c3.dot(n2),
-            ],
-        }
-    }
-
-    fn for_vertex(&self, v: DVec3) -> Quintic {
-        let w = v - self.origin;
-        let [n0, n1, n2] = self.normal;
-        let e = self.curve_dot_normal;
-        [w.dot(n0), w.dot(n1) - e[0], w.dot(n2) - e[1], -e[2], -e[3], -e[4]]
-    }
+    pub const UNOWNED: Binding = Binding {
+        sweep: UNOWNED,
+        params: VertexBinding {
+            t: 0.0,
+            theta: 0.0,
+            d: 0.0,
+            h: 0.0,
+        },
+    };
 }
 
 /// Binds vertices to one sweep; built once per sweep, then shared by all its vertices.
 #[derive(Clone, Debug)]
 pub struct SweepBinder<'a> {
     sweep: &'a Sweep,
-    quintics: Vec<SegmentQuintic>,
+    quintics: Vec<PlaneQuintic>,
 }
 
 impl<'a> SweepBinder<'a> {
     /// Precomputes the per-interval quintics of `sweep`.
     pub fn new(sweep: &'a Sweep) -> SweepBinder<'a> {
-        let quintics = (0..sweep.segments().len()).map(|k| SegmentQuintic::new(sweep, k)).collect();
+        let quintics = sweep.segments().iter().map(PlaneQuintic::new).collect();
         SweepBinder { sweep, quintics }
     }
 
@@ -104,7 +76,9 @@ impl<'a> SweepBinder<'a> {
     pub fn roots(&self, v: DVec3) -> Vec<AxisPoint> {
         let mut roots = Vec::new();
         for (segment, quintic) in self.quintics.iter().enumerate() {
-            quintic::for_each_root(&quintic.for_vertex(v), &mut |s| roots.push(AxisPoint { segment, s }));
+            quintic::for_each_root(&quintic.for_vertex(v), &mut |s| {
+                roots.push(AxisPoint { segment, s })
+            });
         }
         roots
     }
@@ -126,8 +100,15 @@ impl<'a> SweepBinder<'a> {
         }
         best.map(|(at, _)| at).unwrap_or_else(|| {
             let start = AxisPoint { segment: 0, s: 0.0 };
-            let end = AxisPoint { segment: segments.len() - 1, s: 1.0 };
-            if distance(&end) < distance(&start) { end } else { start }
+            let end = AxisPoint {
+                segment: segments.len() - 1,
+                s: 1.0,
+            };
+            if distance(&end) < distance(&start) {
+                end
+            } else {
+                start
+            }
         })
     }
 
@@ -171,7 +152,10 @@ pub fn bind_vertices(
         .for_each(|(out, (owners, positions))| {
             for ((binding, &owner), &v) in out.iter_mut().zip(owners).zip(positions) {
                 if owner != UNOWNED {
-                    *binding = Binding { sweep: owner, params: binders[owner as usize].bind(v) };
+                    *binding = Binding {
+                        sweep: owner,
+                        params: binders[owner as usize].bind(v),
+                    };
                 }
             }
             progress(out.len());

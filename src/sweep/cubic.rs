@@ -63,7 +63,13 @@ impl CubicPiece {
 mod tests {
     use super::*;
 
-    const PIECE: CubicPiece = CubicPiece { y0: 1.5, y1: -0.25, m0: 3.0, m1: -7.0, h: 0.4 };
+    const PIECE: CubicPiece = CubicPiece {
+        y0: 1.5,
+        y1: -0.25,
+        m0: 3.0,
+        m1: -7.0,
+        h: 0.4,
+    };
 
     #[test]
     fn value_is_exact_at_both_ends() {
@@ -90,7 +96,10 @@ mod tests {
             let fd1 = (PIECE.value(s + ds) - PIECE.value(s - ds)) / (2.0 * eps);
             let fd2 = (PIECE.derivative(s + ds) - PIECE.derivative(s - ds)) / (2.0 * eps);
             assert!((fd1 - PIECE.derivative(s)).abs() < 1e-7, "C' at s = {s}");
-            assert!((fd2 - PIECE.second_derivative(s)).abs() < 1e-6, "C'' at s = {s}");
+            assert!(
+                (fd2 - PIECE.second_derivative(s)).abs() < 1e-6,
+                "C'' at s = {s}"
+            );
         }
     }
 }

@@ -29,7 +29,11 @@ impl CurvePiece {
     /// d²C/dt² at local parameter `s`.
     pub fn second_derivative(&self, s: f64) -> DVec3 {
         let [x, y, z] = &self.axes;
-        DVec3::new(x.second_derivative(s), y.second_derivative(s), z.second_derivative(s))
+        DVec3::new(
+            x.second_derivative(s),
+            y.second_derivative(s),
+            z.second_derivative(s),
+        )
     }
 
     /// Power-basis coefficients `[a0, a1, a2, a3]` with `C(s) = a0 + a1·s + a2·s² + a3·s³`;

@@ -17,10 +17,16 @@ pub fn chord_length_knots(centers: &[DVec3]) -> Result<Vec<f64>, SweepError> {
     for (i, pair) in centers.windows(2).enumerate() {
         let chord = pair[0].distance(pair[1]);
         if !chord.is_finite() {
-            return Err(SweepError::NonFinite { key: i + 1, field: "center" });
+            return Err(SweepError::NonFinite {
+                key: i + 1,
+                field: "center",
+            });
         }
         if chord == 0.0 {
-            return Err(SweepError::CoincidentCenters { key: i + 1, previous: i });
+            return Err(SweepError::CoincidentCenters {
+                key: i + 1,
+                previous: i,
+            });
         }
         total += chord;
         knots.push(total);
@@ -38,7 +44,10 @@ pub fn chord_length_knots(centers: &[DVec3]) -> Result<Vec<f64>, SweepError> {
 /// Checks explicit knots: one per key, finite, from exactly 0 to exactly 1, strictly increasing.
 pub fn validate_knots(knots: &[f64], keys: usize) -> Result<(), SweepError> {
     if knots.len() != keys {
-        return Err(SweepError::KnotCount { keys, found: knots.len() });
+        return Err(SweepError::KnotCount {
+            keys,
+            found: knots.len(),
+        });
     }
     if let Some(index) = knots.iter().position(|u| !u.is_finite()) {
         return Err(SweepError::NonFiniteKnot { index });
@@ -65,7 +74,11 @@ mod tests {
 
     #[test]
     fn knots_follow_chord_length() {
-        let centers = [DVec3::ZERO, DVec3::new(1.0, 0.0, 0.0), DVec3::new(1.0, 3.0, 0.0)];
+        let centers = [
+            DVec3::ZERO,
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(1.0, 3.0, 0.0),
+        ];
         assert_eq!(chord_length_knots(&centers).unwrap(), vec![0.0, 0.25, 1.0]);
     }
 
@@ -74,15 +87,24 @@ mod tests {
         let centers = [DVec3::ZERO, DVec3::X, DVec3::X];
         assert_eq!(
             chord_length_knots(&centers),
-            Err(SweepError::CoincidentCenters { key: 2, previous: 1 })
+            Err(SweepError::CoincidentCenters {
+                key: 2,
+                previous: 1
+            })
         );
     }
 
     #[test]
     fn explicit_knots_must_increase_from_zero_to_one() {
         assert!(validate_knots(&[0.0, 0.5, 1.0], 3).is_ok());
-        assert!(matches!(validate_knots(&[0.0, 1.0], 3), Err(SweepError::KnotCount { .. })));
-        assert!(matches!(validate_knots(&[0.1, 0.5, 1.0], 3), Err(SweepError::KnotRange { .. })));
+        assert!(matches!(
+            validate_knots(&[0.0, 1.0], 3),
+            Err(SweepError::KnotCount { .. })
+        ));
+        assert!(matches!(
+            validate_knots(&[0.1, 0.5, 1.0], 3),
+            Err(SweepError::KnotRange { .. })
+        ));
         assert!(matches!(
             validate_knots(&[0.0, 0.5, 0.5, 1.0], 4),
             Err(SweepError::KnotsNotIncreasing { index: 2, .. })

@@ -111,7 +111,10 @@ mod tests {
         for j in 0..n {
             let (left, right) = (&pieces[j], &pieces[(j + 1) % n]);
             assert!((left.value(1.0) - right.value(0.0)).abs() < 1e-14);
-            assert!((left.derivative(1.0) - right.derivative(0.0)).abs() < 1e-12, "C¹ at node {j}");
+            assert!(
+                (left.derivative(1.0) - right.derivative(0.0)).abs() < 1e-12,
+                "C¹ at node {j}"
+            );
             assert!((left.second_derivative(1.0) - right.second_derivative(0.0)).abs() < 1e-12);
         }
     }

@@ -9,8 +9,8 @@
 use std::f64::consts::TAU;
 
 use super::natural_spline::natural_spline_pieces;
-use super::quadrature::gauss_legendre_4;
 use super::periodic_spline::periodic_spline_pieces;
+use super::quadrature::gauss_legendre_4;
 
 /// r on one (knot interval, angular interval) cell: `r(s, φ) = Σ_p Σ_q c[p][q]·s^p·φ^q`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -62,11 +62,11 @@ impl RadiusField {
         // Periodic spline in θ through each power coefficient: the bicubic c[p][q].
         let step = TAU / samples as f64;
         let mut patches = vec![RadiusPatch { c: [[0.0; 4]; 4] }; segments * samples];
-        for k in 0..segments {
+        for (cells, patch_row) in along_t.chunks(samples).zip(patches.chunks_mut(samples)) {
             for p in 0..4 {
-                let row: Vec<f64> = (0..samples).map(|j| along_t[k * samples + j][p]).collect();
-                for (j, piece) in periodic_spline_pieces(&row, step).iter().enumerate() {
-                    patches[k * samples + j].c[p] = piece.power_coefficients();
+                let row: Vec<f64> = cells.iter().map(|cell| cell[p]).collect();
+                for (patch, piece) in patch_row.iter_mut().zip(periodic_spline_pieces(&row, step)) {
+                    patch.c[p] = piece.power_coefficients();
                 }
             }
         }
@@ -113,13 +113,20 @@ mod tests {
     #[test]
     fn interpolates_every_key_radius() {
         let knots = [0.0, 0.3, 1.0];
-        let radii: [&[f64]; 3] = [&[1.0, 2.0, 1.5, 0.5], &[0.7, 0.7, 0.9, 1.1], &[2.0, 1.0, 3.0, 2.5]];
+        let radii: [&[f64]; 3] = [
+            &[1.0, 2.0, 1.5, 0.5],
+            &[0.7, 0.7, 0.9, 1.1],
+            &[2.0, 1.0, 3.0, 2.5],
+        ];
         let field = RadiusField::new(&knots, &radii);
         for (i, key) in radii.iter().enumerate() {
             for (j, rho) in key.iter().enumerate() {
                 let theta = TAU * j as f64 / 4.0;
                 let (segment, s) = if i < 2 { (i, 0.0) } else { (1, 1.0) };
-                assert!((field.value(segment, s, theta) - rho).abs() < 1e-14, "key {i}, node {j}");
+                assert!(
+                    (field.value(segment, s, theta) - rho).abs() < 1e-14,
+                    "key {i}, node {j}"
+                );
             }
         }
     }

@@ -1,6 +1,9 @@
 //! Shared helpers for the integration tests: locating the test meshes in `../shared/meshes`.
 
-#![allow(dead_code, reason = "each test binary uses a different subset of the helpers")]
+#![allow(
+    dead_code,
+    reason = "each test binary uses a different subset of the helpers"
+)]
 
 use std::path::PathBuf;
 
@@ -17,8 +20,125 @@ pub fn shared_mesh(name: &str) -> Option<PathBuf> {
         return Some(path);
     }
     if std::env::var("CI").is_ok_and(|v| v == "true" || v == "1") {
-        panic!("CI=true but the shared test mesh {} is missing", path.display());
+        panic!(
+            "CI=true but the shared test mesh {} is missing",
+            path.display()
+        );
     }
-    eprintln!("skipping: shared test mesh {} not found (the ../shared folder is not beside this clone)", path.display());
+    eprintln!(
+        "skipping: shared test mesh {} not found (the ../shared folder is not beside this clone)",
+        path.display()
+    );
     None
+}
+
+use glam::{DMat3, DQuat, DVec3};
+use sweepffd::mesh::Mesh;
+use sweepffd::rig::{Rig, RigSweep, VertexSelection};
+use sweepffd::sweep::Key;
+
+/// The unit principal axis (largest variance) of `points`, by power iteration on the
+/// covariance matrix.
+pub fn principal_axis(points: &[DVec3]) -> (DVec3, DVec3) {
+    let centroid = points.iter().copied().sum::<DVec3>() / points.len() as f64;
+    let mut covariance = DMat3::ZERO;
+    for p in points {
+        let d = *p - centroid;
+        covariance += DMat3::from_cols(d * d.x, d * d.y, d * d.z);
+    }
+    let mut axis = DVec3::new(1.0, 0.7, 0.3).normalize();
+    for _ in 0..200 {
+        axis = (covariance * axis).normalize();
+    }
+    (centroid, axis)
+}
+
+/// A rest rig with one sweep, `body`, owning every vertex of `mesh`: `keys` keys spread over
+/// the middle 70% of the mesh's principal axis (so vertices lie beyond both ends), each
+/// centered on the vertices of its slab, oriented along the resulting center curve, with
+/// `samples` radii measured from those vertices. The center curve bends wherever the mesh
+/// does, so binding meets several roots.
+pub fn axis_rig(mesh: &Mesh, keys: usize, samples: usize) -> Rig {
+    let (centroid, axis) = principal_axis(&mesh.positions);
+    let along: Vec<f64> = mesh
+        .positions
+        .iter()
+        .map(|p| (*p - centroid).dot(axis))
+        .collect();
+    let (lo, hi) = along
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(lo, hi), &a| (lo.min(a), hi.max(a)));
+    let span = hi - lo;
+    let slab = 0.7 * span / (keys - 1) as f64;
+    let stations: Vec<f64> = (0..keys)
+        .map(|i| lo + span * (0.15 + 0.7 * i as f64 / (keys - 1) as f64))
+        .collect();
+    let slab_members = |station: f64| -> Vec<DVec3> {
+        mesh.positions
+            .iter()
+            .zip(&along)
+            .filter(|(_, a)| (**a - station).abs() <= 0.5 * slab)
+            .map(|(p, _)| *p)
+            .collect()
+    };
+    let centers: Vec<DVec3> = stations
+        .iter()
+        .map(|&station| {
+            let members = slab_members(station);
+            let on_axis = centroid + axis * station;
+            if members.is_empty() {
+                on_axis
+            } else {
+                members.iter().copied().sum::<DVec3>() / members.len() as f64
+            }
+        })
+        .collect();
+    // Frames by parallel transport of the tangent of the center polyline.
+    let mut rotations = Vec::with_capacity(keys);
+    let mut previous = DQuat::from_rotation_arc(DVec3::Z, (centers[1] - centers[0]).normalize());
+    for i in 0..keys {
+        let tangent = (centers[(i + 1).min(keys - 1)] - centers[i.saturating_sub(1)]).normalize();
+        let current_z = previous * DVec3::Z;
+        previous = (DQuat::from_rotation_arc(current_z, tangent) * previous).normalize();
+        rotations.push(previous);
+    }
+    let rig_keys = (0..keys)
+        .map(|i| {
+            let members = slab_members(stations[i]);
+            let mut sums = vec![(0.0, 0usize); samples];
+            let mut overall = (0.0, 0usize);
+            for p in &members {
+                let local = rotations[i].inverse() * (*p - centers[i]);
+                let radius = local.truncate().length();
+                let theta = local.y.atan2(local.x).rem_euclid(std::f64::consts::TAU);
+                let j =
+                    ((theta / std::f64::consts::TAU * samples as f64) as usize).min(samples - 1);
+                sums[j].0 += radius;
+                sums[j].1 += 1;
+                overall.0 += radius;
+                overall.1 += 1;
+            }
+            let mean = if overall.1 > 0 {
+                overall.0 / overall.1 as f64
+            } else {
+                0.1 * span
+            };
+            let radii = sums
+                .iter()
+                .map(|&(sum, n)| if n > 0 { sum / n as f64 } else { mean })
+                .collect();
+            Key {
+                center: centers[i],
+                rotation: rotations[i],
+                radii,
+            }
+        })
+        .collect();
+    let sweep = RigSweep {
+        name: "body".to_string(),
+        vertices: Some(VertexSelection::All),
+        keys: rig_keys,
+        knots: None,
+    };
+    Rig::new(vec![sweep]).expect("the axis rig is valid")
 }

@@ -1,0 +1,212 @@
+// Binding (paper section 3) of every owned vertex: the root t of <v - C(t), N(t)> nearest to v
+// (every root found: Bernstein sign variations certify each interval), or the nearer end when
+// there is none; then theta, d = |v^_xy| - r(theta, t) and h = v^_z with v^ = R(t)^T (v - C(t)).
+// Composed after layout.wgsl and sweep_eval.wgsl. Twin: src/cpu/bind.rs.
+
+@group(0) @binding(0) var<uniform> params: DispatchParams;
+@group(0) @binding(1) var<storage, read> segments: array<SegmentCoeffs>;
+@group(0) @binding(2) var<storage, read> patches: array<PatchCoeffs>;
+@group(0) @binding(3) var<storage, read> bind_segments: array<BindSegment>;
+@group(0) @binding(4) var<storage, read> sweeps: array<SweepInfo>;
+// The owning sweep of each vertex, or UNBOUND.
+@group(0) @binding(5) var<storage, read> owners: array<u32>;
+// Rest positions, tightly packed xyz.
+@group(0) @binding(6) var<storage, read> positions: array<f32>;
+@group(0) @binding(7) var<storage, read_write> bindings: array<GpuBinding>;
+
+const TAU: f32 = 6.283185307179586;
+// Dyadic subdivision depth: intervals of width 2^-12 that still show several sign variations
+// hold a (near-)double root and report their midpoint.
+const MAX_LEVEL: u32 = 12u;
+// Refinement stops when the bracket or the Newton step is below this width in s.
+const S_TOLERANCE: f32 = 1e-7;
+const MAX_REFINE_STEPS: u32 = 32u;
+
+// The nearest root found so far: its knot interval, local parameter and squared distance.
+struct Nearest {
+    segment: u32,
+    s: f32,
+    distance2: f32,
+    found: bool,
+}
+
+// Power coefficients of g(s) = <v - C(s), n(s)> on a knot interval.
+fn plane_quintic(b: BindSegment, v: vec3<f32>) -> array<f32, 6> {
+    let w = v - b.origin.xyz;
+    return array<f32, 6>(
+        dot(w, b.normal[0].xyz),
+        dot(w, b.normal[1].xyz) - b.e_low.x,
+        dot(w, b.normal[2].xyz) - b.e_low.y,
+        -b.e_low.z,
+        -b.e_low.w,
+        -b.e5,
+    );
+}
+
+fn eval_quintic(g: array<f32, 6>, s: f32) -> f32 {
+    return g[0] + s * (g[1] + s * (g[2] + s * (g[3] + s * (g[4] + s * g[5]))));
+}
+
+fn eval_quintic_derivative(g: array<f32, 6>, s: f32) -> f32 {
+    return g[1] + s * (2.0 * g[2] + s * (3.0 * g[3] + s * (4.0 * g[4] + s * 5.0 * g[5])));
+}
+
+// Bernstein coefficients of g on [a, a + w]: a Taylor shift to a, a scaling by w, then the
+// power-to-Bernstein change of basis for degree 5.
+fn bernstein_on(g: array<f32, 6>, a: f32, w: f32) -> array<f32, 6> {
+    var c = g;
+    for (var k = 0; k < 5; k++) {
+        for (var i = 4; i >= k; i--) {
+            c[i] += a * c[i + 1];
+        }
+    }
+    var scale = 1.0;
+    for (var k = 0; k < 6; k++) {
+        c[k] *= scale;
+        scale *= w;
+    }
+    return array<f32, 6>(
+        c[0],
+        c[0] + 0.2 * c[1],
+        c[0] + 0.4 * c[1] + 0.1 * c[2],
+        c[0] + 0.6 * c[1] + 0.3 * c[2] + 0.1 * c[3],
+        c[0] + 0.8 * c[1] + 0.6 * c[2] + 0.4 * c[3] + 0.2 * c[4],
+        c[0] + c[1] + c[2] + c[3] + c[4] + c[5],
+    );
+}
+
+// Sign variations of Bernstein coefficients, counting 0 as positive.
+fn sign_variations(b: array<f32, 6>) -> u32 {
+    var count = 0u;
+    for (var i = 0; i < 5; i++) {
+        if ((b[i] >= 0.0) != (b[i + 1] >= 0.0)) {
+            count += 1u;
+        }
+    }
+    return count;
+}
+
+// The root of g in [lo, hi], where g(lo) and g(hi) differ in sign: Newton's method kept inside
+// the shrinking bracket, bisecting when a step would leave it.
+fn refine_root(g: array<f32, 6>, lo_in: f32, hi_in: f32, positive_at_lo: bool) -> f32 {
+    var lo = lo_in;
+    var hi = hi_in;
+    var s = 0.5 * (lo + hi);
+    for (var step = 0u; step < MAX_REFINE_STEPS; step++) {
+        let value = eval_quintic(g, s);
+        if (value == 0.0) {
+            break;
+        }
+        if ((value >= 0.0) == positive_at_lo) {
+            lo = s;
+        } else {
+            hi = s;
+        }
+        let derivative = eval_quintic_derivative(g, s);
+        var next = 0.5 * (lo + hi);
+        if (derivative != 0.0) {
+            let newton = s - value / derivative;
+            if (newton > lo && newton < hi) {
+                next = newton;
+            }
+        }
+        let moved = abs(next - s);
+        s = next;
+        if (moved <= S_TOLERANCE || hi - lo <= S_TOLERANCE) {
+            break;
+        }
+    }
+    return s;
+}
+
+// Keeps root s of knot interval k if it is nearer to v than the nearest so far.
+fn consider_root(k: u32, s: f32, v: vec3<f32>, nearest: ptr<function, Nearest>) {
+    let offset = v - curve_at(segments[k], s);
+    let distance2 = dot(offset, offset);
+    if (!(*nearest).found || distance2 < (*nearest).distance2) {
+        *nearest = Nearest(k, s, distance2, true);
+    }
+}
+
+// Visits the dyadic subintervals of [0, 1] depth first without a stack (level, index encode the
+// interval [index / 2^level, (index + 1) / 2^level]), refining every certified root.
+fn roots_on_segment(k: u32, v: vec3<f32>, nearest: ptr<function, Nearest>) {
+    let g = plane_quintic(bind_segments[k], v);
+    if (g[0] == 0.0) {
+        consider_root(k, 0.0, v, nearest);
+    }
+    var level = 0u;
+    var index = 0u;
+    loop {
+        let w = 1.0 / f32(1u << level);
+        let a = f32(index) * w;
+        let b = bernstein_on(g, a, w);
+        let variations = sign_variations(b);
+        if (variations > 1u && level < MAX_LEVEL) {
+            level += 1u;
+            index *= 2u;
+            continue;
+        }
+        if (variations == 1u || (variations > 1u && (b[0] >= 0.0) != (b[5] >= 0.0))) {
+            consider_root(k, refine_root(g, a, a + w, b[0] >= 0.0), v, nearest);
+        } else if (variations > 1u) {
+            consider_root(k, a + 0.5 * w, v, nearest);
+        }
+        // Next interval: climb while on a right child, then step to the right sibling.
+        while ((index & 1u) == 1u) {
+            index = index >> 1u;
+            level -= 1u;
+        }
+        if (level == 0u) {
+            break;
+        }
+        index += 1u;
+    }
+    if (eval_quintic(g, 1.0) == 0.0) {
+        consider_root(k, 1.0, v, nearest);
+    }
+}
+
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn bind(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    let i = invocation_index(group, groups, lane);
+    if (i >= params.vertex_count) {
+        return;
+    }
+    let owner = owners[i];
+    if (owner == UNBOUND) {
+        bindings[i] = GpuBinding(UNBOUND, 0.0, 0.0, 0.0, 0.0);
+        return;
+    }
+    let v = vec3<f32>(positions[3u * i], positions[3u * i + 1u], positions[3u * i + 2u]);
+    let sweep = sweeps[owner];
+    var nearest = Nearest(sweep.first_segment, 0.0, 0.0, false);
+    for (var k = sweep.first_segment; k < sweep.first_segment + sweep.segment_count; k++) {
+        roots_on_segment(k, v, &nearest);
+    }
+    if (!nearest.found) {
+        // Beyond an end: the nearer of C(0) and C(1).
+        let last = sweep.first_segment + sweep.segment_count - 1u;
+        let to_start = v - curve_at(segments[sweep.first_segment], 0.0);
+        let to_end = v - curve_at(segments[last], 1.0);
+        if (dot(to_end, to_end) < dot(to_start, to_start)) {
+            nearest = Nearest(last, 1.0, 0.0, true);
+        }
+    }
+    let segment = segments[nearest.segment];
+    let local = rotate_inverse(quat_at(segment, nearest.s), v - curve_at(segment, nearest.s));
+    var theta = atan2(local.y, local.x);
+    if (theta < 0.0) {
+        theta += TAU;
+    }
+    let x = theta * (f32(sweep.samples) / TAU);
+    let j = min(u32(x), sweep.samples - 1u);
+    let phi = clamp(x - f32(j), 0.0, 1.0);
+    let patch = sweep.first_patch + (nearest.segment - sweep.first_segment) * sweep.samples + j;
+    let r = radius_at(patches[patch], nearest.s, phi);
+    bindings[i] = GpuBinding(patch, nearest.s, phi, length(local.xy) - r, local.z);
+}

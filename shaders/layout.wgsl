@@ -1,0 +1,66 @@
+// Buffer layouts shared by every kernel.
+// Twin: src/coeffs/layout.rs (sizes and member offsets are checked against it by a test).
+
+const WORKGROUP_SIZE: u32 = 64u;
+const UNBOUND: u32 = 0xffffffffu;
+
+// One knot interval of a posed sweep: C(s) = origin + c1 s + c2 s^2 + c3 s^3 (curve[0..3] = c1..c3)
+// and the sign-aligned end quaternions (x, y, z, w) of R(t).
+struct SegmentCoeffs {
+    origin: vec4<f32>,
+    curve: array<vec4<f32>, 3>,
+    q0: vec4<f32>,
+    q1: vec4<f32>,
+}
+
+// One (knot interval, angular interval) cell: r(s, phi) = sum radius[p][q] s^p phi^q, the cell's
+// knot interval, and cos/sin of its middle angle with half the angular step (pi / M).
+struct PatchCoeffs {
+    radius: array<vec4<f32>, 4>,
+    segment: u32,
+    cos_mid: f32,
+    sin_mid: f32,
+    half_step: f32,
+}
+
+// Where one sweep's segments and patches start; patch (k, j) is first_patch + k * samples + j.
+struct SweepInfo {
+    first_segment: u32,
+    segment_count: u32,
+    first_patch: u32,
+    samples: u32,
+}
+
+// The binding quintic of a rest knot interval, with w = v - origin:
+// g(s) = w.n0 + (w.n1 - e1) s + (w.n2 - e2) s^2 - e3 s^3 - e4 s^4 - e5 s^5.
+struct BindSegment {
+    origin: vec4<f32>,
+    normal: array<vec4<f32>, 3>,
+    e_low: vec4<f32>,
+    e5: f32,
+    t0: f32,
+    t1: f32,
+    _pad: f32,
+}
+
+// A vertex's binding: its radius patch (or UNBOUND), local (s, phi) in that cell, d and h.
+struct GpuBinding {
+    patch: u32,
+    s: f32,
+    phi: f32,
+    d: f32,
+    h: f32,
+}
+
+struct DispatchParams {
+    vertex_count: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+}
+
+// The linear invocation index of a dispatch of (x, y, 1) workgroups: large meshes need more
+// than 65,535 workgroups, so dispatches are two-dimensional.
+fn invocation_index(group: vec3<u32>, groups: vec3<u32>, lane: u32) -> u32 {
+    return (group.y * groups.x + group.x) * WORKGROUP_SIZE + lane;
+}

@@ -1,0 +1,215 @@
+//! The bindings file written by `sweepffd bind` and read by `sweepffd deform --bindings`.
+//!
+//! Little-endian binary:
+//!
+//! | offset | size | content |
+//! |---|---|---|
+//! | 0 | 8 | magic `SFFDBIND` |
+//! | 8 | 4 | format version, 1 |
+//! | 12 | 4 | number of sweeps in the rig |
+//! | 16 | 8 | number of vertices N |
+//! | 24 | 8 | rig fingerprint (FNV-1a 64 of the rest rig's JSON) |
+//! | 32 | 8 | mesh fingerprint (FNV-1a 64 of the vertex positions' f64 bits) |
+//! | 40 | 40·N | per vertex: u32 sweep (0xFFFFFFFF: unowned), u32 zero, f64 t, θ, d, h |
+//!
+//! The fingerprints let `deform` refuse bindings made for another rig or mesh.
+
+use std::io::{Read, Write};
+use std::path::{Path, PathBuf};
+
+use glam::DVec3;
+use thiserror::Error;
+
+use super::{Binding, UNOWNED, VertexBinding};
+use crate::rig::Rig;
+
+const MAGIC: &[u8; 8] = b"SFFDBIND";
+const VERSION: u32 = 1;
+const HEADER_BYTES: usize = 40;
+const RECORD_BYTES: usize = 40;
+
+/// Bindings of every vertex of a mesh to a rig, with fingerprints of both.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BindingsFile {
+    /// Number of sweeps of the rig the bindings were made for.
+    pub sweep_count: u32,
+    /// Fingerprint of that rig ([`rig_fingerprint`]).
+    pub rig_fingerprint: u64,
+    /// Fingerprint of the mesh positions ([`mesh_fingerprint`]).
+    pub mesh_fingerprint: u64,
+    /// One binding per vertex, in mesh order.
+    pub bindings: Vec<Binding>,
+}
+
+/// Why a bindings file cannot be read or used.
+#[derive(Debug, Error)]
+pub enum BindingsFileError {
+    #[error("{}: {source}", path.display())]
+    Io {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    #[error("{}: not a sweepffd bindings file ({reason})", path.display())]
+    Malformed { path: PathBuf, reason: String },
+    #[error("{}: the bindings were made for {what}", path.display())]
+    Mismatch { path: PathBuf, what: String },
+}
+
+/// FNV-1a 64 of the rest rig's canonical JSON.
+pub fn rig_fingerprint(rig: &Rig) -> u64 {
+    fnv1a(rig.to_document().to_json().as_bytes())
+}
+
+/// FNV-1a 64 of the little-endian bits of every coordinate.
+pub fn mesh_fingerprint(positions: &[DVec3]) -> u64 {
+    let bytes: Vec<u8> = positions
+        .iter()
+        .flat_map(|p| p.to_array())
+        .flat_map(f64::to_le_bytes)
+        .collect();
+    fnv1a(&bytes)
+}
+
+fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |hash, &b| {
+        (hash ^ b as u64).wrapping_mul(0x0100_0000_01b3)
+    })
+}
+
+impl BindingsFile {
+    /// The file for `bindings` of `positions` to `rig`.
+    pub fn new(rig: &Rig, positions: &[DVec3], bindings: Vec<Binding>) -> BindingsFile {
+        BindingsFile {
+            sweep_count: rig.sweeps().len() as u32,
+            rig_fingerprint: rig_fingerprint(rig),
+            mesh_fingerprint: mesh_fingerprint(positions),
+            bindings,
+        }
+    }
+
+    /// The file's bytes.
+    pub fn to_bytes(&self) -> Vec<u8> {
+        let mut bytes = Vec::with_capacity(HEADER_BYTES + RECORD_BYTES * self.bindings.len());
+        bytes.extend_from_slice(MAGIC);
+        bytes.extend_from_slice(&VERSION.to_le_bytes());
+        bytes.extend_from_slice(&self.sweep_count.to_le_bytes());
+        bytes.extend_from_slice(&(self.bindings.len() as u64).to_le_bytes());
+        bytes.extend_from_slice(&self.rig_fingerprint.to_le_bytes());
+        bytes.extend_from_slice(&self.mesh_fingerprint.to_le_bytes());
+        for Binding { sweep, params } in &self.bindings {
+            bytes.extend_from_slice(&sweep.to_le_bytes());
+            bytes.extend_from_slice(&0u32.to_le_bytes());
+            for value in [params.t, params.theta, params.d, params.h] {
+                bytes.extend_from_slice(&value.to_le_bytes());
+            }
+        }
+        bytes
+    }
+
+    /// Parses a file's bytes; `path` is named in errors.
+    pub fn from_bytes(bytes: &[u8], path: &Path) -> Result<BindingsFile, BindingsFileError> {
+        let malformed = |reason: String| BindingsFileError::Malformed {
+            path: path.to_path_buf(),
+            reason,
+        };
+        if bytes.len() < HEADER_BYTES || &bytes[..8] != MAGIC {
+            return Err(malformed("missing the SFFDBIND header".to_string()));
+        }
+        let u32_at = |at: usize| u32::from_le_bytes(bytes[at..at + 4].try_into().expect("4 bytes"));
+        let u64_at = |at: usize| u64::from_le_bytes(bytes[at..at + 8].try_into().expect("8 bytes"));
+        let f64_at = |at: usize| f64::from_bits(u64_at(at));
+        if u32_at(8) != VERSION {
+            return Err(malformed(format!("version {} is not 1", u32_at(8))));
+        }
+        let sweep_count = u32_at(12);
+        let count = u64_at(16);
+        let expected = (count as u128) * RECORD_BYTES as u128 + HEADER_BYTES as u128;
+        if bytes.len() as u128 != expected {
+            return Err(malformed(format!(
+                "{} bytes for {count} vertices, expected {expected}",
+                bytes.len()
+            )));
+        }
+        let mut bindings = Vec::with_capacity(count as usize);
+        for i in 0..count as usize {
+            let at = HEADER_BYTES + i * RECORD_BYTES;
+            let sweep = u32_at(at);
+            let params = VertexBinding {
+                t: f64_at(at + 8),
+                theta: f64_at(at + 16),
+                d: f64_at(at + 24),
+                h: f64_at(at + 32),
+            };
+            let valid = sweep == UNOWNED
+                || (sweep < sweep_count
+                    && [params.t, params.theta, params.d, params.h]
+                        .iter()
+                        .all(|v| v.is_finite())
+                    && (0.0..=1.0).contains(&params.t));
+            if !valid {
+                return Err(malformed(format!("vertex {i} has an invalid binding")));
+            }
+            bindings.push(Binding { sweep, params });
+        }
+        Ok(BindingsFile {
+            sweep_count,
+            rig_fingerprint: u64_at(24),
+            mesh_fingerprint: u64_at(32),
+            bindings,
+        })
+    }
+
+    /// Reads a bindings file.
+    pub fn load(path: &Path) -> Result<BindingsFile, BindingsFileError> {
+        let mut bytes = Vec::new();
+        std::fs::File::open(path)
+            .and_then(|mut file| file.read_to_end(&mut bytes))
+            .map_err(|source| BindingsFileError::Io {
+                path: path.to_path_buf(),
+                source,
+            })?;
+        BindingsFile::from_bytes(&bytes, path)
+    }
+
+    /// Writes the file atomically (temporary file, then rename).
+    pub fn save(&self, path: &Path) -> Result<(), BindingsFileError> {
+        let bytes = self.to_bytes();
+        crate::mesh::write_atomically(path, |out| out.write_all(&bytes)).map_err(|source| {
+            BindingsFileError::Io {
+                path: path.to_path_buf(),
+                source,
+            }
+        })
+    }
+
+    /// Checks that the bindings were made for `rig` and `positions`; `path` is named in errors.
+    pub fn check_matches(
+        &self,
+        rig: &Rig,
+        positions: &[DVec3],
+        path: &Path,
+    ) -> Result<(), BindingsFileError> {
+        let mismatch = |what: &str| {
+            Err(BindingsFileError::Mismatch {
+                path: path.to_path_buf(),
+                what: what.to_string(),
+            })
+        };
+        if self.bindings.len() != positions.len() {
+            return mismatch(&format!(
+                "{} vertices, the mesh has {}",
+                self.bindings.len(),
+                positions.len()
+            ));
+        }
+        if self.sweep_count as usize != rig.sweeps().len()
+            || self.rig_fingerprint != rig_fingerprint(rig)
+        {
+            return mismatch("another rig (run `sweepffd bind` again)");
+        }
+        if self.mesh_fingerprint != mesh_fingerprint(positions) {
+            return mismatch("another mesh with the same vertex count (run `sweepffd bind` again)");
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,119 @@
+//! Buffer layouts shared by the WGSL kernels (`shaders/layout.wgsl`) and their CPU twins.
+//!
+//! Every struct here is `#[repr(C)]` and `Pod`, has its WGSL twin of the same name in
+//! `shaders/layout.wgsl`, and a test parses the shaders with naga and checks that sizes and
+//! member offsets agree. No `vec3` in storage: three-component values are stored as
+//! `[f32; 4]` / `vec4<f32>` with an unused `w`.
+
+use bytemuck::{Pod, Zeroable};
+
+/// Threads per workgroup of every compute kernel; the shaders' `@workgroup_size` must match.
+pub const WORKGROUP_SIZE: u32 = 64;
+
+/// `GpuBinding::patch` of a vertex that no sweep owns; the deform kernel leaves it in place.
+pub const UNBOUND: u32 = u32::MAX;
+
+/// One knot interval of a posed sweep: C(s) = origin + c1·s + c2·s² + c3·s³ and the
+/// sign-aligned end quaternions of R(t) (§3). Rebuilt every frame. 96 bytes.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct SegmentCoeffs {
+    /// C(0) = p_k in xyz; w unused.
+    pub origin: [f32; 4],
+    /// c1, c2, c3 in xyz; w unused.
+    pub curve: [[f32; 4]; 3],
+    /// q_k as (x, y, z, w).
+    pub q0: [f32; 4],
+    /// q̃_{k+1} as (x, y, z, w), sign-aligned with q_k.
+    pub q1: [f32; 4],
+}
+
+/// One (knot interval, angular interval) cell of r(θ, t): the bicubic radius patch, rebuilt
+/// every frame, and the cell's fixed angular data. 80 bytes.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct PatchCoeffs {
+    /// r(s, φ) = Σ_p Σ_q radius[p][q]·s^p·φ^q.
+    pub radius: [[f32; 4]; 4],
+    /// Index of the cell's knot interval in the segment array.
+    pub segment: u32,
+    /// cos of the cell's middle angle θ_j + π/M.
+    pub cos_mid: f32,
+    /// sin of the cell's middle angle θ_j + π/M.
+    pub sin_mid: f32,
+    /// Half the angular step, π/M.
+    pub half_step: f32,
+}
+
+/// Where one sweep's segments and patches start; used by binding. 16 bytes.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Pod, Zeroable)]
+pub struct SweepInfo {
+    /// Index of the sweep's first knot interval in the segment arrays.
+    pub first_segment: u32,
+    /// Number of knot intervals n.
+    pub segment_count: u32,
+    /// Index of the sweep's first patch; patch (k, j) is `first_patch + k·M + j`.
+    pub first_patch: u32,
+    /// M, the number of radii per key.
+    pub samples: u32,
+}
+
+/// The binding quintic of one rest knot interval (see [`crate::bind`]): with w = v − origin,
+/// g(s) = w·n0 + (w·n1 − e1)·s + (w·n2 − e2)·s² − e3·s³ − e4·s⁴ − e5·s⁵. 96 bytes.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct BindSegment {
+    /// p_k in xyz; w unused.
+    pub origin: [f32; 4],
+    /// n0, n1, n2 (the unnormalized normal's coefficients) in xyz; w unused.
+    pub normal: [[f32; 4]; 3],
+    /// e1, e2, e3, e4.
+    pub e_low: [f32; 4],
+    /// e5.
+    pub e5: f32,
+    /// u_k.
+    pub t0: f32,
+    /// u_{k+1}.
+    pub t1: f32,
+    /// Unused.
+    pub _pad: f32,
+}
+
+/// A vertex's binding as the GPU stores it: the radius patch it lies in, local parameters in
+/// that cell, and (d, h). 20 bytes, so positions (12) and bindings fit in 32 bytes a vertex.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuBinding {
+    /// Global patch index, or [`UNBOUND`].
+    pub patch: u32,
+    /// Local axis parameter s ∈ [0, 1] in the patch's knot interval.
+    pub s: f32,
+    /// Local angle parameter φ ∈ [0, 1] in the patch's angular interval: θ = θ_j + φ·2π/M.
+    pub phi: f32,
+    /// Signed distance d from the sweep surface.
+    pub d: f32,
+    /// Axial offset h.
+    pub h: f32,
+}
+
+/// Per-dispatch constants of the bind and deform kernels. 16 bytes.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Pod, Zeroable)]
+pub struct DispatchParams {
+    /// Number of vertices in this dispatch; threads at or past it return at once.
+    pub vertex_count: u32,
+    /// Unused.
+    pub _pad0: u32,
+    /// Unused.
+    pub _pad1: u32,
+    /// Unused.
+    pub _pad2: u32,
+}
+
+const _: () = assert!(size_of::<SegmentCoeffs>() == 96);
+const _: () = assert!(size_of::<PatchCoeffs>() == 80);
+const _: () = assert!(size_of::<SweepInfo>() == 16);
+const _: () = assert!(size_of::<BindSegment>() == 96);
+const _: () = assert!(size_of::<GpuBinding>() == 20);
+const _: () = assert!(size_of::<DispatchParams>() == 16);

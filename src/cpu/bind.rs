@@ -1,0 +1,260 @@
+//! Twin of `shaders/bind.wgsl`: binding (§3) of every owned vertex in f32 — the root t of
+//! ⟨v − C(t), N(t)⟩ nearest to v (every root certified by Bernstein sign variations), or the
+//! nearer end when there is none; then θ, d = |v̂_xy| − r(θ, t) and h = v̂_z with
+//! v̂ = R(t)ᵀ·(v − C(t)).
+
+use std::f32::consts::TAU;
+
+use glam::{Vec3, Vec4, Vec4Swizzles};
+use rayon::prelude::*;
+
+use super::position;
+use super::sweep_eval::{curve_at, quat_at, radius_at, rotate_inverse};
+use crate::coeffs::{BindSegment, GpuBinding, PatchCoeffs, SegmentCoeffs, SweepInfo, UNBOUND};
+
+/// Dyadic subdivision depth: intervals of width 2⁻¹² that still show several sign variations
+/// hold a (near-)double root and report their midpoint.
+const MAX_LEVEL: u32 = 12;
+/// Refinement stops when the bracket or the Newton step is below this width in s.
+const S_TOLERANCE: f32 = 1e-7;
+const MAX_REFINE_STEPS: u32 = 32;
+
+/// The kernel's read-only inputs, as bound to it.
+#[derive(Clone, Copy, Debug)]
+pub struct BindInputs<'a> {
+    /// Rest curve and orientation coefficients.
+    pub segments: &'a [SegmentCoeffs],
+    /// Rest radius patches.
+    pub patches: &'a [PatchCoeffs],
+    /// Rest binding quintics.
+    pub bind_segments: &'a [BindSegment],
+    /// Where each sweep starts.
+    pub sweeps: &'a [SweepInfo],
+}
+
+/// The nearest root found so far: its knot interval, local parameter and squared distance.
+#[derive(Clone, Copy, Debug)]
+struct Nearest {
+    segment: u32,
+    s: f32,
+    distance2: f32,
+    found: bool,
+}
+
+/// Power coefficients of g(s) = ⟨v − C(s), n(s)⟩ on a knot interval.
+fn plane_quintic(b: &BindSegment, v: Vec3) -> [f32; 6] {
+    let w = v - Vec4::from_array(b.origin).xyz();
+    let n = b.normal.map(|n| Vec4::from_array(n).xyz());
+    [
+        w.dot(n[0]),
+        w.dot(n[1]) - b.e_low[0],
+        w.dot(n[2]) - b.e_low[1],
+        -b.e_low[2],
+        -b.e_low[3],
+        -b.e5,
+    ]
+}
+
+fn eval_quintic(g: &[f32; 6], s: f32) -> f32 {
+    g[0] + s * (g[1] + s * (g[2] + s * (g[3] + s * (g[4] + s * g[5]))))
+}
+
+fn eval_quintic_derivative(g: &[f32; 6], s: f32) -> f32 {
+    g[1] + s * (2.0 * g[2] + s * (3.0 * g[3] + s * (4.0 * g[4] + s * 5.0 * g[5])))
+}
+
+/// Bernstein coefficients of g on [a, a + w]: a Taylor shift to a, a scaling by w, then the
+/// power-to-Bernstein change of basis for degree 5.
+#[expect(clippy::needless_range_loop, reason = "mirrors the WGSL")]
+fn bernstein_on(g: &[f32; 6], a: f32, w: f32) -> [f32; 6] {
+    let mut c = *g;
+    for k in 0..5 {
+        for i in (k..=4).rev() {
+            c[i] += a * c[i + 1];
+        }
+    }
+    let mut scale = 1.0;
+    for k in 0..6 {
+        c[k] *= scale;
+        scale *= w;
+    }
+    [
+        c[0],
+        c[0] + 0.2 * c[1],
+        c[0] + 0.4 * c[1] + 0.1 * c[2],
+        c[0] + 0.6 * c[1] + 0.3 * c[2] + 0.1 * c[3],
+        c[0] + 0.8 * c[1] + 0.6 * c[2] + 0.4 * c[3] + 0.2 * c[4],
+        c[0] + c[1] + c[2] + c[3] + c[4] + c[5],
+    ]
+}
+
+/// Sign variations of Bernstein coefficients, counting 0 as positive.
+fn sign_variations(b: &[f32; 6]) -> u32 {
+    let mut count = 0;
+    for i in 0..5 {
+        if (b[i] >= 0.0) != (b[i + 1] >= 0.0) {
+            count += 1;
+        }
+    }
+    count
+}
+
+/// The root of g in [lo, hi], where g(lo) and g(hi) differ in sign: Newton's method kept inside
+/// the shrinking bracket, bisecting when a step would leave it.
+fn refine_root(g: &[f32; 6], lo_in: f32, hi_in: f32, positive_at_lo: bool) -> f32 {
+    let mut lo = lo_in;
+    let mut hi = hi_in;
+    let mut s = 0.5 * (lo + hi);
+    for _ in 0..MAX_REFINE_STEPS {
+        let value = eval_quintic(g, s);
+        if value == 0.0 {
+            break;
+        }
+        if (value >= 0.0) == positive_at_lo {
+            lo = s;
+        } else {
+            hi = s;
+        }
+        let derivative = eval_quintic_derivative(g, s);
+        let mut next = 0.5 * (lo + hi);
+        if derivative != 0.0 {
+            let newton = s - value / derivative;
+            if newton > lo && newton < hi {
+                next = newton;
+            }
+        }
+        let moved = (next - s).abs();
+        s = next;
+        if moved <= S_TOLERANCE || hi - lo <= S_TOLERANCE {
+            break;
+        }
+    }
+    s
+}
+
+/// Keeps root s of knot interval k if it is nearer to v than the nearest so far.
+fn consider_root(inputs: &BindInputs, k: u32, s: f32, v: Vec3, nearest: &mut Nearest) {
+    let offset = v - curve_at(&inputs.segments[k as usize], s);
+    let distance2 = offset.dot(offset);
+    if !nearest.found || distance2 < nearest.distance2 {
+        *nearest = Nearest {
+            segment: k,
+            s,
+            distance2,
+            found: true,
+        };
+    }
+}
+
+/// Visits the dyadic subintervals of [0, 1] depth first without a stack (level, index encode the
+/// interval [index/2^level, (index + 1)/2^level]), refining every certified root.
+fn roots_on_segment(inputs: &BindInputs, k: u32, v: Vec3, nearest: &mut Nearest) {
+    let g = plane_quintic(&inputs.bind_segments[k as usize], v);
+    if g[0] == 0.0 {
+        consider_root(inputs, k, 0.0, v, nearest);
+    }
+    let mut level = 0u32;
+    let mut index = 0u32;
+    loop {
+        let w = 1.0 / (1u32 << level) as f32;
+        let a = index as f32 * w;
+        let b = bernstein_on(&g, a, w);
+        let variations = sign_variations(&b);
+        if variations > 1 && level < MAX_LEVEL {
+            level += 1;
+            index *= 2;
+            continue;
+        }
+        if variations == 1 || (variations > 1 && (b[0] >= 0.0) != (b[5] >= 0.0)) {
+            consider_root(
+                inputs,
+                k,
+                refine_root(&g, a, a + w, b[0] >= 0.0),
+                v,
+                nearest,
+            );
+        } else if variations > 1 {
+            consider_root(inputs, k, a + 0.5 * w, v, nearest);
+        }
+        // Next interval: climb while on a right child, then step to the right sibling.
+        while index & 1 == 1 {
+            index >>= 1;
+            level -= 1;
+        }
+        if level == 0 {
+            break;
+        }
+        index += 1;
+    }
+    if eval_quintic(&g, 1.0) == 0.0 {
+        consider_root(inputs, k, 1.0, v, nearest);
+    }
+}
+
+/// One invocation of the kernel: the binding of vertex `v` owned by sweep `owner` (or
+/// [`UNBOUND`]).
+pub fn bind_vertex(inputs: &BindInputs, owner: u32, v: Vec3) -> GpuBinding {
+    if owner == UNBOUND {
+        return GpuBinding {
+            patch: UNBOUND,
+            s: 0.0,
+            phi: 0.0,
+            d: 0.0,
+            h: 0.0,
+        };
+    }
+    let sweep = inputs.sweeps[owner as usize];
+    let mut nearest = Nearest {
+        segment: sweep.first_segment,
+        s: 0.0,
+        distance2: 0.0,
+        found: false,
+    };
+    for k in sweep.first_segment..sweep.first_segment + sweep.segment_count {
+        roots_on_segment(inputs, k, v, &mut nearest);
+    }
+    if !nearest.found {
+        // Beyond an end: the nearer of C(0) and C(1).
+        let last = sweep.first_segment + sweep.segment_count - 1;
+        let to_start = v - curve_at(&inputs.segments[sweep.first_segment as usize], 0.0);
+        let to_end = v - curve_at(&inputs.segments[last as usize], 1.0);
+        if to_end.dot(to_end) < to_start.dot(to_start) {
+            nearest = Nearest {
+                segment: last,
+                s: 1.0,
+                distance2: 0.0,
+                found: true,
+            };
+        }
+    }
+    let segment = &inputs.segments[nearest.segment as usize];
+    let local = rotate_inverse(
+        quat_at(segment, nearest.s),
+        v - curve_at(segment, nearest.s),
+    );
+    let mut theta = local.y.atan2(local.x);
+    if theta < 0.0 {
+        theta += TAU;
+    }
+    let x = theta * (sweep.samples as f32 / TAU);
+    let j = (x as u32).min(sweep.samples - 1);
+    let phi = (x - j as f32).clamp(0.0, 1.0);
+    let patch = sweep.first_patch + (nearest.segment - sweep.first_segment) * sweep.samples + j;
+    let r = radius_at(&inputs.patches[patch as usize], nearest.s, phi);
+    GpuBinding {
+        patch,
+        s: nearest.s,
+        phi,
+        d: local.truncate().length() - r,
+        h: local.z,
+    }
+}
+
+/// Every invocation of the kernel: the binding of each vertex of `positions` (tightly packed
+/// xyz) owned by `owners[i]`, in parallel.
+pub fn bind(inputs: &BindInputs, owners: &[u32], positions: &[f32]) -> Vec<GpuBinding> {
+    (0..owners.len())
+        .into_par_iter()
+        .map(|i| bind_vertex(inputs, owners[i], position(positions, i)))
+        .collect()
+}

@@ -1,0 +1,48 @@
+//! Twin of `shaders/deform.wgsl`: Eq. 2, extended by h, for every bound vertex, in f32:
+//! v = C(t) + R(t)·((r(θ,t) + d)·cos θ, (r(θ,t) + d)·sin θ, h).
+
+use glam::Vec3;
+use rayon::prelude::*;
+
+use super::sweep_eval::{curve_at, direction_at, quat_at, radius_at, rotate};
+use crate::coeffs::{GpuBinding, PatchCoeffs, SegmentCoeffs, UNBOUND};
+
+/// One invocation of the kernel: the new position of a vertex, or `None` if it is unbound and
+/// keeps its rest position.
+pub fn deform_vertex(
+    segments: &[SegmentCoeffs],
+    patches: &[PatchCoeffs],
+    binding: &GpuBinding,
+) -> Option<Vec3> {
+    if binding.patch == UNBOUND {
+        return None;
+    }
+    let patch = &patches[binding.patch as usize];
+    let segment = &segments[patch.segment as usize];
+    let rho = radius_at(patch, binding.s, binding.phi) + binding.d;
+    let direction = direction_at(patch, binding.phi);
+    let local = Vec3::new(rho * direction.x, rho * direction.y, binding.h);
+    let p = curve_at(segment, binding.s) + rotate(quat_at(segment, binding.s), local);
+    Some(p)
+}
+
+/// Every invocation of the kernel: overwrites the bound vertices of `positions` (tightly
+/// packed xyz, one triple per binding), in parallel.
+pub fn deform(
+    segments: &[SegmentCoeffs],
+    patches: &[PatchCoeffs],
+    bindings: &[GpuBinding],
+    positions: &mut [f32],
+) {
+    const CHUNK: usize = 4096;
+    positions
+        .par_chunks_mut(3 * CHUNK)
+        .zip(bindings.par_chunks(CHUNK))
+        .for_each(|(positions, bindings)| {
+            for (xyz, binding) in positions.chunks_exact_mut(3).zip(bindings) {
+                if let Some(p) = deform_vertex(segments, patches, binding) {
+                    xyz.copy_from_slice(&p.to_array());
+                }
+            }
+        });
+}

@@ -1,0 +1,19 @@
+//! CPU twins of the WGSL kernels: f32 code that mirrors `shaders/*.wgsl` statement by
+//! statement, file for file (`shaders/deform.wgsl` ↔ [`deform`], `shaders/bind.wgsl` ↔
+//! [`bind`], `shaders/sweep_eval.wgsl` ↔ [`sweep_eval`]).
+//!
+//! They are the executable specification of the GPU path: tests check them against the f64
+//! reference ([`crate::bind`], [`crate::deform`]) tightly and against the GPU within named
+//! tolerances, so a divergence can be bisected stage by stage. Each runs every invocation of
+//! its kernel, in parallel over the vertices.
+
+pub mod bind;
+pub mod deform;
+pub mod sweep_eval;
+
+use glam::Vec3;
+
+/// The vertex at index `i` of a tightly packed xyz array.
+fn position(positions: &[f32], i: usize) -> Vec3 {
+    Vec3::new(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2])
+}

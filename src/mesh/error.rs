@@ -1,0 +1,295 @@
+//! What can go wrong reading, building or writing a mesh.
+//!
+//! Every error that comes from a file names the file as it was given (`Path::display`), and
+//! for OBJ, a text format, the line at fault; numbers of vertices and faces are written the way
+//! the file writes them (1-based in OBJ, zero-based in PLY).
+
+use std::path::{Path, PathBuf};
+
+use thiserror::Error;
+
+/// A reason a mesh file cannot be read or written, or mesh data cannot form a [`Mesh`].
+///
+/// [`Mesh`]: super::Mesh
+#[derive(Debug, Error)]
+pub enum MeshError {
+    /// The file could not be opened or read.
+    #[error("cannot read {}: {source}", path.display())]
+    Read {
+        /// The file as given.
+        path: PathBuf,
+        /// What the operating system said.
+        source: std::io::Error,
+    },
+    /// The file (or its temporary sibling) could not be created, written or renamed.
+    #[error("cannot write {}: {source}", path.display())]
+    Write {
+        /// The file as given.
+        path: PathBuf,
+        /// What the operating system said.
+        source: std::io::Error,
+    },
+    /// The file name ends in neither `.obj` nor `.ply`.
+    #[error("{}: unsupported mesh format (expected .obj or .ply)", path.display())]
+    UnsupportedFormat {
+        /// The file as given.
+        path: PathBuf,
+    },
+    /// The file holds no vertex at all.
+    #[error("{}: the mesh has no vertices", path.display())]
+    Empty {
+        /// The file as given.
+        path: PathBuf,
+    },
+    /// The file has more vertices or face indices than 32-bit indices can address.
+    #[error("{}: more than {} vertices or face indices (indices are 32-bit)", path.display(), u32::MAX)]
+    TooLarge {
+        /// The file as given.
+        path: PathBuf,
+    },
+    /// A line of an OBJ file cannot be understood.
+    #[error("{}:{line}: {problem}", path.display())]
+    Obj {
+        /// The file as given.
+        path: PathBuf,
+        /// 1-based line number (the first line of a `\`-continued statement).
+        line: usize,
+        /// What is wrong with the line.
+        problem: ObjLineError,
+    },
+    /// The PLY parser rejected the file.
+    #[error("{}: not a valid PLY file: {reason}", path.display())]
+    InvalidPly {
+        /// The file as given.
+        path: PathBuf,
+        /// The parser's reason, on one line.
+        reason: String,
+    },
+    /// The PLY file has no `vertex` element with float or double `x`, `y` and `z`.
+    #[error("{}: no \"vertex\" element with x, y, z properties", path.display())]
+    NoPlyVertices {
+        /// The file as given.
+        path: PathBuf,
+    },
+    /// The PLY file's `face` element has no integer list `vertex_indices` or `vertex_index`.
+    #[error("{}: the \"face\" element has no integer list property vertex_indices or vertex_index", path.display())]
+    NoPlyFaceIndices {
+        /// The file as given.
+        path: PathBuf,
+    },
+    /// The data of a PLY file does not form a mesh (zero-based face and vertex numbers).
+    #[error("{}: {problem}", path.display())]
+    PlyData {
+        /// The file as given.
+        path: PathBuf,
+        /// What is wrong with the data.
+        problem: MeshDataError,
+    },
+    /// Data given in code (or positions given to save) do not form a mesh.
+    #[error("{0}")]
+    Invalid(#[from] MeshDataError),
+    /// A position list does not have one entry per vertex of the mesh.
+    #[error("positions has {found} entries but the mesh has {expected} vertices")]
+    PositionCount {
+        /// The mesh's vertex count.
+        expected: usize,
+        /// The length of the list given.
+        found: usize,
+    },
+}
+
+/// What is wrong with one statement of an OBJ file. Vertex numbers are 1-based, as in OBJ.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum ObjLineError {
+    /// A token that should be a number is not one.
+    #[error("{what} \"{token}\" is not a number")]
+    NotANumber {
+        /// `"vertex coordinate"` or `"face index"`.
+        what: &'static str,
+        /// The token as written (invalid UTF-8 replaced).
+        token: String,
+    },
+    /// A `v` statement with fewer than three numbers.
+    #[error("vertex has {found} coordinates; x, y and z are needed")]
+    MissingCoordinates {
+        /// How many numbers the statement has.
+        found: usize,
+    },
+    /// A `v` statement with an infinite or NaN coordinate.
+    #[error("vertex {vertex} has a non-finite coordinate")]
+    NonFinite {
+        /// 1-based vertex number.
+        vertex: usize,
+    },
+    /// A face index of 0, which OBJ does not define.
+    #[error("face refers to vertex 0 (OBJ indices start at 1)")]
+    ZeroIndex,
+    /// A positive face index past the last vertex of the file.
+    #[error("face refers to vertex {index} but the file has {count} vertices")]
+    IndexOutOfRange {
+        /// The index as written.
+        index: i64,
+        /// The number of vertices in the file.
+        count: usize,
+    },
+    /// A negative (relative) face index that reaches before the first vertex.
+    #[error("face refers to vertex {index} but only {preceding} vertices precede it")]
+    RelativeIndexOutOfRange {
+        /// The index as written.
+        index: i64,
+        /// The number of vertices read before the face.
+        preceding: usize,
+    },
+    /// A face with fewer than three vertices.
+    #[error("face has {count} vertices; a face needs at least 3")]
+    ShortFace {
+        /// How many vertices the face has.
+        count: usize,
+    },
+}
+
+/// What is wrong with mesh data: positions, faces and groups. Numbers are zero-based.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum MeshDataError {
+    /// The position list is empty.
+    #[error("the mesh has no vertices")]
+    NoVertices,
+    /// [`Faces::offsets`](super::Faces::offsets) does not describe [`Faces::indices`](super::Faces::indices).
+    #[error("malformed faces: {reason}")]
+    MalformedFaces {
+        /// Which invariant is broken.
+        reason: &'static str,
+    },
+    /// A face index past the last vertex (or negative).
+    #[error("face {face} refers to vertex {index} but the mesh has {count} vertices")]
+    IndexOutOfRange {
+        /// Zero-based face number.
+        face: usize,
+        /// The index as stored.
+        index: i64,
+        /// The number of vertices.
+        count: usize,
+    },
+    /// A face with fewer than three vertices.
+    #[error("face {face} has {count} vertices; a face needs at least 3")]
+    ShortFace {
+        /// Zero-based face number.
+        face: usize,
+        /// How many vertices the face has.
+        count: usize,
+    },
+    /// A position with an infinite or NaN coordinate.
+    #[error("vertex {vertex} has a non-finite coordinate")]
+    NonFinite {
+        /// Zero-based vertex number.
+        vertex: usize,
+    },
+    /// A group lists a face past the last face.
+    #[error("group \"{group}\" refers to face {face} but the mesh has {count} faces")]
+    GroupFaceOutOfRange {
+        /// The group's name.
+        group: String,
+        /// The face number as stored.
+        face: u32,
+        /// The number of faces.
+        count: usize,
+    },
+    /// A group's face list is not strictly increasing.
+    #[error("group \"{group}\": its face list is not strictly increasing")]
+    GroupNotIncreasing {
+        /// The group's name.
+        group: String,
+    },
+}
+
+impl MeshError {
+    /// Wraps an I/O error met while reading `path`.
+    pub(crate) fn read(path: &Path, source: std::io::Error) -> Self {
+        Self::Read {
+            path: path.to_path_buf(),
+            source,
+        }
+    }
+
+    /// Wraps an I/O error met while writing `path`.
+    pub(crate) fn write(path: &Path, source: std::io::Error) -> Self {
+        Self::Write {
+            path: path.to_path_buf(),
+            source,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn obj_index_error_names_file_and_line() {
+        let e = MeshError::Obj {
+            path: PathBuf::from("bunny.obj"),
+            line: 1234,
+            problem: ObjLineError::IndexOutOfRange {
+                index: 40000,
+                count: 35947,
+            },
+        };
+        assert_eq!(
+            e.to_string(),
+            "bunny.obj:1234: face refers to vertex 40000 but the file has 35947 vertices"
+        );
+    }
+
+    #[test]
+    fn io_errors_name_the_path() {
+        let e = MeshError::read(
+            Path::new("m.obj"),
+            std::io::Error::new(std::io::ErrorKind::NotFound, "gone"),
+        );
+        assert_eq!(e.to_string(), "cannot read m.obj: gone");
+        let e = MeshError::write(
+            Path::new("out.obj"),
+            std::io::Error::new(std::io::ErrorKind::PermissionDenied, "denied"),
+        );
+        assert_eq!(e.to_string(), "cannot write out.obj: denied");
+    }
+
+    #[test]
+    fn file_level_messages() {
+        let p = || PathBuf::from("m.ply");
+        assert_eq!(
+            MeshError::NoPlyVertices { path: p() }.to_string(),
+            "m.ply: no \"vertex\" element with x, y, z properties"
+        );
+        assert_eq!(
+            MeshError::UnsupportedFormat {
+                path: PathBuf::from("x.stl")
+            }
+            .to_string(),
+            "x.stl: unsupported mesh format (expected .obj or .ply)"
+        );
+        assert_eq!(
+            MeshError::Empty {
+                path: PathBuf::from("empty.obj")
+            }
+            .to_string(),
+            "empty.obj: the mesh has no vertices"
+        );
+        assert_eq!(
+            MeshError::PositionCount {
+                expected: 12,
+                found: 10
+            }
+            .to_string(),
+            "positions has 10 entries but the mesh has 12 vertices"
+        );
+        assert_eq!(
+            MeshError::PlyData {
+                path: p(),
+                problem: MeshDataError::ShortFace { face: 3, count: 2 }
+            }
+            .to_string(),
+            "m.ply: face 3 has 2 vertices; a face needs at least 3"
+        );
+    }
+}

@@ -1,0 +1,70 @@
+//! Meshes in and out: OBJ and PLY files, and the enclosed volume of a closed mesh.
+//!
+//! Data flow: rig → sweep → sweep coefficients → bind → deform → normals → **output**.
+//!
+//! A [`Mesh`] keeps what deformation needs (positions in file order, polygon faces, named face
+//! groups) and, privately, what it needs to write the file back faithfully: a deformed file
+//! differs from its input only in the positions of the vertices that moved.
+//!
+//! - [`Mesh::load`] reads `.obj` (our own scanner, f64, vertex order kept; see `obj`) or
+//!   `.ply` (through `ply-rs-bw`; see `ply`); [`Mesh::from_parts`] builds a mesh in code.
+//! - [`Mesh::save`] writes faithfully over the loaded file when the format is the same,
+//!   generically otherwise, always atomically (temporary file + rename, [`write_atomically`],
+//!   which other file writers of the crate share).
+//! - [`Mesh::enclosed_volume`], [`Mesh::bounds`], [`Mesh::group_vertices`] measure it.
+//! - [`MeshError`] names the file (and the OBJ line) at fault; malformed input never panics.
+
+mod atomic;
+mod bounds;
+mod error;
+mod faces;
+mod format;
+mod groups;
+mod load;
+mod obj;
+mod parts;
+mod ply;
+mod save;
+mod source;
+mod volume;
+
+use glam::DVec3;
+
+pub use atomic::write_atomically;
+pub use error::{MeshDataError, MeshError, ObjLineError};
+
+use source::Source;
+
+/// Polygon faces as a flat index list: face `f` has the vertex indices
+/// `indices[offsets[f]..offsets[f + 1]]` (zero-based, into [`Mesh::positions`]).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Faces {
+    /// `offsets.len() == face count + 1`, `offsets[0] == 0`.
+    pub offsets: Vec<u32>,
+    /// Vertex indices of all faces, face after face.
+    pub indices: Vec<u32>,
+}
+
+/// A named set of faces: an OBJ group (`g`) or object (`o`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct FaceGroup {
+    /// The group's name as written in the file.
+    pub name: String,
+    /// Indices of the faces in the group, increasing.
+    pub faces: Vec<u32>,
+}
+
+/// A polygon mesh read from a file ([`Mesh::load`]) or built in code ([`Mesh::from_parts`]).
+///
+/// Cloning is cheap for the remembered source file, which clones share.
+#[derive(Clone, Debug)]
+pub struct Mesh {
+    /// Vertex positions in file order, including vertices no face uses.
+    pub positions: Vec<DVec3>,
+    /// Polygon faces, in file order.
+    pub faces: Faces,
+    /// Named face groups in order of first appearance.
+    pub groups: Vec<FaceGroup>,
+    /// The file the mesh was read from, for faithful saving.
+    source: Source,
+}

@@ -1,0 +1,492 @@
+//! Reading an OBJ file into a [`Mesh`], keeping the file's vertex order.
+//!
+//! Groups: `g a b` makes `a` and `b` the current groups (`g` alone: no group); `o name` sets
+//! the current object, which also acts as a group because Blender writes objects rather than
+//! groups. A face belongs to every current group and to the current object. Groups are listed
+//! in order of first appearance; a group that ends up with no face is dropped.
+
+use std::collections::HashMap;
+use std::path::Path;
+
+use glam::DVec3;
+
+use super::scan::{self, Keyword, Scanner, VertexIssue};
+use crate::mesh::source::{Original, Source};
+use crate::mesh::{FaceGroup, Faces, Mesh, MeshError, ObjLineError};
+
+/// Reads the OBJ file `bytes` (read from `path`, which errors name).
+pub(crate) fn read(path: &Path, bytes: Vec<u8>) -> Result<Mesh, MeshError> {
+    let mut reader = Reader::default();
+    for line in Scanner::new(&bytes) {
+        reader
+            .statement(line.number, &line.body)
+            .map_err(|e| e.at(path, line.number))?;
+    }
+    let mesh = reader.finish(path)?;
+    Ok(Mesh {
+        source: Source::Obj(Original::new(bytes, &mesh)),
+        ..mesh
+    })
+}
+
+/// A failure at one statement: a problem with the line, or a 32-bit limit.
+enum Failure {
+    Line(ObjLineError),
+    TooLarge,
+}
+
+impl Failure {
+    fn at(self, path: &Path, line: usize) -> MeshError {
+        match self {
+            Failure::Line(problem) => MeshError::Obj {
+                path: path.to_path_buf(),
+                line,
+                problem,
+            },
+            Failure::TooLarge => MeshError::TooLarge {
+                path: path.to_path_buf(),
+            },
+        }
+    }
+}
+
+impl From<ObjLineError> for Failure {
+    fn from(e: ObjLineError) -> Self {
+        Failure::Line(e)
+    }
+}
+
+/// The mesh read so far.
+#[derive(Default)]
+struct Reader {
+    positions: Vec<DVec3>,
+    faces: Faces,
+    groups: Vec<FaceGroup>,
+    group_ids: HashMap<String, usize>,
+    /// Groups named by the last `g`.
+    current: Vec<usize>,
+    /// Group named by the last `o`.
+    object: Option<usize>,
+    /// The largest positive face index met (as written) and its line: checked at the end,
+    /// when the vertex count is known.
+    largest: Option<(i64, usize)>,
+    /// The line of the statement being read.
+    line: usize,
+    /// The face being read, as zero-based indices.
+    face: Vec<u32>,
+}
+
+impl Reader {
+    /// Reads the statement `body` of the logical line `number`.
+    fn statement(&mut self, number: usize, body: &[u8]) -> Result<(), Failure> {
+        self.line = number;
+        let code = scan::code(body);
+        let (keyword, args) = scan::keyword(code);
+        match keyword {
+            Keyword::Vertex => self.vertex(code, args),
+            Keyword::Face => self.face(&code[args]),
+            Keyword::Group => {
+                self.current = scan::words(&code[args.clone()])
+                    .map(|w| self.group_id(&code[args.start + w.start..args.start + w.end]))
+                    .collect();
+                Ok(())
+            }
+            Keyword::Object => {
+                let name = code[args].trim_ascii();
+                self.object = (!name.is_empty()).then(|| self.group_id(name));
+                Ok(())
+            }
+            Keyword::Other => Ok(()),
+        }
+    }
+
+    fn vertex(&mut self, code: &[u8], args: std::ops::Range<usize>) -> Result<(), Failure> {
+        let ([x, y, z], _) = scan::vertex(code, args).map_err(|issue| match issue {
+            VertexIssue::NotANumber(token) => ObjLineError::NotANumber {
+                what: "vertex coordinate",
+                token,
+            },
+            VertexIssue::Missing(found) => ObjLineError::MissingCoordinates { found },
+        })?;
+        let p = DVec3::new(x, y, z);
+        if !p.is_finite() {
+            let vertex = self.positions.len() + 1;
+            return Err(ObjLineError::NonFinite { vertex }.into());
+        }
+        if self.positions.len() >= u32::MAX as usize {
+            return Err(Failure::TooLarge);
+        }
+        self.positions.push(p);
+        Ok(())
+    }
+
+    fn face(&mut self, args: &[u8]) -> Result<(), Failure> {
+        self.face.clear();
+        for w in scan::words(args) {
+            let word = &args[w];
+            let index = word.split(|&b| b == b'/').next().unwrap_or(word);
+            let index: i64 = scan::number(index).ok_or_else(|| ObjLineError::NotANumber {
+                what: "face index",
+                token: scan::lossy(word),
+            })?;
+            let resolved = self.resolve(index)?;
+            self.face.push(resolved);
+        }
+        if self.face.len() < 3 {
+            let count = self.face.len();
+            return Err(ObjLineError::ShortFace { count }.into());
+        }
+        let f = self.faces.len() as u32;
+        if !self.faces.try_push(&self.face) {
+            return Err(Failure::TooLarge);
+        }
+        for &g in self.current.iter().chain(self.object.iter()) {
+            let faces = &mut self.groups[g].faces;
+            if faces.last() != Some(&f) {
+                faces.push(f);
+            }
+        }
+        Ok(())
+    }
+
+    /// The zero-based vertex of an OBJ index: positive 1-based, negative relative to the
+    /// vertices read so far. Positive indices are range-checked in [`Reader::finish`].
+    fn resolve(&mut self, index: i64) -> Result<u32, ObjLineError> {
+        let preceding = self.positions.len();
+        if index > 0 {
+            if self.largest.is_none_or(|(largest, _)| index > largest) {
+                self.largest = Some((index, self.line));
+            }
+            return Ok(u32::try_from(index - 1).unwrap_or(u32::MAX));
+        }
+        if index == 0 {
+            return Err(ObjLineError::ZeroIndex);
+        }
+        let resolved = (preceding as i64).checked_add(index).filter(|&r| r >= 0);
+        resolved
+            .map(|r| r as u32)
+            .ok_or(ObjLineError::RelativeIndexOutOfRange { index, preceding })
+    }
+
+    fn group_id(&mut self, name: &[u8]) -> usize {
+        let name = scan::lossy(name);
+        if let Some(&id) = self.group_ids.get(&name) {
+            return id;
+        }
+        let id = self.groups.len();
+        self.groups.push(FaceGroup {
+            name: name.clone(),
+            faces: Vec::new(),
+        });
+        self.group_ids.insert(name, id);
+        id
+    }
+
+    fn finish(mut self, path: &Path) -> Result<Mesh, MeshError> {
+        let count = self.positions.len();
+        if count == 0 {
+            return Err(MeshError::Empty {
+                path: path.to_path_buf(),
+            });
+        }
+        if let Some((index, line)) = self.largest.filter(|&(i, _)| i > count as i64) {
+            let problem = ObjLineError::IndexOutOfRange { index, count };
+            return Err(Failure::Line(problem).at(path, line));
+        }
+        self.groups.retain(|g| !g.faces.is_empty());
+        if self.faces.offsets.is_empty() {
+            self.faces = Faces::new();
+        }
+        Ok(Mesh {
+            positions: self.positions,
+            faces: self.faces,
+            groups: self.groups,
+            source: Source::Code,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn load(text: &[u8]) -> Result<Mesh, MeshError> {
+        read(Path::new("mesh.obj"), text.to_vec())
+    }
+
+    fn error(text: &[u8]) -> String {
+        load(text).unwrap_err().to_string()
+    }
+
+    fn faces(mesh: &Mesh) -> Vec<Vec<u32>> {
+        mesh.faces.iter().map(<[u32]>::to_vec).collect()
+    }
+
+    const SQUARE: &[u8] = b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
+
+    #[test]
+    fn reads_positions_in_file_order_with_unused_vertices() {
+        let mesh =
+            load(b"v 1 2 3\nv 4 5 6 1.0\nv 7 8 9 0.1 0.2 0.3\nv -1 -2 -3\nf 1 2 3\n").unwrap();
+        assert_eq!(mesh.positions.len(), 4);
+        assert_eq!(mesh.positions[1], DVec3::new(4.0, 5.0, 6.0));
+        assert_eq!(mesh.positions[2], DVec3::new(7.0, 8.0, 9.0));
+        assert_eq!(mesh.positions[3], DVec3::new(-1.0, -2.0, -3.0));
+        assert_eq!(faces(&mesh), vec![vec![0, 1, 2]]);
+        assert!(mesh.groups.is_empty());
+    }
+
+    #[test]
+    fn coordinates_are_read_as_f64() {
+        let mesh = load(b"v 0.1 1e-300 123456789.125\n").unwrap();
+        assert_eq!(mesh.positions[0].x, 0.1_f64);
+        assert_eq!(mesh.positions[0].y, 1e-300);
+        assert_eq!(mesh.positions[0].z, 123_456_789.125);
+    }
+
+    #[test]
+    fn face_tokens_with_texture_and_normal_indices() {
+        let text = [
+            SQUARE,
+            b"vt 0 0\nvn 0 0 1\nf 1/1 2/1 3/1\nf 1//1 3//1 4//1\nf 4/1/1 3/1/1 2/1/1 1/1/1\n",
+        ]
+        .concat();
+        let mesh = load(&text).unwrap();
+        assert_eq!(
+            faces(&mesh),
+            vec![vec![0, 1, 2], vec![0, 2, 3], vec![3, 2, 1, 0]]
+        );
+    }
+
+    #[test]
+    fn negative_indices_are_relative_to_vertices_read_so_far() {
+        let text = b"v 0 0 0\nv 1 0 0\nv 1 1 0\nf -3 -2 -1\nv 0 1 0\nf -4/1 -2/1/1 -1//1\n";
+        let mesh = load(text).unwrap();
+        assert_eq!(faces(&mesh), vec![vec![0, 1, 2], vec![0, 2, 3]]);
+    }
+
+    #[test]
+    fn negative_index_before_first_vertex_is_an_error() {
+        assert_eq!(
+            error(b"v 0 0 0\nv 1 0 0\nf -1 -2 -3\n"),
+            "mesh.obj:3: face refers to vertex -3 but only 2 vertices precede it"
+        );
+    }
+
+    #[test]
+    fn zero_index_is_an_error() {
+        assert_eq!(
+            error(b"v 0 0 0\nv 1 0 0\nv 1 1 0\nf 0 1 2\n"),
+            "mesh.obj:4: face refers to vertex 0 (OBJ indices start at 1)"
+        );
+    }
+
+    #[test]
+    fn index_past_the_last_vertex_is_an_error_at_its_line() {
+        let text = [SQUARE, b"f 1 2 3\n# c\nf 1 2 5\nf 1 2 4\n"].concat();
+        assert_eq!(
+            error(&text),
+            "mesh.obj:7: face refers to vertex 5 but the file has 4 vertices"
+        );
+        let huge = [SQUARE, b"f 1 2 99999999999999\n"].concat();
+        assert_eq!(
+            error(&huge),
+            "mesh.obj:5: face refers to vertex 99999999999999 but the file has 4 vertices"
+        );
+    }
+
+    #[test]
+    fn forward_reference_within_the_file_is_accepted() {
+        let mesh = load(b"v 0 0 0\nf 1 2 3\nv 1 0 0\nv 0 1 0\n").unwrap();
+        assert_eq!(faces(&mesh), vec![vec![0, 1, 2]]);
+    }
+
+    #[test]
+    fn bad_face_index_is_an_error() {
+        let text = [SQUARE, b"f 1 x/2 3\n"].concat();
+        assert_eq!(
+            error(&text),
+            "mesh.obj:5: face index \"x/2\" is not a number"
+        );
+        let text = [SQUARE, b"f 1 /2 3\n"].concat();
+        assert_eq!(
+            error(&text),
+            "mesh.obj:5: face index \"/2\" is not a number"
+        );
+    }
+
+    #[test]
+    fn faces_with_fewer_than_three_vertices_are_errors() {
+        let text = [SQUARE, b"f 1 2\n"].concat();
+        assert_eq!(
+            error(&text),
+            "mesh.obj:5: face has 2 vertices; a face needs at least 3"
+        );
+        let text = [SQUARE, b"f\n"].concat();
+        assert_eq!(
+            error(&text),
+            "mesh.obj:5: face has 0 vertices; a face needs at least 3"
+        );
+    }
+
+    #[test]
+    fn bad_coordinate_is_an_error() {
+        let text = [
+            b"v 1 2 3\n".to_vec(),
+            b"# x\n".repeat(10),
+            b"v 1 abc 3\n".to_vec(),
+        ]
+        .concat();
+        assert_eq!(
+            error(&text),
+            "mesh.obj:12: vertex coordinate \"abc\" is not a number"
+        );
+    }
+
+    #[test]
+    fn missing_coordinate_is_an_error() {
+        assert_eq!(
+            error(b"v 1 2\n"),
+            "mesh.obj:1: vertex has 2 coordinates; x, y and z are needed"
+        );
+    }
+
+    #[test]
+    fn non_finite_coordinate_is_an_error_naming_the_vertex() {
+        let text = [b"v 0 0 0\n".repeat(10), b"\nv 1 inf 2\n".to_vec()].concat();
+        assert_eq!(
+            error(&text),
+            "mesh.obj:12: vertex 11 has a non-finite coordinate"
+        );
+        assert_eq!(
+            error(b"v NaN 0 0\n"),
+            "mesh.obj:1: vertex 1 has a non-finite coordinate"
+        );
+    }
+
+    #[test]
+    fn errors_in_continued_lines_name_the_first_line() {
+        assert_eq!(
+            error(b"# a\nv 1 \\\n  2 \\\n q\n"),
+            "mesh.obj:2: vertex coordinate \"q\" is not a number"
+        );
+        assert_eq!(
+            error(b"v 0 0 0\nv 1 0 0\\\n\nv 0 1 0\nf 1 2 \\\n 3 \\\n 9\n"),
+            "mesh.obj:5: face refers to vertex 9 but the file has 3 vertices"
+        );
+    }
+
+    #[test]
+    fn continuation_and_crlf_and_comments_and_leading_whitespace() {
+        let text = b"# head\r\n  v 0 0 0 # origin\r\n\tv 1 \\\r\n 0 0\r\nv 0 1 0\r\n\r\nf 1 \\\n 2 3 # tri\r\n";
+        let mesh = load(text).unwrap();
+        assert_eq!(mesh.positions[1], DVec3::X);
+        assert_eq!(mesh.positions[2], DVec3::Y);
+        assert_eq!(faces(&mesh), vec![vec![0, 1, 2]]);
+    }
+
+    #[test]
+    fn face_belongs_to_every_current_group_and_the_object() {
+        let text = [
+            SQUARE,
+            b"f 1 2 3\no thing\ng a b\nf 1 2 3\ng b\nf 1 3 4\ng\nf 2 3 4\ng a\nfo 1 2 4\no\nf 1 2 3\n",
+        ]
+        .concat();
+        let mesh = load(&text).unwrap();
+        let groups: Vec<(&str, &[u32])> = mesh
+            .groups
+            .iter()
+            .map(|g| (g.name.as_str(), &g.faces[..]))
+            .collect();
+        assert_eq!(
+            groups,
+            vec![
+                ("thing", &[1, 2, 3, 4][..]),
+                ("a", &[1, 4, 5][..]),
+                ("b", &[1, 2][..])
+            ]
+        );
+    }
+
+    #[test]
+    fn object_and_group_of_the_same_name_are_one_group() {
+        let text = [SQUARE, b"o part\ng part\nf 1 2 3\n"].concat();
+        let mesh = load(&text).unwrap();
+        assert_eq!(mesh.groups.len(), 1);
+        assert_eq!(mesh.groups[0].faces, vec![0]);
+    }
+
+    #[test]
+    fn groups_without_faces_are_dropped() {
+        let text = [SQUARE, b"g default\ng used\nf 1 2 3\ng empty\n"].concat();
+        let mesh = load(&text).unwrap();
+        assert_eq!(mesh.groups.len(), 1);
+        assert_eq!(mesh.groups[0].name, "used");
+    }
+
+    #[test]
+    fn other_statements_are_ignored() {
+        let text = [
+            &b"mtllib a.mtl\nusemtl red\ns 1\nvt 0.5 0.5\nvn 0 0 1\nvp 0.1\nl 1 2\np 1\ncstype bezier\n"[..],
+            SQUARE,
+            b"f 1 2 3\n",
+        ]
+        .concat();
+        let mesh = load(&text).unwrap();
+        assert_eq!(mesh.positions.len(), 4);
+        assert_eq!(mesh.faces.len(), 1);
+    }
+
+    #[test]
+    fn point_cloud_without_faces_is_allowed() {
+        let mesh = load(SQUARE).unwrap();
+        assert_eq!(mesh.positions.len(), 4);
+        assert!(mesh.faces.is_empty());
+        assert_eq!(mesh.faces.offsets, vec![0]);
+    }
+
+    #[test]
+    fn file_without_vertices_is_empty() {
+        for text in [&b""[..], b"# nothing\n", b"\n\n\r\n", b"vt 0 0\nf 1 2 3\n"] {
+            let err = load(text).unwrap_err();
+            assert!(matches!(err, MeshError::Empty { .. }), "{err}");
+            assert_eq!(err.to_string(), "mesh.obj: the mesh has no vertices");
+        }
+    }
+
+    #[test]
+    fn binary_garbage_and_non_utf8_do_not_panic() {
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut garbage = Vec::new();
+        for _ in 0..20_000 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            garbage.push((state >> 24) as u8);
+        }
+        let _ = load(&garbage);
+        let _ = load(b"v \xff\xfe 1 2\n");
+        let _ = load(b"f \xc3\x28 1 2\n");
+        let mesh = load(b"v 1 2 3\ng \xff\xfename\nf 1 1 1\n").unwrap();
+        assert_eq!(mesh.groups[0].name, "\u{fffd}\u{fffd}name");
+    }
+
+    #[test]
+    fn statements_of_random_lines_do_not_panic() {
+        let pieces: [&[u8]; 14] = [
+            b"v", b"f", b"g", b"o", b" ", b"1", b"-1", b"0", b"/", b"\\", b"\n", b"\r\n", b"#",
+            b"1e999",
+        ];
+        let mut state = 7_u64;
+        for _ in 0..2_000 {
+            let mut text = Vec::new();
+            for _ in 0..30 {
+                state = state
+                    .wrapping_mul(6_364_136_223_846_793_005)
+                    .wrapping_add(1);
+                text.extend_from_slice(pieces[(state >> 33) as usize % pieces.len()]);
+            }
+            let _ = load(&text);
+        }
+    }
+}

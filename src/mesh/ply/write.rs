@@ -1,0 +1,268 @@
+//! Writing PLY files: faithfully over the file a mesh was read from, or generically.
+
+use std::io::{self, Write};
+
+use glam::DVec3;
+use ply_rs_bw::ply::{
+    DefaultElement, ElementDef, Encoding, Header, Ply, Property, PropertyAccess, PropertyDef,
+    PropertyType, ScalarType,
+};
+use ply_rs_bw::writer::Writer;
+
+use crate::mesh::Faces;
+
+/// Writes the PLY file `ply` with new vertex positions: the same header (format, comments,
+/// elements, properties), the same encoding and every element as read, except `x`, `y`, `z`
+/// of the vertices whose position changed (any coordinate differs bit for bit from
+/// `original`), stored in each property's own type (f32 for `float`, f64 for `double`).
+///
+/// Header comments are written before `obj_info` lines and elements, as `ply-rs-bw` keeps
+/// them; the data parse back identical.
+pub(crate) fn write_faithful(
+    out: &mut impl Write,
+    ply: &Ply<DefaultElement>,
+    original: &[DVec3],
+    positions: &[DVec3],
+) -> io::Result<()> {
+    let writer = Writer::<DefaultElement>::new();
+    writer.write_header(out, &ply.header)?;
+    for (name, def) in &ply.header.elements {
+        let elements = ply.payload.get(name).ok_or_else(|| {
+            io::Error::new(
+                io::ErrorKind::InvalidData,
+                format!("no data for \"{name}\""),
+            )
+        })?;
+        if name != "vertex" {
+            writer.write_payload_of_element(out, elements, def, &ply.header)?;
+            continue;
+        }
+        for (i, element) in elements.iter().enumerate() {
+            match (original.get(i), positions.get(i)) {
+                (Some(old), Some(&new)) if !same_bits(*old, new) => {
+                    let moved = moved(element, def, new);
+                    write_element(&writer, out, &moved, def, ply.header.encoding)?;
+                }
+                _ => {
+                    write_element(&writer, out, element, def, ply.header.encoding)?;
+                }
+            }
+        }
+    }
+    out.flush()
+}
+
+/// Whether two positions are equal bit for bit.
+fn same_bits(a: DVec3, b: DVec3) -> bool {
+    a.to_array().map(f64::to_bits) == b.to_array().map(f64::to_bits)
+}
+
+/// A copy of the vertex `element` at position `p`, each coordinate in its declared type.
+fn moved(element: &DefaultElement, def: &ElementDef, p: DVec3) -> DefaultElement {
+    let mut element = element.clone();
+    for (name, value) in [("x", p.x), ("y", p.y), ("z", p.z)] {
+        let property = match def.properties.get(name).map(|d| &d.data_type) {
+            Some(PropertyType::Scalar(ScalarType::Float)) => Property::Float(value as f32),
+            _ => Property::Double(value),
+        };
+        element.insert(name.to_string(), property);
+    }
+    element
+}
+
+fn write_element<E: PropertyAccess>(
+    writer: &Writer<E>,
+    out: &mut impl Write,
+    element: &E,
+    def: &ElementDef,
+    encoding: Encoding,
+) -> io::Result<usize> {
+    match encoding {
+        Encoding::Ascii => writer.write_ascii_element(out, element, def),
+        Encoding::BinaryBigEndian => writer.write_big_endian_element(out, element, def),
+        Encoding::BinaryLittleEndian => writer.write_little_endian_element(out, element, def),
+    }
+}
+
+/// Writes a mesh as a new PLY file: `binary_little_endian`, a comment naming sweepffd,
+/// `element vertex` with `property float x`, `y`, `z` (positions rounded to f32) and
+/// `element face` with `property list uchar int vertex_indices` — `uint` instead of `uchar`
+/// for the count when a face has more than 255 vertices, and `uint` instead of `int` for the
+/// indices when there are more than `i32::MAX` vertices.
+pub(crate) fn write_generic(
+    out: &mut impl Write,
+    positions: &[DVec3],
+    faces: &Faces,
+) -> io::Result<()> {
+    let header = generic_header(positions.len(), faces);
+    let writer = Writer::<Element>::new();
+    writer.write_header(out, &header)?;
+    let (vertex_def, face_def) = (&header.elements[0], &header.elements[1]);
+    let mut element = Element::new();
+    for p in positions {
+        element.xyz = p.as_vec3().to_array();
+        writer.write_little_endian_element(out, &element, vertex_def)?;
+    }
+    for face in faces.iter() {
+        element.indices.clear();
+        element.indices.extend_from_slice(face);
+        writer.write_little_endian_element(out, &element, face_def)?;
+    }
+    out.flush()
+}
+
+fn generic_header(vertex_count: usize, faces: &Faces) -> Header {
+    let mut header = Header::new();
+    header.encoding = Encoding::BinaryLittleEndian;
+    header.comments.push("written by sweepffd".to_string());
+    let mut vertex = ElementDef::new("vertex".to_string());
+    vertex.count = vertex_count;
+    for name in ["x", "y", "z"] {
+        let def = PropertyDef::new(name.to_string(), PropertyType::Scalar(ScalarType::Float));
+        vertex.properties.insert(name.to_string(), def);
+    }
+    let mut face = ElementDef::new("face".to_string());
+    face.count = faces.len();
+    let count_type = if faces.iter().all(|f| f.len() <= usize::from(u8::MAX)) {
+        ScalarType::UChar
+    } else {
+        ScalarType::UInt
+    };
+    let index_type = if vertex_count <= i32::MAX as usize {
+        ScalarType::Int
+    } else {
+        ScalarType::UInt
+    };
+    let list = PropertyType::List(count_type, index_type);
+    let def = PropertyDef::new("vertex_indices".to_string(), list);
+    face.properties.insert(def.name.clone(), def);
+    header.elements.insert(vertex.name.clone(), vertex);
+    header.elements.insert(face.name.clone(), face);
+    header
+}
+
+/// A vertex or a face of a generic PLY file, as the writer reads it.
+struct Element {
+    xyz: [f32; 3],
+    indices: Vec<u32>,
+}
+
+impl PropertyAccess for Element {
+    fn new() -> Self {
+        Element {
+            xyz: [0.0; 3],
+            indices: Vec::new(),
+        }
+    }
+
+    fn get_float(&self, name: &str) -> Option<f32> {
+        match name {
+            "x" => Some(self.xyz[0]),
+            "y" => Some(self.xyz[1]),
+            "z" => Some(self.xyz[2]),
+            _ => None,
+        }
+    }
+
+    /// Only used when every index is at most `i32::MAX` (see [`generic_header`]).
+    fn get_list_int(&self, name: &str) -> Option<&[i32]> {
+        (name == "vertex_indices").then(|| bytemuck::cast_slice(&self.indices))
+    }
+
+    fn get_list_uint(&self, name: &str) -> Option<&[u32]> {
+        (name == "vertex_indices").then_some(&self.indices[..])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use super::*;
+    use crate::mesh::ply::read::read;
+
+    const ASCII: &str = "ply\nformat ascii 1.0\ncomment keep me\nelement vertex 3\nproperty float x\nproperty double y\nproperty float z\nproperty uchar red\nelement face 1\nproperty list uchar int vertex_indices\nproperty float quality\nelement extra 1\nproperty int stuff\nend_header\n0 0 0 10\n1 0.1 0 20\n0 1 0.5 30\n3 0 1 2 0.75\n42\n";
+
+    fn parse(bytes: &[u8]) -> Ply<DefaultElement> {
+        ply_rs_bw::parser::Parser::<DefaultElement>::new()
+            .read_ply(&mut &bytes[..])
+            .unwrap()
+    }
+
+    #[test]
+    fn faithful_unchanged_parses_to_the_same_data() {
+        let mesh = read(Path::new("m.ply"), ASCII.as_bytes()).unwrap();
+        let original = parse(ASCII.as_bytes());
+        let mut out = Vec::new();
+        write_faithful(&mut out, &original, &mesh.positions, &mesh.positions).unwrap();
+        assert_eq!(parse(&out), original);
+    }
+
+    #[test]
+    fn faithful_moved_vertex_changes_only_its_coordinates_in_their_types() {
+        let mesh = read(Path::new("m.ply"), ASCII.as_bytes()).unwrap();
+        let original = parse(ASCII.as_bytes());
+        let mut moved = mesh.positions.clone();
+        moved[1] = DVec3::new(0.1, 0.2, 0.3);
+        for encoding in [
+            Encoding::Ascii,
+            Encoding::BinaryLittleEndian,
+            Encoding::BinaryBigEndian,
+        ] {
+            let mut source = original.clone();
+            source.header.encoding = encoding;
+            let mut out = Vec::new();
+            write_faithful(&mut out, &source, &mesh.positions, &moved).unwrap();
+            let back = parse(&out);
+            assert_eq!(back.header, source.header);
+            let mut expected = source.clone();
+            let v = &mut expected.payload["vertex"][1];
+            v.insert("x".into(), Property::Float(0.1));
+            v.insert("y".into(), Property::Double(0.2));
+            v.insert("z".into(), Property::Float(0.3));
+            assert_eq!(back, expected, "{encoding:?}");
+        }
+    }
+
+    #[test]
+    fn generic_is_binary_little_endian_float_with_uchar_int_lists() {
+        let positions = vec![DVec3::ZERO, DVec3::X, DVec3::new(0.1, 0.2, 0.3)];
+        let mut faces = Faces::new();
+        faces.push(&[0, 1, 2]);
+        let mut out = Vec::new();
+        write_generic(&mut out, &positions, &faces).unwrap();
+        let back = parse(&out);
+        assert_eq!(back.header.encoding, Encoding::BinaryLittleEndian);
+        assert_eq!(
+            back.header.elements["face"].properties["vertex_indices"].data_type,
+            PropertyType::List(ScalarType::UChar, ScalarType::Int)
+        );
+        assert_eq!(back.payload["vertex"][2]["y"], Property::Float(0.2));
+        assert_eq!(
+            back.payload["face"][0]["vertex_indices"],
+            Property::ListInt(vec![0, 1, 2])
+        );
+    }
+
+    #[test]
+    fn generic_face_of_more_than_255_vertices_uses_a_uint_count() {
+        let n = 300;
+        let positions: Vec<DVec3> = (0..n)
+            .map(|i| {
+                let a = i as f64 / n as f64 * std::f64::consts::TAU;
+                DVec3::new(a.cos(), a.sin(), 0.0)
+            })
+            .collect();
+        let mut faces = Faces::new();
+        faces.push(&(0..n).collect::<Vec<u32>>());
+        let mut out = Vec::new();
+        write_generic(&mut out, &positions, &faces).unwrap();
+        let mesh = read(Path::new("m.ply"), &out).unwrap();
+        assert_eq!(mesh.faces, faces);
+        let back = parse(&out);
+        assert_eq!(
+            back.header.elements["face"].properties["vertex_indices"].data_type,
+            PropertyType::List(ScalarType::UInt, ScalarType::Int)
+        );
+    }
+}

@@ -1,0 +1,107 @@
+//! The rig file format (JSON), as read and written. A pose file has the same shape; only its
+//! keys matter.
+//!
+//! ```json
+//! {"format": "sweepffd-rig", "version": 1,
+//!  "sweeps": [{"name": "neck",
+//!              "vertices": {"groups": ["neck"]},
+//!              "keys": [{"center": [0, 0, 0], "rotation": [0, 0, 0, 1], "radii": [1, 1, 1, 1]},
+//!                       {"center": [0, 0, 2], "rotation": [0, 0, 0, 1], "radii": [1, 1, 1, 1]}]}]}
+//! ```
+
+use glam::{DQuat, DVec3};
+use serde::{Deserialize, Serialize};
+
+use crate::sweep::Key;
+
+/// The value of the `format` field.
+pub const FORMAT: &str = "sweepffd-rig";
+/// The value of the `version` field this release reads and writes.
+pub const VERSION: u32 = 1;
+
+/// A whole rig or pose file.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RigDocument {
+    /// Always [`FORMAT`].
+    pub format: String,
+    /// Always [`VERSION`].
+    pub version: u32,
+    /// The sweeps, in order; a vertex binds to the sweep that owns it.
+    pub sweeps: Vec<SweepDocument>,
+}
+
+/// One sweep of a rig file.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SweepDocument {
+    /// Unique within the rig; poses match sweeps by name.
+    pub name: String,
+    /// Which vertices the sweep owns; absent: none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub vertices: Option<VertexSelection>,
+    /// The key cross-sections, at least two.
+    pub keys: Vec<KeyDocument>,
+    /// Knots u_i, one per key, from 0 to 1, increasing; absent: chord length of the centers.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub knots: Option<Vec<f64>>,
+}
+
+/// The vertices a sweep owns: `"all"`, `{"groups": [...]}` or `{"indices": [...]}`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum VertexSelection {
+    /// Every vertex of the mesh.
+    All,
+    /// The vertices of the faces of these OBJ groups (or objects).
+    Groups(Vec<String>),
+    /// These zero-based vertex indices, in file order.
+    Indices(Vec<u32>),
+}
+
+/// One key cross-section in a rig file.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct KeyDocument {
+    /// Center p_i.
+    pub center: [f64; 3],
+    /// Orientation q_i as `[x, y, z, w]`; normalized on load.
+    pub rotation: [f64; 4],
+    /// Radii ρ_ij at θ_j = 2πj/M.
+    pub radii: Vec<f64>,
+}
+
+impl From<&KeyDocument> for Key {
+    fn from(key: &KeyDocument) -> Key {
+        Key {
+            center: DVec3::from_array(key.center),
+            rotation: DQuat::from_array(key.rotation),
+            radii: key.radii.clone(),
+        }
+    }
+}
+
+impl From<&Key> for KeyDocument {
+    fn from(key: &Key) -> KeyDocument {
+        KeyDocument {
+            center: key.center.to_array(),
+            rotation: key.rotation.to_array(),
+            radii: key.radii.clone(),
+        }
+    }
+}
+
+impl RigDocument {
+    /// Parses a rig or pose file's text (format and version are checked by the rig loader).
+    pub fn parse(text: &str) -> Result<RigDocument, serde_json::Error> {
+        serde_json::from_str(text)
+    }
+
+    /// The file's text: pretty JSON, one key per line.
+    pub fn to_json(&self) -> String {
+        let mut text =
+            serde_json::to_string_pretty(self).expect("a rig document always serializes");
+        text.push('\n');
+        text
+    }
+}

@@ -1,0 +1,263 @@
+//! Rigs and poses: named sweeps, their key cross-sections, and the vertices each one owns.
+//!
+//! Data flow: **rig** → sweep → sweep coefficients → bind → deform → normals → output.
+//!
+//! A [`Rig`] is the rest configuration: its sweeps' keys fix the knots u_i and the binding of
+//! every vertex. A pose gives new keys for the same sweeps (matched by name, same key counts
+//! and radius counts); posed sweeps reuse the rest knots, so a vertex bound between keys i and
+//! i+1 stays between them.
+
+mod document;
+mod error;
+mod ownership;
+
+use std::path::{Path, PathBuf};
+
+pub use document::{FORMAT, KeyDocument, RigDocument, SweepDocument, VERSION, VertexSelection};
+pub use error::{RigError, RigErrorKind};
+
+use crate::sweep::{Key, Sweep};
+
+/// One named sweep of a rig, as written in the rig file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RigSweep {
+    /// Unique name; poses refer to the sweep by it.
+    pub name: String,
+    /// The vertices it owns; `None`: none.
+    pub vertices: Option<VertexSelection>,
+    /// Rest key cross-sections.
+    pub keys: Vec<Key>,
+    /// Explicit knots, or `None` for the chord length of the rest centers.
+    pub knots: Option<Vec<f64>>,
+}
+
+/// A validated rest rig: its sweeps and their rest sweep surfaces.
+#[derive(Clone, Debug)]
+pub struct Rig {
+    file: Option<PathBuf>,
+    sweeps: Vec<RigSweep>,
+    rest: Vec<Sweep>,
+}
+
+impl Rig {
+    /// Validates `sweeps` and builds their rest surfaces. Errors name the sweep and key at fault.
+    pub fn new(sweeps: Vec<RigSweep>) -> Result<Rig, RigError> {
+        Rig::build(sweeps, None)
+    }
+
+    /// Reads and validates a rig file. Errors name the file, sweep and key at fault.
+    pub fn load(path: &Path) -> Result<Rig, RigError> {
+        let file = Some(path.to_path_buf());
+        let document = read_document(path)?;
+        Rig::from_document(&document, file)
+    }
+
+    /// Validates a parsed rig file; `file` is named in errors.
+    pub fn from_document(document: &RigDocument, file: Option<PathBuf>) -> Result<Rig, RigError> {
+        check_header(document, &file)?;
+        let sweeps = document
+            .sweeps
+            .iter()
+            .map(|sweep| RigSweep {
+                name: sweep.name.clone(),
+                vertices: sweep.vertices.clone(),
+                keys: sweep.keys.iter().map(Key::from).collect(),
+                knots: sweep.knots.clone(),
+            })
+            .collect();
+        Rig::build(sweeps, file)
+    }
+
+    fn build(sweeps: Vec<RigSweep>, file: Option<PathBuf>) -> Result<Rig, RigError> {
+        let fail = |kind| RigError::new(file.clone(), kind);
+        if sweeps.is_empty() {
+            return Err(fail(RigErrorKind::NoSweeps));
+        }
+        for (i, sweep) in sweeps.iter().enumerate() {
+            if sweeps[..i].iter().any(|other| other.name == sweep.name) {
+                return Err(fail(RigErrorKind::DuplicateName {
+                    name: sweep.name.clone(),
+                }));
+            }
+        }
+        let rest = sweeps
+            .iter()
+            .map(|sweep| {
+                Sweep::try_new(&sweep.keys, sweep.knots.as_deref()).map_err(|source| {
+                    fail(RigErrorKind::Sweep {
+                        sweep: sweep.name.clone(),
+                        source,
+                    })
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(Rig { file, sweeps, rest })
+    }
+
+    /// The rig file this rig was read from, if any.
+    pub fn file(&self) -> Option<&Path> {
+        self.file.as_deref()
+    }
+
+    /// The sweeps as given.
+    pub fn sweeps(&self) -> &[RigSweep] {
+        &self.sweeps
+    }
+
+    /// The rest sweep surfaces, in the order of [`Rig::sweeps`].
+    pub fn rest(&self) -> &[Sweep] {
+        &self.rest
+    }
+
+    /// The rig as a file document.
+    pub fn to_document(&self) -> RigDocument {
+        self.document_with(|i| &self.sweeps[i].keys)
+    }
+
+    /// A pose file document for this rig with `keys[i]` as the keys of sweep i.
+    pub fn pose_document(&self, keys: &[Vec<Key>]) -> RigDocument {
+        self.document_with(|i| &keys[i])
+    }
+
+    fn document_with<'a>(&'a self, keys: impl Fn(usize) -> &'a Vec<Key>) -> RigDocument {
+        RigDocument {
+            format: FORMAT.to_string(),
+            version: VERSION,
+            sweeps: self
+                .sweeps
+                .iter()
+                .enumerate()
+                .map(|(i, sweep)| SweepDocument {
+                    name: sweep.name.clone(),
+                    vertices: sweep.vertices.clone(),
+                    keys: keys(i).iter().map(KeyDocument::from).collect(),
+                    knots: sweep.knots.clone(),
+                })
+                .collect(),
+        }
+    }
+
+    /// The posed sweep surfaces for `keys[i]` on sweep i (rest knots), checked against the rest
+    /// rig: same number of sweeps, keys and radii.
+    pub fn pose(&self, keys: &[Vec<Key>]) -> Result<Vec<Sweep>, RigError> {
+        self.pose_named(
+            keys.iter()
+                .zip(&self.sweeps)
+                .map(|(k, s)| (s.name.as_str(), k.as_slice())),
+            None,
+        )
+    }
+
+    /// Reads a pose file and returns the posed sweep surfaces in rig order. Errors name the
+    /// pose file, sweep and key at fault.
+    pub fn load_pose(&self, path: &Path) -> Result<Vec<Sweep>, RigError> {
+        let document = read_document(path)?;
+        self.pose_from_document(&document, Some(path.to_path_buf()))
+    }
+
+    /// The posed sweep surfaces of a parsed pose file; `file` is named in errors.
+    pub fn pose_from_document(
+        &self,
+        document: &RigDocument,
+        file: Option<PathBuf>,
+    ) -> Result<Vec<Sweep>, RigError> {
+        check_header(document, &file)?;
+        let keys: Vec<(&str, Vec<Key>)> = document
+            .sweeps
+            .iter()
+            .map(|sweep| {
+                (
+                    sweep.name.as_str(),
+                    sweep.keys.iter().map(Key::from).collect(),
+                )
+            })
+            .collect();
+        self.pose_named(
+            keys.iter().map(|(name, keys)| (*name, keys.as_slice())),
+            file,
+        )
+    }
+
+    fn pose_named<'a>(
+        &self,
+        posed: impl Iterator<Item = (&'a str, &'a [Key])> + Clone,
+        file: Option<PathBuf>,
+    ) -> Result<Vec<Sweep>, RigError> {
+        let fail = |kind| RigError::new(file.clone(), kind);
+        for (name, _) in posed.clone() {
+            if !self.sweeps.iter().any(|sweep| sweep.name == name) {
+                return Err(fail(RigErrorKind::PoseUnknownSweep {
+                    sweep: name.to_string(),
+                }));
+            }
+        }
+        self.sweeps
+            .iter()
+            .zip(&self.rest)
+            .map(|(sweep, rest)| {
+                let name = sweep.name.clone();
+                let Some((_, keys)) = posed.clone().find(|(n, _)| *n == name) else {
+                    return Err(fail(RigErrorKind::PoseMissingSweep { sweep: name }));
+                };
+                if keys.len() != sweep.keys.len() {
+                    let (expected, found) = (sweep.keys.len(), keys.len());
+                    return Err(fail(RigErrorKind::PoseKeyCount {
+                        sweep: name,
+                        expected,
+                        found,
+                    }));
+                }
+                let expected = rest.radius_samples();
+                if let Some((key, k)) = keys
+                    .iter()
+                    .enumerate()
+                    .find(|(_, k)| k.radii.len() != expected)
+                {
+                    let found = k.radii.len();
+                    return Err(fail(RigErrorKind::PoseRadiusCount {
+                        sweep: name,
+                        key,
+                        expected,
+                        found,
+                    }));
+                }
+                Sweep::try_new(keys, Some(rest.knots())).map_err(|source| {
+                    fail(RigErrorKind::Sweep {
+                        sweep: name,
+                        source,
+                    })
+                })
+            })
+            .collect()
+    }
+}
+
+fn read_document(path: &Path) -> Result<RigDocument, RigError> {
+    let file = Some(path.to_path_buf());
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| RigError::new(file.clone(), RigErrorKind::Io(e)))?;
+    RigDocument::parse(&text).map_err(|e| RigError::new(file, RigErrorKind::Json(e)))
+}
+
+fn check_header(document: &RigDocument, file: &Option<PathBuf>) -> Result<(), RigError> {
+    if document.format != FORMAT {
+        return Err(RigError::new(
+            file.clone(),
+            RigErrorKind::Format {
+                found: document.format.clone(),
+            },
+        ));
+    }
+    if document.version != VERSION {
+        return Err(RigError::new(
+            file.clone(),
+            RigErrorKind::Version {
+                found: document.version,
+            },
+        ));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests;

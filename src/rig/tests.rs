@@ -1,0 +1,136 @@
+//! Rig and pose validation.
+
+use glam::{DQuat, DVec3};
+
+use super::*;
+
+const EXAMPLE: &str = r#"{"format": "sweepffd-rig", "version": 1,
+ "sweeps": [{"name": "neck",
+             "vertices": {"groups": ["neck"]},
+             "keys": [{"center": [0, 0, 0], "rotation": [0, 0, 0, 1], "radii": [1, 1, 1, 1, 1, 1, 1, 1]},
+                      {"center": [0, 0, 2], "rotation": [0, 0, 0, 1], "radii": [1, 1, 1, 1, 1, 1, 1, 1]}]}]}"#;
+
+fn example() -> Rig {
+    Rig::from_document(&RigDocument::parse(EXAMPLE).unwrap(), None).unwrap()
+}
+
+fn message(result: Result<impl std::fmt::Debug, RigError>) -> String {
+    result.unwrap_err().to_string()
+}
+
+#[test]
+fn example_rig_parses_with_chord_length_knots() {
+    let rig = example();
+    assert_eq!(rig.sweeps()[0].name, "neck");
+    assert_eq!(
+        rig.sweeps()[0].vertices,
+        Some(VertexSelection::Groups(vec!["neck".into()]))
+    );
+    assert_eq!(rig.rest()[0].knots(), &[0.0, 1.0]);
+}
+
+#[test]
+fn document_round_trips_through_json() {
+    let document = example().to_document();
+    assert_eq!(RigDocument::parse(&document.to_json()).unwrap(), document);
+}
+
+#[test]
+fn vertex_selection_spellings() {
+    let parse = |json: &str| serde_json::from_str::<VertexSelection>(json);
+    assert_eq!(parse(r#""all""#).unwrap(), VertexSelection::All);
+    assert_eq!(
+        parse(r#"{"indices": [3, 1]}"#).unwrap(),
+        VertexSelection::Indices(vec![3, 1])
+    );
+    assert!(
+        parse(r#"{"group": ["a"]}"#)
+            .unwrap_err()
+            .to_string()
+            .contains("unknown variant `group`")
+    );
+}
+
+#[test]
+fn errors_name_the_file_sweep_and_key() {
+    let mut document = RigDocument::parse(EXAMPLE).unwrap();
+    document.sweeps[0].keys[1].radii[2] = -0.5;
+    let error = message(Rig::from_document(&document, Some("rigs/neck.json".into())));
+    assert_eq!(
+        error,
+        "rigs/neck.json: sweep \"neck\": key 1: radius 2 is negative (-0.5)"
+    );
+}
+
+#[test]
+fn wrong_format_and_version_are_rejected() {
+    let mut document = RigDocument::parse(EXAMPLE).unwrap();
+    document.format = "other".into();
+    assert!(message(Rig::from_document(&document, None)).contains("\"format\" is \"other\""));
+    let mut document = RigDocument::parse(EXAMPLE).unwrap();
+    document.version = 7;
+    assert!(message(Rig::from_document(&document, None)).contains("\"version\" is 7"));
+}
+
+#[test]
+fn duplicate_sweep_names_are_rejected() {
+    let mut document = RigDocument::parse(EXAMPLE).unwrap();
+    document.sweeps.push(document.sweeps[0].clone());
+    assert_eq!(
+        message(Rig::from_document(&document, None)),
+        "two sweeps are named \"neck\""
+    );
+}
+
+#[test]
+fn pose_reuses_the_rest_knots() {
+    let rig = example();
+    let keys = vec![vec![
+        Key::circle(DVec3::ZERO, DQuat::IDENTITY, 1.0, 8),
+        Key::circle(
+            DVec3::new(0.0, 5.0, 0.0),
+            DQuat::from_rotation_x(-1.0),
+            0.5,
+            8,
+        ),
+    ]];
+    let posed = rig.pose(&keys).unwrap();
+    assert_eq!(posed[0].knots(), rig.rest()[0].knots());
+    assert_eq!(posed[0].center(1.0), DVec3::new(0.0, 5.0, 0.0));
+}
+
+#[test]
+fn pose_must_match_the_rest_rig() {
+    let rig = example();
+    let key = Key::circle(DVec3::ZERO, DQuat::IDENTITY, 1.0, 8);
+    assert_eq!(
+        message(rig.pose(&[vec![key.clone(); 3]])),
+        "sweep \"neck\": the pose has 3 keys but the rest rig has 2"
+    );
+    let short = Key::circle(DVec3::Z, DQuat::IDENTITY, 1.0, 6);
+    assert_eq!(
+        message(rig.pose(&[vec![key.clone(), short]])),
+        "sweep \"neck\", key 1: the pose has 6 radii but the rest rig has 8"
+    );
+    let mut document = rig.pose_document(&[vec![key.clone(), key]]);
+    document.sweeps[0].name = "tail".into();
+    assert_eq!(
+        message(rig.pose_from_document(&document, Some("pose.json".into()))),
+        "pose.json: the pose has a sweep \"tail\", which the rest rig does not have"
+    );
+}
+
+#[test]
+fn pose_may_bring_coincident_centers_but_not_a_zero_rotation() {
+    let rig = example();
+    let key = Key::circle(DVec3::ZERO, DQuat::IDENTITY, 1.0, 8);
+    assert!(rig.pose(&[vec![key.clone(), key.clone()]]).is_ok());
+    let zero = Key {
+        rotation: DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0),
+        ..key.clone()
+    };
+    assert_eq!(
+        message(rig.pose(&[vec![key, zero]])),
+        "sweep \"neck\": key 1: rotation is the zero quaternion"
+    );
+}

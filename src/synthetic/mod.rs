@@ -1,0 +1,8 @@
+//! Procedural meshes, rigs and poses: the demo's scene, and inputs of any size for tests and
+//! benchmarks that must not depend on files.
+
+mod pose;
+mod tube;
+
+pub use pose::BendTwistTaper;
+pub use tube::{Tube, tube_rig};
