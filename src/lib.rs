@@ -12,6 +12,26 @@
 //! - [`bind`]: binding parameters of each vertex by root-finding (§3).
 //! - [`deform`]: vertex positions of a posed rig through Eq. 2.
 //! - [`mesh`]: mesh files in and out, enclosed volume.
+//! - [`coeffs`]: sweeps as compact f32 coefficient arrays, the GPU buffer layouts.
+//! - [`cpu`]: f32 twins of the WGSL kernels in `shaders/`.
+//! - [`synthetic`]: procedural meshes, rigs and poses.
+//!
+//! ```no_run
+//! use glam::DVec3;
+//! use sweepffd::{bind::bind_vertices, deform::deform_vertices, mesh::Mesh, rig::Rig};
+//!
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! let mesh = Mesh::load("bunny.obj".as_ref())?;
+//! let rig = Rig::load("bunny-rig.json".as_ref())?;
+//! let owners = rig.owners(&mesh, "bunny.obj")?;
+//! let bindings = bind_vertices(rig.rest(), &owners, &mesh.positions, &|_| {});
+//! let posed = rig.load_pose("bunny-pose.json".as_ref())?;
+//! let mut deformed = vec![DVec3::ZERO; mesh.positions.len()];
+//! deform_vertices(&posed, &bindings, &mesh.positions, &mut deformed);
+//! mesh.save("bunny-posed.obj".as_ref(), &deformed)?;
+//! # Ok(())
+//! # }
+//! ```
 
 pub mod bind;
 pub mod coeffs;

@@ -33,7 +33,7 @@ pub struct SegmentCoeffs {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct PatchCoeffs {
-    /// r(s, φ) = Σ_p Σ_q radius[p][q]·s^p·φ^q.
+    /// r(s, φ) = Σ_p Σ_q `radius[p][q]`·s^p·φ^q.
     pub radius: [[f32; 4]; 4],
     /// Index of the cell's knot interval in the segment array.
     pub segment: u32,
