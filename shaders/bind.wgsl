@@ -168,7 +168,7 @@ fn roots_on_segment(k: u32, v: vec3<f32>, nearest: ptr<function, Nearest>) {
 }
 
 @compute @workgroup_size(WORKGROUP_SIZE)
-fn bind(
+fn bind_main(
     @builtin(workgroup_id) group: vec3<u32>,
     @builtin(num_workgroups) groups: vec3<u32>,
     @builtin(local_invocation_index) lane: u32,
@@ -199,14 +199,18 @@ fn bind(
     }
     let segment = segments[nearest.segment];
     let local = rotate_inverse(quat_at(segment, nearest.s), v - curve_at(segment, nearest.s));
-    var theta = atan2(local.y, local.x);
+    // On the axis theta is arbitrary; atan2(0, 0) is not defined in WGSL, so pin it to 0.
+    var theta = 0.0;
+    if (local.x != 0.0 || local.y != 0.0) {
+        theta = atan2(local.y, local.x);
+    }
     if (theta < 0.0) {
         theta += TAU;
     }
     let x = theta * (f32(sweep.samples) / TAU);
     let j = min(u32(x), sweep.samples - 1u);
     let phi = clamp(x - f32(j), 0.0, 1.0);
-    let patch = sweep.first_patch + (nearest.segment - sweep.first_segment) * sweep.samples + j;
-    let r = radius_at(patches[patch], nearest.s, phi);
-    bindings[i] = GpuBinding(patch, nearest.s, phi, length(local.xy) - r, local.z);
+    let cell = sweep.first_patch + (nearest.segment - sweep.first_segment) * sweep.samples + j;
+    let r = radius_at(patches[cell], nearest.s, phi);
+    bindings[i] = GpuBinding(cell, nearest.s, phi, length(local.xy) - r, local.z);
 }

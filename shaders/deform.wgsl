@@ -10,7 +10,7 @@
 @group(0) @binding(4) var<storage, read_write> positions: array<f32>;
 
 @compute @workgroup_size(WORKGROUP_SIZE)
-fn deform(
+fn deform_main(
     @builtin(workgroup_id) group: vec3<u32>,
     @builtin(num_workgroups) groups: vec3<u32>,
     @builtin(local_invocation_index) lane: u32,
@@ -20,13 +20,13 @@ fn deform(
         return;
     }
     let binding = bindings[i];
-    if (binding.patch == UNBOUND) {
+    if (binding.cell == UNBOUND) {
         return;
     }
-    let patch = patches[binding.patch];
-    let segment = segments[patch.segment];
-    let rho = radius_at(patch, binding.s, binding.phi) + binding.d;
-    let direction = direction_at(patch, binding.phi);
+    let cell = patches[binding.cell];
+    let segment = segments[cell.segment];
+    let rho = radius_at(cell, binding.s, binding.phi) + binding.d;
+    let direction = direction_at(cell, binding.phi);
     let local = vec3<f32>(rho * direction.x, rho * direction.y, binding.h);
     let p = curve_at(segment, binding.s) + rotate(quat_at(segment, binding.s), local);
     positions[3u * i] = p.x;

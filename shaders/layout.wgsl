@@ -23,7 +23,7 @@ struct PatchCoeffs {
     half_step: f32,
 }
 
-// Where one sweep's segments and patches start; patch (k, j) is first_patch + k * samples + j.
+// Where one sweep's segments and patches start; cell (k, j) is first_patch + k * samples + j.
 struct SweepInfo {
     first_segment: u32,
     segment_count: u32,
@@ -43,20 +43,33 @@ struct BindSegment {
     _pad: f32,
 }
 
-// A vertex's binding: its radius patch (or UNBOUND), local (s, phi) in that cell, d and h.
+// A vertex's binding: its radius cell (or UNBOUND), local (s, phi) in that cell, d and h.
 struct GpuBinding {
-    patch: u32,
+    cell: u32,
     s: f32,
     phi: f32,
     d: f32,
     h: f32,
 }
 
+// One dispatch covers one chunk of vertices: its count, the global index of its first vertex,
+// and (normals) the first vertex read through the second positions window.
 struct DispatchParams {
     vertex_count: u32,
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
+    first_vertex: u32,
+    window_split: u32,
+    _pad: u32,
+}
+
+// Linear-blend-skinning baseline: four joint indices and four unorm8 weights, packed in bytes.
+struct SkinInfluence {
+    joints: u32,
+    weights: u32,
+}
+
+// A joint's matrix: the top three rows of a 4x4 affine transform.
+struct Joint {
+    rows: array<vec4<f32>, 3>,
 }
 
 // The linear invocation index of a dispatch of (x, y, 1) workgroups: large meshes need more

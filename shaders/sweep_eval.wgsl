@@ -27,23 +27,23 @@ fn rotate_inverse(q: vec4<f32>, v: vec3<f32>) -> vec3<f32> {
     return rotate(vec4<f32>(-q.xyz, q.w), v);
 }
 
-// r at local parameters (s, phi) of a patch.
-fn radius_at(patch: PatchCoeffs, s: f32, phi: f32) -> f32 {
+// r at local parameters (s, phi) of a cell.
+fn radius_at(cell: PatchCoeffs, s: f32, phi: f32) -> f32 {
     let powers = vec4<f32>(1.0, phi, phi * phi, phi * phi * phi);
-    let r0 = dot(patch.radius[0], powers);
-    let r1 = dot(patch.radius[1], powers);
-    let r2 = dot(patch.radius[2], powers);
-    let r3 = dot(patch.radius[3], powers);
+    let r0 = dot(cell.radius[0], powers);
+    let r1 = dot(cell.radius[1], powers);
+    let r2 = dot(cell.radius[2], powers);
+    let r3 = dot(cell.radius[3], powers);
     return r0 + s * (r1 + s * (r2 + s * r3));
 }
 
 // (cos theta, sin theta) for theta = theta_mid + delta, delta = (2 phi - 1) pi / M, |delta| <= pi / 3:
 // Taylor polynomials of sin (to delta^9) and cos (to delta^10), both accurate to 5e-8, so that no
 // transcendental function runs per vertex per frame.
-fn direction_at(patch: PatchCoeffs, phi: f32) -> vec2<f32> {
-    let delta = (2.0 * phi - 1.0) * patch.half_step;
+fn direction_at(cell: PatchCoeffs, phi: f32) -> vec2<f32> {
+    let delta = (2.0 * phi - 1.0) * cell.half_step;
     let d2 = delta * delta;
     let sin_d = delta * (1.0 - d2 * (1.0 / 6.0) * (1.0 - d2 * (1.0 / 20.0) * (1.0 - d2 * (1.0 / 42.0) * (1.0 - d2 * (1.0 / 72.0)))));
     let cos_d = 1.0 - d2 * 0.5 * (1.0 - d2 * (1.0 / 12.0) * (1.0 - d2 * (1.0 / 30.0) * (1.0 - d2 * (1.0 / 56.0) * (1.0 - d2 * (1.0 / 90.0)))));
-    return vec2<f32>(patch.cos_mid * cos_d - patch.sin_mid * sin_d, patch.sin_mid * cos_d + patch.cos_mid * sin_d);
+    return vec2<f32>(cell.cos_mid * cos_d - cell.sin_mid * sin_d, cell.sin_mid * cos_d + cell.cos_mid * sin_d);
 }

@@ -150,8 +150,8 @@ fn f32_twin_binds_like_the_f64_reference() {
         let mut worst = (0.0f64, 0usize);
         let mut flips = 0;
         for (i, (b32, b64)) in twin.iter().zip(&case.bindings).enumerate() {
-            let patch = coefficients.patches[b32.patch as usize];
-            let segment = tables[patch.segment as usize];
+            let cell = coefficients.patches[b32.cell as usize];
+            let segment = tables[cell.segment as usize];
             let t32 = segment.t0 as f64 + b32.s as f64 * (segment.t1 - segment.t0) as f64;
             let dt = (t32 - b64.params.t).abs();
             if dt > 1e-3 {

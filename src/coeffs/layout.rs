@@ -10,7 +10,7 @@ use bytemuck::{Pod, Zeroable};
 /// Threads per workgroup of every compute kernel; the shaders' `@workgroup_size` must match.
 pub const WORKGROUP_SIZE: u32 = 64;
 
-/// `GpuBinding::patch` of a vertex that no sweep owns; the deform kernel leaves it in place.
+/// `GpuBinding::cell` of a vertex that no sweep owns; the deform kernel leaves it in place.
 pub const UNBOUND: u32 = u32::MAX;
 
 /// One knot interval of a posed sweep: C(s) = origin + c1·s + c2·s² + c3·s³ and the
@@ -86,7 +86,7 @@ pub struct BindSegment {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuBinding {
     /// Global patch index, or [`UNBOUND`].
-    pub patch: u32,
+    pub cell: u32,
     /// Local axis parameter s ∈ [0, 1] in the patch's knot interval.
     pub s: f32,
     /// Local angle parameter φ ∈ [0, 1] in the patch's angular interval: θ = θ_j + φ·2π/M.
@@ -97,18 +97,39 @@ pub struct GpuBinding {
     pub h: f32,
 }
 
-/// Per-dispatch constants of the bind and deform kernels. 16 bytes.
+/// Per-dispatch constants of every kernel: one dispatch covers one chunk of vertices. 16 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Pod, Zeroable)]
 pub struct DispatchParams {
     /// Number of vertices in this dispatch; threads at or past it return at once.
     pub vertex_count: u32,
+    /// Global index of the dispatch's first vertex (used by the normals kernel, whose position
+    /// reads reach any vertex).
+    pub first_vertex: u32,
+    /// Global index of the first vertex read through the second positions window (normals).
+    pub window_split: u32,
     /// Unused.
-    pub _pad0: u32,
-    /// Unused.
-    pub _pad1: u32,
-    /// Unused.
-    pub _pad2: u32,
+    pub _pad: u32,
+}
+
+/// One vertex's skinning influences for the linear-blend-skinning baseline: four joint
+/// indices and four weights, each packed as bytes (weights as unorm8, summing to 255). 8 bytes.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Pod, Zeroable)]
+pub struct SkinInfluence {
+    /// Joint indices, one per byte, lowest byte first.
+    pub joints: u32,
+    /// Weights as unorm8, one per byte, lowest byte first.
+    pub weights: u32,
+}
+
+/// A joint's skinning matrix for the baseline: the top three rows of a 4×4 affine transform. 48
+/// bytes.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct Joint {
+    /// Rows 0..3 of the affine matrix.
+    pub rows: [[f32; 4]; 3],
 }
 
 const _: () = assert!(size_of::<SegmentCoeffs>() == 96);
@@ -117,3 +138,5 @@ const _: () = assert!(size_of::<SweepInfo>() == 16);
 const _: () = assert!(size_of::<BindSegment>() == 96);
 const _: () = assert!(size_of::<GpuBinding>() == 20);
 const _: () = assert!(size_of::<DispatchParams>() == 16);
+const _: () = assert!(size_of::<SkinInfluence>() == 8);
+const _: () = assert!(size_of::<Joint>() == 48);

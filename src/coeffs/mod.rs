@@ -16,8 +16,8 @@ use std::f64::consts::PI;
 use glam::{DQuat, DVec3};
 
 pub use layout::{
-    BindSegment, DispatchParams, GpuBinding, PatchCoeffs, SegmentCoeffs, SweepInfo, UNBOUND,
-    WORKGROUP_SIZE,
+    BindSegment, DispatchParams, GpuBinding, Joint, PatchCoeffs, SegmentCoeffs, SkinInfluence, SweepInfo,
+    UNBOUND, WORKGROUP_SIZE,
 };
 
 use crate::sweep::Sweep;

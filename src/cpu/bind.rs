@@ -196,7 +196,7 @@ fn roots_on_segment(inputs: &BindInputs, k: u32, v: Vec3, nearest: &mut Nearest)
 pub fn bind_vertex(inputs: &BindInputs, owner: u32, v: Vec3) -> GpuBinding {
     if owner == UNBOUND {
         return GpuBinding {
-            patch: UNBOUND,
+            cell: UNBOUND,
             s: 0.0,
             phi: 0.0,
             d: 0.0,
@@ -232,17 +232,21 @@ pub fn bind_vertex(inputs: &BindInputs, owner: u32, v: Vec3) -> GpuBinding {
         quat_at(segment, nearest.s),
         v - curve_at(segment, nearest.s),
     );
-    let mut theta = local.y.atan2(local.x);
+    // On the axis θ is arbitrary; atan2(0, 0) is not defined in WGSL, so pin it to 0.
+    let mut theta = 0.0;
+    if local.x != 0.0 || local.y != 0.0 {
+        theta = local.y.atan2(local.x);
+    }
     if theta < 0.0 {
         theta += TAU;
     }
     let x = theta * (sweep.samples as f32 / TAU);
     let j = (x as u32).min(sweep.samples - 1);
     let phi = (x - j as f32).clamp(0.0, 1.0);
-    let patch = sweep.first_patch + (nearest.segment - sweep.first_segment) * sweep.samples + j;
-    let r = radius_at(&inputs.patches[patch as usize], nearest.s, phi);
+    let cell = sweep.first_patch + (nearest.segment - sweep.first_segment) * sweep.samples + j;
+    let r = radius_at(&inputs.patches[cell as usize], nearest.s, phi);
     GpuBinding {
-        patch,
+        cell,
         s: nearest.s,
         phi,
         d: local.truncate().length() - r,

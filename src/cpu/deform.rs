@@ -14,13 +14,13 @@ pub fn deform_vertex(
     patches: &[PatchCoeffs],
     binding: &GpuBinding,
 ) -> Option<Vec3> {
-    if binding.patch == UNBOUND {
+    if binding.cell == UNBOUND {
         return None;
     }
-    let patch = &patches[binding.patch as usize];
-    let segment = &segments[patch.segment as usize];
-    let rho = radius_at(patch, binding.s, binding.phi) + binding.d;
-    let direction = direction_at(patch, binding.phi);
+    let cell = &patches[binding.cell as usize];
+    let segment = &segments[cell.segment as usize];
+    let rho = radius_at(cell, binding.s, binding.phi) + binding.d;
+    let direction = direction_at(cell, binding.phi);
     let local = Vec3::new(rho * direction.x, rho * direction.y, binding.h);
     let p = curve_at(segment, binding.s) + rotate(quat_at(segment, binding.s), local);
     Some(p)

@@ -1,6 +1,8 @@
 //! CPU twins of the WGSL kernels: f32 code that mirrors `shaders/*.wgsl` statement by
-//! statement, file for file (`shaders/deform.wgsl` ↔ [`deform`], `shaders/bind.wgsl` ↔
-//! [`bind`], `shaders/sweep_eval.wgsl` ↔ [`sweep_eval`]).
+//! statement, file for file (`shaders/bind.wgsl` ↔ [`bind`], `shaders/deform.wgsl` ↔
+//! [`deform`], `shaders/normals.wgsl` ↔ [`normals`], `shaders/sweep_eval.wgsl` ↔
+//! [`sweep_eval`], and the benchmark baselines `shaders/copy.wgsl` ↔ [`copy`],
+//! `shaders/skinning.wgsl` ↔ [`skinning`]).
 //!
 //! They are the executable specification of the GPU path: tests check them against the f64
 //! reference ([`crate::bind`], [`crate::deform`]) tightly and against the GPU within named
@@ -8,7 +10,10 @@
 //! its kernel, in parallel over the vertices.
 
 pub mod bind;
+pub mod copy;
 pub mod deform;
+pub mod normals;
+pub mod skinning;
 pub mod sweep_eval;
 
 use glam::Vec3;

@@ -29,20 +29,20 @@ pub fn rotate_inverse(q: Vec4, v: Vec3) -> Vec3 {
     rotate(Vec4::new(-q.x, -q.y, -q.z, q.w), v)
 }
 
-/// r at local parameters (s, φ) of a patch.
-pub fn radius_at(patch: &PatchCoeffs, s: f32, phi: f32) -> f32 {
+/// r at local parameters (s, φ) of a cell.
+pub fn radius_at(cell: &PatchCoeffs, s: f32, phi: f32) -> f32 {
     let powers = Vec4::new(1.0, phi, phi * phi, phi * phi * phi);
-    let r0 = Vec4::from_array(patch.radius[0]).dot(powers);
-    let r1 = Vec4::from_array(patch.radius[1]).dot(powers);
-    let r2 = Vec4::from_array(patch.radius[2]).dot(powers);
-    let r3 = Vec4::from_array(patch.radius[3]).dot(powers);
+    let r0 = Vec4::from_array(cell.radius[0]).dot(powers);
+    let r1 = Vec4::from_array(cell.radius[1]).dot(powers);
+    let r2 = Vec4::from_array(cell.radius[2]).dot(powers);
+    let r3 = Vec4::from_array(cell.radius[3]).dot(powers);
     r0 + s * (r1 + s * (r2 + s * r3))
 }
 
 /// (cos θ, sin θ) for θ = θ_mid + δ, δ = (2φ − 1)·π/M, |δ| ≤ π/3: Taylor polynomials of sin (to
 /// δ⁹) and cos (to δ¹⁰), both accurate to 5e-8, so no transcendental runs per vertex per frame.
-pub fn direction_at(patch: &PatchCoeffs, phi: f32) -> Vec2 {
-    let delta = (2.0 * phi - 1.0) * patch.half_step;
+pub fn direction_at(cell: &PatchCoeffs, phi: f32) -> Vec2 {
+    let delta = (2.0 * phi - 1.0) * cell.half_step;
     let d2 = delta * delta;
     let sin_d = delta
         * (1.0
@@ -57,8 +57,8 @@ pub fn direction_at(patch: &PatchCoeffs, phi: f32) -> Vec2 {
                         - d2 * (1.0 / 30.0)
                             * (1.0 - d2 * (1.0 / 56.0) * (1.0 - d2 * (1.0 / 90.0)))));
     Vec2::new(
-        patch.cos_mid * cos_d - patch.sin_mid * sin_d,
-        patch.sin_mid * cos_d + patch.cos_mid * sin_d,
+        cell.cos_mid * cos_d - cell.sin_mid * sin_d,
+        cell.sin_mid * cos_d + cell.cos_mid * sin_d,
     )
 }
 
@@ -72,7 +72,7 @@ mod tests {
         // M = 3 gives the widest cells, |δ| up to π/3.
         for j in 0..3 {
             let mid = (2 * j + 1) as f32 * PI / 3.0;
-            let patch = PatchCoeffs {
+            let cell = PatchCoeffs {
                 cos_mid: mid.cos(),
                 sin_mid: mid.sin(),
                 half_step: PI / 3.0,
@@ -81,7 +81,7 @@ mod tests {
             for i in 0..=50 {
                 let phi = i as f32 / 50.0;
                 let theta = mid + (2.0 * phi - 1.0) * PI / 3.0;
-                let direction = direction_at(&patch, phi);
+                let direction = direction_at(&cell, phi);
                 assert!(
                     (direction - Vec2::new(theta.cos(), theta.sin())).length() < 3e-7,
                     "θ = {theta}"

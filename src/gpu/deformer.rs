@@ -1,0 +1,507 @@
+//! [`GpuDeformer`]: binding and Eq. 2 on the GPU, with the output position (and normal) buffer
+//! ready to be drawn by the host application.
+
+use std::ops::Range;
+
+use glam::DVec3;
+use wgpu::util::DeviceExt;
+
+use super::chunks::{ChunkLimits, dispatch_grid, normal_chunks, uniform_chunks};
+use super::kernels::{self, Kernel};
+use super::readback::{read_bytes, wait};
+use super::{GpuContext, GpuError};
+use crate::coeffs::{DispatchParams, GpuBinding, SweepCoefficients, UNBOUND, bind_segments};
+use crate::mesh::Faces;
+use crate::normals::NormalAdjacency;
+use crate::sweep::Sweep;
+
+/// Bytes per vertex of the position and normal buffers (tightly packed f32 xyz).
+pub const POSITION_STRIDE: u64 = 12;
+/// Bytes per vertex of the binding buffers.
+pub const BINDING_STRIDE: u64 = size_of::<GpuBinding>() as u64;
+/// Storage buffers the bind kernel uses in one stage, the most of any kernel.
+const STORAGE_BUFFERS_NEEDED: u32 = 7;
+
+/// How the deformer gets its bindings.
+#[derive(Clone, Copy, Debug)]
+pub enum BindingSource<'a> {
+    /// Bind on the GPU: `owners[i]` is the index of the sweep owning vertex i, or
+    /// [`UNBOUND`](crate::coeffs::UNBOUND).
+    Bind { owners: &'a [u32] },
+    /// Bindings computed before (by the CPU twin, or read back from another deformer).
+    Precomputed(&'a [GpuBinding]),
+}
+
+/// Deforms one mesh on the GPU by poses of one rig.
+///
+/// Construction uploads the rest positions (once) and binds every owned vertex on the GPU; the
+/// bindings stay on the GPU. Each frame, [`set_pose`](GpuDeformer::set_pose) turns the posed
+/// sweeps into a few KB of coefficients and uploads only those, and
+/// [`encode`](GpuDeformer::encode) records the deform (and normals) dispatches into the
+/// application's command encoder: no allocation, pipeline or bind-group creation, no vertex
+/// upload per frame. The [`positions`](GpuDeformer::positions) buffer (and
+/// [`normals`](GpuDeformer::normals)) has `VERTEX | STORAGE` usage: draw it directly as a
+/// `Float32x3` vertex attribute. Reading it back is a separate, explicit call.
+///
+/// Meshes whose buffers exceed the device's storage binding size or workgroup count are split
+/// into chunks transparently; the position buffer is one buffer and must fit `max_buffer_size`.
+///
+/// ```no_run
+/// # fn frame_loop(context: &sweepffd::gpu::GpuContext, rig: &sweepffd::rig::Rig,
+/// #     mesh: &sweepffd::mesh::Mesh, poses: &[Vec<Vec<sweepffd::sweep::Key>>])
+/// #     -> Result<(), Box<dyn std::error::Error>> {
+/// use sweepffd::gpu::{BindingSource, GpuDeformer};
+///
+/// let owners = rig.owners(mesh, "mesh")?;
+/// let mut deformer = GpuDeformer::new(
+///     context, rig.rest(), &mesh.positions, BindingSource::Bind { owners: &owners }, Some(&mesh.faces))?;
+/// for keys in poses {
+///     let posed = rig.pose(keys)?; // f64 sweeps on the CPU: a few keys, not millions of vertices
+///     deformer.set_pose(&posed)?; // uploads a few KB of coefficients
+///     let mut encoder = context.device.create_command_encoder(&Default::default());
+///     deformer.encode(&mut encoder); // deform + normals dispatches
+///     // ... record the render pass that draws deformer.positions() and deformer.normals() ...
+///     context.queue.submit([encoder.finish()]);
+/// }
+/// # Ok(()) }
+/// ```
+#[derive(Debug)]
+pub struct GpuDeformer {
+    context: GpuContext,
+    limits: ChunkLimits,
+    kernel: Kernel,
+    vertex_count: u32,
+    positions: wgpu::Buffer,
+    segments: wgpu::Buffer,
+    patches: wgpu::Buffer,
+    coefficients: SweepCoefficients,
+    chunks: Vec<DeformChunk>,
+    normals: Option<NormalsStage>,
+}
+
+/// One dispatch of the deform kernel.
+#[derive(Debug)]
+struct DeformChunk {
+    range: Range<u32>,
+    bindings: wgpu::Buffer,
+    group: wgpu::BindGroup,
+    grid: (u32, u32),
+}
+
+/// The normals pass: its kernel, output buffer and dispatches.
+#[derive(Debug)]
+struct NormalsStage {
+    kernel: Kernel,
+    buffer: wgpu::Buffer,
+    dispatches: Vec<(wgpu::BindGroup, (u32, u32))>,
+}
+
+impl GpuDeformer {
+    /// Uploads `positions` (rest, one per vertex) and the rest sweeps, and binds every vertex
+    /// (on the GPU for [`BindingSource::Bind`]). With `faces`, also keeps area-weighted vertex
+    /// normals of the deformed mesh. Blocks until the GPU is done; wgpu errors are returned.
+    pub fn new(
+        context: &GpuContext,
+        rest: &[Sweep],
+        positions: &[DVec3],
+        bindings: BindingSource,
+        faces: Option<&Faces>,
+    ) -> Result<GpuDeformer, GpuError> {
+        check_input(rest, positions, &bindings)?;
+        let device = &context.device;
+        let device_limits = device.limits();
+        if device_limits.max_storage_buffers_per_shader_stage < STORAGE_BUFFERS_NEEDED {
+            return Err(GpuError::Input(format!(
+                "the device allows {} storage buffers per shader stage; binding needs {STORAGE_BUFFERS_NEEDED}",
+                device_limits.max_storage_buffers_per_shader_stage
+            )));
+        }
+        let limits = ChunkLimits::of(&device_limits);
+        let vertex_count = positions.len() as u32;
+        check_fits("the position buffer", vertex_count as u64 * POSITION_STRIDE, limits.max_buffer)?;
+
+        let out_of_memory = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+        let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let coefficients = SweepCoefficients::new(rest);
+        let rest_f32: Vec<f32> = positions.iter().flat_map(|p| p.as_vec3().to_array()).collect();
+        let positions_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("sweepffd positions"),
+            contents: bytemuck::cast_slice(&rest_f32),
+            usage: wgpu::BufferUsages::VERTEX
+                | wgpu::BufferUsages::STORAGE
+                | wgpu::BufferUsages::COPY_SRC
+                | wgpu::BufferUsages::COPY_DST,
+        });
+        let coefficient_buffer = |label, bytes: &[u8]| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents: bytes,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            })
+        };
+        let segments = coefficient_buffer("sweepffd segments", bytemuck::cast_slice(&coefficients.segments));
+        let patches = coefficient_buffer("sweepffd patches", bytemuck::cast_slice(&coefficients.patches));
+
+        let kernel = kernels::deform(device);
+        let ranges = uniform_chunks(vertex_count, BINDING_STRIDE, &limits);
+        let mut chunks = Vec::with_capacity(ranges.len());
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd bind") });
+        let binder = match bindings {
+            BindingSource::Bind { .. } => Some(Binder::new(context, rest, &coefficients, &segments, &patches)),
+            BindingSource::Precomputed(_) => None,
+        };
+        for range in ranges {
+            let bindings_buffer = match bindings {
+                BindingSource::Bind { owners } => {
+                    let buffer = empty_binding_buffer(device, range.len());
+                    let binder = binder.as_ref().expect("made for BindingSource::Bind");
+                    binder.encode(&mut encoder, &range, &owners[range.start as usize..range.end as usize], &positions_buffer, &buffer, &limits);
+                    buffer
+                }
+                BindingSource::Precomputed(all) => device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("sweepffd bindings"),
+                    contents: bytemuck::cast_slice(&all[range.start as usize..range.end as usize]),
+                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+                }),
+            };
+            let params = params_buffer(device, DispatchParams { vertex_count: range.len() as u32, ..Default::default() });
+            let group = kernel.bind_group(
+                device,
+                "sweepffd deform",
+                &[
+                    params.as_entire_binding(),
+                    segments.as_entire_binding(),
+                    patches.as_entire_binding(),
+                    bindings_buffer.as_entire_binding(),
+                    window(&positions_buffer, &range, POSITION_STRIDE),
+                ],
+            );
+            let grid = dispatch_grid(range.len() as u32, &limits);
+            chunks.push(DeformChunk { range, bindings: bindings_buffer, group, grid });
+        }
+        let normals = match faces {
+            Some(faces) => Some(NormalsStage::new(device, faces, &positions_buffer, vertex_count, &limits)?),
+            None => None,
+        };
+        let deformer = GpuDeformer {
+            context: context.clone(),
+            limits,
+            kernel,
+            vertex_count,
+            positions: positions_buffer,
+            segments,
+            patches,
+            coefficients,
+            chunks,
+            normals,
+        };
+        // Normals of the rest mesh, so the buffer is meaningful before the first pose.
+        deformer.encode_normals_pass(&mut encoder, None);
+        context.queue.submit([encoder.finish()]);
+        let validation_error = pollster::block_on(validation.pop());
+        let memory_error = pollster::block_on(out_of_memory.pop());
+        if let Some(error) = validation_error.or(memory_error) {
+            return Err(error.into());
+        }
+        wait(context)?;
+        Ok(deformer)
+    }
+
+    /// Number of vertices.
+    pub fn vertex_count(&self) -> u32 {
+        self.vertex_count
+    }
+
+    /// The deformed positions, tightly packed f32 xyz (12 bytes a vertex); usage
+    /// `VERTEX | STORAGE | COPY_SRC | COPY_DST`. Unbound vertices keep their rest position.
+    pub fn positions(&self) -> &wgpu::Buffer {
+        &self.positions
+    }
+
+    /// The unit vertex normals of the deformed mesh, tightly packed f32 xyz, if the deformer
+    /// was given faces; usage `VERTEX | STORAGE | COPY_SRC`.
+    pub fn normals(&self) -> Option<&wgpu::Buffer> {
+        self.normals.as_ref().map(|n| &n.buffer)
+    }
+
+    /// Number of deform dispatches (1 unless the mesh exceeds a device limit).
+    pub fn chunk_count(&self) -> usize {
+        self.chunks.len()
+    }
+
+    /// Turns posed sweeps into coefficients (in place, no allocation) and queues their upload:
+    /// a few KB. Fails if the sweeps lack the rest rig's structure.
+    pub fn set_pose(&mut self, posed: &[Sweep]) -> Result<(), GpuError> {
+        self.coefficients.update(posed)?;
+        let queue = &self.context.queue;
+        queue.write_buffer(&self.segments, 0, bytemuck::cast_slice(&self.coefficients.segments));
+        queue.write_buffer(&self.patches, 0, bytemuck::cast_slice(&self.coefficients.patches));
+        Ok(())
+    }
+
+    /// Records the frame's work into `encoder`: the deform pass, then the normals pass if any.
+    pub fn encode(&self, encoder: &mut wgpu::CommandEncoder) {
+        self.encode_deform_pass(encoder, None);
+        self.encode_normals_pass(encoder, None);
+    }
+
+    /// Records the deform pass alone, optionally writing timestamps around it.
+    pub fn encode_deform_pass(&self, encoder: &mut wgpu::CommandEncoder, timestamps: Option<wgpu::ComputePassTimestampWrites>) {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("sweepffd deform"),
+            timestamp_writes: timestamps,
+        });
+        pass.set_pipeline(&self.kernel.pipeline);
+        for chunk in &self.chunks {
+            pass.set_bind_group(0, &chunk.group, &[]);
+            pass.dispatch_workgroups(chunk.grid.0, chunk.grid.1, 1);
+        }
+    }
+
+    /// Records the normals pass alone (nothing without faces), optionally with timestamps.
+    pub fn encode_normals_pass(&self, encoder: &mut wgpu::CommandEncoder, timestamps: Option<wgpu::ComputePassTimestampWrites>) {
+        let Some(normals) = &self.normals else { return };
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("sweepffd normals"),
+            timestamp_writes: timestamps,
+        });
+        pass.set_pipeline(&normals.kernel.pipeline);
+        for (group, grid) in &normals.dispatches {
+            pass.set_bind_group(0, group, &[]);
+            pass.dispatch_workgroups(grid.0, grid.1, 1);
+        }
+    }
+
+    /// Convenience for tools: sets the pose, records and submits the frame's work.
+    pub fn deform(&mut self, posed: &[Sweep]) -> Result<(), GpuError> {
+        self.set_pose(posed)?;
+        let mut encoder =
+            self.context.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd frame") });
+        self.encode(&mut encoder);
+        self.context.queue.submit([encoder.finish()]);
+        self.context.check_alive()
+    }
+
+    /// Copies the positions back to the CPU (blocking), tightly packed f32 xyz.
+    pub fn read_positions(&self) -> Result<Vec<f32>, GpuError> {
+        let bytes = read_bytes(&self.context, &self.positions, 0, self.vertex_count as u64 * POSITION_STRIDE)?;
+        Ok(bytemuck::pod_collect_to_vec(&bytes))
+    }
+
+    /// Copies the normals back to the CPU (blocking), or `None` without faces.
+    pub fn read_normals(&self) -> Result<Option<Vec<f32>>, GpuError> {
+        let Some(normals) = &self.normals else { return Ok(None) };
+        let bytes = read_bytes(&self.context, &normals.buffer, 0, self.vertex_count as u64 * POSITION_STRIDE)?;
+        Ok(Some(bytemuck::pod_collect_to_vec(&bytes)))
+    }
+
+    /// Copies the bindings back to the CPU (blocking), one per vertex.
+    pub fn read_bindings(&self) -> Result<Vec<GpuBinding>, GpuError> {
+        let mut bindings = Vec::with_capacity(self.vertex_count as usize);
+        for chunk in &self.chunks {
+            let bytes = read_bytes(&self.context, &chunk.bindings, 0, chunk.range.len() as u64 * BINDING_STRIDE)?;
+            bindings.extend(bytemuck::pod_collect_to_vec::<u8, GpuBinding>(&bytes));
+        }
+        Ok(bindings)
+    }
+
+    /// The coefficient arrays of the current pose (or of the rest rig before any pose).
+    pub fn coefficients(&self) -> &SweepCoefficients {
+        &self.coefficients
+    }
+
+    /// The device limits the deformer was planned for.
+    pub fn limits(&self) -> &ChunkLimits {
+        &self.limits
+    }
+}
+
+/// The bind kernel with the rest rig's tables, used once while the deformer is built.
+struct Binder {
+    kernel: Kernel,
+    device: wgpu::Device,
+    segments: wgpu::Buffer,
+    patches: wgpu::Buffer,
+    bind_segments: wgpu::Buffer,
+    sweeps: wgpu::Buffer,
+}
+
+impl Binder {
+    fn new(context: &GpuContext, rest: &[Sweep], coefficients: &SweepCoefficients, segments: &wgpu::Buffer, patches: &wgpu::Buffer) -> Binder {
+        let device = &context.device;
+        let table = |label, bytes: &[u8]| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents: bytes,
+                usage: wgpu::BufferUsages::STORAGE,
+            })
+        };
+        Binder {
+            kernel: kernels::bind(device),
+            device: device.clone(),
+            segments: segments.clone(),
+            patches: patches.clone(),
+            bind_segments: table("sweepffd bind segments", bytemuck::cast_slice(&bind_segments(rest))),
+            sweeps: table("sweepffd sweeps", bytemuck::cast_slice(&coefficients.sweeps)),
+        }
+    }
+
+    /// Records the binding of the vertices in `range` into `bindings`.
+    fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        range: &Range<u32>,
+        owners: &[u32],
+        positions: &wgpu::Buffer,
+        bindings: &wgpu::Buffer,
+        limits: &ChunkLimits,
+    ) {
+        let device = &self.device;
+        let owners = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("sweepffd owners"),
+            contents: bytemuck::cast_slice(owners),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
+        let params = params_buffer(device, DispatchParams { vertex_count: range.len() as u32, ..Default::default() });
+        let group = self.kernel.bind_group(
+            device,
+            "sweepffd bind",
+            &[
+                params.as_entire_binding(),
+                self.segments.as_entire_binding(),
+                self.patches.as_entire_binding(),
+                self.bind_segments.as_entire_binding(),
+                self.sweeps.as_entire_binding(),
+                owners.as_entire_binding(),
+                window(positions, range, POSITION_STRIDE),
+                bindings.as_entire_binding(),
+            ],
+        );
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("sweepffd bind"), timestamp_writes: None });
+        pass.set_pipeline(&self.kernel.pipeline);
+        pass.set_bind_group(0, &group, &[]);
+        let (x, y) = dispatch_grid(range.len() as u32, limits);
+        pass.dispatch_workgroups(x, y, 1);
+    }
+}
+
+impl NormalsStage {
+    fn new(device: &wgpu::Device, faces: &Faces, positions: &wgpu::Buffer, vertex_count: u32, limits: &ChunkLimits) -> Result<NormalsStage, GpuError> {
+        let adjacency = NormalAdjacency::new(faces, vertex_count as usize);
+        let corner_bytes = size_of::<[u32; 2]>() as u64;
+        let chunks = normal_chunks(&adjacency.offsets, corner_bytes, limits)
+            .ok_or_else(|| GpuError::Input("a vertex has more incident triangles than one storage binding holds".into()))?;
+        // Positions are read at any index, through two windows of at most one binding each.
+        let split = (limits.max_binding.min(limits.max_buffer) / POSITION_STRIDE / 64 * 64).min(vertex_count as u64) as u32;
+        check_fits("the normals' second position window", (vertex_count - split) as u64 * POSITION_STRIDE, limits.max_binding)?;
+        let low = window(positions, &(0..split.max(1)), POSITION_STRIDE);
+        let high = if split < vertex_count { window(positions, &(split..vertex_count), POSITION_STRIDE) } else { low.clone() };
+        let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("sweepffd normals"),
+            size: vertex_count as u64 * POSITION_STRIDE,
+            usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let kernel = kernels::normals(device);
+        let dispatches = chunks
+            .iter()
+            .map(|range| {
+                let first = adjacency.offsets[range.start as usize];
+                let offsets: Vec<u32> =
+                    adjacency.offsets[range.start as usize..=range.end as usize].iter().map(|o| o - first).collect();
+                let corners = &adjacency.corners[first as usize..adjacency.offsets[range.end as usize] as usize];
+                // A binding may not be empty: a chunk without triangles gets one unused pair.
+                let corners: &[[u32; 2]] = if corners.is_empty() { &[[0, 0]] } else { corners };
+                let storage = |label, bytes: &[u8]| {
+                    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                        label: Some(label),
+                        contents: bytes,
+                        usage: wgpu::BufferUsages::STORAGE,
+                    })
+                };
+                let offsets = storage("sweepffd normal offsets", bytemuck::cast_slice(&offsets));
+                let corners = storage("sweepffd normal corners", bytemuck::cast_slice(corners));
+                let params = params_buffer(
+                    device,
+                    DispatchParams { vertex_count: range.len() as u32, first_vertex: range.start, window_split: split, _pad: 0 },
+                );
+                let group = kernel.bind_group(
+                    device,
+                    "sweepffd normals",
+                    &[
+                        params.as_entire_binding(),
+                        low.clone(),
+                        high.clone(),
+                        offsets.as_entire_binding(),
+                        corners.as_entire_binding(),
+                        window(&buffer, range, POSITION_STRIDE),
+                    ],
+                );
+                (group, dispatch_grid(range.len() as u32, limits))
+            })
+            .collect();
+        Ok(NormalsStage { kernel, buffer, dispatches })
+    }
+}
+
+fn check_input(rest: &[Sweep], positions: &[DVec3], bindings: &BindingSource) -> Result<(), GpuError> {
+    if positions.is_empty() {
+        return Err(GpuError::Input("the mesh has no vertices".into()));
+    }
+    if positions.len() >= UNBOUND as usize {
+        return Err(GpuError::Input(format!("{} vertices are more than the GPU path indexes", positions.len())));
+    }
+    if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
+        return Err(GpuError::Input(format!("vertex {i} has a non-finite position")));
+    }
+    match bindings {
+        BindingSource::Bind { owners } => {
+            if owners.len() != positions.len() {
+                return Err(GpuError::Input(format!("{} owners for {} vertices", owners.len(), positions.len())));
+            }
+            if let Some(i) = owners.iter().position(|&o| o != UNBOUND && o as usize >= rest.len()) {
+                return Err(GpuError::Input(format!("vertex {i} is owned by sweep {}, but the rig has {}", owners[i], rest.len())));
+            }
+        }
+        BindingSource::Precomputed(bindings) => {
+            if bindings.len() != positions.len() {
+                return Err(GpuError::Input(format!("{} bindings for {} vertices", bindings.len(), positions.len())));
+            }
+            let cells: usize = rest.iter().map(|s| s.segments().len() * s.radius_samples()).sum();
+            if let Some(i) = bindings.iter().position(|b| b.cell != UNBOUND && b.cell as usize >= cells) {
+                return Err(GpuError::Input(format!("binding {i} refers to radius cell {} of {cells}", bindings[i].cell)));
+            }
+        }
+    }
+    Ok(())
+}
+
+fn check_fits(what: &'static str, needed: u64, limit: u64) -> Result<(), GpuError> {
+    if needed > limit { Err(GpuError::TooLarge { what, needed, limit }) } else { Ok(()) }
+}
+
+/// The window of a per-vertex stream covering `range`.
+fn window<'a>(buffer: &'a wgpu::Buffer, range: &Range<u32>, stride: u64) -> wgpu::BindingResource<'a> {
+    wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+        buffer,
+        offset: range.start as u64 * stride,
+        size: wgpu::BufferSize::new(range.len() as u64 * stride),
+    })
+}
+
+fn params_buffer(device: &wgpu::Device, params: DispatchParams) -> wgpu::Buffer {
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("sweepffd dispatch params"),
+        contents: bytemuck::bytes_of(&params),
+        usage: wgpu::BufferUsages::UNIFORM,
+    })
+}
+
+fn empty_binding_buffer(device: &wgpu::Device, vertices: usize) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("sweepffd bindings"),
+        size: vertices as u64 * BINDING_STRIDE,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
+}

@@ -1,0 +1,111 @@
+//! Compute pipelines and their bind group layouts, created once per deformer.
+
+use std::borrow::Cow;
+
+use super::shaders;
+
+/// How a kernel sees one of its bindings.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Slot {
+    /// `var<uniform>`.
+    Uniform,
+    /// `var<storage, read>`.
+    Read,
+    /// `var<storage, read_write>`.
+    ReadWrite,
+}
+
+/// A compute pipeline with the layout of its bind group 0.
+#[derive(Debug)]
+pub struct Kernel {
+    /// The pipeline.
+    pub pipeline: wgpu::ComputePipeline,
+    /// The layout of group 0, binding i described by slot i.
+    pub layout: wgpu::BindGroupLayout,
+}
+
+impl Kernel {
+    /// Compiles `source` and builds the pipeline of `entry` with group 0 laid out as `slots`.
+    pub fn new(device: &wgpu::Device, label: &str, source: &str, entry: &str, slots: &[Slot]) -> Kernel {
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(label),
+            source: wgpu::ShaderSource::Wgsl(Cow::Borrowed(source)),
+        });
+        let entries: Vec<wgpu::BindGroupLayoutEntry> = slots
+            .iter()
+            .enumerate()
+            .map(|(binding, slot)| wgpu::BindGroupLayoutEntry {
+                binding: binding as u32,
+                visibility: wgpu::ShaderStages::COMPUTE,
+                ty: wgpu::BindingType::Buffer {
+                    ty: match slot {
+                        Slot::Uniform => wgpu::BufferBindingType::Uniform,
+                        Slot::Read => wgpu::BufferBindingType::Storage { read_only: true },
+                        Slot::ReadWrite => wgpu::BufferBindingType::Storage { read_only: false },
+                    },
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
+                count: None,
+            })
+            .collect();
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(label), entries: &entries });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some(label),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(label),
+            layout: Some(&pipeline_layout),
+            module: &module,
+            entry_point: Some(entry),
+            compilation_options: wgpu::PipelineCompilationOptions::default(),
+            cache: None,
+        });
+        Kernel { pipeline, layout }
+    }
+
+    /// A bind group for this kernel with `resources[i]` at binding i.
+    pub fn bind_group(&self, device: &wgpu::Device, label: &str, resources: &[wgpu::BindingResource]) -> wgpu::BindGroup {
+        let entries: Vec<wgpu::BindGroupEntry> = resources
+            .iter()
+            .enumerate()
+            .map(|(binding, resource)| wgpu::BindGroupEntry { binding: binding as u32, resource: resource.clone() })
+            .collect();
+        device.create_bind_group(&wgpu::BindGroupDescriptor { label: Some(label), layout: &self.layout, entries: &entries })
+    }
+}
+
+use Slot::{Read, ReadWrite, Uniform};
+
+/// `shaders/bind.wgsl`: params, segments, patches, bind segments, sweeps, owners, positions
+/// (read); bindings (written).
+pub fn bind(device: &wgpu::Device) -> Kernel {
+    let slots = [Uniform, Read, Read, Read, Read, Read, Read, ReadWrite];
+    Kernel::new(device, "sweepffd bind", shaders::BIND, "bind_main", &slots)
+}
+
+/// `shaders/deform.wgsl`: params, segments, patches, bindings (read); positions (written).
+pub fn deform(device: &wgpu::Device) -> Kernel {
+    Kernel::new(device, "sweepffd deform", shaders::DEFORM, "deform_main", &[Uniform, Read, Read, Read, ReadWrite])
+}
+
+/// `shaders/normals.wgsl`: params, positions (two windows), offsets, corners (read); normals
+/// (written).
+pub fn normals(device: &wgpu::Device) -> Kernel {
+    let slots = [Uniform, Read, Read, Read, Read, ReadWrite];
+    Kernel::new(device, "sweepffd normals", shaders::NORMALS, "normals_main", &slots)
+}
+
+/// `shaders/copy.wgsl`: params, bindings (read); positions (written).
+pub fn copy(device: &wgpu::Device) -> Kernel {
+    Kernel::new(device, "sweepffd copy baseline", shaders::COPY, "copy_main", &[Uniform, Read, ReadWrite])
+}
+
+/// `shaders/skinning.wgsl`: params, joints, rest positions, influences (read); positions
+/// (written).
+pub fn skinning(device: &wgpu::Device) -> Kernel {
+    let slots = [Uniform, Read, Read, Read, ReadWrite];
+    Kernel::new(device, "sweepffd skinning baseline", shaders::SKINNING, "skinning_main", &slots)
+}

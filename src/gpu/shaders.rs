@@ -1,0 +1,24 @@
+//! The WGSL kernels, composed from `shaders/` and validated with naga at build time (see
+//! `build.rs`): each is the shared `layout.wgsl` (and `sweep_eval.wgsl` where needed) followed
+//! by the kernel's own file.
+
+/// Binding (§3) of every owned vertex: `shaders/bind.wgsl`, entry point `bind_main`.
+pub const BIND: &str = include_str!(concat!(env!("OUT_DIR"), "/bind.wgsl"));
+/// Eq. 2 for every bound vertex: `shaders/deform.wgsl`, entry point `deform_main`.
+pub const DEFORM: &str = include_str!(concat!(env!("OUT_DIR"), "/deform.wgsl"));
+/// Area-weighted vertex normals: `shaders/normals.wgsl`, entry point `normals_main`.
+pub const NORMALS: &str = include_str!(concat!(env!("OUT_DIR"), "/normals.wgsl"));
+/// Benchmark baseline moving the deform kernel's bytes: `shaders/copy.wgsl`, `copy_main`.
+pub const COPY: &str = include_str!(concat!(env!("OUT_DIR"), "/copy.wgsl"));
+/// Benchmark baseline, four-influence linear-blend skinning: `shaders/skinning.wgsl`,
+/// `skinning_main`.
+pub const SKINNING: &str = include_str!(concat!(env!("OUT_DIR"), "/skinning.wgsl"));
+
+/// Every kernel as (name, composed source, entry point).
+pub const ALL: [(&str, &str, &str); 5] = [
+    ("bind", BIND, "bind_main"),
+    ("deform", DEFORM, "deform_main"),
+    ("normals", NORMALS, "normals_main"),
+    ("copy", COPY, "copy_main"),
+    ("skinning", SKINNING, "skinning_main"),
+];
