@@ -380,7 +380,7 @@ fn pose_with_another_radius_count() {
     scene.write("bad.json", neck_rig(&keys));
     assert_eq!(
         scene.deform_fails("mesh.obj", "rig.json", "bad.json"),
-        "error: bad.json: sweep \"neck\", key 1: the pose has 5 radii but the rest rig has 4\n"
+        "error: bad.json: sweep \"neck\": key 1: the pose has 5 radii but the rest rig has 4\n"
     );
 }
 
@@ -409,7 +409,7 @@ fn vertex_claimed_by_two_sweeps() {
     scene.write("both_pose.json", &both);
     assert_eq!(
         scene.deform_fails("mesh.obj", "bad.json", "both_pose.json"),
-        "error: bad.json: vertex 0 is claimed by both sweep \"neck\" and sweep \"body\"\n"
+        "error: bad.json: vertex index 0 (zero-based) is claimed by both sweep \"neck\" and sweep \"body\"\n"
     );
 }
 
@@ -422,7 +422,7 @@ fn vertex_index_out_of_range() {
     );
     assert_eq!(
         scene.deform_fails("mesh.obj", "bad.json", "pose.json"),
-        "error: bad.json: sweep \"neck\": vertex 8 is out of range \
+        "error: bad.json: sweep \"neck\": vertex index 8 (zero-based) is out of range \
          (the mesh mesh.obj has 8 vertices)\n"
     );
 }
@@ -602,7 +602,7 @@ fn missing_input_files() {
     );
     assert_one_line_starting(
         &scene.deform_with_bindings_fails("mesh.obj", "rig.json", "missing.sffd"),
-        "error: missing.sffd: ",
+        "error: cannot read missing.sffd: ",
     );
 }
 
@@ -701,7 +701,7 @@ fn bind_into_a_missing_folder() {
         "missing/b.sffd",
     ]);
     let out = Path::new("missing").join("b.sffd");
-    assert_one_line_starting(&stderr, &format!("error: {}: ", out.display()));
+    assert_one_line_starting(&stderr, &format!("error: cannot write {}: ", out.display()));
     assert!(!scene.dir.path().join("missing").exists());
 }
 
@@ -716,7 +716,7 @@ fn pose_that_overflows_writes_nothing() {
     );
     assert_eq!(
         scene.deform_fails("mesh.obj", "rig.json", "bad.json"),
-        "error: bad.json: vertex 0 (sweep \"neck\") deforms to a non-finite position; \
+        "error: bad.json: vertex index 0 (sweep \"neck\") deforms to a non-finite position; \
          nothing was written\n"
     );
 }
@@ -769,5 +769,36 @@ fn volume_and_bind_report_rig_errors_like_deform() {
     assert_eq!(
         scene.deform_fails("mesh.obj", "rig.json", "bad.json"),
         expected
+    );
+}
+
+#[test]
+fn volume_that_overflows_is_an_error() {
+    let scene = Scene::new();
+    let keys = [
+        key("-1e308", IDENTITY, UNIT_RADII),
+        key("1e308", IDENTITY, UNIT_RADII),
+    ];
+    scene.write("huge.json", neck_rig(&keys));
+    let output = scene.run(&["volume", "--rig", "rig.json", "--pose", "huge.json"]);
+    assert_eq!(output.status.code(), Some(1));
+    assert_eq!(
+        String::from_utf8_lossy(&output.stderr),
+        "error: huge.json: sweep \"neck\": the volume (Eq. 1) is not a finite number\n"
+    );
+    assert!(output.stdout.is_empty());
+}
+
+#[test]
+fn rest_keys_too_far_apart_for_chord_length() {
+    let scene = Scene::new();
+    let keys = [
+        key("-1e308", IDENTITY, UNIT_RADII),
+        key("1e308", IDENTITY, UNIT_RADII),
+    ];
+    scene.write("bad.json", neck_rig(&keys));
+    assert_eq!(
+        scene.deform_fails("mesh.obj", "bad.json", "pose.json"),
+        "error: bad.json: sweep \"neck\": key 1: the distance from the center of key 0 is too large to represent\n"
     );
 }
