@@ -14,7 +14,11 @@ use sweepffd::mesh::Mesh;
 use sweepffd::rig::Rig;
 use sweepffd::sweep::{Key, Sweep};
 
-const MESHES: [&str; 3] = ["bunny_stanford_zipper.obj", "teapot_newell.obj", "armadillo_50k.obj"];
+const MESHES: [&str; 3] = [
+    "bunny_stanford_zipper.obj",
+    "teapot_newell.obj",
+    "armadillo_50k.obj",
+];
 
 /// Samples of f over [0, 1] for the dense search for nearer roots.
 const SAMPLES: usize = 2048;
@@ -36,7 +40,13 @@ fn cases() -> Vec<Case> {
             let owners = rig.owners(&mesh, name).unwrap();
             let bindings = bind_vertices(rig.rest(), &owners, &mesh.positions, &|_| {});
             let diagonal = mesh.diagonal();
-            Some(Case { name, mesh, rig, bindings, diagonal })
+            Some(Case {
+                name,
+                mesh,
+                rig,
+                bindings,
+                diagonal,
+            })
         })
         .collect()
 }
@@ -57,7 +67,11 @@ fn nearest_sampled_root(sweep: &Sweep, v: DVec3) -> Option<f64> {
             let (mut lo, mut hi, positive_at_lo) = (previous.0, t, previous.1 >= 0.0);
             for _ in 0..60 {
                 let mid = 0.5 * (lo + hi);
-                if (f(sweep, v, mid) >= 0.0) == positive_at_lo { lo = mid } else { hi = mid }
+                if (f(sweep, v, mid) >= 0.0) == positive_at_lo {
+                    lo = mid
+                } else {
+                    hi = mid
+                }
             }
             let distance = sweep.center(0.5 * (lo + hi)).distance(v);
             nearest = Some(nearest.map_or(distance, |n| n.min(distance)));
@@ -83,7 +97,15 @@ fn every_bound_t_is_the_nearest_root() {
                     None => f64::NEG_INFINITY,
                 };
                 let at_end = t == 0.0 || t == 1.0;
-                (i, if at_end && sampled.is_none() { 0.0 } else { residual }, nearer_by)
+                (
+                    i,
+                    if at_end && sampled.is_none() {
+                        0.0
+                    } else {
+                        residual
+                    },
+                    nearer_by,
+                )
             })
             .collect();
         let worst_residual = results.iter().max_by(|a, b| a.1.total_cmp(&b.1)).unwrap();
@@ -96,8 +118,20 @@ fn every_bound_t_is_the_nearest_root() {
             worst_nearer.2.max(0.0) / case.diagonal,
             worst_nearer.0
         );
-        assert!(worst_residual.1 <= 1e-6 * case.diagonal, "{}: |f(t)| = {:e} at vertex {}", case.name, worst_residual.1, worst_residual.0);
-        assert!(worst_nearer.2 <= 1e-9 * case.diagonal, "{}: a root nearer by {:e} to vertex {}", case.name, worst_nearer.2, worst_nearer.0);
+        assert!(
+            worst_residual.1 <= 1e-6 * case.diagonal,
+            "{}: |f(t)| = {:e} at vertex {}",
+            case.name,
+            worst_residual.1,
+            worst_residual.0
+        );
+        assert!(
+            worst_nearer.2 <= 1e-9 * case.diagonal,
+            "{}: a root nearer by {:e} to vertex {}",
+            case.name,
+            worst_nearer.2,
+            worst_nearer.0
+        );
     }
 }
 
@@ -114,7 +148,11 @@ fn rigid_motion_of_the_pose_moves_every_vertex_rigidly() {
                 sweep
                     .keys
                     .iter()
-                    .map(|key| Key { center: motion * key.center + offset, rotation: motion * key.rotation, ..key.clone() })
+                    .map(|key| Key {
+                        center: motion * key.center + offset,
+                        rotation: motion * key.rotation,
+                        ..key.clone()
+                    })
                     .collect()
             })
             .collect();
@@ -126,9 +164,20 @@ fn rigid_motion_of_the_pose_moves_every_vertex_rigidly() {
             .zip(&case.mesh.positions)
             .map(|(m, v)| m.distance(motion * *v + offset))
             .enumerate()
-            .fold((0.0, 0), |(max, at), (i, e)| if e > max { (e, i) } else { (max, at) });
-        println!("{}: rigid motion, worst {:.2e} × diagonal at vertex {at}", case.name, error / case.diagonal);
-        assert!(error <= 1e-9 * case.diagonal, "{}: vertex {at} off by {error:e}", case.name);
+            .fold(
+                (0.0, 0),
+                |(max, at), (i, e)| if e > max { (e, i) } else { (max, at) },
+            );
+        println!(
+            "{}: rigid motion, worst {:.2e} × diagonal at vertex {at}",
+            case.name,
+            error / case.diagonal
+        );
+        assert!(
+            error <= 1e-9 * case.diagonal,
+            "{}: vertex {at} off by {error:e}",
+            case.name
+        );
     }
 }
 
@@ -145,7 +194,12 @@ fn f32_twin_binds_like_the_f64_reference() {
             sweeps: &coefficients.sweeps,
         };
         let owners: Vec<u32> = case.bindings.iter().map(|b| b.sweep).collect();
-        let positions: Vec<f32> = case.mesh.positions.iter().flat_map(|p| p.as_vec3().to_array()).collect();
+        let positions: Vec<f32> = case
+            .mesh
+            .positions
+            .iter()
+            .flat_map(|p| p.as_vec3().to_array())
+            .collect();
         let twin = cpu::bind::bind(&inputs, &owners, &positions);
         let mut worst = (0.0f64, 0usize);
         let mut flips = 0;
@@ -160,8 +214,21 @@ fn f32_twin_binds_like_the_f64_reference() {
                 worst = (dt, i);
             }
         }
-        println!("{}: f32 twin vs f64 |Δt| worst {:.2e} at vertex {}, {flips} vertices chose another root", case.name, worst.0, worst.1);
-        assert!(worst.0 <= 1e-5, "{}: |Δt| = {:e} at vertex {}", case.name, worst.0, worst.1);
-        assert!(flips * 1000 <= twin.len(), "{}: {flips} vertices bound to another root", case.name);
+        println!(
+            "{}: f32 twin vs f64 |Δt| worst {:.2e} at vertex {}, {flips} vertices chose another root",
+            case.name, worst.0, worst.1
+        );
+        assert!(
+            worst.0 <= 1e-5,
+            "{}: |Δt| = {:e} at vertex {}",
+            case.name,
+            worst.0,
+            worst.1
+        );
+        assert!(
+            flips * 1000 <= twin.len(),
+            "{}: {flips} vertices bound to another root",
+            case.name
+        );
     }
 }

@@ -15,7 +15,8 @@ use sweepffd::sweep::{Key, Sweep};
 /// following the walk, radii between 0.1 and 0.6.
 fn keys() -> impl Strategy<Value = Vec<Key>> {
     (2usize..7, 3usize..13).prop_flat_map(|(n, m)| {
-        let steps = prop::collection::vec((0.6f64..1.4, -1.0f64..1.0, -1.0f64..1.0, -0.5f64..0.5), n);
+        let steps =
+            prop::collection::vec((0.6f64..1.4, -1.0f64..1.0, -1.0f64..1.0, -0.5f64..0.5), n);
         let radii = prop::collection::vec(prop::collection::vec(0.1f64..0.6, m), n);
         (steps, radii).prop_map(|(steps, radii)| {
             let mut rotation = DQuat::IDENTITY;
@@ -26,10 +27,16 @@ fn keys() -> impl Strategy<Value = Vec<Key>> {
                 .enumerate()
                 .map(|(i, (&(length, turn_x, turn_y, twist), radii))| {
                     if i > 0 {
-                        rotation = (rotation * DQuat::from_euler(glam::EulerRot::XYZ, turn_x, turn_y, twist)).normalize();
+                        rotation = (rotation
+                            * DQuat::from_euler(glam::EulerRot::XYZ, turn_x, turn_y, twist))
+                        .normalize();
                         center += rotation * DVec3::Z * length;
                     }
-                    Key { center, rotation, radii }
+                    Key {
+                        center,
+                        rotation,
+                        radii,
+                    }
                 })
                 .collect()
         })

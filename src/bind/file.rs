@@ -44,8 +44,13 @@ pub struct BindingsFile {
 /// Why a bindings file cannot be read or used.
 #[derive(Debug, Error)]
 pub enum BindingsFileError {
-    #[error("{}: {source}", path.display())]
-    Io {
+    #[error("cannot read {}: {source}", path.display())]
+    Read {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    #[error("cannot write {}: {source}", path.display())]
+    Write {
         path: PathBuf,
         source: std::io::Error,
     },
@@ -164,7 +169,7 @@ impl BindingsFile {
         let mut bytes = Vec::new();
         std::fs::File::open(path)
             .and_then(|mut file| file.read_to_end(&mut bytes))
-            .map_err(|source| BindingsFileError::Io {
+            .map_err(|source| BindingsFileError::Read {
                 path: path.to_path_buf(),
                 source,
             })?;
@@ -175,7 +180,7 @@ impl BindingsFile {
     pub fn save(&self, path: &Path) -> Result<(), BindingsFileError> {
         let bytes = self.to_bytes();
         crate::mesh::write_atomically(path, |out| out.write_all(&bytes)).map_err(|source| {
-            BindingsFileError::Io {
+            BindingsFileError::Write {
                 path: path.to_path_buf(),
                 source,
             }

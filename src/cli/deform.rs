@@ -10,6 +10,7 @@ use super::bind::{bind_with_progress, load_inputs};
 use sweepffd::bind::UNOWNED;
 use sweepffd::bind::file::BindingsFile;
 use sweepffd::deform::deform_vertices;
+use sweepffd::mesh::Format;
 
 pub struct Args {
     pub mesh: PathBuf,
@@ -20,6 +21,8 @@ pub struct Args {
 }
 
 pub fn run(args: &Args, quiet: bool) -> CliResult {
+    // Refuse an unsupported output before any work is done.
+    Format::of(&args.out)?;
     let inputs = load_inputs(&args.mesh, &args.rig)?;
     let posed = inputs.rig.load_pose(&args.pose)?;
     let start = Instant::now();
@@ -38,7 +41,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     let deform_seconds = start.elapsed().as_secs_f64();
     if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
         let sweep = &inputs.rig.sweeps()[bindings[i].sweep as usize].name;
-        return Err(format!("{}: vertex {i} (sweep {sweep:?}) deforms to a non-finite position; nothing was written", args.pose.display()).into());
+        return Err(format!("{}: vertex index {i} (sweep {sweep:?}) deforms to a non-finite position; nothing was written", args.pose.display()).into());
     }
     inputs.mesh.save(&args.out, &positions)?;
     if !quiet {

@@ -34,7 +34,22 @@ pub fn run(rig_path: &Path, pose: Option<&Path>) -> CliResult {
             volume: surface.volume(),
         })
         .collect();
-    let total = volumes.iter().map(|v| v.volume).sum();
+    if let Some(bad) = volumes.iter().find(|v| !v.volume.is_finite()) {
+        let file = pose.unwrap_or(rig_path).display();
+        return Err(format!(
+            "{file}: sweep {:?}: the volume (Eq. 1) is not a finite number",
+            bad.name
+        )
+        .into());
+    }
+    let total: f64 = volumes.iter().map(|v| v.volume).sum();
+    if !total.is_finite() {
+        return Err(format!(
+            "{}: the total volume is not a finite number",
+            pose.unwrap_or(rig_path).display()
+        )
+        .into());
+    }
     println!(
         "{}",
         serde_json::to_string(&Report {

@@ -6,7 +6,7 @@ use super::MeshError;
 
 /// A mesh file format, chosen by file extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Format {
+pub enum Format {
     /// Wavefront OBJ (`.obj`).
     Obj,
     /// Stanford PLY (`.ply`).

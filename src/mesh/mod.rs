@@ -32,6 +32,7 @@ use glam::DVec3;
 
 pub use atomic::write_atomically;
 pub use error::{MeshDataError, MeshError, ObjLineError};
+pub use format::Format;
 
 use source::Source;
 

@@ -61,7 +61,7 @@ pub enum RigErrorKind {
         found: usize,
     },
     #[error(
-        "sweep {sweep:?}, key {key}: the pose has {found} radii but the rest rig has {expected}"
+        "sweep {sweep:?}: key {key}: the pose has {found} radii but the rest rig has {expected}"
     )]
     PoseRadiusCount {
         sweep: String,
@@ -77,7 +77,7 @@ pub enum RigErrorKind {
         available: String,
     },
     #[error(
-        "sweep {sweep:?}: vertex {index} is out of range (the mesh {mesh} has {count} vertices)"
+        "sweep {sweep:?}: vertex index {index} (zero-based) is out of range (the mesh {mesh} has {count} vertices)"
     )]
     VertexOutOfRange {
         sweep: String,
@@ -85,7 +85,9 @@ pub enum RigErrorKind {
         mesh: String,
         count: usize,
     },
-    #[error("vertex {vertex} is claimed by both sweep {first:?} and sweep {second:?}")]
+    #[error(
+        "vertex index {vertex} (zero-based) is claimed by both sweep {first:?} and sweep {second:?}"
+    )]
     VertexClaimedTwice {
         vertex: u32,
         first: String,

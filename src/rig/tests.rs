@@ -110,7 +110,7 @@ fn pose_must_match_the_rest_rig() {
     let short = Key::circle(DVec3::Z, DQuat::IDENTITY, 1.0, 6);
     assert_eq!(
         message(rig.pose(&[vec![key.clone(), short]])),
-        "sweep \"neck\", key 1: the pose has 6 radii but the rest rig has 8"
+        "sweep \"neck\": key 1: the pose has 6 radii but the rest rig has 8"
     );
     let mut document = rig.pose_document(&[vec![key.clone(), key]]);
     document.sweeps[0].name = "tail".into();

@@ -28,6 +28,8 @@ pub enum SweepError {
         index: usize,
         value: f64,
     },
+    #[error("key {key}: the distance from the center of key {previous} is too large to represent")]
+    ChordOverflow { key: usize, previous: usize },
     #[error(
         "key {key}: center coincides with the center of key {previous}, so the chord-length knot is undefined"
     )]

@@ -17,9 +17,9 @@ pub fn chord_length_knots(centers: &[DVec3]) -> Result<Vec<f64>, SweepError> {
     for (i, pair) in centers.windows(2).enumerate() {
         let chord = pair[0].distance(pair[1]);
         if !chord.is_finite() {
-            return Err(SweepError::NonFinite {
+            return Err(SweepError::ChordOverflow {
                 key: i + 1,
-                field: "center",
+                previous: i,
             });
         }
         if chord == 0.0 {

@@ -82,7 +82,8 @@ fn refine(a: f64, b: f64, whole: f64, tol: f64, f: &mut impl FnMut(f64) -> f64, 
     let mid = 0.5 * (a + b);
     let left = rule10().integrate(a, mid, &mut *f);
     let right = rule10().integrate(mid, b, &mut *f);
-    if (left + right - whole).abs() <= tol || depth >= 24 {
+    // A non-finite integrand (overflowing input) cannot converge: report it at once.
+    if (left + right - whole).abs() <= tol || depth >= 24 || !(left + right).is_finite() {
         return left + right;
     }
     refine(a, mid, left, 0.5 * tol, f, depth + 1) + refine(mid, b, right, 0.5 * tol, f, depth + 1)

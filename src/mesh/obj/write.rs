@@ -7,11 +7,27 @@ use glam::DVec3;
 use super::scan::{self, Keyword, Scanner};
 use crate::mesh::{FaceGroup, Faces};
 
+/// A coordinate in the shortest decimal form that reads back to the same f64: plain digits,
+/// or exponent notation for magnitudes below 1e-5 or from 1e16 on (so round-off such as
+/// 6.1e-17 stays short). Every OBJ reader parses both forms.
+pub(crate) struct Coordinate(pub f64);
+
+impl std::fmt::Display for Coordinate {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let magnitude = self.0.abs();
+        if magnitude != 0.0 && !(1e-5..1e16).contains(&magnitude) {
+            write!(f, "{:e}", self.0)
+        } else {
+            write!(f, "{}", self.0)
+        }
+    }
+}
+
 /// Writes the OBJ file `bytes` with new vertex positions.
 ///
 /// Every byte is copied as it is except the `v` statements of vertices whose position changed
 /// (any coordinate differs bit for bit from `original`, the positions read from `bytes`).
-/// Such a statement is written `v x y z` (Rust's shortest round-trip `{}` formatting), then
+/// Such a statement is written `v x y z` (shortest round-trip digits, see [`Coordinate`]), then
 /// its original text after the third number (w or colour, a comment), then its original line
 /// ending; a `\`-continued statement becomes one line. With unchanged positions the output is
 /// byte-identical to `bytes`.
@@ -41,7 +57,13 @@ pub(crate) fn write_faithful(
             continue;
         };
         out.write_all(&bytes[copied..line.start])?;
-        write!(out, "v {} {} {}", new.x, new.y, new.z)?;
+        write!(
+            out,
+            "v {} {} {}",
+            Coordinate(new.x),
+            Coordinate(new.y),
+            Coordinate(new.z)
+        )?;
         out.write_all(&line.body[tail..])?;
         out.write_all(line.ending)?;
         copied = line.start + line.raw.len();
@@ -70,7 +92,13 @@ pub(crate) fn write_generic(
 ) -> io::Result<()> {
     writeln!(out, "# written by sweepffd")?;
     for p in positions {
-        writeln!(out, "v {} {} {}", p.x, p.y, p.z)?;
+        writeln!(
+            out,
+            "v {} {} {}",
+            Coordinate(p.x),
+            Coordinate(p.y),
+            Coordinate(p.z)
+        )?;
     }
     let owner = first_groups(faces.len(), groups);
     write_faces(out, faces, &owner, None)?;
@@ -150,7 +178,7 @@ mod tests {
         moved[3] = DVec3::new(0.1, 0.2, 0.3);
         let out = faithful(MIXED, &moved);
         let expected = String::from_utf8_lossy(MIXED)
-            .replace("  v 0 0 0 1.0\r\n", "v 0.5 -0.25 0.0000001 1.0\r\n")
+            .replace("  v 0 0 0 1.0\r\n", "v 0.5 -0.25 1e-7 1.0\r\n")
             .replace("v 1.0 0.0 0.0 # right\r\n", "v 1 2 0 # right\r\n")
             .replace("v 0 0 1 0.5 0.25 0.125\n", "v 0.1 0.2 0.3 0.5 0.25 0.125\n");
         assert_eq!(String::from_utf8(out).unwrap(), expected);

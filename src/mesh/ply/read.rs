@@ -34,8 +34,10 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
     })
 }
 
-/// The parser's multi-line message on one line.
+/// The parser's multi-line message on one line, without the parser's internal state (a debug
+/// dump that follows `Error:`).
 fn one_line(message: &str) -> String {
+    let message = message.split("; Error:").next().unwrap_or(message);
     message
         .replace("\n'", "'")
         .lines()
