@@ -1,7 +1,7 @@
 // Buffer layouts shared by every kernel.
 // Twin: src/coeffs/layout.rs (sizes and member offsets are checked against it by a test).
 
-const WORKGROUP_SIZE: u32 = 64u;
+const WORKGROUP_SIZE: u32 = 256u;
 const UNBOUND: u32 = 0xffffffffu;
 
 // One knot interval of a posed sweep: C(s) = origin + c1 s + c2 s^2 + c3 s^3 (curve[0..3] = c1..c3)

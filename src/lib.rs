@@ -33,6 +33,7 @@
 //! # }
 //! ```
 
+pub mod bench;
 pub mod bind;
 pub mod coeffs;
 pub mod cpu;

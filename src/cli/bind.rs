@@ -4,9 +4,12 @@ use std::path::Path;
 use std::time::Instant;
 
 use super::CliResult;
+use super::backend::{Backend, resolve};
 use super::progress::vertex_bar;
 use sweepffd::bind::file::BindingsFile;
 use sweepffd::bind::{Binding, bind_vertices};
+use sweepffd::coeffs::SweepCoefficients;
+use sweepffd::gpu::{BindingSource, GpuContext, GpuDeformer, GpuError};
 use sweepffd::mesh::Mesh;
 use sweepffd::rig::Rig;
 
@@ -28,6 +31,21 @@ pub fn load_inputs(
     Ok(Inputs { mesh, rig, owners })
 }
 
+/// Binds on the GPU, read back in the reference form.
+pub fn bind_on_gpu(context: &GpuContext, inputs: &Inputs) -> Result<Vec<Binding>, GpuError> {
+    let rest = inputs.rig.rest();
+    let source = BindingSource::Bind {
+        owners: &inputs.owners,
+    };
+    let deformer = GpuDeformer::new(context, rest, &inputs.mesh.positions, source, None)?;
+    let coefficients = SweepCoefficients::new(rest);
+    Ok(deformer
+        .read_bindings()?
+        .iter()
+        .map(|b| coefficients.reference_binding(rest, b))
+        .collect())
+}
+
 /// Binds with a progress bar (f64 reference path, all cores).
 pub fn bind_with_progress(inputs: &Inputs, quiet: bool) -> Vec<Binding> {
     let bar = vertex_bar(inputs.mesh.positions.len(), "binding", quiet);
@@ -43,10 +61,20 @@ pub fn bind_with_progress(inputs: &Inputs, quiet: bool) -> Vec<Binding> {
     bindings
 }
 
-pub fn run(mesh_path: &Path, rig_path: &Path, out: &Path, quiet: bool) -> CliResult {
+pub fn run(
+    mesh_path: &Path,
+    rig_path: &Path,
+    out: &Path,
+    backend: Backend,
+    quiet: bool,
+) -> CliResult {
     let inputs = load_inputs(mesh_path, rig_path)?;
+    let context = resolve(backend, quiet)?;
     let start = Instant::now();
-    let bindings = bind_with_progress(&inputs, quiet);
+    let bindings = match &context {
+        Some(context) => bind_on_gpu(context, &inputs)?,
+        None => bind_with_progress(&inputs, quiet),
+    };
     let seconds = start.elapsed().as_secs_f64();
     let owned = inputs
         .owners

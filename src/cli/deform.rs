@@ -3,14 +3,18 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use glam::DVec3;
+use glam::{DVec3, Vec3};
 
 use super::CliResult;
-use super::bind::{bind_with_progress, load_inputs};
-use sweepffd::bind::UNOWNED;
+use super::backend::{Backend, resolve};
+use super::bind::{Inputs, bind_with_progress, load_inputs};
 use sweepffd::bind::file::BindingsFile;
+use sweepffd::bind::{Binding, UNOWNED};
+use sweepffd::coeffs::{GpuBinding, SweepCoefficients};
 use sweepffd::deform::deform_vertices;
+use sweepffd::gpu::{BindingSource, GpuContext, GpuDeformer, GpuError};
 use sweepffd::mesh::Format;
+use sweepffd::sweep::Sweep;
 
 pub struct Args {
     pub mesh: PathBuf,
@@ -18,6 +22,7 @@ pub struct Args {
     pub pose: PathBuf,
     pub out: PathBuf,
     pub bindings: Option<PathBuf>,
+    pub backend: Backend,
 }
 
 pub fn run(args: &Args, quiet: bool) -> CliResult {
@@ -25,37 +30,92 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     Format::of(&args.out)?;
     let inputs = load_inputs(&args.mesh, &args.rig)?;
     let posed = inputs.rig.load_pose(&args.pose)?;
-    let start = Instant::now();
-    let bindings = match &args.bindings {
+    let saved = match &args.bindings {
         Some(path) => {
             let file = BindingsFile::load(path)?;
             file.check_matches(&inputs.rig, &inputs.mesh.positions, path)?;
-            file.bindings
+            Some(file.bindings)
         }
-        None => bind_with_progress(&inputs, quiet),
+        None => None,
     };
-    let bind_seconds = start.elapsed().as_secs_f64();
+    let context = resolve(args.backend, quiet)?;
     let start = Instant::now();
-    let mut positions = vec![DVec3::ZERO; inputs.mesh.positions.len()];
-    deform_vertices(&posed, &bindings, &inputs.mesh.positions, &mut positions);
-    let deform_seconds = start.elapsed().as_secs_f64();
+    let (positions, owners) = match &context {
+        Some(context) => deform_on_gpu(context, &inputs, &posed, saved.as_deref())?,
+        None => {
+            let bindings = saved
+                .clone()
+                .unwrap_or_else(|| bind_with_progress(&inputs, quiet));
+            let mut positions = vec![DVec3::ZERO; inputs.mesh.positions.len()];
+            deform_vertices(&posed, &bindings, &inputs.mesh.positions, &mut positions);
+            (positions, bindings.iter().map(|b| b.sweep).collect())
+        }
+    };
+    let seconds = start.elapsed().as_secs_f64();
     if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
-        let sweep = &inputs.rig.sweeps()[bindings[i].sweep as usize].name;
-        return Err(format!("{}: vertex index {i} (sweep {sweep:?}) deforms to a non-finite position; nothing was written", args.pose.display()).into());
+        let sweep = &inputs.rig.sweeps()[owners[i] as usize].name;
+        return Err(format!(
+            "{}: vertex index {i} (sweep {sweep:?}) deforms to a non-finite position; nothing was written",
+            args.pose.display()
+        )
+        .into());
     }
     inputs.mesh.save(&args.out, &positions)?;
     if !quiet {
-        let owned = bindings.iter().filter(|b| b.sweep != UNOWNED).count();
-        let source = if args.bindings.is_some() {
-            "loaded"
-        } else {
-            "bound"
-        };
+        let owned = owners.iter().filter(|&&o| o != UNOWNED).count();
+        let (source, backend) = (
+            if saved.is_some() { "saved" } else { "new" },
+            if context.is_some() { "GPU" } else { "CPU" },
+        );
         println!(
-            "deformed {owned} of {} vertices ({source} in {bind_seconds:.3} s, deformed in {deform_seconds:.3} s) -> {}",
+            "deformed {owned} of {} vertices on the {backend} ({source} bindings) in {seconds:.3} s -> {}",
             positions.len(),
             args.out.display()
         );
     }
     Ok(())
+}
+
+/// Binds (or uploads `saved` bindings), deforms on the GPU and reads the positions back; the
+/// vertices no sweep owns keep their exact rest positions. Returns the positions and owners.
+fn deform_on_gpu(
+    context: &GpuContext,
+    inputs: &Inputs,
+    posed: &[Sweep],
+    saved: Option<&[Binding]>,
+) -> Result<(Vec<DVec3>, Vec<u32>), GpuError> {
+    let rest = inputs.rig.rest();
+    let coefficients = SweepCoefficients::new(rest);
+    let converted: Option<Vec<GpuBinding>> = saved.map(|saved| {
+        saved
+            .iter()
+            .map(|b| coefficients.gpu_binding(rest, b))
+            .collect()
+    });
+    let source = match &converted {
+        Some(bindings) => BindingSource::Precomputed(bindings),
+        None => BindingSource::Bind {
+            owners: &inputs.owners,
+        },
+    };
+    let mut deformer = GpuDeformer::new(context, rest, &inputs.mesh.positions, source, None)?;
+    deformer.deform(posed)?;
+    let deformed = deformer.read_positions()?;
+    let owners: Vec<u32> = match saved {
+        Some(saved) => saved.iter().map(|b| b.sweep).collect(),
+        None => inputs.owners.clone(),
+    };
+    let positions = deformed
+        .chunks_exact(3)
+        .zip(&inputs.mesh.positions)
+        .zip(&owners)
+        .map(|((p, rest), &owner)| {
+            if owner == UNOWNED {
+                *rest
+            } else {
+                Vec3::from_slice(p).as_dvec3()
+            }
+        })
+        .collect();
+    Ok((positions, owners))
 }

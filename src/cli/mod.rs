@@ -1,9 +1,12 @@
 //! Command-line parsing and dispatch. Each subcommand lives in its own file; errors are
 //! printed as `error: …` on stderr with exit status 1.
 
+mod backend;
+mod bench;
 mod bind;
 mod deform;
 mod demo;
+mod info;
 mod progress;
 mod volume;
 
@@ -11,6 +14,8 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
+
+use backend::Backend;
 
 /// Sweep-based freeform deformation of 3D meshes (Yoon & Kim).
 #[derive(Debug, Parser)]
@@ -36,6 +41,9 @@ enum Command {
         /// Where to write the bindings file.
         #[arg(long)]
         out: PathBuf,
+        /// Where to bind: the GPU kernels, the CPU, or the GPU when one is available.
+        #[arg(long, value_enum, default_value_t = Backend::Auto)]
+        backend: Backend,
     },
     /// Deform a mesh by a pose of its rig and write the deformed mesh.
     Deform {
@@ -54,6 +62,9 @@ enum Command {
         /// Bindings saved by `sweepffd bind` for this mesh and rig (otherwise binds anew).
         #[arg(long)]
         bindings: Option<PathBuf>,
+        /// Where to bind and deform: the GPU kernels, the CPU, or the GPU when one is available.
+        #[arg(long, value_enum, default_value_t = Backend::Auto)]
+        backend: Backend,
     },
     /// Print each sweep's volume (Eq. 1) as JSON.
     Volume {
@@ -63,6 +74,29 @@ enum Command {
         /// Measure this pose of the rig instead of its rest keys.
         #[arg(long)]
         pose: Option<PathBuf>,
+    },
+    /// Print the GPU adapter, its backend and the limits the kernels are planned for.
+    Info,
+    /// Measure binding and deformation throughput against copy and skinning baselines.
+    Bench {
+        /// Vertices of the synthetic tube to measure (ignored with --mesh and --rig).
+        #[arg(long, default_value_t = 1_000_000)]
+        vertices: usize,
+        /// Measure this mesh instead of a synthetic tube (needs --rig).
+        #[arg(long)]
+        mesh: Option<PathBuf>,
+        /// The rest rig of --mesh.
+        #[arg(long)]
+        rig: Option<PathBuf>,
+        /// Where to measure.
+        #[arg(long, value_enum, default_value_t = Backend::Auto)]
+        backend: Backend,
+        /// Timed runs per figure (each figure is their median).
+        #[arg(long, default_value_t = 10)]
+        runs: usize,
+        /// Print one JSON line.
+        #[arg(long)]
+        json: bool,
     },
     /// Build a tube and its rig, bend, twist and taper it, and write the meshes.
     Demo {
@@ -80,13 +114,19 @@ pub fn run() -> ExitCode {
     let cli = Cli::parse();
     let quiet = cli.quiet;
     let result = match cli.command {
-        Command::Bind { mesh, rig, out } => bind::run(&mesh, &rig, &out, quiet),
+        Command::Bind {
+            mesh,
+            rig,
+            out,
+            backend,
+        } => bind::run(&mesh, &rig, &out, backend, quiet),
         Command::Deform {
             mesh,
             rig,
             pose,
             out,
             bindings,
+            backend,
         } => deform::run(
             &deform::Args {
                 mesh,
@@ -94,10 +134,30 @@ pub fn run() -> ExitCode {
                 pose,
                 out,
                 bindings,
+                backend,
             },
             quiet,
         ),
         Command::Volume { rig, pose } => volume::run(&rig, pose.as_deref()),
+        Command::Info => info::run(),
+        Command::Bench {
+            vertices,
+            mesh,
+            rig,
+            backend,
+            runs,
+            json,
+        } => bench::run(
+            &bench::Args {
+                vertices,
+                mesh,
+                rig,
+                backend,
+                runs,
+                json,
+            },
+            quiet,
+        ),
         Command::Demo { out } => demo::run(&out, quiet),
     };
     match result {

@@ -8,7 +8,7 @@
 use bytemuck::{Pod, Zeroable};
 
 /// Threads per workgroup of every compute kernel; the shaders' `@workgroup_size` must match.
-pub const WORKGROUP_SIZE: u32 = 64;
+pub const WORKGROUP_SIZE: u32 = 256;
 
 /// `GpuBinding::cell` of a vertex that no sweep owns; the deform kernel leaves it in place.
 pub const UNBOUND: u32 = u32::MAX;

@@ -9,6 +9,7 @@
 //! [`SweepInfo`]s. Indices are global across the rig: sweep i's intervals and patches follow
 //! those of sweeps 0..i.
 
+mod convert;
 pub mod layout;
 
 use std::f64::consts::PI;
@@ -16,8 +17,8 @@ use std::f64::consts::PI;
 use glam::{DQuat, DVec3};
 
 pub use layout::{
-    BindSegment, DispatchParams, GpuBinding, Joint, PatchCoeffs, SegmentCoeffs, SkinInfluence, SweepInfo,
-    UNBOUND, WORKGROUP_SIZE,
+    BindSegment, DispatchParams, GpuBinding, Joint, PatchCoeffs, SegmentCoeffs, SkinInfluence,
+    SweepInfo, UNBOUND, WORKGROUP_SIZE,
 };
 
 use crate::sweep::Sweep;

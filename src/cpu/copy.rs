@@ -1,13 +1,26 @@
 //! Twin of `shaders/copy.wgsl`, the benchmark's memory-ceiling kernel: reads each binding,
 //! writes three floats derived from it.
 
+use rayon::prelude::*;
+
 use crate::coeffs::GpuBinding;
 
-/// Every invocation of the kernel.
+/// One invocation of the kernel.
+pub fn copy_vertex(b: &GpuBinding, xyz: &mut [f32]) {
+    xyz[0] = b.s + b.cell as f32;
+    xyz[1] = b.phi + b.h;
+    xyz[2] = b.d;
+}
+
+/// Every invocation of the kernel, in parallel.
 pub fn copy(bindings: &[GpuBinding], positions: &mut [f32]) {
-    for (xyz, b) in positions.chunks_exact_mut(3).zip(bindings) {
-        xyz[0] = b.s + b.cell as f32;
-        xyz[1] = b.phi + b.h;
-        xyz[2] = b.d;
-    }
+    const CHUNK: usize = 4096;
+    positions
+        .par_chunks_mut(3 * CHUNK)
+        .zip(bindings.par_chunks(CHUNK))
+        .for_each(|(positions, bindings)| {
+            for (xyz, b) in positions.chunks_exact_mut(3).zip(bindings) {
+                copy_vertex(b, xyz);
+            }
+        });
 }

@@ -2,6 +2,7 @@
 //! baseline: p′ = Σ_k w_k·M_k·(p, 1).
 
 use glam::{Vec3, Vec4};
+use rayon::prelude::*;
 
 use super::position;
 use crate::coeffs::{Joint, SkinInfluence};
@@ -25,9 +26,17 @@ pub fn skin_vertex(joints: &[Joint], rest: &[f32], influences: &[SkinInfluence],
     skinned
 }
 
-/// Every invocation of the kernel.
-pub fn skinning(joints: &[Joint], rest: &[f32], influences: &[SkinInfluence], positions: &mut [f32]) {
-    for (i, xyz) in positions.chunks_exact_mut(3).enumerate() {
-        xyz.copy_from_slice(&skin_vertex(joints, rest, influences, i).to_array());
-    }
+/// Every invocation of the kernel, in parallel.
+pub fn skinning(
+    joints: &[Joint],
+    rest: &[f32],
+    influences: &[SkinInfluence],
+    positions: &mut [f32],
+) {
+    positions
+        .par_chunks_mut(3)
+        .enumerate()
+        .for_each(|(i, xyz)| {
+            xyz.copy_from_slice(&skin_vertex(joints, rest, influences, i).to_array());
+        });
 }

@@ -49,25 +49,34 @@ pub fn uniform_chunks(vertex_count: u32, stride: u64, limits: &ChunkLimits) -> V
     let granule = limits.granule();
     let fit = (limits.max_chunk_bytes() / stride).min(u32::MAX as u64) as u32;
     let cap = (fit / granule * granule).max(granule);
-    (0..vertex_count.div_ceil(cap)).map(|c| c * cap..((c + 1) * cap).min(vertex_count)).collect()
+    (0..vertex_count.div_ceil(cap))
+        .map(|c| c * cap..((c + 1) * cap).min(vertex_count))
+        .collect()
 }
 
 /// Consecutive vertex ranges for the normals kernel: each chunk's rows of the adjacency
 /// (`offsets`, one more entry than vertices; `corner_bytes` per corner pair), its own offsets
 /// and its window of the normals (12 bytes a vertex) each fit one binding. `None` if a single
 /// vertex has more corners than one binding holds.
-pub fn normal_chunks(offsets: &[u32], corner_bytes: u64, limits: &ChunkLimits) -> Option<Vec<Range<u32>>> {
+pub fn normal_chunks(
+    offsets: &[u32],
+    corner_bytes: u64,
+    limits: &ChunkLimits,
+) -> Option<Vec<Range<u32>>> {
     let vertex_count = (offsets.len() - 1) as u32;
     let granule = limits.granule();
     let budget = limits.max_chunk_bytes();
-    let vertex_cap = (budget / 12).min((budget / 4).saturating_sub(1)).min(u32::MAX as u64) as u32;
+    let vertex_cap = (budget / 12)
+        .min((budget / 4).saturating_sub(1))
+        .min(u32::MAX as u64) as u32;
     let mut chunks = Vec::new();
     let mut start = 0u32;
     while start < vertex_count {
         let limit = start.saturating_add(vertex_cap).min(vertex_count);
         let max_corner = offsets[start as usize] as u64 + budget / corner_bytes;
         // The last end ≤ limit whose rows still fit: offsets is non-decreasing.
-        let fitting = offsets[start as usize..=limit as usize].partition_point(|&o| o as u64 <= max_corner) as u32;
+        let fitting = offsets[start as usize..=limit as usize]
+            .partition_point(|&o| o as u64 <= max_corner) as u32;
         let mut end = start + fitting.saturating_sub(1);
         if end < vertex_count {
             end = start + (end - start) / granule * granule;
@@ -93,8 +102,12 @@ pub fn dispatch_grid(vertices: u32, limits: &ChunkLimits) -> (u32, u32) {
 mod tests {
     use super::*;
 
-    const LAVAPIPE: ChunkLimits =
-        ChunkLimits { max_binding: 128 << 20, max_buffer: u32::MAX as u64, offset_alignment: 256, max_workgroups: 65535 };
+    const LAVAPIPE: ChunkLimits = ChunkLimits {
+        max_binding: 128 << 20,
+        max_buffer: u32::MAX as u64,
+        offset_alignment: 256,
+        max_workgroups: 65535,
+    };
 
     #[test]
     fn sixteen_million_vertices_split_into_aligned_chunks_within_the_binding_limit() {
@@ -108,7 +121,11 @@ mod tests {
         }
         for chunk in &chunks {
             assert!((chunk.len() as u64) * 20 <= LAVAPIPE.max_binding);
-            assert_eq!((chunk.start as u64 * 12) % 256, 0, "positions window offset");
+            assert_eq!(
+                (chunk.start as u64 * 12) % 256,
+                0,
+                "positions window offset"
+            );
         }
     }
 
@@ -128,7 +145,10 @@ mod tests {
     #[test]
     fn normal_chunks_respect_the_corner_budget() {
         // Six corners per vertex, 8 bytes each, with a 4 KiB binding limit.
-        let limits = ChunkLimits { max_binding: 4096, ..LAVAPIPE };
+        let limits = ChunkLimits {
+            max_binding: 4096,
+            ..LAVAPIPE
+        };
         let offsets: Vec<u32> = (0..=1000).map(|i| 6 * i).collect();
         let chunks = normal_chunks(&offsets, 8, &limits).unwrap();
         assert_eq!(chunks.last().unwrap().end, 1000);
@@ -141,7 +161,10 @@ mod tests {
 
     #[test]
     fn vertex_with_more_corners_than_a_binding_holds_is_refused() {
-        let limits = ChunkLimits { max_binding: 64, ..LAVAPIPE };
+        let limits = ChunkLimits {
+            max_binding: 64,
+            ..LAVAPIPE
+        };
         assert!(normal_chunks(&[0, 100], 8, &limits).is_none());
     }
 }

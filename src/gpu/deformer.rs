@@ -6,11 +6,12 @@ use std::ops::Range;
 use glam::DVec3;
 use wgpu::util::DeviceExt;
 
+use super::binder::Binder;
 use super::chunks::{ChunkLimits, dispatch_grid, normal_chunks, uniform_chunks};
 use super::kernels::{self, Kernel};
 use super::readback::{read_bytes, wait};
 use super::{GpuContext, GpuError};
-use crate::coeffs::{DispatchParams, GpuBinding, SweepCoefficients, UNBOUND, bind_segments};
+use crate::coeffs::{DispatchParams, GpuBinding, SweepCoefficients, UNBOUND};
 use crate::mesh::Faces;
 use crate::normals::NormalAdjacency;
 use crate::sweep::Sweep;
@@ -118,12 +119,19 @@ impl GpuDeformer {
         }
         let limits = ChunkLimits::of(&device_limits);
         let vertex_count = positions.len() as u32;
-        check_fits("the position buffer", vertex_count as u64 * POSITION_STRIDE, limits.max_buffer)?;
+        check_fits(
+            "the position buffer",
+            vertex_count as u64 * POSITION_STRIDE,
+            limits.max_buffer,
+        )?;
 
         let out_of_memory = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
         let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let coefficients = SweepCoefficients::new(rest);
-        let rest_f32: Vec<f32> = positions.iter().flat_map(|p| p.as_vec3().to_array()).collect();
+        let rest_f32: Vec<f32> = positions
+            .iter()
+            .flat_map(|p| p.as_vec3().to_array())
+            .collect();
         let positions_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("sweepffd positions"),
             contents: bytemuck::cast_slice(&rest_f32),
@@ -139,15 +147,29 @@ impl GpuDeformer {
                 usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             })
         };
-        let segments = coefficient_buffer("sweepffd segments", bytemuck::cast_slice(&coefficients.segments));
-        let patches = coefficient_buffer("sweepffd patches", bytemuck::cast_slice(&coefficients.patches));
+        let segments = coefficient_buffer(
+            "sweepffd segments",
+            bytemuck::cast_slice(&coefficients.segments),
+        );
+        let patches = coefficient_buffer(
+            "sweepffd patches",
+            bytemuck::cast_slice(&coefficients.patches),
+        );
 
         let kernel = kernels::deform(device);
         let ranges = uniform_chunks(vertex_count, BINDING_STRIDE, &limits);
         let mut chunks = Vec::with_capacity(ranges.len());
-        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd bind") });
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("sweepffd bind"),
+        });
         let binder = match bindings {
-            BindingSource::Bind { .. } => Some(Binder::new(context, rest, &coefficients, &segments, &patches)),
+            BindingSource::Bind { .. } => Some(Binder::new(
+                context,
+                rest,
+                &coefficients,
+                &segments,
+                &patches,
+            )),
             BindingSource::Precomputed(_) => None,
         };
         for range in ranges {
@@ -155,16 +177,36 @@ impl GpuDeformer {
                 BindingSource::Bind { owners } => {
                     let buffer = empty_binding_buffer(device, range.len());
                     let binder = binder.as_ref().expect("made for BindingSource::Bind");
-                    binder.encode(&mut encoder, &range, &owners[range.start as usize..range.end as usize], &positions_buffer, &buffer, &limits);
+                    binder.encode(
+                        &mut encoder,
+                        &range,
+                        &owners[range.start as usize..range.end as usize],
+                        &positions_buffer,
+                        &buffer,
+                        &limits,
+                        None,
+                    );
                     buffer
                 }
-                BindingSource::Precomputed(all) => device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("sweepffd bindings"),
-                    contents: bytemuck::cast_slice(&all[range.start as usize..range.end as usize]),
-                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
-                }),
+                BindingSource::Precomputed(all) => {
+                    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                        label: Some("sweepffd bindings"),
+                        contents: bytemuck::cast_slice(
+                            &all[range.start as usize..range.end as usize],
+                        ),
+                        usage: wgpu::BufferUsages::STORAGE
+                            | wgpu::BufferUsages::COPY_SRC
+                            | wgpu::BufferUsages::COPY_DST,
+                    })
+                }
             };
-            let params = params_buffer(device, DispatchParams { vertex_count: range.len() as u32, ..Default::default() });
+            let params = params_buffer(
+                device,
+                DispatchParams {
+                    vertex_count: range.len() as u32,
+                    ..Default::default()
+                },
+            );
             let group = kernel.bind_group(
                 device,
                 "sweepffd deform",
@@ -177,10 +219,21 @@ impl GpuDeformer {
                 ],
             );
             let grid = dispatch_grid(range.len() as u32, &limits);
-            chunks.push(DeformChunk { range, bindings: bindings_buffer, group, grid });
+            chunks.push(DeformChunk {
+                range,
+                bindings: bindings_buffer,
+                group,
+                grid,
+            });
         }
         let normals = match faces {
-            Some(faces) => Some(NormalsStage::new(device, faces, &positions_buffer, vertex_count, &limits)?),
+            Some(faces) => Some(NormalsStage::new(
+                device,
+                faces,
+                &positions_buffer,
+                vertex_count,
+                &limits,
+            )?),
             None => None,
         };
         let deformer = GpuDeformer {
@@ -234,8 +287,16 @@ impl GpuDeformer {
     pub fn set_pose(&mut self, posed: &[Sweep]) -> Result<(), GpuError> {
         self.coefficients.update(posed)?;
         let queue = &self.context.queue;
-        queue.write_buffer(&self.segments, 0, bytemuck::cast_slice(&self.coefficients.segments));
-        queue.write_buffer(&self.patches, 0, bytemuck::cast_slice(&self.coefficients.patches));
+        queue.write_buffer(
+            &self.segments,
+            0,
+            bytemuck::cast_slice(&self.coefficients.segments),
+        );
+        queue.write_buffer(
+            &self.patches,
+            0,
+            bytemuck::cast_slice(&self.coefficients.patches),
+        );
         Ok(())
     }
 
@@ -246,7 +307,11 @@ impl GpuDeformer {
     }
 
     /// Records the deform pass alone, optionally writing timestamps around it.
-    pub fn encode_deform_pass(&self, encoder: &mut wgpu::CommandEncoder, timestamps: Option<wgpu::ComputePassTimestampWrites>) {
+    pub fn encode_deform_pass(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamps: Option<wgpu::ComputePassTimestampWrites>,
+    ) {
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("sweepffd deform"),
             timestamp_writes: timestamps,
@@ -259,7 +324,11 @@ impl GpuDeformer {
     }
 
     /// Records the normals pass alone (nothing without faces), optionally with timestamps.
-    pub fn encode_normals_pass(&self, encoder: &mut wgpu::CommandEncoder, timestamps: Option<wgpu::ComputePassTimestampWrites>) {
+    pub fn encode_normals_pass(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamps: Option<wgpu::ComputePassTimestampWrites>,
+    ) {
         let Some(normals) = &self.normals else { return };
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("sweepffd normals"),
@@ -276,7 +345,11 @@ impl GpuDeformer {
     pub fn deform(&mut self, posed: &[Sweep]) -> Result<(), GpuError> {
         self.set_pose(posed)?;
         let mut encoder =
-            self.context.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd frame") });
+            self.context
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("sweepffd frame"),
+                });
         self.encode(&mut encoder);
         self.context.queue.submit([encoder.finish()]);
         self.context.check_alive()
@@ -284,14 +357,26 @@ impl GpuDeformer {
 
     /// Copies the positions back to the CPU (blocking), tightly packed f32 xyz.
     pub fn read_positions(&self) -> Result<Vec<f32>, GpuError> {
-        let bytes = read_bytes(&self.context, &self.positions, 0, self.vertex_count as u64 * POSITION_STRIDE)?;
+        let bytes = read_bytes(
+            &self.context,
+            &self.positions,
+            0,
+            self.vertex_count as u64 * POSITION_STRIDE,
+        )?;
         Ok(bytemuck::pod_collect_to_vec(&bytes))
     }
 
     /// Copies the normals back to the CPU (blocking), or `None` without faces.
     pub fn read_normals(&self) -> Result<Option<Vec<f32>>, GpuError> {
-        let Some(normals) = &self.normals else { return Ok(None) };
-        let bytes = read_bytes(&self.context, &normals.buffer, 0, self.vertex_count as u64 * POSITION_STRIDE)?;
+        let Some(normals) = &self.normals else {
+            return Ok(None);
+        };
+        let bytes = read_bytes(
+            &self.context,
+            &normals.buffer,
+            0,
+            self.vertex_count as u64 * POSITION_STRIDE,
+        )?;
         Ok(Some(bytemuck::pod_collect_to_vec(&bytes)))
     }
 
@@ -299,7 +384,12 @@ impl GpuDeformer {
     pub fn read_bindings(&self) -> Result<Vec<GpuBinding>, GpuError> {
         let mut bindings = Vec::with_capacity(self.vertex_count as usize);
         for chunk in &self.chunks {
-            let bytes = read_bytes(&self.context, &chunk.bindings, 0, chunk.range.len() as u64 * BINDING_STRIDE)?;
+            let bytes = read_bytes(
+                &self.context,
+                &chunk.bindings,
+                0,
+                chunk.range.len() as u64 * BINDING_STRIDE,
+            )?;
             bindings.extend(bytemuck::pod_collect_to_vec::<u8, GpuBinding>(&bytes));
         }
         Ok(bindings)
@@ -310,96 +400,69 @@ impl GpuDeformer {
         &self.coefficients
     }
 
+    /// Each deform dispatch's vertex range and binding buffer.
+    pub(crate) fn binding_chunks(&self) -> impl Iterator<Item = (&Range<u32>, &wgpu::Buffer)> {
+        self.chunks
+            .iter()
+            .map(|chunk| (&chunk.range, &chunk.bindings))
+    }
+
+    /// The per-frame segment coefficient buffer.
+    pub(crate) fn segments(&self) -> &wgpu::Buffer {
+        &self.segments
+    }
+
+    /// The per-frame radius patch buffer.
+    pub(crate) fn patches(&self) -> &wgpu::Buffer {
+        &self.patches
+    }
+
+    /// The context the deformer runs on.
+    pub fn context(&self) -> &GpuContext {
+        &self.context
+    }
+
     /// The device limits the deformer was planned for.
     pub fn limits(&self) -> &ChunkLimits {
         &self.limits
     }
 }
 
-/// The bind kernel with the rest rig's tables, used once while the deformer is built.
-struct Binder {
-    kernel: Kernel,
-    device: wgpu::Device,
-    segments: wgpu::Buffer,
-    patches: wgpu::Buffer,
-    bind_segments: wgpu::Buffer,
-    sweeps: wgpu::Buffer,
-}
-
-impl Binder {
-    fn new(context: &GpuContext, rest: &[Sweep], coefficients: &SweepCoefficients, segments: &wgpu::Buffer, patches: &wgpu::Buffer) -> Binder {
-        let device = &context.device;
-        let table = |label, bytes: &[u8]| {
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents: bytes,
-                usage: wgpu::BufferUsages::STORAGE,
-            })
-        };
-        Binder {
-            kernel: kernels::bind(device),
-            device: device.clone(),
-            segments: segments.clone(),
-            patches: patches.clone(),
-            bind_segments: table("sweepffd bind segments", bytemuck::cast_slice(&bind_segments(rest))),
-            sweeps: table("sweepffd sweeps", bytemuck::cast_slice(&coefficients.sweeps)),
-        }
-    }
-
-    /// Records the binding of the vertices in `range` into `bindings`.
-    fn encode(
-        &self,
-        encoder: &mut wgpu::CommandEncoder,
-        range: &Range<u32>,
-        owners: &[u32],
-        positions: &wgpu::Buffer,
-        bindings: &wgpu::Buffer,
-        limits: &ChunkLimits,
-    ) {
-        let device = &self.device;
-        let owners = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("sweepffd owners"),
-            contents: bytemuck::cast_slice(owners),
-            usage: wgpu::BufferUsages::STORAGE,
-        });
-        let params = params_buffer(device, DispatchParams { vertex_count: range.len() as u32, ..Default::default() });
-        let group = self.kernel.bind_group(
-            device,
-            "sweepffd bind",
-            &[
-                params.as_entire_binding(),
-                self.segments.as_entire_binding(),
-                self.patches.as_entire_binding(),
-                self.bind_segments.as_entire_binding(),
-                self.sweeps.as_entire_binding(),
-                owners.as_entire_binding(),
-                window(positions, range, POSITION_STRIDE),
-                bindings.as_entire_binding(),
-            ],
-        );
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("sweepffd bind"), timestamp_writes: None });
-        pass.set_pipeline(&self.kernel.pipeline);
-        pass.set_bind_group(0, &group, &[]);
-        let (x, y) = dispatch_grid(range.len() as u32, limits);
-        pass.dispatch_workgroups(x, y, 1);
-    }
-}
-
 impl NormalsStage {
-    fn new(device: &wgpu::Device, faces: &Faces, positions: &wgpu::Buffer, vertex_count: u32, limits: &ChunkLimits) -> Result<NormalsStage, GpuError> {
+    fn new(
+        device: &wgpu::Device,
+        faces: &Faces,
+        positions: &wgpu::Buffer,
+        vertex_count: u32,
+        limits: &ChunkLimits,
+    ) -> Result<NormalsStage, GpuError> {
         let adjacency = NormalAdjacency::new(faces, vertex_count as usize);
         let corner_bytes = size_of::<[u32; 2]>() as u64;
-        let chunks = normal_chunks(&adjacency.offsets, corner_bytes, limits)
-            .ok_or_else(|| GpuError::Input("a vertex has more incident triangles than one storage binding holds".into()))?;
+        let chunks = normal_chunks(&adjacency.offsets, corner_bytes, limits).ok_or_else(|| {
+            GpuError::Input(
+                "a vertex has more incident triangles than one storage binding holds".into(),
+            )
+        })?;
         // Positions are read at any index, through two windows of at most one binding each.
-        let split = (limits.max_binding.min(limits.max_buffer) / POSITION_STRIDE / 64 * 64).min(vertex_count as u64) as u32;
-        check_fits("the normals' second position window", (vertex_count - split) as u64 * POSITION_STRIDE, limits.max_binding)?;
+        let split = (limits.max_binding.min(limits.max_buffer) / POSITION_STRIDE / 64 * 64)
+            .min(vertex_count as u64) as u32;
+        check_fits(
+            "the normals' second position window",
+            (vertex_count - split) as u64 * POSITION_STRIDE,
+            limits.max_binding,
+        )?;
         let low = window(positions, &(0..split.max(1)), POSITION_STRIDE);
-        let high = if split < vertex_count { window(positions, &(split..vertex_count), POSITION_STRIDE) } else { low.clone() };
+        let high = if split < vertex_count {
+            window(positions, &(split..vertex_count), POSITION_STRIDE)
+        } else {
+            low.clone()
+        };
         let buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("sweepffd normals"),
             size: vertex_count as u64 * POSITION_STRIDE,
-            usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            usage: wgpu::BufferUsages::VERTEX
+                | wgpu::BufferUsages::STORAGE
+                | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
         let kernel = kernels::normals(device);
@@ -407,11 +470,19 @@ impl NormalsStage {
             .iter()
             .map(|range| {
                 let first = adjacency.offsets[range.start as usize];
-                let offsets: Vec<u32> =
-                    adjacency.offsets[range.start as usize..=range.end as usize].iter().map(|o| o - first).collect();
-                let corners = &adjacency.corners[first as usize..adjacency.offsets[range.end as usize] as usize];
+                let offsets: Vec<u32> = adjacency.offsets
+                    [range.start as usize..=range.end as usize]
+                    .iter()
+                    .map(|o| o - first)
+                    .collect();
+                let corners = &adjacency.corners
+                    [first as usize..adjacency.offsets[range.end as usize] as usize];
                 // A binding may not be empty: a chunk without triangles gets one unused pair.
-                let corners: &[[u32; 2]] = if corners.is_empty() { &[[0, 0]] } else { corners };
+                let corners: &[[u32; 2]] = if corners.is_empty() {
+                    &[[0, 0]]
+                } else {
+                    corners
+                };
                 let storage = |label, bytes: &[u8]| {
                     device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                         label: Some(label),
@@ -423,7 +494,12 @@ impl NormalsStage {
                 let corners = storage("sweepffd normal corners", bytemuck::cast_slice(corners));
                 let params = params_buffer(
                     device,
-                    DispatchParams { vertex_count: range.len() as u32, first_vertex: range.start, window_split: split, _pad: 0 },
+                    DispatchParams {
+                        vertex_count: range.len() as u32,
+                        first_vertex: range.start,
+                        window_split: split,
+                        _pad: 0,
+                    },
                 );
                 let group = kernel.bind_group(
                     device,
@@ -440,36 +516,73 @@ impl NormalsStage {
                 (group, dispatch_grid(range.len() as u32, limits))
             })
             .collect();
-        Ok(NormalsStage { kernel, buffer, dispatches })
+        Ok(NormalsStage {
+            kernel,
+            buffer,
+            dispatches,
+        })
     }
 }
 
-fn check_input(rest: &[Sweep], positions: &[DVec3], bindings: &BindingSource) -> Result<(), GpuError> {
+fn check_input(
+    rest: &[Sweep],
+    positions: &[DVec3],
+    bindings: &BindingSource,
+) -> Result<(), GpuError> {
     if positions.is_empty() {
         return Err(GpuError::Input("the mesh has no vertices".into()));
     }
     if positions.len() >= UNBOUND as usize {
-        return Err(GpuError::Input(format!("{} vertices are more than the GPU path indexes", positions.len())));
+        return Err(GpuError::Input(format!(
+            "{} vertices are more than the GPU path indexes",
+            positions.len()
+        )));
     }
     if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
-        return Err(GpuError::Input(format!("vertex {i} has a non-finite position")));
+        return Err(GpuError::Input(format!(
+            "vertex {i} has a non-finite position"
+        )));
     }
     match bindings {
         BindingSource::Bind { owners } => {
             if owners.len() != positions.len() {
-                return Err(GpuError::Input(format!("{} owners for {} vertices", owners.len(), positions.len())));
+                return Err(GpuError::Input(format!(
+                    "{} owners for {} vertices",
+                    owners.len(),
+                    positions.len()
+                )));
             }
-            if let Some(i) = owners.iter().position(|&o| o != UNBOUND && o as usize >= rest.len()) {
-                return Err(GpuError::Input(format!("vertex {i} is owned by sweep {}, but the rig has {}", owners[i], rest.len())));
+            if let Some(i) = owners
+                .iter()
+                .position(|&o| o != UNBOUND && o as usize >= rest.len())
+            {
+                return Err(GpuError::Input(format!(
+                    "vertex {i} is owned by sweep {}, but the rig has {}",
+                    owners[i],
+                    rest.len()
+                )));
             }
         }
         BindingSource::Precomputed(bindings) => {
             if bindings.len() != positions.len() {
-                return Err(GpuError::Input(format!("{} bindings for {} vertices", bindings.len(), positions.len())));
+                return Err(GpuError::Input(format!(
+                    "{} bindings for {} vertices",
+                    bindings.len(),
+                    positions.len()
+                )));
             }
-            let cells: usize = rest.iter().map(|s| s.segments().len() * s.radius_samples()).sum();
-            if let Some(i) = bindings.iter().position(|b| b.cell != UNBOUND && b.cell as usize >= cells) {
-                return Err(GpuError::Input(format!("binding {i} refers to radius cell {} of {cells}", bindings[i].cell)));
+            let cells: usize = rest
+                .iter()
+                .map(|s| s.segments().len() * s.radius_samples())
+                .sum();
+            if let Some(i) = bindings
+                .iter()
+                .position(|b| b.cell != UNBOUND && b.cell as usize >= cells)
+            {
+                return Err(GpuError::Input(format!(
+                    "binding {i} refers to radius cell {} of {cells}",
+                    bindings[i].cell
+                )));
             }
         }
     }
@@ -477,11 +590,23 @@ fn check_input(rest: &[Sweep], positions: &[DVec3], bindings: &BindingSource) ->
 }
 
 fn check_fits(what: &'static str, needed: u64, limit: u64) -> Result<(), GpuError> {
-    if needed > limit { Err(GpuError::TooLarge { what, needed, limit }) } else { Ok(()) }
+    if needed > limit {
+        Err(GpuError::TooLarge {
+            what,
+            needed,
+            limit,
+        })
+    } else {
+        Ok(())
+    }
 }
 
 /// The window of a per-vertex stream covering `range`.
-fn window<'a>(buffer: &'a wgpu::Buffer, range: &Range<u32>, stride: u64) -> wgpu::BindingResource<'a> {
+pub(crate) fn window<'a>(
+    buffer: &'a wgpu::Buffer,
+    range: &Range<u32>,
+    stride: u64,
+) -> wgpu::BindingResource<'a> {
     wgpu::BindingResource::Buffer(wgpu::BufferBinding {
         buffer,
         offset: range.start as u64 * stride,
@@ -489,7 +614,7 @@ fn window<'a>(buffer: &'a wgpu::Buffer, range: &Range<u32>, stride: u64) -> wgpu
     })
 }
 
-fn params_buffer(device: &wgpu::Device, params: DispatchParams) -> wgpu::Buffer {
+pub(crate) fn params_buffer(device: &wgpu::Device, params: DispatchParams) -> wgpu::Buffer {
     device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("sweepffd dispatch params"),
         contents: bytemuck::bytes_of(&params),
@@ -497,11 +622,13 @@ fn params_buffer(device: &wgpu::Device, params: DispatchParams) -> wgpu::Buffer 
     })
 }
 
-fn empty_binding_buffer(device: &wgpu::Device, vertices: usize) -> wgpu::Buffer {
+pub(crate) fn empty_binding_buffer(device: &wgpu::Device, vertices: usize) -> wgpu::Buffer {
     device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("sweepffd bindings"),
         size: vertices as u64 * BINDING_STRIDE,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+        usage: wgpu::BufferUsages::STORAGE
+            | wgpu::BufferUsages::COPY_SRC
+            | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
     })
 }

@@ -8,14 +8,22 @@ use crate::coeffs::StructureMismatch;
 /// returned here, never as panics.
 #[derive(Debug, Error)]
 pub enum GpuError {
-    #[error("no GPU adapter is available (install a Vulkan, Metal or DX12 driver; on Linux without a GPU, Mesa's software Vulkan: apt-get install mesa-vulkan-drivers)")]
+    #[error(
+        "no GPU adapter is available (install a Vulkan, Metal or DX12 driver; on Linux without a GPU, Mesa's software Vulkan: apt-get install mesa-vulkan-drivers)"
+    )]
     NoAdapter,
     #[error("the GPU adapter {adapter} does not run compute shaders")]
     NoCompute { adapter: String },
     #[error("the GPU adapter {adapter} could not create a device: {reason}")]
     Device { adapter: String, reason: String },
-    #[error("{what} needs {needed} bytes in one buffer, more than this device allows ({limit} bytes)")]
-    TooLarge { what: &'static str, needed: u64, limit: u64 },
+    #[error(
+        "{what} needs {needed} bytes in one buffer, more than this device allows ({limit} bytes)"
+    )]
+    TooLarge {
+        what: &'static str,
+        needed: u64,
+        limit: u64,
+    },
     #[error("invalid input for the GPU deformer: {0}")]
     Input(String),
     #[error("wgpu reported a validation error: {0}")]

@@ -7,9 +7,10 @@
 //! The kernels in `shaders/` have CPU twins in [`crate::cpu`]; tests prove the GPU agrees with
 //! them (and with the f64 reference) on lavapipe.
 
+pub(crate) mod binder;
 mod chunks;
 mod context;
-mod deformer;
+pub(crate) mod deformer;
 mod error;
 pub mod kernels;
 mod readback;

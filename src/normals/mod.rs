@@ -83,10 +83,18 @@ mod tests {
 
     /// A unit cube of outward quads.
     fn cube() -> (Vec<DVec3>, Faces) {
-        let positions: Vec<DVec3> =
-            (0..8).map(|i| DVec3::new((i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64)).collect();
+        let positions: Vec<DVec3> = (0..8)
+            .map(|i| DVec3::new((i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64))
+            .collect();
         let mut faces = Faces::new();
-        for quad in [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]] {
+        for quad in [
+            [0, 2, 3, 1],
+            [4, 5, 7, 6],
+            [0, 1, 5, 4],
+            [2, 6, 7, 3],
+            [0, 4, 6, 2],
+            [1, 3, 7, 5],
+        ] {
             faces.push(&quad);
         }
         (positions, faces)
@@ -111,9 +119,17 @@ mod tests {
         assert_eq!(adjacency.corners.len(), 3 * faces.triangles().count());
         for i in 0..positions.len() as u32 {
             let containing = faces.triangles().filter(|t| t.contains(&i)).count();
-            assert_eq!(adjacency.incident(i as usize).len(), containing, "vertex {i}");
+            assert_eq!(
+                adjacency.incident(i as usize).len(),
+                containing,
+                "vertex {i}"
+            );
             for &[j, k] in adjacency.incident(i as usize) {
-                assert!(faces.triangles().any(|t| t == [i, j, k] || t == [k, i, j] || t == [j, k, i]));
+                assert!(
+                    faces
+                        .triangles()
+                        .any(|t| t == [i, j, k] || t == [k, i, j] || t == [j, k, i])
+                );
             }
         }
     }

@@ -142,3 +142,43 @@ pub fn axis_rig(mesh: &Mesh, keys: usize, samples: usize) -> Rig {
     };
     Rig::new(vec![sweep]).expect("the axis rig is valid")
 }
+
+/// Set to `1` (CI does) to make a missing GPU adapter fail the GPU tests instead of skipping.
+pub const REQUIRE_GPU: &str = "SWEEPFFD_REQUIRE_GPU";
+
+/// The device shared by this test binary's GPU tests, or `None` with a notice on stderr when
+/// no adapter exists (a failure instead when `SWEEPFFD_REQUIRE_GPU=1`).
+pub fn gpu() -> Option<&'static sweepffd::gpu::GpuContext> {
+    use std::sync::OnceLock;
+    static CONTEXT: OnceLock<Result<sweepffd::gpu::GpuContext, String>> = OnceLock::new();
+    match CONTEXT.get_or_init(|| sweepffd::gpu::GpuContext::new().map_err(|e| e.to_string())) {
+        Ok(context) => Some(context),
+        Err(reason) if std::env::var(REQUIRE_GPU).is_ok_and(|v| v == "1") => {
+            panic!("{REQUIRE_GPU}=1 but no GPU device could be created: {reason}")
+        }
+        Err(reason) => {
+            eprintln!("skipping GPU test: {reason}");
+            None
+        }
+    }
+}
+
+/// The largest difference between two f32 arrays: (absolute error, ULP distance, index of the
+/// element with the largest absolute error).
+pub fn worst_f32(a: &[f32], b: &[f32]) -> (f32, u32, usize) {
+    let ordered = |x: f32| {
+        let bits = x.to_bits() as i32;
+        if bits < 0 { i32::MIN - bits } else { bits }
+    };
+    let mut worst = (0.0f32, 0u32, 0usize);
+    for (i, (x, y)) in a.iter().zip(b).enumerate() {
+        let error = (x - y).abs();
+        let ulps = ordered(*x).abs_diff(ordered(*y));
+        if error > worst.0 {
+            worst.0 = error;
+            worst.2 = i;
+        }
+        worst.1 = worst.1.max(ulps);
+    }
+    worst
+}

@@ -1,0 +1,288 @@
+//! The GPU bench: bind, deform, copy and skinning kernels on one device, timed per pass.
+
+use std::ops::Range;
+use std::time::Instant;
+
+use wgpu::util::DeviceExt;
+
+use super::skinning::{skinning_influences, skinning_joints};
+use super::{BenchReport, BenchScene, GpuTimer, median_of};
+use crate::coeffs::{DispatchParams, SweepCoefficients};
+use crate::gpu::binder::Binder;
+use crate::gpu::deformer::{params_buffer, window};
+use crate::gpu::{
+    BINDING_STRIDE, BindingSource, GpuContext, GpuDeformer, GpuError, POSITION_STRIDE,
+    dispatch_grid, kernels, uniform_chunks, wait,
+};
+
+/// Runs before the timed ones.
+const WARMUP: usize = 3;
+
+/// A pipeline's dispatches, one per chunk.
+type Dispatches = (kernels::Kernel, Vec<(wgpu::BindGroup, (u32, u32))>);
+
+/// Every kernel of the bench, set up on one device for one scene.
+pub struct GpuBench {
+    context: GpuContext,
+    scene: BenchScene,
+    deformer: GpuDeformer,
+    binder: Binder,
+    copy: Dispatches,
+    skinning: Dispatches,
+    timer: Option<GpuTimer>,
+}
+
+impl GpuBench {
+    /// Uploads the scene, binds it once, and prepares the baselines.
+    pub fn new(context: &GpuContext, scene: BenchScene) -> Result<GpuBench, GpuError> {
+        let device = &context.device;
+        let rest = scene.rig.rest();
+        let deformer = GpuDeformer::new(
+            context,
+            rest,
+            &scene.mesh.positions,
+            BindingSource::Bind {
+                owners: &scene.owners,
+            },
+            Some(&scene.mesh.faces),
+        )?;
+        let binder = Binder::new(
+            context,
+            rest,
+            &SweepCoefficients::new(rest),
+            deformer.segments(),
+            deformer.patches(),
+        );
+        let n = deformer.vertex_count();
+        let scratch = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("sweepffd bench output"),
+            size: n as u64 * POSITION_STRIDE,
+            usage: wgpu::BufferUsages::STORAGE,
+            mapped_at_creation: false,
+        });
+        let limits = *deformer.limits();
+
+        let copy_kernel = kernels::copy(device);
+        let copy_dispatches = deformer
+            .binding_chunks()
+            .map(|(range, bindings)| {
+                let params = chunk_params(device, range);
+                let group = copy_kernel.bind_group(
+                    device,
+                    "sweepffd copy baseline",
+                    &[
+                        params.as_entire_binding(),
+                        bindings.as_entire_binding(),
+                        window(&scratch, range, POSITION_STRIDE),
+                    ],
+                );
+                (group, dispatch_grid(range.len() as u32, &limits))
+            })
+            .collect();
+
+        let skinning_kernel = kernels::skinning(device);
+        let storage = |label, bytes: &[u8]| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents: bytes,
+                usage: wgpu::BufferUsages::STORAGE,
+            })
+        };
+        let joints = storage(
+            "sweepffd bench joints",
+            bytemuck::cast_slice(&skinning_joints()),
+        );
+        let rest_f32: Vec<f32> = scene
+            .mesh
+            .positions
+            .iter()
+            .flat_map(|p| p.as_vec3().to_array())
+            .collect();
+        let rest_buffer = storage("sweepffd bench rest", bytemuck::cast_slice(&rest_f32));
+        let influences = storage(
+            "sweepffd bench influences",
+            bytemuck::cast_slice(&skinning_influences(n as usize)),
+        );
+        let skinning_dispatches = uniform_chunks(n, POSITION_STRIDE, &limits)
+            .iter()
+            .map(|range| {
+                let params = chunk_params(device, range);
+                let group = skinning_kernel.bind_group(
+                    device,
+                    "sweepffd skinning baseline",
+                    &[
+                        params.as_entire_binding(),
+                        joints.as_entire_binding(),
+                        window(&rest_buffer, range, POSITION_STRIDE),
+                        window(&influences, range, 8),
+                        window(&scratch, range, POSITION_STRIDE),
+                    ],
+                );
+                (group, dispatch_grid(range.len() as u32, &limits))
+            })
+            .collect();
+
+        Ok(GpuBench {
+            context: context.clone(),
+            scene,
+            deformer,
+            binder,
+            copy: (copy_kernel, copy_dispatches),
+            skinning: (skinning_kernel, skinning_dispatches),
+            timer: GpuTimer::new(context),
+        })
+    }
+
+    /// The deformer under test.
+    pub fn deformer(&self) -> &GpuDeformer {
+        &self.deformer
+    }
+
+    /// Seconds to bind every vertex (the bind kernel alone). Call before the deform timings:
+    /// binding reads the rest positions, which deforming overwrites.
+    pub fn time_bind(&self) -> Result<f64, GpuError> {
+        let limits = *self.deformer.limits();
+        let chunks: Vec<(Range<u32>, wgpu::Buffer)> = self
+            .deformer
+            .binding_chunks()
+            .map(|(range, buffer)| (range.clone(), buffer.clone()))
+            .collect();
+        self.time(|encoder, timer| {
+            let last = chunks.len() - 1;
+            for (c, (range, bindings)) in chunks.iter().enumerate() {
+                let owners = &self.scene.owners[range.start as usize..range.end as usize];
+                let writes = timer.and_then(|t| t.writes(c == 0, c == last));
+                self.binder.encode(
+                    encoder,
+                    range,
+                    owners,
+                    self.deformer.positions(),
+                    bindings,
+                    &limits,
+                    writes,
+                );
+            }
+        })
+    }
+
+    /// Seconds of the deform kernel alone, after the pose has been set.
+    pub fn time_deform(&mut self) -> Result<f64, GpuError> {
+        self.deformer.set_pose(&self.scene.posed)?;
+        self.time(|encoder, timer| {
+            self.deformer
+                .encode_deform_pass(encoder, timer.and_then(|t| t.writes(true, true)))
+        })
+    }
+
+    /// Seconds of the copy baseline.
+    pub fn time_copy(&self) -> Result<f64, GpuError> {
+        self.time(|encoder, timer| encode(encoder, &self.copy, timer))
+    }
+
+    /// Seconds of the skinning baseline.
+    pub fn time_skinning(&self) -> Result<f64, GpuError> {
+        self.time(|encoder, timer| encode(encoder, &self.skinning, timer))
+    }
+
+    /// Wall-clock seconds of one frame: pose upload, deform and normals dispatches, waited for.
+    pub fn time_frame(&mut self) -> Result<f64, GpuError> {
+        let start = Instant::now();
+        self.deformer.deform(&self.scene.posed)?;
+        wait(&self.context)?;
+        Ok(start.elapsed().as_secs_f64())
+    }
+
+    /// Wall-clock seconds to read the positions back.
+    pub fn time_readback(&self) -> Result<f64, GpuError> {
+        let start = Instant::now();
+        self.deformer.read_positions()?;
+        Ok(start.elapsed().as_secs_f64())
+    }
+
+    /// Every figure of the report, each the median of `runs` runs after warm-up.
+    pub fn report(&mut self, runs: usize) -> Result<BenchReport, GpuError> {
+        let n = self.deformer.vertex_count() as f64;
+        let bind = median_of(WARMUP, runs, || self.time_bind())?;
+        let deform = median_of(WARMUP, runs, || self.time_deform())?;
+        let copy = median_of(WARMUP, runs, || self.time_copy())?;
+        let lbs = median_of(WARMUP, runs, || self.time_skinning())?;
+        let frame = median_of(WARMUP, runs, || self.time_frame())?;
+        let readback = median_of(1, runs, || self.time_readback())?;
+        let binding_bytes: u64 = self
+            .deformer
+            .binding_chunks()
+            .map(|(range, _)| range.len() as u64 * BINDING_STRIDE)
+            .sum();
+        let device_bytes = binding_bytes + self.deformer.positions().size();
+        Ok(BenchReport {
+            backend: "gpu",
+            adapter: format!(
+                "{} ({:?})",
+                self.context.info.name, self.context.info.backend
+            ),
+            n: n as usize,
+            bind_verts_per_s: n / bind,
+            deform_verts_per_s: n / deform,
+            copy_verts_per_s: n / copy,
+            lbs_verts_per_s: n / lbs,
+            deform_over_copy: deform / copy,
+            deform_over_lbs: deform / lbs,
+            frame_ms: frame * 1e3,
+            readback_ms: Some(readback * 1e3),
+            device_bytes_per_vertex: Some(device_bytes as f64 / n),
+            runs,
+            timestamps: self.timer.is_some(),
+        })
+    }
+
+    /// Records with `record`, submits, waits, and returns the timestamped seconds (wall-clock
+    /// without timestamp queries).
+    fn time(
+        &self,
+        record: impl FnOnce(&mut wgpu::CommandEncoder, Option<&GpuTimer>),
+    ) -> Result<f64, GpuError> {
+        let device = &self.context.device;
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("sweepffd bench"),
+        });
+        let start = Instant::now();
+        record(&mut encoder, self.timer.as_ref());
+        if let Some(timer) = &self.timer {
+            timer.resolve(&mut encoder);
+        }
+        self.context.queue.submit([encoder.finish()]);
+        wait(&self.context)?;
+        let wall = start.elapsed().as_secs_f64();
+        match &self.timer {
+            Some(timer) => timer.seconds(&self.context),
+            None => Ok(wall),
+        }
+    }
+}
+
+fn chunk_params(device: &wgpu::Device, range: &Range<u32>) -> wgpu::Buffer {
+    params_buffer(
+        device,
+        DispatchParams {
+            vertex_count: range.len() as u32,
+            ..Default::default()
+        },
+    )
+}
+
+/// Records one pass over all of a pipeline's dispatches.
+fn encode(
+    encoder: &mut wgpu::CommandEncoder,
+    (kernel, dispatches): &Dispatches,
+    timer: Option<&GpuTimer>,
+) {
+    let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+        label: Some("sweepffd bench"),
+        timestamp_writes: timer.and_then(|t| t.writes(true, true)),
+    });
+    pass.set_pipeline(&kernel.pipeline);
+    for (group, grid) in dispatches {
+        pass.set_bind_group(0, group, &[]);
+        pass.dispatch_workgroups(grid.0, grid.1, 1);
+    }
+}

@@ -1,0 +1,107 @@
+//! Throughput measurements behind `sweepffd bench` and the criterion benches: binding and
+//! deformation against baselines measured in the same run on the same device — a copy kernel
+//! moving the deform kernel's bytes (the memory ceiling) and four-influence linear-blend
+//! skinning (what real-time applications use today).
+//!
+//! Every figure is the median of several runs after warm-up; GPU kernel times come from
+//! timestamp queries where the device supports them, wall-clock otherwise.
+
+mod cpu;
+mod gpu;
+mod scene;
+mod skinning;
+mod timer;
+
+use serde::Serialize;
+
+pub use cpu::CpuBench;
+pub use gpu::GpuBench;
+pub use scene::BenchScene;
+pub use skinning::{skinning_influences, skinning_joints};
+pub use timer::GpuTimer;
+
+/// One bench run's results, printed by `sweepffd bench --json` as one JSON line.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BenchReport {
+    /// `"gpu"` or `"cpu"`.
+    pub backend: &'static str,
+    /// The GPU adapter, or the CPU's thread count.
+    pub adapter: String,
+    /// Number of vertices.
+    pub n: usize,
+    /// Vertices bound per second.
+    pub bind_verts_per_s: f64,
+    /// Vertices deformed per second (deform kernel alone).
+    pub deform_verts_per_s: f64,
+    /// Vertices per second of the copy baseline.
+    pub copy_verts_per_s: f64,
+    /// Vertices per second of the linear-blend-skinning baseline.
+    pub lbs_verts_per_s: f64,
+    /// Deform time over copy time (1 is the memory ceiling).
+    pub deform_over_copy: f64,
+    /// Deform time over skinning time.
+    pub deform_over_lbs: f64,
+    /// One frame: pose upload (coefficients) plus the deform and normals dispatches, waited
+    /// for, no readback; milliseconds.
+    pub frame_ms: f64,
+    /// Reading the positions back to the CPU, milliseconds (`null` on the CPU backend).
+    pub readback_ms: Option<f64>,
+    /// Device memory for bindings and positions, bytes per vertex (`null` on the CPU).
+    pub device_bytes_per_vertex: Option<f64>,
+    /// Runs each median is taken over.
+    pub runs: usize,
+    /// Whether GPU times come from timestamp queries.
+    pub timestamps: bool,
+}
+
+/// The median of `samples` (which it sorts).
+pub fn median(samples: &mut [f64]) -> f64 {
+    samples.sort_by(f64::total_cmp);
+    let n = samples.len();
+    if n == 0 {
+        return f64::NAN;
+    }
+    if n % 2 == 1 {
+        samples[n / 2]
+    } else {
+        0.5 * (samples[n / 2 - 1] + samples[n / 2])
+    }
+}
+
+/// Runs `measure` `warmup` times unrecorded, then `runs` times, and returns the median.
+pub fn median_of<E>(
+    warmup: usize,
+    runs: usize,
+    mut measure: impl FnMut() -> Result<f64, E>,
+) -> Result<f64, E> {
+    for _ in 0..warmup {
+        measure()?;
+    }
+    let mut samples = (0..runs)
+        .map(|_| measure())
+        .collect::<Result<Vec<f64>, E>>()?;
+    Ok(median(&mut samples))
+}
+
+/// Times `work` `warmup` times unrecorded, then `runs` times, and returns the median seconds.
+pub fn median_seconds(warmup: usize, runs: usize, mut work: impl FnMut()) -> f64 {
+    let result: Result<f64, std::convert::Infallible> = median_of(warmup, runs, || {
+        let start = std::time::Instant::now();
+        work();
+        Ok(start.elapsed().as_secs_f64())
+    });
+    match result {
+        Ok(seconds) => seconds,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn median_of_odd_and_even_counts() {
+        assert_eq!(median(&mut [3.0, 1.0, 2.0]), 2.0);
+        assert_eq!(median(&mut [4.0, 1.0, 3.0, 2.0]), 2.5);
+    }
+}

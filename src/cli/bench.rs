@@ -1,0 +1,75 @@
+//! `sweepffd bench`: vertices per second of binding and deformation against a copy kernel and
+//! linear-blend skinning on the same device, as one JSON line with `--json`.
+
+use std::path::PathBuf;
+
+use super::CliResult;
+use super::backend::{Backend, resolve};
+use sweepffd::bench::{BenchReport, BenchScene, CpuBench, GpuBench};
+use sweepffd::mesh::Mesh;
+use sweepffd::rig::Rig;
+
+pub struct Args {
+    pub vertices: usize,
+    pub mesh: Option<PathBuf>,
+    pub rig: Option<PathBuf>,
+    pub backend: Backend,
+    pub runs: usize,
+    pub json: bool,
+}
+
+pub fn run(args: &Args, quiet: bool) -> CliResult {
+    let scene = match (&args.mesh, &args.rig) {
+        (Some(mesh_path), Some(rig_path)) => {
+            let mesh = Mesh::load(mesh_path)?;
+            let rig = Rig::load(rig_path)?;
+            BenchScene::new(mesh, rig, &mesh_path.display().to_string())?
+        }
+        (None, None) => BenchScene::tube(args.vertices),
+        _ => return Err("--mesh and --rig go together".into()),
+    };
+    let runs = args.runs.max(1);
+    let report = match resolve(args.backend, quiet || args.json)? {
+        Some(context) => GpuBench::new(&context, scene)?.report(runs)?,
+        None => CpuBench::new(scene).report(runs),
+    };
+    if args.json {
+        println!("{}", serde_json::to_string(&report)?);
+    } else {
+        print_table(&report);
+    }
+    Ok(())
+}
+
+fn print_table(r: &BenchReport) {
+    let rate = |v: f64| format!("{:>10.2} M vertices/s", v / 1e6);
+    println!(
+        "{} backend, {}, {} vertices, medians of {} runs",
+        r.backend, r.adapter, r.n, r.runs
+    );
+    println!("  bind      {}", rate(r.bind_verts_per_s));
+    println!(
+        "  deform    {}   ({:.2} × copy time, {:.2} × skinning time)",
+        rate(r.deform_verts_per_s),
+        r.deform_over_copy,
+        r.deform_over_lbs
+    );
+    println!(
+        "  copy      {}   (baseline: the deform kernel's bytes)",
+        rate(r.copy_verts_per_s)
+    );
+    println!(
+        "  skinning  {}   (baseline: 4-influence linear-blend skinning)",
+        rate(r.lbs_verts_per_s)
+    );
+    println!(
+        "  frame     {:>10.3} ms (pose upload + deform + normals)",
+        r.frame_ms
+    );
+    if let Some(readback) = r.readback_ms {
+        println!("  readback  {readback:>10.3} ms");
+    }
+    if let Some(bytes) = r.device_bytes_per_vertex {
+        println!("  device memory for bindings + positions: {bytes:.1} bytes per vertex");
+    }
+}

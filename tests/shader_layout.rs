@@ -1,0 +1,132 @@
+//! The WGSL kernels without a device: each parses and validates with naga, its workgroup size
+//! is the Rust constant, and every buffer struct it shares with Rust has the same size and
+//! member offsets as the `#[repr(C)]` struct in `src/coeffs/layout.rs`.
+
+use std::mem::{offset_of, size_of};
+
+use sweepffd::coeffs::{
+    BindSegment, DispatchParams, GpuBinding, Joint, PatchCoeffs, SegmentCoeffs, SkinInfluence,
+    SweepInfo, WORKGROUP_SIZE,
+};
+use sweepffd::gpu::shaders;
+
+/// (struct name, size, [(member, offset)]) of a Rust buffer struct.
+type RustLayout = (&'static str, usize, Vec<(&'static str, usize)>);
+
+macro_rules! layout {
+    ($ty:ident { $($field:ident),* $(,)? }) => {
+        (stringify!($ty), size_of::<$ty>(), vec![$((stringify!($field), offset_of!($ty, $field))),*])
+    };
+}
+
+fn rust_layouts() -> Vec<RustLayout> {
+    vec![
+        layout!(SegmentCoeffs {
+            origin,
+            curve,
+            q0,
+            q1
+        }),
+        layout!(PatchCoeffs {
+            radius,
+            segment,
+            cos_mid,
+            sin_mid,
+            half_step
+        }),
+        layout!(SweepInfo {
+            first_segment,
+            segment_count,
+            first_patch,
+            samples
+        }),
+        layout!(BindSegment {
+            origin,
+            normal,
+            e_low,
+            e5,
+            t0,
+            t1,
+            _pad
+        }),
+        layout!(GpuBinding { cell, s, phi, d, h }),
+        layout!(DispatchParams {
+            vertex_count,
+            first_vertex,
+            window_split,
+            _pad
+        }),
+        layout!(SkinInfluence { joints, weights }),
+        layout!(Joint { rows }),
+    ]
+}
+
+fn parse(name: &str, source: &str) -> naga::Module {
+    naga::front::wgsl::parse_str(source)
+        .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(source)))
+}
+
+#[test]
+fn every_kernel_validates_with_naga() {
+    for (name, source, entry) in shaders::ALL {
+        let module = parse(name, source);
+        naga::valid::Validator::new(
+            naga::valid::ValidationFlags::all(),
+            naga::valid::Capabilities::default(),
+        )
+        .validate(&module)
+        .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(source)));
+        assert_eq!(
+            module.entry_points.len(),
+            1,
+            "{name}: one entry point per kernel"
+        );
+        assert_eq!(module.entry_points[0].name, entry);
+    }
+}
+
+#[test]
+fn workgroup_size_is_the_rust_constant() {
+    for (name, source, _) in shaders::ALL {
+        let module = parse(name, source);
+        assert_eq!(
+            module.entry_points[0].workgroup_size,
+            [WORKGROUP_SIZE, 1, 1],
+            "{name}"
+        );
+    }
+}
+
+#[test]
+fn shared_structs_have_the_rust_layout() {
+    let layouts = rust_layouts();
+    let mut checked = 0;
+    for (name, source, _) in shaders::ALL {
+        let module = parse(name, source);
+        let mut layouter = naga::proc::Layouter::default();
+        layouter.update(module.to_ctx()).unwrap();
+        for (handle, ty) in module.types.iter() {
+            let naga::TypeInner::Struct { members, .. } = &ty.inner else {
+                continue;
+            };
+            let Some(type_name) = ty.name.as_deref() else {
+                continue;
+            };
+            let Some((_, size, fields)) = layouts.iter().find(|(n, _, _)| *n == type_name) else {
+                continue;
+            };
+            assert_eq!(
+                layouter[handle].size as usize, *size,
+                "{name}: size of {type_name}"
+            );
+            let wgsl: Vec<(&str, usize)> = members
+                .iter()
+                .map(|m| (m.name.as_deref().unwrap_or("?"), m.offset as usize))
+                .collect();
+            assert_eq!(&wgsl, fields, "{name}: members of {type_name}");
+            checked += 1;
+        }
+    }
+    // layout.wgsl declares all eight structs and is part of all five kernels.
+    assert_eq!(checked, 8 * shaders::ALL.len());
+}
