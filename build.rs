@@ -6,8 +6,9 @@ use std::path::Path;
 
 /// Each kernel and the files it is composed of, shared files first, its entry point last.
 const KERNELS: &[(&str, &[&str])] = &[
-    ("bind", &["layout.wgsl", "sweep_eval.wgsl", "bind.wgsl"]),
-    ("deform", &["layout.wgsl", "sweep_eval.wgsl", "deform.wgsl"]),
+    ("bind", &["layout.wgsl", "cells_storage.wgsl", "sweep_eval.wgsl", "bind.wgsl"]),
+    ("deform_uniform", &["layout.wgsl", "cells_uniform.wgsl", "sweep_eval.wgsl", "deform.wgsl"]),
+    ("deform_storage", &["layout.wgsl", "cells_storage.wgsl", "sweep_eval.wgsl", "deform.wgsl"]),
     ("normals", &["layout.wgsl", "normals.wgsl"]),
     ("copy", &["layout.wgsl", "copy.wgsl"]),
     ("skinning", &["layout.wgsl", "skinning.wgsl"]),
@@ -20,36 +21,25 @@ fn main() {
         let mut source = String::new();
         for file in *files {
             let path = Path::new("shaders").join(file);
-            let text = std::fs::read_to_string(&path)
-                .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
+            let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
             source.push_str(&format!("// ---- shaders/{file}\n"));
             source.push_str(&text);
             source.push('\n');
         }
         validate(kernel, &source);
         let target = Path::new(&out_dir).join(format!("{kernel}.wgsl"));
-        std::fs::write(&target, &source)
-            .unwrap_or_else(|e| panic!("cannot write {}: {e}", target.display()));
+        std::fs::write(&target, &source).unwrap_or_else(|e| panic!("cannot write {}: {e}", target.display()));
     }
 }
 
 fn validate(kernel: &str, source: &str) {
     let name = format!("{kernel}.wgsl (composed)");
     let module = naga::front::wgsl::parse_str(source).unwrap_or_else(|e| {
-        panic!(
-            "WGSL kernel {kernel} does not parse:\n{}",
-            e.emit_to_string_with_path(source, &name)
-        )
+        panic!("WGSL kernel {kernel} does not parse:\n{}", e.emit_to_string_with_path(source, &name))
     });
-    naga::valid::Validator::new(
-        naga::valid::ValidationFlags::all(),
-        naga::valid::Capabilities::default(),
-    )
-    .validate(&module)
-    .unwrap_or_else(|e| {
-        panic!(
-            "WGSL kernel {kernel} does not validate:\n{}",
-            e.emit_to_string_with_path(source, &name)
-        )
-    });
+    naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::default())
+        .validate(&module)
+        .unwrap_or_else(|e| {
+            panic!("WGSL kernel {kernel} does not validate:\n{}", e.emit_to_string_with_path(source, &name))
+        });
 }

@@ -26,18 +26,9 @@ fn scene(vertices: usize) -> Scene {
     let mesh = tube.mesh();
     let rig = tube_rig(&tube, 8, 16);
     let owners = rig.owners(&mesh, "tube").unwrap();
-    let pose = BendTwistTaper {
-        bend: 1.5,
-        twist: 2.0,
-        taper: 0.5,
-    };
+    let pose = BendTwistTaper { bend: 1.5, twist: 2.0, taper: 0.5 };
     let posed = rig.pose(&pose.keys(&rig)).unwrap();
-    Scene {
-        mesh,
-        rig,
-        owners,
-        posed,
-    }
+    Scene { mesh, rig, owners, posed }
 }
 
 fn bind(c: &mut Criterion) {
@@ -47,29 +38,13 @@ fn bind(c: &mut Criterion) {
         let scene = scene(n);
         group.throughput(Throughput::Elements(scene.mesh.positions.len() as u64));
         group.bench_function(BenchmarkId::new("f64", n), |b| {
-            b.iter(|| {
-                bind_vertices(
-                    scene.rig.rest(),
-                    &scene.owners,
-                    &scene.mesh.positions,
-                    &|_| {},
-                )
-            })
+            b.iter(|| bind_vertices(scene.rig.rest(), &scene.owners, &scene.mesh.positions, &|_| {}))
         });
         let coefficients = SweepCoefficients::new(scene.rig.rest());
         let tables = bind_segments(scene.rig.rest());
-        let inputs = cpu::bind::BindInputs {
-            segments: &coefficients.segments,
-            patches: &coefficients.patches,
-            bind_segments: &tables,
-            sweeps: &coefficients.sweeps,
-        };
-        let positions: Vec<f32> = scene
-            .mesh
-            .positions
-            .iter()
-            .flat_map(|p| p.as_vec3().to_array())
-            .collect();
+        let inputs =
+            cpu::bind::BindInputs { cells: &coefficients.cells, bind_segments: &tables, sweeps: &coefficients.sweeps };
+        let positions: Vec<f32> = scene.mesh.positions.iter().flat_map(|p| p.as_vec3().to_array()).collect();
         group.bench_function(BenchmarkId::new("f32_twin", n), |b| {
             b.iter(|| cpu::bind::bind(&inputs, &scene.owners, &positions))
         });
@@ -83,48 +58,25 @@ fn deform(c: &mut Criterion) {
         let scene = scene(n);
         let count = scene.mesh.positions.len();
         group.throughput(Throughput::Elements(count as u64));
-        let bindings: Vec<Binding> = bind_vertices(
-            scene.rig.rest(),
-            &scene.owners,
-            &scene.mesh.positions,
-            &|_| {},
-        );
+        let bindings: Vec<Binding> = bind_vertices(scene.rig.rest(), &scene.owners, &scene.mesh.positions, &|_| {});
         let mut out = vec![DVec3::ZERO; count];
         group.bench_function(BenchmarkId::new("f64", n), |b| {
             b.iter(|| deform_vertices(&scene.posed, &bindings, &scene.mesh.positions, &mut out))
         });
         let mut coefficients = SweepCoefficients::new(scene.rig.rest());
         let tables = bind_segments(scene.rig.rest());
-        let inputs = cpu::bind::BindInputs {
-            segments: &coefficients.segments,
-            patches: &coefficients.patches,
-            bind_segments: &tables,
-            sweeps: &coefficients.sweeps,
-        };
-        let positions: Vec<f32> = scene
-            .mesh
-            .positions
-            .iter()
-            .flat_map(|p| p.as_vec3().to_array())
-            .collect();
+        let inputs =
+            cpu::bind::BindInputs { cells: &coefficients.cells, bind_segments: &tables, sweeps: &coefficients.sweeps };
+        let positions: Vec<f32> = scene.mesh.positions.iter().flat_map(|p| p.as_vec3().to_array()).collect();
         let gpu_bindings = cpu::bind::bind(&inputs, &scene.owners, &positions);
         coefficients.update(&scene.posed).unwrap();
         let mut out32 = positions.clone();
         group.bench_function(BenchmarkId::new("f32_twin", n), |b| {
-            b.iter(|| {
-                cpu::deform::deform(
-                    &coefficients.segments,
-                    &coefficients.patches,
-                    &gpu_bindings,
-                    &mut out32,
-                )
-            })
+            b.iter(|| cpu::deform::deform(&coefficients.cells, &gpu_bindings, &mut out32))
         });
         // Baseline: moving the bytes the f64 path reads and writes, with no arithmetic.
         let source = scene.mesh.positions.clone();
-        group.bench_function(BenchmarkId::new("copy_baseline", n), |b| {
-            b.iter(|| out.copy_from_slice(&source))
-        });
+        group.bench_function(BenchmarkId::new("copy_baseline", n), |b| b.iter(|| out.copy_from_slice(&source)));
     }
     group.finish();
 }

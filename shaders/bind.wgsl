@@ -1,18 +1,17 @@
 // Binding (paper section 3) of every owned vertex: the root t of <v - C(t), N(t)> nearest to v
 // (every root found: Bernstein sign variations certify each interval), or the nearer end when
 // there is none; then theta, d = |v^_xy| - r(theta, t) and h = v^_z with v^ = R(t)^T (v - C(t)).
-// Composed after layout.wgsl and sweep_eval.wgsl. Twin: src/cpu/bind.rs.
+// Composed after layout.wgsl, cells_storage.wgsl (binding 1: the rest rig's cell records) and
+// sweep_eval.wgsl. Twin: src/cpu/bind.rs.
 
 @group(0) @binding(0) var<uniform> params: DispatchParams;
-@group(0) @binding(1) var<storage, read> segments: array<SegmentCoeffs>;
-@group(0) @binding(2) var<storage, read> patches: array<PatchCoeffs>;
-@group(0) @binding(3) var<storage, read> bind_segments: array<BindSegment>;
-@group(0) @binding(4) var<storage, read> sweeps: array<SweepInfo>;
+@group(0) @binding(2) var<storage, read> bind_segments: array<BindSegment>;
+@group(0) @binding(3) var<storage, read> sweeps: array<SweepInfo>;
 // The owning sweep of each vertex, or UNBOUND.
-@group(0) @binding(5) var<storage, read> owners: array<u32>;
+@group(0) @binding(4) var<storage, read> owners: array<u32>;
 // Rest positions, tightly packed xyz.
-@group(0) @binding(6) var<storage, read> positions: array<f32>;
-@group(0) @binding(7) var<storage, read_write> bindings: array<GpuBinding>;
+@group(0) @binding(5) var<storage, read> positions: array<f32>;
+@group(0) @binding(6) var<storage, read_write> bindings: array<GpuBinding>;
 
 const TAU: f32 = 6.283185307179586;
 // Dyadic subdivision depth: intervals of width 2^-12 that still show several sign variations
@@ -22,9 +21,10 @@ const MAX_LEVEL: u32 = 12u;
 const S_TOLERANCE: f32 = 1e-7;
 const MAX_REFINE_STEPS: u32 = 32u;
 
-// The nearest root found so far: its knot interval, local parameter and squared distance.
+// The nearest root found so far: the first cell of its knot interval (which holds the
+// interval's curve and orientation), its local parameter and squared distance.
 struct Nearest {
-    segment: u32,
+    cell: u32,
     s: f32,
     distance2: f32,
     found: bool,
@@ -119,21 +119,23 @@ fn refine_root(g: array<f32, 6>, lo_in: f32, hi_in: f32, positive_at_lo: bool) -
     return s;
 }
 
-// Keeps root s of knot interval k if it is nearer to v than the nearest so far.
-fn consider_root(k: u32, s: f32, v: vec3<f32>, nearest: ptr<function, Nearest>) {
-    let offset = v - curve_at(segments[k], s);
+// Keeps root s of the knot interval whose first cell is `cell` if it is nearer to v than the
+// nearest so far.
+fn consider_root(cell: u32, s: f32, v: vec3<f32>, nearest: ptr<function, Nearest>) {
+    let offset = v - curve_at(cells[cell], s);
     let distance2 = dot(offset, offset);
     if (!(*nearest).found || distance2 < (*nearest).distance2) {
-        *nearest = Nearest(k, s, distance2, true);
+        *nearest = Nearest(cell, s, distance2, true);
     }
 }
 
-// Visits the dyadic subintervals of [0, 1] depth first without a stack (level, index encode the
-// interval [index / 2^level, (index + 1) / 2^level]), refining every certified root.
-fn roots_on_segment(k: u32, v: vec3<f32>, nearest: ptr<function, Nearest>) {
+// Every root on knot interval k (first cell `cell`): visits the dyadic subintervals of [0, 1]
+// depth first without a stack (level, index encode the interval
+// [index / 2^level, (index + 1) / 2^level]), refining every certified root.
+fn roots_on_segment(k: u32, cell: u32, v: vec3<f32>, nearest: ptr<function, Nearest>) {
     let g = plane_quintic(bind_segments[k], v);
     if (g[0] == 0.0) {
-        consider_root(k, 0.0, v, nearest);
+        consider_root(cell, 0.0, v, nearest);
     }
     var level = 0u;
     var index = 0u;
@@ -148,9 +150,9 @@ fn roots_on_segment(k: u32, v: vec3<f32>, nearest: ptr<function, Nearest>) {
             continue;
         }
         if (variations == 1u || (variations > 1u && (b[0] >= 0.0) != (b[5] >= 0.0))) {
-            consider_root(k, refine_root(g, a, a + w, b[0] >= 0.0), v, nearest);
+            consider_root(cell, refine_root(g, a, a + w, b[0] >= 0.0), v, nearest);
         } else if (variations > 1u) {
-            consider_root(k, a + 0.5 * w, v, nearest);
+            consider_root(cell, a + 0.5 * w, v, nearest);
         }
         // Next interval: climb while on a right child, then step to the right sibling.
         while ((index & 1u) == 1u) {
@@ -163,7 +165,7 @@ fn roots_on_segment(k: u32, v: vec3<f32>, nearest: ptr<function, Nearest>) {
         index += 1u;
     }
     if (eval_quintic(g, 1.0) == 0.0) {
-        consider_root(k, 1.0, v, nearest);
+        consider_root(cell, 1.0, v, nearest);
     }
 }
 
@@ -184,21 +186,21 @@ fn bind_main(
     }
     let v = vec3<f32>(positions[3u * i], positions[3u * i + 1u], positions[3u * i + 2u]);
     let sweep = sweeps[owner];
-    var nearest = Nearest(sweep.first_segment, 0.0, 0.0, false);
-    for (var k = sweep.first_segment; k < sweep.first_segment + sweep.segment_count; k++) {
-        roots_on_segment(k, v, &nearest);
+    var nearest = Nearest(sweep.first_cell, 0.0, 0.0, false);
+    for (var k = 0u; k < sweep.segment_count; k++) {
+        roots_on_segment(sweep.first_segment + k, sweep.first_cell + k * sweep.samples, v, &nearest);
     }
     if (!nearest.found) {
         // Beyond an end: the nearer of C(0) and C(1).
-        let last = sweep.first_segment + sweep.segment_count - 1u;
-        let to_start = v - curve_at(segments[sweep.first_segment], 0.0);
-        let to_end = v - curve_at(segments[last], 1.0);
+        let last = sweep.first_cell + (sweep.segment_count - 1u) * sweep.samples;
+        let to_start = v - curve_at(cells[sweep.first_cell], 0.0);
+        let to_end = v - curve_at(cells[last], 1.0);
         if (dot(to_end, to_end) < dot(to_start, to_start)) {
             nearest = Nearest(last, 1.0, 0.0, true);
         }
     }
-    let segment = segments[nearest.segment];
-    let local = rotate_inverse(quat_at(segment, nearest.s), v - curve_at(segment, nearest.s));
+    let interval = cells[nearest.cell];
+    let local = rotate_inverse(quat_at(interval, nearest.s), v - curve_at(interval, nearest.s));
     // On the axis theta is arbitrary; atan2(0, 0) is not defined in WGSL, so pin it to 0.
     var theta = 0.0;
     if (local.x != 0.0 || local.y != 0.0) {
@@ -210,7 +212,7 @@ fn bind_main(
     let x = theta * (f32(sweep.samples) / TAU);
     let j = min(u32(x), sweep.samples - 1u);
     let phi = clamp(x - f32(j), 0.0, 1.0);
-    let cell = sweep.first_patch + (nearest.segment - sweep.first_segment) * sweep.samples + j;
-    let r = radius_at(patches[cell], nearest.s, phi);
+    let cell = nearest.cell + j;
+    let r = radius_at(cells[cell], nearest.s, phi);
     bindings[i] = GpuBinding(cell, nearest.s, phi, length(local.xy) - r, local.z);
 }

@@ -1,13 +1,12 @@
 // Deformation (paper Eq. 2, extended by the axial offset h) of every bound vertex:
 // v = C(t) + R(t) ((r(theta, t) + d) cos theta, (r(theta, t) + d) sin theta, h).
-// Composed after layout.wgsl and sweep_eval.wgsl. Twin: src/cpu/deform.rs.
+// Composed after layout.wgsl, cells_uniform.wgsl or cells_storage.wgsl (binding 1: the cell
+// records) and sweep_eval.wgsl. Twin: src/cpu/deform.rs.
 
 @group(0) @binding(0) var<uniform> params: DispatchParams;
-@group(0) @binding(1) var<storage, read> segments: array<SegmentCoeffs>;
-@group(0) @binding(2) var<storage, read> patches: array<PatchCoeffs>;
-@group(0) @binding(3) var<storage, read> bindings: array<GpuBinding>;
+@group(0) @binding(2) var<storage, read> bindings: array<GpuBinding>;
 // Tightly packed xyz; unbound vertices keep the rest position written at bind time.
-@group(0) @binding(4) var<storage, read_write> positions: array<f32>;
+@group(0) @binding(3) var<storage, read_write> positions: array<f32>;
 
 @compute @workgroup_size(WORKGROUP_SIZE)
 fn deform_main(
@@ -23,12 +22,11 @@ fn deform_main(
     if (binding.cell == UNBOUND) {
         return;
     }
-    let cell = patches[binding.cell];
-    let segment = segments[cell.segment];
+    let cell = cells[binding.cell];
     let rho = radius_at(cell, binding.s, binding.phi) + binding.d;
     let direction = direction_at(cell, binding.phi);
     let local = vec3<f32>(rho * direction.x, rho * direction.y, binding.h);
-    let p = curve_at(segment, binding.s) + rotate(quat_at(segment, binding.s), local);
+    let p = curve_at(cell, binding.s) + rotate(quat_at(cell, binding.s), local);
     positions[3u * i] = p.x;
     positions[3u * i + 1u] = p.y;
     positions[3u * i + 2u] = p.z;

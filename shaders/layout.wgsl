@@ -4,30 +4,25 @@
 const WORKGROUP_SIZE: u32 = 256u;
 const UNBOUND: u32 = 0xffffffffu;
 
-// One knot interval of a posed sweep: C(s) = origin + c1 s + c2 s^2 + c3 s^3 (curve[0..3] = c1..c3)
-// and the sign-aligned end quaternions (x, y, z, w) of R(t).
-struct SegmentCoeffs {
-    origin: vec4<f32>,
-    curve: array<vec4<f32>, 3>,
+// Most cells a rig may have for the deform kernel to read them from a uniform buffer (64 KiB).
+const UNIFORM_CELL_CAPACITY: u32 = 409u;
+
+// Everything a vertex needs to follow its posed sweep, for one cell (knot interval k, angular
+// interval j): the bicubic r(s, phi) = sum radius[p][q] s^p phi^q; C(s) = c0 + c1 s + c2 s^2 + c3 s^3
+// in curve[i].xyz, with cos and sin of the cell's middle angle and pi / M in curve[0..3].w; and the
+// sign-aligned end quaternions (x, y, z, w) of R(t).
+struct CellCoeffs {
+    radius: array<vec4<f32>, 4>,
+    curve: array<vec4<f32>, 4>,
     q0: vec4<f32>,
     q1: vec4<f32>,
 }
 
-// One (knot interval, angular interval) cell: r(s, phi) = sum radius[p][q] s^p phi^q, the cell's
-// knot interval, and cos/sin of its middle angle with half the angular step (pi / M).
-struct PatchCoeffs {
-    radius: array<vec4<f32>, 4>,
-    segment: u32,
-    cos_mid: f32,
-    sin_mid: f32,
-    half_step: f32,
-}
-
-// Where one sweep's segments and patches start; cell (k, j) is first_patch + k * samples + j.
+// Where one sweep's knot intervals and cells start; cell (k, j) is first_cell + k * samples + j.
 struct SweepInfo {
     first_segment: u32,
     segment_count: u32,
-    first_patch: u32,
+    first_cell: u32,
     samples: u32,
 }
 

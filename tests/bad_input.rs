@@ -4,9 +4,11 @@
 //!
 //! Each test runs in its own temporary folder with relative paths, so the messages are exact.
 
+mod common;
+
 use std::fs;
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
 
 use sweepffd::mesh::Mesh;
 use tempfile::TempDir;
@@ -41,26 +43,17 @@ fn key(z: &str, rotation: &str, radii: &str) -> String {
 
 /// The two unit keys at z = 0 and z = 2 that fit [`PRISM`].
 fn unit_keys() -> Vec<String> {
-    vec![
-        key("0", IDENTITY, UNIT_RADII),
-        key("2", IDENTITY, UNIT_RADII),
-    ]
+    vec![key("0", IDENTITY, UNIT_RADII), key("2", IDENTITY, UNIT_RADII)]
 }
 
 /// One sweep of a rig file, each key on its own line.
 fn sweep(name: &str, vertices: &str, keys: &[String]) -> String {
-    format!(
-        "  {{\"name\": \"{name}\", \"vertices\": {vertices}, \"keys\": [\n    {}\n  ]}}",
-        keys.join(",\n    ")
-    )
+    format!("  {{\"name\": \"{name}\", \"vertices\": {vertices}, \"keys\": [\n    {}\n  ]}}", keys.join(",\n    "))
 }
 
 /// A rig (or pose) file with these sweeps.
 fn rig(sweeps: &[String]) -> String {
-    format!(
-        "{{\"format\": \"sweepffd-rig\", \"version\": 1, \"sweeps\": [\n{}\n]}}\n",
-        sweeps.join(",\n")
-    )
+    format!("{{\"format\": \"sweepffd-rig\", \"version\": 1, \"sweeps\": [\n{}\n]}}\n", sweeps.join(",\n"))
 }
 
 /// A rig of one sweep, `neck`, owning the group `neck`, with these keys.
@@ -76,9 +69,7 @@ struct Scene {
 
 impl Scene {
     fn new() -> Scene {
-        let scene = Scene {
-            dir: tempfile::tempdir().unwrap(),
-        };
+        let scene = Scene { dir: tempfile::tempdir().unwrap() };
         scene.write("mesh.obj", PRISM);
         scene.write("rig.json", neck_rig(&unit_keys()));
         scene.write("pose.json", neck_rig(&unit_keys()));
@@ -94,11 +85,7 @@ impl Scene {
     }
 
     fn run(&self, args: &[&str]) -> Output {
-        Command::new(env!("CARGO_BIN_EXE_sweepffd"))
-            .args(args)
-            .current_dir(self.dir.path())
-            .output()
-            .unwrap()
+        common::sweepffd(self.dir.path()).args(args).output().unwrap()
     }
 
     /// Sorted names in the folder: a run that fails must leave them as they were.
@@ -126,9 +113,7 @@ impl Scene {
 
     /// `deform --mesh mesh --rig rig --pose pose --out out.obj`, expected to fail.
     fn deform_fails(&self, mesh: &str, rig: &str, pose: &str) -> String {
-        let args = [
-            "deform", "--mesh", mesh, "--rig", rig, "--pose", pose, "--out", "out.obj",
-        ];
+        let args = ["deform", "--mesh", mesh, "--rig", rig, "--pose", pose, "--out", "out.obj"];
         let stderr = self.fail(&args);
         assert!(!self.dir.path().join("out.obj").exists());
         stderr
@@ -136,32 +121,15 @@ impl Scene {
 
     /// Binds `mesh.obj` to `rig.json` into `name`, expected to succeed.
     fn bind(&self, name: &str) {
-        let output = self.run(&[
-            "--quiet", "bind", "--mesh", "mesh.obj", "--rig", "rig.json", "--out", name,
-        ]);
-        assert!(
-            output.status.success(),
-            "{}",
-            String::from_utf8_lossy(&output.stderr)
-        );
+        let output = self.run(&["--quiet", "bind", "--mesh", "mesh.obj", "--rig", "rig.json", "--out", name]);
+        assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
     }
 
     /// `deform` of `mesh` with `rig.json`, `pose.json` and the bindings file `bindings`,
     /// expected to fail.
     fn deform_with_bindings_fails(&self, mesh: &str, rig: &str, bindings: &str) -> String {
-        let args = [
-            "deform",
-            "--mesh",
-            mesh,
-            "--rig",
-            rig,
-            "--pose",
-            "pose.json",
-            "--out",
-            "out.obj",
-            "--bindings",
-            bindings,
-        ];
+        let args =
+            ["deform", "--mesh", mesh, "--rig", rig, "--pose", "pose.json", "--out", "out.obj", "--bindings", bindings];
         self.fail(&args)
     }
 }
@@ -178,28 +146,18 @@ fn assert_one_line_starting(stderr: &str, prefix: &str) {
 fn the_valid_scene_deforms() {
     // The scenes below differ from this one only in the file at fault.
     let scene = Scene::new();
-    let output = scene.run(&[
-        "deform",
-        "--mesh",
-        "mesh.obj",
-        "--rig",
-        "rig.json",
-        "--pose",
-        "pose.json",
-        "--out",
-        "out.obj",
-    ]);
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    // The rest pose gives the rest positions back, up to round-off.
-    let rest = Mesh::load(&scene.dir.path().join("mesh.obj")).unwrap();
-    let out = Mesh::load(&scene.dir.path().join("out.obj")).unwrap();
-    assert_eq!(out.faces, rest.faces);
-    for (i, (p, q)) in out.positions.iter().zip(&rest.positions).enumerate() {
-        assert!(p.distance(*q) < 1e-12, "vertex {i}: {p} vs {q}");
+    // The rest pose gives the rest positions back, up to f64 round-off on the CPU path and f32
+    // round-off on the default backend (the GPU where one is available).
+    for (backend, tolerance) in [("cpu", 1e-12), ("auto", 1e-6)] {
+        let args = ["deform", "--mesh", "mesh.obj", "--rig", "rig.json", "--pose", "pose.json", "--out", "out.obj"];
+        let output = scene.run(&[&args[..], &["--backend", backend]].concat());
+        assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+        let rest = Mesh::load(&scene.dir.path().join("mesh.obj")).unwrap();
+        let out = Mesh::load(&scene.dir.path().join("out.obj")).unwrap();
+        assert_eq!(out.faces, rest.faces);
+        for (i, (p, q)) in out.positions.iter().zip(&rest.positions).enumerate() {
+            assert!(p.distance(*q) < tolerance, "--backend {backend}, vertex {i}: {p} vs {q}");
+        }
     }
 }
 
@@ -216,11 +174,7 @@ fn sweep_with_one_key() {
 #[test]
 fn coincident_consecutive_centers() {
     let scene = Scene::new();
-    let keys = [
-        key("0", IDENTITY, UNIT_RADII),
-        key("2", IDENTITY, UNIT_RADII),
-        key("2", IDENTITY, UNIT_RADII),
-    ];
+    let keys = [key("0", IDENTITY, UNIT_RADII), key("2", IDENTITY, UNIT_RADII), key("2", IDENTITY, UNIT_RADII)];
     scene.write("bad.json", neck_rig(&keys));
     assert_eq!(
         scene.deform_fails("mesh.obj", "bad.json", "pose.json"),
@@ -243,10 +197,7 @@ fn key_with_two_radii() {
 #[test]
 fn keys_with_different_radius_counts() {
     let scene = Scene::new();
-    let keys = [
-        key("0", IDENTITY, UNIT_RADII),
-        key("2", IDENTITY, "1, 1, 1"),
-    ];
+    let keys = [key("0", IDENTITY, UNIT_RADII), key("2", IDENTITY, "1, 1, 1")];
     scene.write("bad.json", neck_rig(&keys));
     assert_eq!(
         scene.deform_fails("mesh.obj", "bad.json", "pose.json"),
@@ -259,10 +210,7 @@ fn keys_with_different_radius_counts() {
 fn rig_number_out_of_range() {
     // JSON has no infinity; a number too large for f64 is serde's "number out of range".
     let scene = Scene::new();
-    let keys = [
-        key("0", IDENTITY, UNIT_RADII),
-        key("1e999", IDENTITY, UNIT_RADII),
-    ];
+    let keys = [key("0", IDENTITY, UNIT_RADII), key("1e999", IDENTITY, UNIT_RADII)];
     scene.write("bad.json", neck_rig(&keys));
     assert_eq!(
         scene.deform_fails("mesh.obj", "bad.json", "pose.json"),
@@ -293,10 +241,7 @@ fn obj_vertex_inf() {
 #[test]
 fn zero_quaternion() {
     let scene = Scene::new();
-    let keys = [
-        key("0", IDENTITY, UNIT_RADII),
-        key("2", "0, 0, 0, 0", UNIT_RADII),
-    ];
+    let keys = [key("0", IDENTITY, UNIT_RADII), key("2", "0, 0, 0, 0", UNIT_RADII)];
     scene.write("bad.json", neck_rig(&keys));
     assert_eq!(
         scene.deform_fails("mesh.obj", "bad.json", "pose.json"),
@@ -307,10 +252,7 @@ fn zero_quaternion() {
 #[test]
 fn negative_radius() {
     let scene = Scene::new();
-    let keys = [
-        key("0", IDENTITY, UNIT_RADII),
-        key("2", IDENTITY, "1, 1, -0.5, 1"),
-    ];
+    let keys = [key("0", IDENTITY, UNIT_RADII), key("2", IDENTITY, "1, 1, -0.5, 1")];
     scene.write("bad.json", neck_rig(&keys));
     assert_eq!(
         scene.deform_fails("mesh.obj", "bad.json", "pose.json"),
@@ -321,10 +263,7 @@ fn negative_radius() {
 /// A rig of two sweeps on [`PRISM`]: `neck` (its group) and `body` (vertices 3 and 7, which no
 /// face of `neck` uses).
 fn two_sweep_rig() -> String {
-    rig(&[
-        sweep("neck", NECK_GROUP, &unit_keys()),
-        sweep("body", r#"{"indices": [3, 7]}"#, &unit_keys()),
-    ])
+    rig(&[sweep("neck", NECK_GROUP, &unit_keys()), sweep("body", r#"{"indices": [3, 7]}"#, &unit_keys())])
 }
 
 #[test]
@@ -358,11 +297,7 @@ fn pose_with_an_unknown_sweep() {
 #[test]
 fn pose_with_another_key_count() {
     let scene = Scene::new();
-    let keys = [
-        key("0", IDENTITY, UNIT_RADII),
-        key("1", IDENTITY, UNIT_RADII),
-        key("2", IDENTITY, UNIT_RADII),
-    ];
+    let keys = [key("0", IDENTITY, UNIT_RADII), key("1", IDENTITY, UNIT_RADII), key("2", IDENTITY, UNIT_RADII)];
     scene.write("bad.json", neck_rig(&keys));
     assert_eq!(
         scene.deform_fails("mesh.obj", "rig.json", "bad.json"),
@@ -373,10 +308,7 @@ fn pose_with_another_key_count() {
 #[test]
 fn pose_with_another_radius_count() {
     let scene = Scene::new();
-    let keys = [
-        key("0", IDENTITY, UNIT_RADII),
-        key("2", IDENTITY, "1, 1, 1, 1, 1"),
-    ];
+    let keys = [key("0", IDENTITY, UNIT_RADII), key("2", IDENTITY, "1, 1, 1, 1, 1")];
     scene.write("bad.json", neck_rig(&keys));
     assert_eq!(
         scene.deform_fails("mesh.obj", "rig.json", "bad.json"),
@@ -387,10 +319,7 @@ fn pose_with_another_radius_count() {
 #[test]
 fn unknown_group_lists_the_mesh_groups() {
     let scene = Scene::new();
-    scene.write(
-        "bad.json",
-        rig(&[sweep("neck", r#"{"groups": ["head"]}"#, &unit_keys())]),
-    );
+    scene.write("bad.json", rig(&[sweep("neck", r#"{"groups": ["head"]}"#, &unit_keys())]));
     assert_eq!(
         scene.deform_fails("mesh.obj", "bad.json", "pose.json"),
         "error: bad.json: sweep \"neck\": the mesh mesh.obj has no group \"head\" \
@@ -401,10 +330,7 @@ fn unknown_group_lists_the_mesh_groups() {
 #[test]
 fn vertex_claimed_by_two_sweeps() {
     let scene = Scene::new();
-    let both = rig(&[
-        sweep("neck", NECK_GROUP, &unit_keys()),
-        sweep("body", r#"{"groups": ["body"]}"#, &unit_keys()),
-    ]);
+    let both = rig(&[sweep("neck", NECK_GROUP, &unit_keys()), sweep("body", r#"{"groups": ["body"]}"#, &unit_keys())]);
     scene.write("bad.json", &both);
     scene.write("both_pose.json", &both);
     assert_eq!(
@@ -416,10 +342,7 @@ fn vertex_claimed_by_two_sweeps() {
 #[test]
 fn vertex_index_out_of_range() {
     let scene = Scene::new();
-    scene.write(
-        "bad.json",
-        rig(&[sweep("neck", r#"{"indices": [0, 8]}"#, &unit_keys())]),
-    );
+    scene.write("bad.json", rig(&[sweep("neck", r#"{"indices": [0, 8]}"#, &unit_keys())]));
     assert_eq!(
         scene.deform_fails("mesh.obj", "bad.json", "pose.json"),
         "error: bad.json: sweep \"neck\": vertex index 8 (zero-based) is out of range \
@@ -506,10 +429,7 @@ fn obj_garbage_coordinate() {
 #[test]
 fn ply_bad_header() {
     let scene = Scene::new();
-    scene.write(
-        "bad.ply",
-        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_heade\n",
-    );
+    scene.write("bad.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_heade\n");
     let stderr = scene.deform_fails("bad.ply", "rig.json", "pose.json");
     assert_one_line_starting(&stderr, "error: bad.ply: not a valid PLY file: Line 5: ");
     assert!(stderr.contains("end_heade"), "{stderr}");
@@ -540,10 +460,7 @@ fn mesh_without_vertices() {
         "error: empty.obj: the mesh has no vertices\n"
     );
     scene.write("zero.obj", "");
-    assert_eq!(
-        scene.deform_fails("zero.obj", "rig.json", "pose.json"),
-        "error: zero.obj: the mesh has no vertices\n"
-    );
+    assert_eq!(scene.deform_fails("zero.obj", "rig.json", "pose.json"), "error: zero.obj: the mesh has no vertices\n");
     scene.write(
         "empty.ply",
         "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\n\
@@ -568,21 +485,9 @@ fn unsupported_input_extension() {
 #[test]
 fn unsupported_output_extension() {
     let scene = Scene::new();
-    let stderr = scene.fail(&[
-        "deform",
-        "--mesh",
-        "mesh.obj",
-        "--rig",
-        "rig.json",
-        "--pose",
-        "pose.json",
-        "--out",
-        "out.stl",
-    ]);
-    assert_eq!(
-        stderr,
-        "error: out.stl: unsupported mesh format (expected .obj or .ply)\n"
-    );
+    let stderr =
+        scene.fail(&["deform", "--mesh", "mesh.obj", "--rig", "rig.json", "--pose", "pose.json", "--out", "out.stl"]);
+    assert_eq!(stderr, "error: out.stl: unsupported mesh format (expected .obj or .ply)\n");
 }
 
 #[test]
@@ -610,10 +515,7 @@ fn missing_input_files() {
 fn bindings_for_another_rig() {
     let scene = Scene::new();
     scene.bind("b.sffd");
-    let keys = [
-        key("0", IDENTITY, "1.5, 1.5, 1.5, 1.5"),
-        key("2", IDENTITY, UNIT_RADII),
-    ];
+    let keys = [key("0", IDENTITY, "1.5, 1.5, 1.5, 1.5"), key("2", IDENTITY, UNIT_RADII)];
     scene.write("other.json", neck_rig(&keys));
     assert_eq!(
         scene.deform_with_bindings_fails("mesh.obj", "other.json", "b.sffd"),
@@ -691,15 +593,7 @@ fn output_into_a_missing_folder() {
 #[test]
 fn bind_into_a_missing_folder() {
     let scene = Scene::new();
-    let stderr = scene.fail(&[
-        "bind",
-        "--mesh",
-        "mesh.obj",
-        "--rig",
-        "rig.json",
-        "--out",
-        "missing/b.sffd",
-    ]);
+    let stderr = scene.fail(&["bind", "--mesh", "mesh.obj", "--rig", "rig.json", "--out", "missing/b.sffd"]);
     let out = Path::new("missing").join("b.sffd");
     assert_one_line_starting(&stderr, &format!("error: cannot write {}: ", out.display()));
     assert!(!scene.dir.path().join("missing").exists());
@@ -710,10 +604,7 @@ fn pose_that_overflows_writes_nothing() {
     // Every number is finite, but radii of 1e308 put the deformed vertices at infinity.
     let scene = Scene::new();
     let huge = "1e308, 1e308, 1e308, 1e308";
-    scene.write(
-        "bad.json",
-        neck_rig(&[key("0", IDENTITY, huge), key("2", IDENTITY, huge)]),
-    );
+    scene.write("bad.json", neck_rig(&[key("0", IDENTITY, huge), key("2", IDENTITY, huge)]));
     assert_eq!(
         scene.deform_fails("mesh.obj", "rig.json", "bad.json"),
         "error: bad.json: vertex index 0 (sweep \"neck\") deforms to a non-finite position; \
@@ -725,60 +616,32 @@ fn pose_that_overflows_writes_nothing() {
 fn failed_deform_keeps_an_existing_output() {
     let scene = Scene::new();
     scene.write("out.obj", "old contents\n");
-    let keys = [
-        key("0", IDENTITY, UNIT_RADII),
-        key("2", IDENTITY, "1, 1, -0.5, 1"),
-    ];
+    let keys = [key("0", IDENTITY, UNIT_RADII), key("2", IDENTITY, "1, 1, -0.5, 1")];
     scene.write("bad.json", neck_rig(&keys));
-    let stderr = scene.fail(&[
-        "deform", "--mesh", "mesh.obj", "--rig", "rig.json", "--pose", "bad.json", "--out",
-        "out.obj",
-    ]);
-    assert_eq!(
-        stderr,
-        "error: bad.json: sweep \"neck\": key 1: radius 2 is negative (-0.5)\n"
-    );
+    let stderr =
+        scene.fail(&["deform", "--mesh", "mesh.obj", "--rig", "rig.json", "--pose", "bad.json", "--out", "out.obj"]);
+    assert_eq!(stderr, "error: bad.json: sweep \"neck\": key 1: radius 2 is negative (-0.5)\n");
     assert_eq!(scene.read("out.obj"), b"old contents\n");
 }
 
 #[test]
 fn volume_and_bind_report_rig_errors_like_deform() {
     let scene = Scene::new();
-    let keys = [
-        key("0", IDENTITY, UNIT_RADII),
-        key("2", IDENTITY, "1, 1, -0.5, 1"),
-    ];
+    let keys = [key("0", IDENTITY, UNIT_RADII), key("2", IDENTITY, "1, 1, -0.5, 1")];
     scene.write("bad.json", neck_rig(&keys));
     let expected = "error: bad.json: sweep \"neck\": key 1: radius 2 is negative (-0.5)\n";
-    assert_eq!(
-        scene.deform_fails("mesh.obj", "bad.json", "pose.json"),
-        expected
-    );
+    assert_eq!(scene.deform_fails("mesh.obj", "bad.json", "pose.json"), expected);
     assert_eq!(scene.fail(&["volume", "--rig", "bad.json"]), expected);
-    assert_eq!(
-        scene.fail(&[
-            "bind", "--mesh", "mesh.obj", "--rig", "bad.json", "--out", "b.sffd"
-        ]),
-        expected
-    );
+    assert_eq!(scene.fail(&["bind", "--mesh", "mesh.obj", "--rig", "bad.json", "--out", "b.sffd"]), expected);
     // A bad pose reads the same in `volume --pose` as in `deform`.
-    assert_eq!(
-        scene.fail(&["volume", "--rig", "rig.json", "--pose", "bad.json"]),
-        expected
-    );
-    assert_eq!(
-        scene.deform_fails("mesh.obj", "rig.json", "bad.json"),
-        expected
-    );
+    assert_eq!(scene.fail(&["volume", "--rig", "rig.json", "--pose", "bad.json"]), expected);
+    assert_eq!(scene.deform_fails("mesh.obj", "rig.json", "bad.json"), expected);
 }
 
 #[test]
 fn volume_that_overflows_is_an_error() {
     let scene = Scene::new();
-    let keys = [
-        key("-1e308", IDENTITY, UNIT_RADII),
-        key("1e308", IDENTITY, UNIT_RADII),
-    ];
+    let keys = [key("-1e308", IDENTITY, UNIT_RADII), key("1e308", IDENTITY, UNIT_RADII)];
     scene.write("huge.json", neck_rig(&keys));
     let output = scene.run(&["volume", "--rig", "rig.json", "--pose", "huge.json"]);
     assert_eq!(output.status.code(), Some(1));
@@ -792,10 +655,7 @@ fn volume_that_overflows_is_an_error() {
 #[test]
 fn rest_keys_too_far_apart_for_chord_length() {
     let scene = Scene::new();
-    let keys = [
-        key("-1e308", IDENTITY, UNIT_RADII),
-        key("1e308", IDENTITY, UNIT_RADII),
-    ];
+    let keys = [key("-1e308", IDENTITY, UNIT_RADII), key("1e308", IDENTITY, UNIT_RADII)];
     scene.write("bad.json", neck_rig(&keys));
     assert_eq!(
         scene.deform_fails("mesh.obj", "bad.json", "pose.json"),

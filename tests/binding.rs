@@ -14,11 +14,7 @@ use sweepffd::mesh::Mesh;
 use sweepffd::rig::Rig;
 use sweepffd::sweep::{Key, Sweep};
 
-const MESHES: [&str; 3] = [
-    "bunny_stanford_zipper.obj",
-    "teapot_newell.obj",
-    "armadillo_50k.obj",
-];
+const MESHES: [&str; 3] = ["bunny_stanford_zipper.obj", "teapot_newell.obj", "armadillo_50k.obj"];
 
 /// Samples of f over [0, 1] for the dense search for nearer roots.
 const SAMPLES: usize = 2048;
@@ -40,13 +36,7 @@ fn cases() -> Vec<Case> {
             let owners = rig.owners(&mesh, name).unwrap();
             let bindings = bind_vertices(rig.rest(), &owners, &mesh.positions, &|_| {});
             let diagonal = mesh.diagonal();
-            Some(Case {
-                name,
-                mesh,
-                rig,
-                bindings,
-                diagonal,
-            })
+            Some(Case { name, mesh, rig, bindings, diagonal })
         })
         .collect()
 }
@@ -67,11 +57,7 @@ fn nearest_sampled_root(sweep: &Sweep, v: DVec3) -> Option<f64> {
             let (mut lo, mut hi, positive_at_lo) = (previous.0, t, previous.1 >= 0.0);
             for _ in 0..60 {
                 let mid = 0.5 * (lo + hi);
-                if (f(sweep, v, mid) >= 0.0) == positive_at_lo {
-                    lo = mid
-                } else {
-                    hi = mid
-                }
+                if (f(sweep, v, mid) >= 0.0) == positive_at_lo { lo = mid } else { hi = mid }
             }
             let distance = sweep.center(0.5 * (lo + hi)).distance(v);
             nearest = Some(nearest.map_or(distance, |n| n.min(distance)));
@@ -97,15 +83,7 @@ fn every_bound_t_is_the_nearest_root() {
                     None => f64::NEG_INFINITY,
                 };
                 let at_end = t == 0.0 || t == 1.0;
-                (
-                    i,
-                    if at_end && sampled.is_none() {
-                        0.0
-                    } else {
-                        residual
-                    },
-                    nearer_by,
-                )
+                (i, if at_end && sampled.is_none() { 0.0 } else { residual }, nearer_by)
             })
             .collect();
         let worst_residual = results.iter().max_by(|a, b| a.1.total_cmp(&b.1)).unwrap();
@@ -164,20 +142,9 @@ fn rigid_motion_of_the_pose_moves_every_vertex_rigidly() {
             .zip(&case.mesh.positions)
             .map(|(m, v)| m.distance(motion * *v + offset))
             .enumerate()
-            .fold(
-                (0.0, 0),
-                |(max, at), (i, e)| if e > max { (e, i) } else { (max, at) },
-            );
-        println!(
-            "{}: rigid motion, worst {:.2e} × diagonal at vertex {at}",
-            case.name,
-            error / case.diagonal
-        );
-        assert!(
-            error <= 1e-9 * case.diagonal,
-            "{}: vertex {at} off by {error:e}",
-            case.name
-        );
+            .fold((0.0, 0), |(max, at), (i, e)| if e > max { (e, i) } else { (max, at) });
+        println!("{}: rigid motion, worst {:.2e} × diagonal at vertex {at}", case.name, error / case.diagonal);
+        assert!(error <= 1e-9 * case.diagonal, "{}: vertex {at} off by {error:e}", case.name);
     }
 }
 
@@ -187,26 +154,15 @@ fn f32_twin_binds_like_the_f64_reference() {
         let rest = case.rig.rest();
         let coefficients = SweepCoefficients::new(rest);
         let tables = bind_segments(rest);
-        let inputs = cpu::bind::BindInputs {
-            segments: &coefficients.segments,
-            patches: &coefficients.patches,
-            bind_segments: &tables,
-            sweeps: &coefficients.sweeps,
-        };
+        let inputs =
+            cpu::bind::BindInputs { cells: &coefficients.cells, bind_segments: &tables, sweeps: &coefficients.sweeps };
         let owners: Vec<u32> = case.bindings.iter().map(|b| b.sweep).collect();
-        let positions: Vec<f32> = case
-            .mesh
-            .positions
-            .iter()
-            .flat_map(|p| p.as_vec3().to_array())
-            .collect();
+        let positions: Vec<f32> = case.mesh.positions.iter().flat_map(|p| p.as_vec3().to_array()).collect();
         let twin = cpu::bind::bind(&inputs, &owners, &positions);
         let mut worst = (0.0f64, 0usize);
         let mut flips = 0;
         for (i, (b32, b64)) in twin.iter().zip(&case.bindings).enumerate() {
-            let cell = coefficients.patches[b32.cell as usize];
-            let segment = tables[cell.segment as usize];
-            let t32 = segment.t0 as f64 + b32.s as f64 * (segment.t1 - segment.t0) as f64;
+            let t32 = coefficients.reference_binding(rest, b32).params.t;
             let dt = (t32 - b64.params.t).abs();
             if dt > 1e-3 {
                 flips += 1;
@@ -218,17 +174,7 @@ fn f32_twin_binds_like_the_f64_reference() {
             "{}: f32 twin vs f64 |Δt| worst {:.2e} at vertex {}, {flips} vertices chose another root",
             case.name, worst.0, worst.1
         );
-        assert!(
-            worst.0 <= 1e-5,
-            "{}: |Δt| = {:e} at vertex {}",
-            case.name,
-            worst.0,
-            worst.1
-        );
-        assert!(
-            flips * 1000 <= twin.len(),
-            "{}: {flips} vertices bound to another root",
-            case.name
-        );
+        assert!(worst.0 <= 1e-5, "{}: |Δt| = {:e} at vertex {}", case.name, worst.0, worst.1);
+        assert!(flips * 1000 <= twin.len(), "{}: {flips} vertices bound to another root", case.name);
     }
 }

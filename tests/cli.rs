@@ -8,7 +8,7 @@ mod common;
 use std::f64::consts::PI;
 use std::fs;
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
 
 use glam::DVec3;
 use sweepffd::bind::bind_vertices;
@@ -19,21 +19,13 @@ use sweepffd::synthetic::{BendTwistTaper, Tube, tube_rig};
 
 /// Runs the command line in `dir`.
 fn run(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_sweepffd"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .unwrap()
+    common::sweepffd(dir).args(args).output().unwrap()
 }
 
 /// Runs the command line in `dir`, expects success, and returns stdout.
 fn succeed(dir: &Path, args: &[&str]) -> String {
     let output = run(dir, args);
-    assert!(
-        output.status.success(),
-        "{args:?} failed: {}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    assert!(output.status.success(), "{args:?} failed: {}", String::from_utf8_lossy(&output.stderr));
     String::from_utf8(output.stdout).unwrap()
 }
 
@@ -44,21 +36,14 @@ fn worst_distance(a: &[DVec3], b: &[DVec3]) -> (f64, usize) {
         .zip(b)
         .map(|(p, q)| p.distance(*q))
         .enumerate()
-        .fold(
-            (0.0, 0),
-            |(max, at), (i, d)| if d > max { (d, i) } else { (max, at) },
-        )
+        .fold((0.0, 0), |(max, at), (i, d)| if d > max { (d, i) } else { (max, at) })
 }
 
 /// Asserts equal face lists, naming the first face that differs.
 fn assert_same_faces(output: &Mesh, input: &Mesh, what: &str) {
     assert_eq!(output.faces.len(), input.faces.len(), "{what}: face count");
     if let Some(f) = (0..input.faces.len()).find(|&f| output.faces.face(f) != input.faces.face(f)) {
-        panic!(
-            "{what}: face {f} is {:?}, the input's is {:?}",
-            output.faces.face(f),
-            input.faces.face(f)
-        );
+        panic!("{what}: face {f} is {:?}, the input's is {:?}", output.faces.face(f), input.faces.face(f));
     }
 }
 
@@ -76,12 +61,7 @@ fn assert_only_vertex_lines_differ(output: &[u8], input: &[u8]) {
     assert_eq!(output.len(), input.len(), "line count");
     for (number, (out, inp)) in output.iter().zip(&input).enumerate() {
         if is_vertex_line(inp) {
-            assert!(
-                is_vertex_line(out),
-                "line {}: a v line became {:?}",
-                number + 1,
-                String::from_utf8_lossy(out)
-            );
+            assert!(is_vertex_line(out), "line {}: a v line became {:?}", number + 1, String::from_utf8_lossy(out));
         } else {
             assert_eq!(
                 out,
@@ -102,11 +82,7 @@ fn demo_writes_its_scene_and_deform_reproduces_it() {
     let out = Path::new("sweepffd-demo");
     for name in ["rest.obj", "deformed.obj", "rig.json", "pose.json"] {
         let path = out.join(name);
-        assert!(
-            dir.path().join(&path).is_file(),
-            "{} missing",
-            path.display()
-        );
+        assert!(dir.path().join(&path).is_file(), "{} missing", path.display());
         assert!(
             stdout.contains(&format!("wrote {}", path.display())),
             "stdout does not say where {name} went:\n{stdout}"
@@ -118,10 +94,7 @@ fn demo_writes_its_scene_and_deform_reproduces_it() {
     let deformed = Mesh::load(&demo.join("deformed.obj")).unwrap();
     assert_same_faces(&deformed, &rest, "deformed.obj");
     let (moved, _) = worst_distance(&deformed.positions, &rest.positions);
-    assert!(
-        moved > 0.1 * rest.diagonal(),
-        "the demo pose moves vertices by at most {moved}"
-    );
+    assert!(moved > 0.1 * rest.diagonal(), "the demo pose moves vertices by at most {moved}");
 
     succeed(
         dir.path(),
@@ -136,6 +109,8 @@ fn demo_writes_its_scene_and_deform_reproduces_it() {
             "sweepffd-demo/pose.json",
             "--out",
             "again.obj",
+            "--backend",
+            "cpu",
         ],
     );
     let again = Mesh::load(&dir.path().join("again.obj")).unwrap();
@@ -164,17 +139,10 @@ fn demo_out_names_the_folder() {
 fn quiet_demo_prints_nothing() {
     let dir = tempfile::tempdir().unwrap();
     // The flag is global: before or after the subcommand.
-    for args in [
-        &["--quiet", "demo", "--out", "before"][..],
-        &["demo", "--out", "after", "-q"][..],
-    ] {
+    for args in [&["--quiet", "demo", "--out", "before"][..], &["demo", "--out", "after", "-q"][..]] {
         let output = run(dir.path(), args);
         assert!(output.status.success(), "{args:?}");
-        assert!(
-            output.stdout.is_empty(),
-            "{args:?} printed {:?}",
-            String::from_utf8_lossy(&output.stdout)
-        );
+        assert!(output.stdout.is_empty(), "{args:?} printed {:?}", String::from_utf8_lossy(&output.stdout));
         assert!(output.stderr.is_empty(), "{args:?}");
     }
     for out in ["before", "after"] {
@@ -183,11 +151,7 @@ fn quiet_demo_prints_nothing() {
 }
 
 /// The pose of the acceptance test: a quarter-turn bend, a 0.4π twist and a taper to 60%.
-const BUNNY_POSE: BendTwistTaper = BendTwistTaper {
-    bend: 0.5 * PI,
-    twist: 0.4 * PI,
-    taper: 0.6,
-};
+const BUNNY_POSE: BendTwistTaper = BendTwistTaper { bend: 0.5 * PI, twist: 0.4 * PI, taper: 0.6 };
 
 /// Poses the shared mesh `name` through the command line into each of `outputs`, once with
 /// bindings from `bind` and once binding anew, and checks each result against the input.
@@ -204,35 +168,15 @@ fn pose_shared_mesh(name: &str, outputs: &[&str]) {
     let pose = rig.pose_document(&BUNNY_POSE.keys(&rig));
     fs::write(dir.path().join("pose.json"), pose.to_json()).unwrap();
 
-    let stdout = succeed(
-        dir.path(),
-        &[
-            "bind",
-            "--mesh",
-            input_name.as_str(),
-            "--rig",
-            "rig.json",
-            "--out",
-            "b.sffd",
-        ],
-    );
+    let stdout = succeed(dir.path(), &["bind", "--mesh", input_name.as_str(), "--rig", "rig.json", "--out", "b.sffd"]);
     assert!(stdout.contains("-> b.sffd"), "{stdout}");
 
     for output in outputs {
         let with = format!("with_bindings_{output}");
         let without = format!("without_bindings_{output}");
         let deform = |out: &str, bindings: Option<&str>| {
-            let mut args = vec![
-                "deform",
-                "--mesh",
-                input_name.as_str(),
-                "--rig",
-                "rig.json",
-                "--pose",
-                "pose.json",
-                "--out",
-                out,
-            ];
+            let mut args =
+                vec!["deform", "--mesh", input_name.as_str(), "--rig", "rig.json", "--pose", "pose.json", "--out", out];
             args.extend(bindings.iter().flat_map(|b| ["--bindings", *b]));
             let stdout = succeed(dir.path(), &args);
             assert!(stdout.contains(&format!("-> {out}")), "{stdout}");
@@ -245,13 +189,10 @@ fn pose_shared_mesh(name: &str, outputs: &[&str]) {
         for (mesh, what) in [(&loaded, &with), (&rebound, &without)] {
             assert_eq!(mesh.positions.len(), input.positions.len(), "{what}");
             assert_same_faces(mesh, &input, what);
-            assert!(
-                mesh.positions.iter().all(|p| p.is_finite()),
-                "{what} has a non-finite coordinate"
-            );
+            assert!(mesh.positions.iter().all(|p| p.is_finite()), "{what} has a non-finite coordinate");
         }
-        if let Some(i) = (0..input.positions.len())
-            .find(|&i| loaded.positions[i].to_array() != rebound.positions[i].to_array())
+        if let Some(i) =
+            (0..input.positions.len()).find(|&i| loaded.positions[i].to_array() != rebound.positions[i].to_array())
         {
             panic!(
                 "{output}: vertex {i} is {} with bindings and {} without",
@@ -259,20 +200,14 @@ fn pose_shared_mesh(name: &str, outputs: &[&str]) {
             );
         }
         let (moved, at) = worst_distance(&loaded.positions, &input.positions);
-        println!(
-            "{name} -> {output}: largest displacement {:.3} × diagonal at vertex {at}",
-            moved / input.diagonal()
-        );
+        println!("{name} -> {output}: largest displacement {:.3} × diagonal at vertex {at}", moved / input.diagonal());
         assert!(
             moved > 0.2 * input.diagonal(),
             "{output}: the pose moves vertices by only {:.3e} × diagonal",
             moved / input.diagonal()
         );
         if input_name.ends_with(".obj") && output.ends_with(".obj") {
-            assert_only_vertex_lines_differ(
-                &fs::read(dir.path().join(&with)).unwrap(),
-                &fs::read(&source).unwrap(),
-            );
+            assert_only_vertex_lines_differ(&fs::read(dir.path().join(&with)).unwrap(), &fs::read(&source).unwrap());
         }
     }
 }
@@ -324,21 +259,13 @@ fn volume(dir: &Path, args: &[&str]) -> (Vec<(String, f64)>, f64) {
         .as_array()
         .unwrap()
         .iter()
-        .map(|s| {
-            (
-                s["name"].as_str().unwrap().to_string(),
-                s["volume"].as_f64().unwrap(),
-            )
-        })
+        .map(|s| (s["name"].as_str().unwrap().to_string(), s["volume"].as_f64().unwrap()))
         .collect();
     (sweeps, report["total"].as_f64().unwrap())
 }
 
 fn assert_relative(found: f64, expected: f64, what: &str) {
-    assert!(
-        ((found - expected) / expected).abs() <= 1e-9,
-        "{what}: {found} vs {expected}"
-    );
+    assert!(((found - expected) / expected).abs() <= 1e-9, "{what}: {found} vs {expected}");
 }
 
 #[test]
@@ -360,10 +287,7 @@ fn volume_with_pose_reports_the_posed_volume() {
     let dir = tempfile::tempdir().unwrap();
     fs::write(dir.path().join("rig.json"), STRAIGHT_RIG).unwrap();
     fs::write(dir.path().join("pose.json"), STRAIGHT_POSE).unwrap();
-    let (sweeps, total) = volume(
-        dir.path(),
-        &["volume", "--rig", "rig.json", "--pose", "pose.json"],
-    );
+    let (sweeps, total) = volume(dir.path(), &["volume", "--rig", "rig.json", "--pose", "pose.json"]);
     let straight = PI * 0.5 * 0.5 * 4.0;
     let thin = PI * 0.25 * 0.25 * 1.0;
     assert_eq!(sweeps[0].0, "straight");
@@ -375,35 +299,18 @@ fn volume_with_pose_reports_the_posed_volume() {
 #[test]
 fn bind_file_round_trips_through_the_library() {
     let dir = tempfile::tempdir().unwrap();
-    let tube = Tube {
-        rings: 12,
-        around: 16,
-        length: 3.0,
-        radius: 0.4,
-    };
+    let tube = Tube { rings: 12, around: 16, length: 3.0, radius: 0.4 };
     let mesh = tube.mesh();
-    mesh.save(&dir.path().join("tube.obj"), &mesh.positions)
-        .unwrap();
+    mesh.save(&dir.path().join("tube.obj"), &mesh.positions).unwrap();
     let rig = tube_rig(&tube, 4, 8);
     fs::write(dir.path().join("rig.json"), rig.to_document().to_json()).unwrap();
 
     let stdout = succeed(
         dir.path(),
-        &[
-            "bind",
-            "--mesh",
-            "tube.obj",
-            "--rig",
-            "rig.json",
-            "--out",
-            "tube.sffd",
-        ],
+        &["bind", "--mesh", "tube.obj", "--rig", "rig.json", "--out", "tube.sffd", "--backend", "cpu"],
     );
     let count = tube.vertex_count();
-    assert!(
-        stdout.starts_with(&format!("bound {count} of {count} vertices to 1 sweeps")),
-        "{stdout}"
-    );
+    assert!(stdout.starts_with(&format!("bound {count} of {count} vertices to 1 sweeps")), "{stdout}");
 
     let path = dir.path().join("tube.sffd");
     let file = BindingsFile::load(&path).unwrap();
@@ -419,31 +326,65 @@ fn bind_file_round_trips_through_the_library() {
 }
 
 #[test]
+fn gpu_backend_binds_and_deforms_like_the_cpu() {
+    if common::gpu().is_none() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let tube = Tube { rings: 40, around: 32, length: 3.0, radius: 0.4 };
+    let mesh = tube.mesh();
+    mesh.save(&dir.path().join("tube.obj"), &mesh.positions).unwrap();
+    let rig = tube_rig(&tube, 5, 8);
+    fs::write(dir.path().join("rig.json"), rig.to_document().to_json()).unwrap();
+    let pose = rig.pose_document(&sweepffd::synthetic::BendTwistTaper { bend: 1.0, twist: 1.5, taper: 0.5 }.keys(&rig));
+    fs::write(dir.path().join("pose.json"), pose.to_json()).unwrap();
+    let base = ["--mesh", "tube.obj", "--rig", "rig.json"];
+    let deform = [&base[..], &["--pose", "pose.json"]].concat();
+
+    // Bindings made on the GPU equal the CPU's to f32 precision, whichever backend then deforms.
+    succeed(dir.path(), &[&["bind"][..], &base, &["--out", "gpu.sffd", "--backend", "gpu"]].concat());
+    succeed(dir.path(), &[&["bind"][..], &base, &["--out", "cpu.sffd", "--backend", "cpu"]].concat());
+    let (gpu, cpu) = (
+        BindingsFile::load(&dir.path().join("gpu.sffd")).unwrap(),
+        BindingsFile::load(&dir.path().join("cpu.sffd")).unwrap(),
+    );
+    let worst_t =
+        gpu.bindings.iter().zip(&cpu.bindings).map(|(g, c)| (g.params.t - c.params.t).abs()).fold(0.0, f64::max);
+    assert!(worst_t <= 1e-5, "GPU bindings differ from the CPU's by |Δt| = {worst_t:e}");
+
+    let runs = [
+        ("cpu", "cpu.sffd", "a.obj"),
+        ("gpu", "cpu.sffd", "b.obj"),
+        ("gpu", "gpu.sffd", "c.obj"),
+        ("cpu", "gpu.sffd", "d.obj"),
+    ];
+    for (backend, bindings, out) in runs {
+        succeed(
+            dir.path(),
+            &[&["deform"][..], &deform, &["--bindings", bindings, "--out", out, "--backend", backend]].concat(),
+        );
+    }
+    let reference = Mesh::load(&dir.path().join("a.obj")).unwrap();
+    for (_, _, out) in &runs[1..] {
+        let other = Mesh::load(&dir.path().join(out)).unwrap();
+        let (error, at) = worst_distance(&other.positions, &reference.positions);
+        assert!(error <= 1e-5 * reference.diagonal(), "{out} differs by {error:e} at vertex {at}");
+    }
+}
+
+#[test]
 fn help_of_each_subcommand_lists_its_options() {
     let dir = tempfile::tempdir().unwrap();
     let cases: [(&str, &[&str]); 4] = [
         ("bind", &["--mesh", "--rig", "--out", "--quiet"]),
-        (
-            "deform",
-            &[
-                "--mesh",
-                "--rig",
-                "--pose",
-                "--out",
-                "--bindings",
-                "--quiet",
-            ],
-        ),
+        ("deform", &["--mesh", "--rig", "--pose", "--out", "--bindings", "--quiet"]),
         ("volume", &["--rig", "--pose", "--quiet"]),
         ("demo", &["--out", "--quiet"]),
     ];
     for (command, options) in cases {
         let help = succeed(dir.path(), &[command, "--help"]);
         for option in options {
-            assert!(
-                help.contains(option),
-                "`{command} --help` does not mention {option}:\n{help}"
-            );
+            assert!(help.contains(option), "`{command} --help` does not mention {option}:\n{help}");
         }
     }
     let help = succeed(dir.path(), &["--help"]);

@@ -21,21 +21,7 @@ const T_TOLERANCE: f64 = 1e-5;
 const POSITION_TOLERANCE: f64 = 1e-5;
 const NORMAL_TOLERANCE: f32 = 1e-3;
 
-const POSE: BendTwistTaper = BendTwistTaper {
-    bend: 1.2,
-    twist: 1.7,
-    taper: 0.6,
-};
-
-/// The global parameter t of a GPU binding.
-fn t_of(
-    binding: &GpuBinding,
-    coefficients: &SweepCoefficients,
-    tables: &[sweepffd::coeffs::BindSegment],
-) -> f64 {
-    let segment = tables[coefficients.patches[binding.cell as usize].segment as usize];
-    segment.t0 as f64 + binding.s as f64 * (segment.t1 - segment.t0) as f64
-}
+const POSE: BendTwistTaper = BendTwistTaper { bend: 1.2, twist: 1.7, taper: 0.6 };
 
 fn check(name: &str, mesh: &Mesh, rig: &Rig) {
     let Some(context) = common::gpu() else { return };
@@ -44,40 +30,24 @@ fn check(name: &str, mesh: &Mesh, rig: &Rig) {
     let rest = rig.rest();
 
     // Binding: GPU vs twin.
-    let mut deformer = GpuDeformer::new(
-        context,
-        rest,
-        &mesh.positions,
-        BindingSource::Bind { owners: &owners },
-        Some(&mesh.faces),
-    )
-    .unwrap();
+    let mut deformer =
+        GpuDeformer::new(context, rest, &mesh.positions, BindingSource::Bind { owners: &owners }, Some(&mesh.faces))
+            .unwrap();
     let gpu_bindings = deformer.read_bindings().unwrap();
     let mut coefficients = SweepCoefficients::new(rest);
     let tables = bind_segments(rest);
-    let inputs = cpu::bind::BindInputs {
-        segments: &coefficients.segments,
-        patches: &coefficients.patches,
-        bind_segments: &tables,
-        sweeps: &coefficients.sweeps,
-    };
-    let rest_f32: Vec<f32> = mesh
-        .positions
-        .iter()
-        .flat_map(|p| p.as_vec3().to_array())
-        .collect();
+    let inputs =
+        cpu::bind::BindInputs { cells: &coefficients.cells, bind_segments: &tables, sweeps: &coefficients.sweeps };
+    let rest_f32: Vec<f32> = mesh.positions.iter().flat_map(|p| p.as_vec3().to_array()).collect();
     let twin_bindings = cpu::bind::bind(&inputs, &owners, &rest_f32);
     let (mut worst_dt, mut worst_at) = (0.0, 0);
     for (i, (gpu, twin)) in gpu_bindings.iter().zip(&twin_bindings).enumerate() {
-        assert_eq!(
-            gpu.cell == UNBOUND,
-            twin.cell == UNBOUND,
-            "{name}: vertex {i} bound on one side only"
-        );
+        assert_eq!(gpu.cell == UNBOUND, twin.cell == UNBOUND, "{name}: vertex {i} bound on one side only");
         if gpu.cell == UNBOUND {
             continue;
         }
-        let dt = (t_of(gpu, &coefficients, &tables) - t_of(twin, &coefficients, &tables)).abs();
+        let t = |b: &GpuBinding| coefficients.reference_binding(rest, b).params.t;
+        let dt = (t(gpu) - t(twin)).abs();
         if dt > worst_dt {
             (worst_dt, worst_at) = (dt, i);
         }
@@ -96,12 +66,7 @@ fn check(name: &str, mesh: &Mesh, rig: &Rig) {
     let gpu_positions = deformer.read_positions().unwrap();
     coefficients.update(&posed).unwrap();
     let mut twin_positions = rest_f32.clone();
-    cpu::deform::deform(
-        &coefficients.segments,
-        &coefficients.patches,
-        &twin_bindings,
-        &mut twin_positions,
-    );
+    cpu::deform::deform(&coefficients.cells, &twin_bindings, &mut twin_positions);
     let (error, ulps, at) = common::worst_f32(&gpu_positions, &twin_positions);
     println!(
         "{name}: deform, max |Δ| {error:.3e} ({:.2e} × diagonal), max {ulps} ULP, worst vertex {}",
@@ -122,24 +87,13 @@ fn check(name: &str, mesh: &Mesh, rig: &Rig) {
     cpu::normals::normals(&gpu_positions, &adjacency, &mut twin_normals);
     let (angle, at) = worst_angle(&gpu_normals, &twin_normals);
     println!("{name}: normals, GPU vs twin worst angle {angle:.2e} rad at vertex {at}");
-    assert!(
-        angle <= NORMAL_TOLERANCE,
-        "{name}: GPU normal off the twin's by {angle} rad at vertex {at}"
-    );
-    let positions64: Vec<DVec3> = gpu_positions
-        .chunks_exact(3)
-        .map(|p| Vec3::from_slice(p).as_dvec3())
-        .collect();
-    let reference: Vec<f32> = vertex_normals(&positions64, &adjacency)
-        .iter()
-        .flat_map(|n| n.as_vec3().to_array())
-        .collect();
+    assert!(angle <= NORMAL_TOLERANCE, "{name}: GPU normal off the twin's by {angle} rad at vertex {at}");
+    let positions64: Vec<DVec3> = gpu_positions.chunks_exact(3).map(|p| Vec3::from_slice(p).as_dvec3()).collect();
+    let reference: Vec<f32> =
+        vertex_normals(&positions64, &adjacency).iter().flat_map(|n| n.as_vec3().to_array()).collect();
     let (angle, at) = worst_angle(&twin_normals, &reference);
     println!("{name}: normals, twin vs f64 worst angle {angle:.2e} rad at vertex {at}");
-    assert!(
-        angle <= NORMAL_TOLERANCE,
-        "{name}: twin normal off the f64 one by {angle} rad at vertex {at}"
-    );
+    assert!(angle <= NORMAL_TOLERANCE, "{name}: twin normal off the f64 one by {angle} rad at vertex {at}");
 }
 
 /// The largest angle between corresponding normals (zero normals must match exactly) and the
@@ -148,10 +102,7 @@ fn check(name: &str, mesh: &Mesh, rig: &Rig) {
 fn worst_angle(a: &[f32], b: &[f32]) -> (f32, usize) {
     let mut worst = (0.0f32, 0);
     for (i, (x, y)) in a.chunks_exact(3).zip(b.chunks_exact(3)).enumerate() {
-        let (x, y) = (
-            Vec3::from_slice(x).as_dvec3(),
-            Vec3::from_slice(y).as_dvec3(),
-        );
+        let (x, y) = (Vec3::from_slice(x).as_dvec3(), Vec3::from_slice(y).as_dvec3());
         let angle = match (x == DVec3::ZERO, y == DVec3::ZERO) {
             (true, true) => 0.0,
             (false, false) => x.cross(y).length().atan2(x.dot(y)) as f32,

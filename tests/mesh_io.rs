@@ -18,18 +18,14 @@ fn load(name: &str) -> Option<Mesh> {
 }
 
 fn dir_names(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> = fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
+    let mut names: Vec<String> =
+        fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
     names.sort();
     names
 }
 
 fn parse_ply(bytes: &[u8]) -> Ply<DefaultElement> {
-    Parser::<DefaultElement>::new()
-        .read_ply(&mut &bytes[..])
-        .unwrap()
+    Parser::<DefaultElement>::new().read_ply(&mut &bytes[..]).unwrap()
 }
 
 /// Largest |a − b| over all coordinates, with the index of the worst vertex.
@@ -39,10 +35,7 @@ fn worst_difference(a: &[DVec3], b: &[DVec3]) -> (f64, usize) {
         .zip(b)
         .map(|(p, q)| (p - q).abs().max_element())
         .enumerate()
-        .fold(
-            (0.0, 0),
-            |(m, w), (i, d)| if d > m { (d, i) } else { (m, w) },
-        )
+        .fold((0.0, 0), |(m, w), (i, d)| if d > m { (d, i) } else { (m, w) })
 }
 
 #[test]
@@ -88,10 +81,7 @@ fn mcguire_teapot_has_quads_triangles_and_two_groups() {
     let in_groups: usize = mesh.groups.iter().map(|g| g.faces.len()).sum();
     assert_eq!(in_groups, mesh.faces.len());
     let (min, max) = mesh.bounds();
-    assert!(
-        (min.x + 71.9).abs() < 0.05 && (max.x - 82.3).abs() < 0.05,
-        "{min} {max}"
-    );
+    assert!((min.x + 71.9).abs() < 0.05 && (max.x - 82.3).abs() < 0.05, "{min} {max}");
 }
 
 #[test]
@@ -106,10 +96,7 @@ fn spot_control_mesh_has_pentagons_quads_and_triangles() {
 
 #[test]
 fn bunny_obj_and_ply_agree() {
-    let (Some(obj), Some(ply)) = (
-        load("bunny_stanford_zipper.obj"),
-        load("bunny_stanford_zipper.ply"),
-    ) else {
+    let (Some(obj), Some(ply)) = (load("bunny_stanford_zipper.obj"), load("bunny_stanford_zipper.ply")) else {
         return;
     };
     assert_eq!(obj.faces, ply.faces);
@@ -138,11 +125,7 @@ fn teapot_parts_groups_match_the_readme() {
     }
     let body = mesh.group_vertices("body").unwrap();
     let handle = mesh.group_vertices("handle").unwrap();
-    let shared: Vec<u32> = body
-        .iter()
-        .copied()
-        .filter(|v| handle.binary_search(v).is_ok())
-        .collect();
+    let shared: Vec<u32> = body.iter().copied().filter(|v| handle.binary_search(v).is_ok()).collect();
     assert_eq!(shared, vec![375]);
     assert_eq!(mesh.positions[375], DVec3::new(-2.0, 0.9, 0.0));
     assert_eq!(mesh.group_vertices("spoon"), None);
@@ -164,10 +147,7 @@ fn faithful_obj_save_of_shared_meshes_is_byte_identical() {
         let mesh = Mesh::load(&path).unwrap();
         let out = dir.path().join("out.obj");
         mesh.save(&out, &mesh.positions).unwrap();
-        assert!(
-            fs::read(&out).unwrap() == fs::read(&path).unwrap(),
-            "{name}"
-        );
+        assert!(fs::read(&out).unwrap() == fs::read(&path).unwrap(), "{name}");
     }
 }
 
@@ -207,30 +187,17 @@ fn faithful_obj_save_changes_exactly_the_moved_vertex_lines() {
 
     let before = fs::read_to_string(&path).unwrap();
     let after = fs::read_to_string(&out).unwrap();
-    let (before, after): (Vec<&str>, Vec<&str>) =
-        (before.lines().collect(), after.lines().collect());
+    let (before, after): (Vec<&str>, Vec<&str>) = (before.lines().collect(), after.lines().collect());
     assert_eq!(before.len(), after.len());
-    let vertex_lines: Vec<usize> = (0..before.len())
-        .filter(|&i| before[i].starts_with("v "))
-        .collect();
+    let vertex_lines: Vec<usize> = (0..before.len()).filter(|&i| before[i].starts_with("v ")).collect();
     let expected: Vec<usize> = moved_vertices.iter().map(|&v| vertex_lines[v]).collect();
-    let changed: Vec<usize> = (0..before.len())
-        .filter(|&i| before[i] != after[i])
-        .collect();
+    let changed: Vec<usize> = (0..before.len()).filter(|&i| before[i] != after[i]).collect();
     assert_eq!(changed, expected);
     for &v in &moved_vertices {
         let p = positions[v];
-        let numbers: Vec<f64> = after[vertex_lines[v]]
-            .strip_prefix("v ")
-            .unwrap()
-            .split_whitespace()
-            .map(|n| n.parse().unwrap())
-            .collect();
-        assert_eq!(
-            numbers,
-            vec![p.x, p.y, p.z],
-            "the rewritten line reads back exactly"
-        );
+        let numbers: Vec<f64> =
+            after[vertex_lines[v]].strip_prefix("v ").unwrap().split_whitespace().map(|n| n.parse().unwrap()).collect();
+        assert_eq!(numbers, vec![p.x, p.y, p.z], "the rewritten line reads back exactly");
     }
     let reloaded = Mesh::load(&out).unwrap();
     assert_eq!(reloaded.positions, positions);
@@ -271,10 +238,7 @@ fn faithful_ply_save_of_binary_bunny_keeps_data_and_moves_only_moved_vertices() 
         assert_eq!(mesh.positions.len(), 35_947);
         let out = dir.path().join("out.ply");
         mesh.save(&out, &mesh.positions).unwrap();
-        assert!(
-            parse_ply(&fs::read(&out).unwrap()) == binary,
-            "{encoding:?}"
-        );
+        assert!(parse_ply(&fs::read(&out).unwrap()) == binary, "{encoding:?}");
 
         let mut positions = mesh.positions.clone();
         positions[7] = DVec3::new(0.5, 0.25, -0.125);
@@ -284,10 +248,7 @@ fn faithful_ply_save_of_binary_bunny_keeps_data_and_moves_only_moved_vertices() 
         for (name, value) in [("x", 0.5), ("y", 0.25), ("z", -0.125)] {
             vertex.insert(name.to_string(), Property::Float(value));
         }
-        assert!(
-            parse_ply(&fs::read(&out).unwrap()) == expected,
-            "{encoding:?}"
-        );
+        assert!(parse_ply(&fs::read(&out).unwrap()) == expected, "{encoding:?}");
         assert_eq!(Mesh::load(&out).unwrap().positions, positions);
     }
 }
@@ -304,16 +265,8 @@ fn obj_to_ply_generic_save_round_trips_within_f32() {
     assert_eq!(back.faces, mesh.faces);
     assert!(back.groups.is_empty());
     let (worst, at) = worst_difference(&back.positions, &mesh.positions);
-    let tolerance = mesh
-        .positions
-        .iter()
-        .map(|p| p.abs().max_element())
-        .fold(0.0, f64::max)
-        * f64::from(f32::EPSILON);
-    assert!(
-        worst <= tolerance,
-        "worst {worst} at vertex {at}, tolerance {tolerance}"
-    );
+    let tolerance = mesh.positions.iter().map(|p| p.abs().max_element()).fold(0.0, f64::max) * f64::from(f32::EPSILON);
+    assert!(worst <= tolerance, "worst {worst} at vertex {at}, tolerance {tolerance}");
     assert!(worst > 0.0, "f32 rounding should show somewhere");
 }
 
@@ -340,14 +293,8 @@ fn generic_obj_save_of_built_mesh_keeps_groups() {
         faces.push(&face);
     }
     let groups = vec![
-        FaceGroup {
-            name: "bottom".into(),
-            faces: vec![0],
-        },
-        FaceGroup {
-            name: "sides".into(),
-            faces: vec![1, 2, 3],
-        },
+        FaceGroup { name: "bottom".into(), faces: vec![0] },
+        FaceGroup { name: "sides".into(), faces: vec![1, 2, 3] },
     ];
     let mesh = Mesh::from_parts(positions, faces, groups).unwrap();
     let dir = tempfile::tempdir().unwrap();
@@ -380,24 +327,15 @@ fn failed_saves_leave_no_file_and_no_temporary() {
 
     let out = dir.path().join("out.ply");
     let err = mesh.save(&out, &mesh.positions[..2]).unwrap_err();
-    assert_eq!(
-        err.to_string(),
-        "positions has 2 entries but the mesh has 3 vertices"
-    );
+    assert_eq!(err.to_string(), "positions has 2 entries but the mesh has 3 vertices");
 
     let nan = vec![DVec3::ZERO, DVec3::X, DVec3::new(0.0, f64::NAN, 0.0)];
     let err = mesh.save(&out, &nan).unwrap_err();
     assert_eq!(err.to_string(), "vertex 2 has a non-finite coordinate");
 
-    let err = mesh
-        .save(&dir.path().join("out.stl"), &mesh.positions)
-        .unwrap_err();
+    let err = mesh.save(&dir.path().join("out.stl"), &mesh.positions).unwrap_err();
     assert!(matches!(err, MeshError::UnsupportedFormat { .. }), "{err}");
-    assert!(
-        dir_names(dir.path()).is_empty(),
-        "{:?}",
-        dir_names(dir.path())
-    );
+    assert!(dir_names(dir.path()).is_empty(), "{:?}", dir_names(dir.path()));
 
     fs::write(&out, b"keep").unwrap();
     assert!(mesh.save(&out, &mesh.positions[..1]).is_err());
@@ -409,50 +347,29 @@ fn failed_saves_leave_no_file_and_no_temporary() {
 fn load_errors_name_the_file() {
     let err = Mesh::load(Path::new("no_such_mesh.obj")).unwrap_err();
     assert!(matches!(err, MeshError::Read { .. }), "{err}");
-    assert!(
-        err.to_string()
-            .starts_with("cannot read no_such_mesh.obj: "),
-        "{err}"
-    );
+    assert!(err.to_string().starts_with("cannot read no_such_mesh.obj: "), "{err}");
     let err = Mesh::load(Path::new("x.stl")).unwrap_err();
-    assert_eq!(
-        err.to_string(),
-        "x.stl: unsupported mesh format (expected .obj or .ply)"
-    );
+    assert_eq!(err.to_string(), "x.stl: unsupported mesh format (expected .obj or .ply)");
 
     let dir = tempfile::tempdir().unwrap();
     let empty = dir.path().join("empty.obj");
     fs::write(&empty, b"# nothing here\n").unwrap();
     let err = Mesh::load(&empty).unwrap_err();
-    assert_eq!(
-        err.to_string(),
-        format!("{}: the mesh has no vertices", empty.display())
-    );
+    assert_eq!(err.to_string(), format!("{}: the mesh has no vertices", empty.display()));
 
     let bad = dir.path().join("bad.ply");
     fs::write(&bad, b"\x00\x01binary garbage\xff").unwrap();
     let err = Mesh::load(&bad).unwrap_err();
-    assert!(
-        err.to_string()
-            .starts_with(&format!("{}: not a valid PLY file: ", bad.display())),
-        "{err}"
-    );
+    assert!(err.to_string().starts_with(&format!("{}: not a valid PLY file: ", bad.display())), "{err}");
 }
 
 fn volume_after_translation(name: &str) {
     let Some(mesh) = load(name) else { return };
     let v = mesh.enclosed_volume(&mesh.positions);
     assert!(v > 0.0, "{name}: volume {v}");
-    let shifted: Vec<DVec3> = mesh
-        .positions
-        .iter()
-        .map(|&p| p + DVec3::new(1000.0, -1000.0, 1000.0))
-        .collect();
+    let shifted: Vec<DVec3> = mesh.positions.iter().map(|&p| p + DVec3::new(1000.0, -1000.0, 1000.0)).collect();
     let w = mesh.enclosed_volume(&shifted);
-    assert!(
-        ((w - v) / v).abs() < 1e-9,
-        "{name}: {v} vs {w} after translation"
-    );
+    assert!(((w - v) / v).abs() < 1e-9, "{name}: {v} vs {w} after translation");
 }
 
 #[test]
@@ -497,10 +414,7 @@ fn inline_tetrahedron_has_its_closed_form_volume() {
 
 #[test]
 fn edited_faces_fall_back_to_the_generic_obj_writer() {
-    let mut mesh = load_inline(
-        "quad.obj",
-        "# a quad\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n",
-    );
+    let mut mesh = load_inline("quad.obj", "# a quad\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
     mesh.faces = Faces::new();
     mesh.faces.push(&[0, 1, 2]);
     mesh.faces.push(&[0, 2, 3]);

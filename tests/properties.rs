@@ -15,8 +15,7 @@ use sweepffd::sweep::{Key, Sweep};
 /// following the walk, radii between 0.1 and 0.6.
 fn keys() -> impl Strategy<Value = Vec<Key>> {
     (2usize..7, 3usize..13).prop_flat_map(|(n, m)| {
-        let steps =
-            prop::collection::vec((0.6f64..1.4, -1.0f64..1.0, -1.0f64..1.0, -0.5f64..0.5), n);
+        let steps = prop::collection::vec((0.6f64..1.4, -1.0f64..1.0, -1.0f64..1.0, -0.5f64..0.5), n);
         let radii = prop::collection::vec(prop::collection::vec(0.1f64..0.6, m), n);
         (steps, radii).prop_map(|(steps, radii)| {
             let mut rotation = DQuat::IDENTITY;
@@ -27,16 +26,11 @@ fn keys() -> impl Strategy<Value = Vec<Key>> {
                 .enumerate()
                 .map(|(i, (&(length, turn_x, turn_y, twist), radii))| {
                     if i > 0 {
-                        rotation = (rotation
-                            * DQuat::from_euler(glam::EulerRot::XYZ, turn_x, turn_y, twist))
-                        .normalize();
+                        rotation =
+                            (rotation * DQuat::from_euler(glam::EulerRot::XYZ, turn_x, turn_y, twist)).normalize();
                         center += rotation * DVec3::Z * length;
                     }
-                    Key {
-                        center,
-                        rotation,
-                        radii,
-                    }
+                    Key { center, rotation, radii }
                 })
                 .collect()
         })
@@ -66,15 +60,14 @@ proptest! {
         let coefficients = SweepCoefficients::new(&sweeps);
         let tables = bind_segments(&sweeps);
         let inputs = cpu::bind::BindInputs {
-            segments: &coefficients.segments,
-            patches: &coefficients.patches,
+            cells: &coefficients.cells,
             bind_segments: &tables,
             sweeps: &coefficients.sweeps,
         };
         let positions: Vec<f32> = points.iter().flat_map(|p| p.as_vec3().to_array()).collect();
         let bindings = cpu::bind::bind(&inputs, &vec![0; points.len()], &positions);
         let mut out = positions.clone();
-        cpu::deform::deform(&coefficients.segments, &coefficients.patches, &bindings, &mut out);
+        cpu::deform::deform(&coefficients.cells, &bindings, &mut out);
         for (i, v) in points.iter().enumerate() {
             let back = DVec3::new(out[3 * i] as f64, out[3 * i + 1] as f64, out[3 * i + 2] as f64);
             prop_assert!(back.distance(*v) <= 2e-5, "{v} came back as {back}");

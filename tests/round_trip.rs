@@ -29,12 +29,7 @@ fn case(name: &str) -> Option<Case> {
     let rig = common::axis_rig(&mesh, 9, 16);
     let owners = rig.owners(&mesh, name).unwrap();
     let diagonal = mesh.diagonal();
-    Some(Case {
-        mesh,
-        rig,
-        owners,
-        diagonal,
-    })
+    Some(Case { mesh, rig, owners, diagonal })
 }
 
 /// The largest distance between corresponding points and the index where it occurs.
@@ -43,10 +38,7 @@ fn worst(a: &[DVec3], b: &[DVec3]) -> (f64, usize) {
         .zip(b)
         .map(|(p, q)| p.distance(*q))
         .enumerate()
-        .fold(
-            (0.0, 0),
-            |(max, at), (i, d)| if d > max { (d, i) } else { (max, at) },
-        )
+        .fold((0.0, 0), |(max, at), (i, d)| if d > max { (d, i) } else { (max, at) })
 }
 
 fn f64_round_trip(case: &Case) -> Vec<Binding> {
@@ -55,15 +47,8 @@ fn f64_round_trip(case: &Case) -> Vec<Binding> {
     let mut back = vec![DVec3::ZERO; case.mesh.positions.len()];
     deform_vertices(case.rig.rest(), &bindings, &case.mesh.positions, &mut back);
     let (error, at) = worst(&back, &case.mesh.positions);
-    println!(
-        "f64 round trip: worst {:.3e} × diagonal at vertex {at}",
-        error / case.diagonal
-    );
-    assert!(
-        error <= F64_TOLERANCE * case.diagonal,
-        "vertex {at} moved by {error:e} (diagonal {})",
-        case.diagonal
-    );
+    println!("f64 round trip: worst {:.3e} × diagonal at vertex {at}", error / case.diagonal);
+    assert!(error <= F64_TOLERANCE * case.diagonal, "vertex {at} moved by {error:e} (diagonal {})", case.diagonal);
     bindings
 }
 
@@ -71,49 +56,22 @@ fn f32_twin_round_trip(case: &Case) {
     let rest = case.rig.rest();
     let coefficients = SweepCoefficients::new(rest);
     let bind_tables = bind_segments(rest);
-    let inputs = cpu::bind::BindInputs {
-        segments: &coefficients.segments,
-        patches: &coefficients.patches,
-        bind_segments: &bind_tables,
-        sweeps: &coefficients.sweeps,
-    };
-    let positions: Vec<f32> = case
-        .mesh
-        .positions
-        .iter()
-        .flat_map(|p| p.as_vec3().to_array())
-        .collect();
+    let inputs =
+        cpu::bind::BindInputs { cells: &coefficients.cells, bind_segments: &bind_tables, sweeps: &coefficients.sweeps };
+    let positions: Vec<f32> = case.mesh.positions.iter().flat_map(|p| p.as_vec3().to_array()).collect();
     let bindings = cpu::bind::bind(&inputs, &case.owners, &positions);
     let mut out = positions.clone();
-    cpu::deform::deform(
-        &coefficients.segments,
-        &coefficients.patches,
-        &bindings,
-        &mut out,
-    );
-    let back: Vec<DVec3> = out
-        .chunks_exact(3)
-        .map(|p| DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64))
-        .collect();
+    cpu::deform::deform(&coefficients.cells, &bindings, &mut out);
+    let back: Vec<DVec3> = out.chunks_exact(3).map(|p| DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64)).collect();
     let (error, at) = worst(&back, &case.mesh.positions);
-    println!(
-        "f32 twin round trip: worst {:.3e} × diagonal at vertex {at}",
-        error / case.diagonal
-    );
-    assert!(
-        error <= F32_TOLERANCE * case.diagonal,
-        "vertex {at} moved by {error:e} (diagonal {})",
-        case.diagonal
-    );
+    println!("f32 twin round trip: worst {:.3e} × diagonal at vertex {at}", error / case.diagonal);
+    assert!(error <= F32_TOLERANCE * case.diagonal, "vertex {at} moved by {error:e} (diagonal {})", case.diagonal);
 }
 
 fn check(name: &str) {
     let Some(case) = case(name) else { return };
     let bindings = f64_round_trip(&case);
-    let beyond = bindings
-        .iter()
-        .filter(|b| b.params.t == 0.0 || b.params.t == 1.0)
-        .count();
+    let beyond = bindings.iter().filter(|b| b.params.t == 0.0 || b.params.t == 1.0).count();
     assert!(beyond > 0, "the rig must leave vertices beyond its ends");
     f32_twin_round_trip(&case);
 }

@@ -5,8 +5,8 @@
 use std::mem::{offset_of, size_of};
 
 use sweepffd::coeffs::{
-    BindSegment, DispatchParams, GpuBinding, Joint, PatchCoeffs, SegmentCoeffs, SkinInfluence,
-    SweepInfo, WORKGROUP_SIZE,
+    BindSegment, CellCoeffs, DispatchParams, GpuBinding, Joint, SkinInfluence, SweepInfo, UNIFORM_CELL_CAPACITY,
+    WORKGROUP_SIZE,
 };
 use sweepffd::gpu::shaders;
 
@@ -21,66 +21,28 @@ macro_rules! layout {
 
 fn rust_layouts() -> Vec<RustLayout> {
     vec![
-        layout!(SegmentCoeffs {
-            origin,
-            curve,
-            q0,
-            q1
-        }),
-        layout!(PatchCoeffs {
-            radius,
-            segment,
-            cos_mid,
-            sin_mid,
-            half_step
-        }),
-        layout!(SweepInfo {
-            first_segment,
-            segment_count,
-            first_patch,
-            samples
-        }),
-        layout!(BindSegment {
-            origin,
-            normal,
-            e_low,
-            e5,
-            t0,
-            t1,
-            _pad
-        }),
+        layout!(CellCoeffs { radius, curve, q0, q1 }),
+        layout!(SweepInfo { first_segment, segment_count, first_cell, samples }),
+        layout!(BindSegment { origin, normal, e_low, e5, t0, t1, _pad }),
         layout!(GpuBinding { cell, s, phi, d, h }),
-        layout!(DispatchParams {
-            vertex_count,
-            first_vertex,
-            window_split,
-            _pad
-        }),
+        layout!(DispatchParams { vertex_count, first_vertex, window_split, _pad }),
         layout!(SkinInfluence { joints, weights }),
         layout!(Joint { rows }),
     ]
 }
 
 fn parse(name: &str, source: &str) -> naga::Module {
-    naga::front::wgsl::parse_str(source)
-        .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(source)))
+    naga::front::wgsl::parse_str(source).unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(source)))
 }
 
 #[test]
 fn every_kernel_validates_with_naga() {
     for (name, source, entry) in shaders::ALL {
         let module = parse(name, source);
-        naga::valid::Validator::new(
-            naga::valid::ValidationFlags::all(),
-            naga::valid::Capabilities::default(),
-        )
-        .validate(&module)
-        .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(source)));
-        assert_eq!(
-            module.entry_points.len(),
-            1,
-            "{name}: one entry point per kernel"
-        );
+        naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::default())
+            .validate(&module)
+            .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(source)));
+        assert_eq!(module.entry_points.len(), 1, "{name}: one entry point per kernel");
         assert_eq!(module.entry_points[0].name, entry);
     }
 }
@@ -89,11 +51,7 @@ fn every_kernel_validates_with_naga() {
 fn workgroup_size_is_the_rust_constant() {
     for (name, source, _) in shaders::ALL {
         let module = parse(name, source);
-        assert_eq!(
-            module.entry_points[0].workgroup_size,
-            [WORKGROUP_SIZE, 1, 1],
-            "{name}"
-        );
+        assert_eq!(module.entry_points[0].workgroup_size, [WORKGROUP_SIZE, 1, 1], "{name}");
     }
 }
 
@@ -115,18 +73,29 @@ fn shared_structs_have_the_rust_layout() {
             let Some((_, size, fields)) = layouts.iter().find(|(n, _, _)| *n == type_name) else {
                 continue;
             };
-            assert_eq!(
-                layouter[handle].size as usize, *size,
-                "{name}: size of {type_name}"
-            );
-            let wgsl: Vec<(&str, usize)> = members
-                .iter()
-                .map(|m| (m.name.as_deref().unwrap_or("?"), m.offset as usize))
-                .collect();
+            assert_eq!(layouter[handle].size as usize, *size, "{name}: size of {type_name}");
+            let wgsl: Vec<(&str, usize)> =
+                members.iter().map(|m| (m.name.as_deref().unwrap_or("?"), m.offset as usize)).collect();
             assert_eq!(&wgsl, fields, "{name}: members of {type_name}");
             checked += 1;
         }
     }
-    // layout.wgsl declares all eight structs and is part of all five kernels.
-    assert_eq!(checked, 8 * shaders::ALL.len());
+    // layout.wgsl declares all seven structs and is part of every kernel.
+    assert_eq!(checked, 7 * shaders::ALL.len());
+}
+
+#[test]
+fn uniform_cell_capacity_is_the_rust_constant() {
+    for (name, source, _) in shaders::ALL {
+        let module = parse(name, source);
+        let capacity = module
+            .constants
+            .iter()
+            .find(|(_, c)| c.name.as_deref() == Some("UNIFORM_CELL_CAPACITY"))
+            .map(|(_, c)| &module.global_expressions[c.init]);
+        let Some(naga::Expression::Literal(naga::Literal::U32(capacity))) = capacity else {
+            panic!("{name}: no u32 UNIFORM_CELL_CAPACITY");
+        };
+        assert_eq!(*capacity, UNIFORM_CELL_CAPACITY, "{name}");
+    }
 }

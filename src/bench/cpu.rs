@@ -5,7 +5,9 @@ use glam::DVec3;
 
 use super::scene::BENCH_POSE;
 use super::skinning::{skinning_influences, skinning_joints};
-use super::{BenchReport, BenchScene, median_seconds};
+use std::time::Instant;
+
+use super::{BenchReport, BenchScene, Round, median, median_seconds};
 use crate::bind::{Binding, bind_vertices};
 use crate::coeffs::{GpuBinding, SweepCoefficients, bind_segments};
 use crate::cpu;
@@ -24,34 +26,15 @@ pub struct CpuBench {
 impl CpuBench {
     /// Binds the scene once (for the deform and copy timings).
     pub fn new(scene: BenchScene) -> CpuBench {
-        let bindings = bind_vertices(
-            scene.rig.rest(),
-            &scene.owners,
-            &scene.mesh.positions,
-            &|_| {},
-        );
+        let bindings = bind_vertices(scene.rig.rest(), &scene.owners, &scene.mesh.positions, &|_| {});
         let rest = scene.rig.rest();
         let coefficients = SweepCoefficients::new(rest);
         let tables = bind_segments(rest);
-        let inputs = cpu::bind::BindInputs {
-            segments: &coefficients.segments,
-            patches: &coefficients.patches,
-            bind_segments: &tables,
-            sweeps: &coefficients.sweeps,
-        };
-        let rest_f32: Vec<f32> = scene
-            .mesh
-            .positions
-            .iter()
-            .flat_map(|p| p.as_vec3().to_array())
-            .collect();
+        let inputs =
+            cpu::bind::BindInputs { cells: &coefficients.cells, bind_segments: &tables, sweeps: &coefficients.sweeps };
+        let rest_f32: Vec<f32> = scene.mesh.positions.iter().flat_map(|p| p.as_vec3().to_array()).collect();
         let twin_bindings = cpu::bind::bind(&inputs, &scene.owners, &rest_f32);
-        CpuBench {
-            scene,
-            bindings,
-            twin_bindings,
-            rest_f32,
-        }
+        CpuBench { scene, bindings, twin_bindings, rest_f32 }
     }
 
     /// Every figure of the report, each the median of `runs` runs after warm-up.
@@ -61,33 +44,33 @@ impl CpuBench {
         let mut out = vec![DVec3::ZERO; n];
         let mut out_f32 = vec![0.0f32; 3 * n];
         let bind = median_seconds(WARMUP, runs, || {
-            bind_vertices(
-                scene.rig.rest(),
-                &scene.owners,
-                &scene.mesh.positions,
-                &|_| {},
-            );
-        });
-        let deform = median_seconds(WARMUP, runs, || {
-            deform_vertices(
-                &scene.posed,
-                &self.bindings,
-                &scene.mesh.positions,
-                &mut out,
-            )
-        });
-        let copy = median_seconds(WARMUP, runs, || {
-            cpu::copy::copy(&self.twin_bindings, &mut out_f32)
+            bind_vertices(scene.rig.rest(), &scene.owners, &scene.mesh.positions, &|_| {});
         });
         let (joints, influences) = (skinning_joints(), skinning_influences(n));
-        let lbs = median_seconds(WARMUP, runs, || {
-            cpu::skinning::skinning(&joints, &self.rest_f32, &influences, &mut out_f32)
-        });
         let keys = BENCH_POSE.keys(&scene.rig);
-        let frame = median_seconds(WARMUP, runs, || {
-            let posed = scene.rig.pose(&keys).expect("the bench pose fits its rig");
-            deform_vertices(&posed, &self.bindings, &scene.mesh.positions, &mut out);
-        });
+        let time = |work: &mut dyn FnMut()| {
+            let start = Instant::now();
+            work();
+            start.elapsed().as_secs_f64()
+        };
+        let mut rounds = Vec::with_capacity(runs);
+        for round in 0..WARMUP + runs {
+            let times = Round {
+                deform: time(&mut || deform_vertices(&scene.posed, &self.bindings, &scene.mesh.positions, &mut out)),
+                copy: time(&mut || cpu::copy::copy(&self.twin_bindings, &mut out_f32)),
+                lbs: time(&mut || cpu::skinning::skinning(&joints, &self.rest_f32, &influences, &mut out_f32)),
+                frame: time(&mut || {
+                    let posed = scene.rig.pose(&keys).expect("the bench pose fits its rig");
+                    deform_vertices(&posed, &self.bindings, &scene.mesh.positions, &mut out);
+                }),
+            };
+            if round >= WARMUP {
+                rounds.push(times);
+            }
+        }
+        let column = |f: fn(&Round) -> f64| median(&mut rounds.iter().map(f).collect::<Vec<_>>());
+        let (deform, copy, lbs, frame) =
+            (column(|r| r.deform), column(|r| r.copy), column(|r| r.lbs), column(|r| r.frame));
         let n_f = n as f64;
         BenchReport {
             backend: "cpu",
@@ -97,8 +80,8 @@ impl CpuBench {
             deform_verts_per_s: n_f / deform,
             copy_verts_per_s: n_f / copy,
             lbs_verts_per_s: n_f / lbs,
-            deform_over_copy: deform / copy,
-            deform_over_lbs: deform / lbs,
+            deform_over_copy: column(|r| r.deform / r.copy),
+            deform_over_lbs: column(|r| r.deform / r.lbs),
             frame_ms: frame * 1e3,
             readback_ms: None,
             device_bytes_per_vertex: None,

@@ -6,13 +6,13 @@ use std::time::Instant;
 use wgpu::util::DeviceExt;
 
 use super::skinning::{skinning_influences, skinning_joints};
-use super::{BenchReport, BenchScene, GpuTimer, median_of};
+use super::{BenchReport, BenchScene, GpuTimer, Round, median, median_of};
 use crate::coeffs::{DispatchParams, SweepCoefficients};
 use crate::gpu::binder::Binder;
 use crate::gpu::deformer::{params_buffer, window};
 use crate::gpu::{
-    BINDING_STRIDE, BindingSource, GpuContext, GpuDeformer, GpuError, POSITION_STRIDE,
-    dispatch_grid, kernels, uniform_chunks, wait,
+    BINDING_STRIDE, BindingSource, GpuContext, GpuDeformer, GpuError, POSITION_STRIDE, dispatch_grid, kernels,
+    uniform_chunks, wait,
 };
 
 /// Runs before the timed ones.
@@ -41,18 +41,10 @@ impl GpuBench {
             context,
             rest,
             &scene.mesh.positions,
-            BindingSource::Bind {
-                owners: &scene.owners,
-            },
+            BindingSource::Bind { owners: &scene.owners },
             Some(&scene.mesh.faces),
         )?;
-        let binder = Binder::new(
-            context,
-            rest,
-            &SweepCoefficients::new(rest),
-            deformer.segments(),
-            deformer.patches(),
-        );
+        let binder = Binder::new(context, rest, &SweepCoefficients::new(rest), deformer.cells());
         let n = deformer.vertex_count();
         let scratch = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("sweepffd bench output"),
@@ -88,21 +80,10 @@ impl GpuBench {
                 usage: wgpu::BufferUsages::STORAGE,
             })
         };
-        let joints = storage(
-            "sweepffd bench joints",
-            bytemuck::cast_slice(&skinning_joints()),
-        );
-        let rest_f32: Vec<f32> = scene
-            .mesh
-            .positions
-            .iter()
-            .flat_map(|p| p.as_vec3().to_array())
-            .collect();
+        let joints = storage("sweepffd bench joints", bytemuck::cast_slice(&skinning_joints()));
+        let rest_f32: Vec<f32> = scene.mesh.positions.iter().flat_map(|p| p.as_vec3().to_array()).collect();
         let rest_buffer = storage("sweepffd bench rest", bytemuck::cast_slice(&rest_f32));
-        let influences = storage(
-            "sweepffd bench influences",
-            bytemuck::cast_slice(&skinning_influences(n as usize)),
-        );
+        let influences = storage("sweepffd bench influences", bytemuck::cast_slice(&skinning_influences(n as usize)));
         let skinning_dispatches = uniform_chunks(n, POSITION_STRIDE, &limits)
             .iter()
             .map(|range| {
@@ -142,25 +123,14 @@ impl GpuBench {
     /// binding reads the rest positions, which deforming overwrites.
     pub fn time_bind(&self) -> Result<f64, GpuError> {
         let limits = *self.deformer.limits();
-        let chunks: Vec<(Range<u32>, wgpu::Buffer)> = self
-            .deformer
-            .binding_chunks()
-            .map(|(range, buffer)| (range.clone(), buffer.clone()))
-            .collect();
+        let chunks: Vec<(Range<u32>, wgpu::Buffer)> =
+            self.deformer.binding_chunks().map(|(range, buffer)| (range.clone(), buffer.clone())).collect();
         self.time(|encoder, timer| {
             let last = chunks.len() - 1;
             for (c, (range, bindings)) in chunks.iter().enumerate() {
                 let owners = &self.scene.owners[range.start as usize..range.end as usize];
                 let writes = timer.and_then(|t| t.writes(c == 0, c == last));
-                self.binder.encode(
-                    encoder,
-                    range,
-                    owners,
-                    self.deformer.positions(),
-                    bindings,
-                    &limits,
-                    writes,
-                );
+                self.binder.encode(encoder, range, owners, self.deformer.positions(), bindings, &limits, writes);
             }
         })
     }
@@ -168,10 +138,7 @@ impl GpuBench {
     /// Seconds of the deform kernel alone, after the pose has been set.
     pub fn time_deform(&mut self) -> Result<f64, GpuError> {
         self.deformer.set_pose(&self.scene.posed)?;
-        self.time(|encoder, timer| {
-            self.deformer
-                .encode_deform_pass(encoder, timer.and_then(|t| t.writes(true, true)))
-        })
+        self.time(|encoder, timer| self.deformer.encode_deform_pass(encoder, timer.and_then(|t| t.writes(true, true))))
     }
 
     /// Seconds of the copy baseline.
@@ -199,35 +166,40 @@ impl GpuBench {
         Ok(start.elapsed().as_secs_f64())
     }
 
-    /// Every figure of the report, each the median of `runs` runs after warm-up.
+    /// Every figure of the report. Binding is timed first (it needs the rest positions); then
+    /// each round times deform, copy, skinning and a frame back to back, so that the ratios
+    /// compare kernels under the same machine load; figures and ratios are medians over rounds.
     pub fn report(&mut self, runs: usize) -> Result<BenchReport, GpuError> {
         let n = self.deformer.vertex_count() as f64;
         let bind = median_of(WARMUP, runs, || self.time_bind())?;
-        let deform = median_of(WARMUP, runs, || self.time_deform())?;
-        let copy = median_of(WARMUP, runs, || self.time_copy())?;
-        let lbs = median_of(WARMUP, runs, || self.time_skinning())?;
-        let frame = median_of(WARMUP, runs, || self.time_frame())?;
+        let mut rounds = Vec::with_capacity(runs);
+        for round in 0..WARMUP + runs {
+            let times = Round {
+                deform: self.time_deform()?,
+                copy: self.time_copy()?,
+                lbs: self.time_skinning()?,
+                frame: self.time_frame()?,
+            };
+            if round >= WARMUP {
+                rounds.push(times);
+            }
+        }
         let readback = median_of(1, runs, || self.time_readback())?;
-        let binding_bytes: u64 = self
-            .deformer
-            .binding_chunks()
-            .map(|(range, _)| range.len() as u64 * BINDING_STRIDE)
-            .sum();
+        let binding_bytes: u64 =
+            self.deformer.binding_chunks().map(|(range, _)| range.len() as u64 * BINDING_STRIDE).sum();
         let device_bytes = binding_bytes + self.deformer.positions().size();
+        let column = |f: fn(&Round) -> f64| median(&mut rounds.iter().map(f).collect::<Vec<_>>());
         Ok(BenchReport {
             backend: "gpu",
-            adapter: format!(
-                "{} ({:?})",
-                self.context.info.name, self.context.info.backend
-            ),
+            adapter: format!("{} ({:?})", self.context.info.name, self.context.info.backend),
             n: n as usize,
             bind_verts_per_s: n / bind,
-            deform_verts_per_s: n / deform,
-            copy_verts_per_s: n / copy,
-            lbs_verts_per_s: n / lbs,
-            deform_over_copy: deform / copy,
-            deform_over_lbs: deform / lbs,
-            frame_ms: frame * 1e3,
+            deform_verts_per_s: n / column(|r| r.deform),
+            copy_verts_per_s: n / column(|r| r.copy),
+            lbs_verts_per_s: n / column(|r| r.lbs),
+            deform_over_copy: column(|r| r.deform / r.copy),
+            deform_over_lbs: column(|r| r.deform / r.lbs),
+            frame_ms: column(|r| r.frame) * 1e3,
             readback_ms: Some(readback * 1e3),
             device_bytes_per_vertex: Some(device_bytes as f64 / n),
             runs,
@@ -237,14 +209,10 @@ impl GpuBench {
 
     /// Records with `record`, submits, waits, and returns the timestamped seconds (wall-clock
     /// without timestamp queries).
-    fn time(
-        &self,
-        record: impl FnOnce(&mut wgpu::CommandEncoder, Option<&GpuTimer>),
-    ) -> Result<f64, GpuError> {
+    fn time(&self, record: impl FnOnce(&mut wgpu::CommandEncoder, Option<&GpuTimer>)) -> Result<f64, GpuError> {
         let device = &self.context.device;
-        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-            label: Some("sweepffd bench"),
-        });
+        let mut encoder =
+            device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd bench") });
         let start = Instant::now();
         record(&mut encoder, self.timer.as_ref());
         if let Some(timer) = &self.timer {
@@ -261,21 +229,11 @@ impl GpuBench {
 }
 
 fn chunk_params(device: &wgpu::Device, range: &Range<u32>) -> wgpu::Buffer {
-    params_buffer(
-        device,
-        DispatchParams {
-            vertex_count: range.len() as u32,
-            ..Default::default()
-        },
-    )
+    params_buffer(device, DispatchParams { vertex_count: range.len() as u32, ..Default::default() })
 }
 
 /// Records one pass over all of a pipeline's dispatches.
-fn encode(
-    encoder: &mut wgpu::CommandEncoder,
-    (kernel, dispatches): &Dispatches,
-    timer: Option<&GpuTimer>,
-) {
+fn encode(encoder: &mut wgpu::CommandEncoder, (kernel, dispatches): &Dispatches, timer: Option<&GpuTimer>) {
     let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
         label: Some("sweepffd bench"),
         timestamp_writes: timer.and_then(|t| t.writes(true, true)),

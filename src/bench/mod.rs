@@ -54,6 +54,15 @@ pub struct BenchReport {
     pub timestamps: bool,
 }
 
+/// One round of back-to-back timings, seconds.
+#[derive(Clone, Copy, Debug)]
+struct Round {
+    deform: f64,
+    copy: f64,
+    lbs: f64,
+    frame: f64,
+}
+
 /// The median of `samples` (which it sorts).
 pub fn median(samples: &mut [f64]) -> f64 {
     samples.sort_by(f64::total_cmp);
@@ -61,25 +70,15 @@ pub fn median(samples: &mut [f64]) -> f64 {
     if n == 0 {
         return f64::NAN;
     }
-    if n % 2 == 1 {
-        samples[n / 2]
-    } else {
-        0.5 * (samples[n / 2 - 1] + samples[n / 2])
-    }
+    if n % 2 == 1 { samples[n / 2] } else { 0.5 * (samples[n / 2 - 1] + samples[n / 2]) }
 }
 
 /// Runs `measure` `warmup` times unrecorded, then `runs` times, and returns the median.
-pub fn median_of<E>(
-    warmup: usize,
-    runs: usize,
-    mut measure: impl FnMut() -> Result<f64, E>,
-) -> Result<f64, E> {
+pub fn median_of<E>(warmup: usize, runs: usize, mut measure: impl FnMut() -> Result<f64, E>) -> Result<f64, E> {
     for _ in 0..warmup {
         measure()?;
     }
-    let mut samples = (0..runs)
-        .map(|_| measure())
-        .collect::<Result<Vec<f64>, E>>()?;
+    let mut samples = (0..runs).map(|_| measure()).collect::<Result<Vec<f64>, E>>()?;
     Ok(median(&mut samples))
 }
 

@@ -6,11 +6,7 @@ use crate::sweep::Sweep;
 use crate::synthetic::{BendTwistTaper, Tube, tube_rig};
 
 /// The pose every bench applies: a bend, a twist and a taper of every sweep.
-pub const BENCH_POSE: BendTwistTaper = BendTwistTaper {
-    bend: 1.2,
-    twist: 1.7,
-    taper: 0.6,
-};
+pub const BENCH_POSE: BendTwistTaper = BendTwistTaper { bend: 1.2, twist: 1.7, taper: 0.6 };
 
 /// A mesh bound to a rig, with the posed sweeps to deform it by.
 #[derive(Clone, Debug)]
@@ -29,20 +25,14 @@ impl BenchScene {
     /// A closed tube of about `vertices` vertices bound to one straight 8-key sweep.
     pub fn tube(vertices: usize) -> BenchScene {
         let tube = Tube::with_vertex_count(vertices, 4.0, 0.5);
-        BenchScene::new(tube.mesh(), tube_rig(&tube, 8, 16), "tube")
-            .expect("the tube rig owns the tube")
+        BenchScene::new(tube.mesh(), tube_rig(&tube, 8, 16), "tube").expect("the tube rig owns the tube")
     }
 
     /// `mesh` bound to `rig`; fails if the rig's vertex selection does not fit the mesh.
     pub fn new(mesh: Mesh, rig: Rig, mesh_name: &str) -> Result<BenchScene, crate::rig::RigError> {
         let owners = rig.owners(&mesh, mesh_name)?;
         let posed = rig.pose(&BENCH_POSE.keys(&rig))?;
-        Ok(BenchScene {
-            mesh,
-            rig,
-            owners,
-            posed,
-        })
+        Ok(BenchScene { mesh, rig, owners, posed })
     }
 
     /// Number of vertices.

@@ -14,13 +14,7 @@ pub fn skinning_joints() -> Vec<Joint> {
                 Vec3::new(angle.sin(), angle.cos(), 0.01 * j as f32),
             );
             let m = glam::Mat4::from(transform).transpose();
-            Joint {
-                rows: [
-                    m.x_axis.to_array(),
-                    m.y_axis.to_array(),
-                    m.z_axis.to_array(),
-                ],
-            }
+            Joint { rows: [m.x_axis.to_array(), m.y_axis.to_array(), m.z_axis.to_array()] }
         })
         .collect()
 }

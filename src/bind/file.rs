@@ -45,15 +45,9 @@ pub struct BindingsFile {
 #[derive(Debug, Error)]
 pub enum BindingsFileError {
     #[error("cannot read {}: {source}", path.display())]
-    Read {
-        path: PathBuf,
-        source: std::io::Error,
-    },
+    Read { path: PathBuf, source: std::io::Error },
     #[error("cannot write {}: {source}", path.display())]
-    Write {
-        path: PathBuf,
-        source: std::io::Error,
-    },
+    Write { path: PathBuf, source: std::io::Error },
     #[error("{}: not a sweepffd bindings file ({reason})", path.display())]
     Malformed { path: PathBuf, reason: String },
     #[error("{}: the bindings were made for {what}", path.display())]
@@ -67,18 +61,12 @@ pub fn rig_fingerprint(rig: &Rig) -> u64 {
 
 /// FNV-1a 64 of the little-endian bits of every coordinate.
 pub fn mesh_fingerprint(positions: &[DVec3]) -> u64 {
-    let bytes: Vec<u8> = positions
-        .iter()
-        .flat_map(|p| p.to_array())
-        .flat_map(f64::to_le_bytes)
-        .collect();
+    let bytes: Vec<u8> = positions.iter().flat_map(|p| p.to_array()).flat_map(f64::to_le_bytes).collect();
     fnv1a(&bytes)
 }
 
 fn fnv1a(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |hash, &b| {
-        (hash ^ b as u64).wrapping_mul(0x0100_0000_01b3)
-    })
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |hash, &b| (hash ^ b as u64).wrapping_mul(0x0100_0000_01b3))
 }
 
 impl BindingsFile {
@@ -113,10 +101,7 @@ impl BindingsFile {
 
     /// Parses a file's bytes; `path` is named in errors.
     pub fn from_bytes(bytes: &[u8], path: &Path) -> Result<BindingsFile, BindingsFileError> {
-        let malformed = |reason: String| BindingsFileError::Malformed {
-            path: path.to_path_buf(),
-            reason,
-        };
+        let malformed = |reason: String| BindingsFileError::Malformed { path: path.to_path_buf(), reason };
         if bytes.len() < HEADER_BYTES || &bytes[..8] != MAGIC {
             return Err(malformed("missing the SFFDBIND header".to_string()));
         }
@@ -130,38 +115,24 @@ impl BindingsFile {
         let count = u64_at(16);
         let expected = (count as u128) * RECORD_BYTES as u128 + HEADER_BYTES as u128;
         if bytes.len() as u128 != expected {
-            return Err(malformed(format!(
-                "{} bytes for {count} vertices, expected {expected}",
-                bytes.len()
-            )));
+            return Err(malformed(format!("{} bytes for {count} vertices, expected {expected}", bytes.len())));
         }
         let mut bindings = Vec::with_capacity(count as usize);
         for i in 0..count as usize {
             let at = HEADER_BYTES + i * RECORD_BYTES;
             let sweep = u32_at(at);
-            let params = VertexBinding {
-                t: f64_at(at + 8),
-                theta: f64_at(at + 16),
-                d: f64_at(at + 24),
-                h: f64_at(at + 32),
-            };
+            let params =
+                VertexBinding { t: f64_at(at + 8), theta: f64_at(at + 16), d: f64_at(at + 24), h: f64_at(at + 32) };
             let valid = sweep == UNOWNED
                 || (sweep < sweep_count
-                    && [params.t, params.theta, params.d, params.h]
-                        .iter()
-                        .all(|v| v.is_finite())
+                    && [params.t, params.theta, params.d, params.h].iter().all(|v| v.is_finite())
                     && (0.0..=1.0).contains(&params.t));
             if !valid {
                 return Err(malformed(format!("vertex {i} has an invalid binding")));
             }
             bindings.push(Binding { sweep, params });
         }
-        Ok(BindingsFile {
-            sweep_count,
-            rig_fingerprint: u64_at(24),
-            mesh_fingerprint: u64_at(32),
-            bindings,
-        })
+        Ok(BindingsFile { sweep_count, rig_fingerprint: u64_at(24), mesh_fingerprint: u64_at(32), bindings })
     }
 
     /// Reads a bindings file.
@@ -169,47 +140,25 @@ impl BindingsFile {
         let mut bytes = Vec::new();
         std::fs::File::open(path)
             .and_then(|mut file| file.read_to_end(&mut bytes))
-            .map_err(|source| BindingsFileError::Read {
-                path: path.to_path_buf(),
-                source,
-            })?;
+            .map_err(|source| BindingsFileError::Read { path: path.to_path_buf(), source })?;
         BindingsFile::from_bytes(&bytes, path)
     }
 
     /// Writes the file atomically (temporary file, then rename).
     pub fn save(&self, path: &Path) -> Result<(), BindingsFileError> {
         let bytes = self.to_bytes();
-        crate::mesh::write_atomically(path, |out| out.write_all(&bytes)).map_err(|source| {
-            BindingsFileError::Write {
-                path: path.to_path_buf(),
-                source,
-            }
-        })
+        crate::mesh::write_atomically(path, |out| out.write_all(&bytes))
+            .map_err(|source| BindingsFileError::Write { path: path.to_path_buf(), source })
     }
 
     /// Checks that the bindings were made for `rig` and `positions`; `path` is named in errors.
-    pub fn check_matches(
-        &self,
-        rig: &Rig,
-        positions: &[DVec3],
-        path: &Path,
-    ) -> Result<(), BindingsFileError> {
-        let mismatch = |what: &str| {
-            Err(BindingsFileError::Mismatch {
-                path: path.to_path_buf(),
-                what: what.to_string(),
-            })
-        };
+    pub fn check_matches(&self, rig: &Rig, positions: &[DVec3], path: &Path) -> Result<(), BindingsFileError> {
+        let mismatch =
+            |what: &str| Err(BindingsFileError::Mismatch { path: path.to_path_buf(), what: what.to_string() });
         if self.bindings.len() != positions.len() {
-            return mismatch(&format!(
-                "{} vertices, the mesh has {}",
-                self.bindings.len(),
-                positions.len()
-            ));
+            return mismatch(&format!("{} vertices, the mesh has {}", self.bindings.len(), positions.len()));
         }
-        if self.sweep_count as usize != rig.sweeps().len()
-            || self.rig_fingerprint != rig_fingerprint(rig)
-        {
+        if self.sweep_count as usize != rig.sweeps().len() || self.rig_fingerprint != rig_fingerprint(rig) {
             return mismatch("another rig (run `sweepffd bind` again)");
         }
         if self.mesh_fingerprint != mesh_fingerprint(positions) {

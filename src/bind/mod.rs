@@ -47,15 +47,8 @@ pub struct Binding {
 
 impl Binding {
     /// The binding of a vertex no sweep owns.
-    pub const UNOWNED: Binding = Binding {
-        sweep: UNOWNED,
-        params: VertexBinding {
-            t: 0.0,
-            theta: 0.0,
-            d: 0.0,
-            h: 0.0,
-        },
-    };
+    pub const UNOWNED: Binding =
+        Binding { sweep: UNOWNED, params: VertexBinding { t: 0.0, theta: 0.0, d: 0.0, h: 0.0 } };
 }
 
 /// Binds vertices to one sweep; built once per sweep, then shared by all its vertices.
@@ -76,9 +69,7 @@ impl<'a> SweepBinder<'a> {
     pub fn roots(&self, v: DVec3) -> Vec<AxisPoint> {
         let mut roots = Vec::new();
         for (segment, quintic) in self.quintics.iter().enumerate() {
-            quintic::for_each_root(&quintic.for_vertex(v), &mut |s| {
-                roots.push(AxisPoint { segment, s })
-            });
+            quintic::for_each_root(&quintic.for_vertex(v), &mut |s| roots.push(AxisPoint { segment, s }));
         }
         roots
     }
@@ -100,15 +91,8 @@ impl<'a> SweepBinder<'a> {
         }
         best.map(|(at, _)| at).unwrap_or_else(|| {
             let start = AxisPoint { segment: 0, s: 0.0 };
-            let end = AxisPoint {
-                segment: segments.len() - 1,
-                s: 1.0,
-            };
-            if distance(&end) < distance(&start) {
-                end
-            } else {
-                start
-            }
+            let end = AxisPoint { segment: segments.len() - 1, s: 1.0 };
+            if distance(&end) < distance(&start) { end } else { start }
         })
     }
 
@@ -146,20 +130,16 @@ pub fn bind_vertices(
     const CHUNK: usize = 4096;
     let binders: Vec<SweepBinder> = sweeps.iter().map(SweepBinder::new).collect();
     let mut bindings = vec![Binding::UNOWNED; positions.len()];
-    bindings
-        .par_chunks_mut(CHUNK)
-        .zip(owners.par_chunks(CHUNK).zip(positions.par_chunks(CHUNK)))
-        .for_each(|(out, (owners, positions))| {
+    bindings.par_chunks_mut(CHUNK).zip(owners.par_chunks(CHUNK).zip(positions.par_chunks(CHUNK))).for_each(
+        |(out, (owners, positions))| {
             for ((binding, &owner), &v) in out.iter_mut().zip(owners).zip(positions) {
                 if owner != UNOWNED {
-                    *binding = Binding {
-                        sweep: owner,
-                        params: binders[owner as usize].bind(v),
-                    };
+                    *binding = Binding { sweep: owner, params: binders[owner as usize].bind(v) };
                 }
             }
             progress(out.len());
-        });
+        },
+    );
     bindings
 }
 

@@ -52,9 +52,7 @@ fn bernstein(g: &Quintic) -> [f64; 6] {
 
 /// Sign variations of a coefficient sequence, counting 0 as positive.
 fn sign_variations(b: &[f64; 6]) -> u32 {
-    b.windows(2)
-        .filter(|w| (w[0] >= 0.0) != (w[1] >= 0.0))
-        .count() as u32
+    b.windows(2).filter(|w| (w[0] >= 0.0) != (w[1] >= 0.0)).count() as u32
 }
 
 /// The Bernstein coefficients of the left and right halves (de Casteljau at ½).
@@ -90,11 +88,7 @@ fn isolate(g: &Quintic, b: &[f64; 6], lo: f64, hi: f64, depth: u32, found: &mut 
         1 => found(refine(g, lo, hi, b[0] >= 0.0)),
         _ if depth >= MAX_DEPTH => {
             let at_ends_differ = (b[0] >= 0.0) != (b[5] >= 0.0);
-            found(if at_ends_differ {
-                refine(g, lo, hi, b[0] >= 0.0)
-            } else {
-                0.5 * (lo + hi)
-            });
+            found(if at_ends_differ { refine(g, lo, hi, b[0] >= 0.0) } else { 0.5 * (lo + hi) });
         }
         _ => {
             let (left, right) = split(b);
@@ -120,11 +114,7 @@ fn refine(g: &Quintic, mut lo: f64, mut hi: f64, positive_at_lo: bool) -> f64 {
             hi = s;
         }
         let newton = s - value / derivative;
-        let next = if newton > lo && newton < hi {
-            newton
-        } else {
-            0.5 * (lo + hi)
-        };
+        let next = if newton > lo && newton < hi { newton } else { 0.5 * (lo + hi) };
         let step = (next - s).abs();
         s = next;
         if step <= S_TOLERANCE || hi - lo <= S_TOLERANCE {
@@ -183,10 +173,7 @@ mod tests {
         let roots = roots_of(&from_roots(&expected, -1.0));
         assert_eq!(roots.len(), 2, "{roots:?}");
         // Close roots are ill-conditioned: each is determined to about eps / |g′(root)|.
-        assert!(
-            (roots[0] - 0.4).abs() < 1e-9 && (roots[1] - 0.400001).abs() < 1e-9,
-            "{roots:?}"
-        );
+        assert!((roots[0] - 0.4).abs() < 1e-9 && (roots[1] - 0.400001).abs() < 1e-9, "{roots:?}");
     }
 
     #[test]

@@ -15,11 +15,7 @@ fn u_bend() -> Sweep {
             let a = 1.5 * std::f64::consts::PI * i as f64 / KEYS as f64;
             let center = DVec3::new(2.0 - 2.0 * a.cos(), 0.0, 2.0 * a.sin());
             let rotation = DQuat::from_rotation_y(a);
-            Key {
-                center,
-                rotation,
-                radii: (0..8).map(|j| 0.5 + 0.1 * (j % 3) as f64).collect(),
-            }
+            Key { center, rotation, radii: (0..8).map(|j| 0.5 + 0.1 * (j % 3) as f64).collect() }
         })
         .collect();
     Sweep::try_new(&keys, None).unwrap()
@@ -41,11 +37,7 @@ fn probe_points() -> Vec<DVec3> {
     for i in 0..12 {
         for j in 0..12 {
             for k in 0..5 {
-                points.push(DVec3::new(
-                    -1.0 + 0.5 * i as f64,
-                    -1.0 + 0.5 * k as f64,
-                    -1.0 + 0.35 * j as f64,
-                ));
+                points.push(DVec3::new(-1.0 + 0.5 * i as f64, -1.0 + 0.5 * k as f64, -1.0 + 0.35 * j as f64));
             }
         }
     }
@@ -102,11 +94,7 @@ fn every_bound_root_is_a_root_and_the_nearest_one() {
             assert!(t == 0.0 || t == 1.0);
             continue;
         }
-        assert!(
-            f(&sweep, v, t).abs() <= 1e-12,
-            "f(t) = {} at {v}",
-            f(&sweep, v, t)
-        );
+        assert!(f(&sweep, v, t).abs() <= 1e-12, "f(t) = {} at {v}", f(&sweep, v, t));
         // Dense sampling: no sign change of f brackets a root nearer to v.
         let bound_distance = sweep.center(t).distance(v);
         let mut previous = f(&sweep, v, 0.0);
@@ -115,18 +103,12 @@ fn every_bound_root_is_a_root_and_the_nearest_one() {
             let value = f(&sweep, v, b);
             if (previous >= 0.0) != (value >= 0.0) {
                 let nearest = sweep.center(a).distance(v).min(sweep.center(b).distance(v));
-                assert!(
-                    nearest >= bound_distance - 1e-3,
-                    "a nearer root near t = {a} for {v}"
-                );
+                assert!(nearest >= bound_distance - 1e-3, "a nearer root near t = {a} for {v}");
             }
             previous = value;
         }
     }
-    assert!(
-        multi_root_vertices > 50,
-        "the probe must exercise vertices with several roots"
-    );
+    assert!(multi_root_vertices > 50, "the probe must exercise vertices with several roots");
 }
 
 #[test]

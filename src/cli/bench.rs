@@ -43,10 +43,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
 
 fn print_table(r: &BenchReport) {
     let rate = |v: f64| format!("{:>10.2} M vertices/s", v / 1e6);
-    println!(
-        "{} backend, {}, {} vertices, medians of {} runs",
-        r.backend, r.adapter, r.n, r.runs
-    );
+    println!("{} backend, {}, {} vertices, medians of {} runs", r.backend, r.adapter, r.n, r.runs);
     println!("  bind      {}", rate(r.bind_verts_per_s));
     println!(
         "  deform    {}   ({:.2} × copy time, {:.2} × skinning time)",
@@ -54,18 +51,9 @@ fn print_table(r: &BenchReport) {
         r.deform_over_copy,
         r.deform_over_lbs
     );
-    println!(
-        "  copy      {}   (baseline: the deform kernel's bytes)",
-        rate(r.copy_verts_per_s)
-    );
-    println!(
-        "  skinning  {}   (baseline: 4-influence linear-blend skinning)",
-        rate(r.lbs_verts_per_s)
-    );
-    println!(
-        "  frame     {:>10.3} ms (pose upload + deform + normals)",
-        r.frame_ms
-    );
+    println!("  copy      {}   (baseline: the deform kernel's bytes)", rate(r.copy_verts_per_s));
+    println!("  skinning  {}   (baseline: 4-influence linear-blend skinning)", rate(r.lbs_verts_per_s));
+    println!("  frame     {:>10.3} ms (pose upload + deform + normals)", r.frame_ms);
     if let Some(readback) = r.readback_ms {
         println!("  readback  {readback:>10.3} ms");
     }

@@ -21,10 +21,7 @@ pub struct Inputs {
 }
 
 /// Loads the mesh and rig and resolves vertex ownership.
-pub fn load_inputs(
-    mesh_path: &Path,
-    rig_path: &Path,
-) -> Result<Inputs, Box<dyn std::error::Error>> {
+pub fn load_inputs(mesh_path: &Path, rig_path: &Path) -> Result<Inputs, Box<dyn std::error::Error>> {
     let mesh = Mesh::load(mesh_path)?;
     let rig = Rig::load(rig_path)?;
     let owners = rig.owners(&mesh, &mesh_path.display().to_string())?;
@@ -34,40 +31,23 @@ pub fn load_inputs(
 /// Binds on the GPU, read back in the reference form.
 pub fn bind_on_gpu(context: &GpuContext, inputs: &Inputs) -> Result<Vec<Binding>, GpuError> {
     let rest = inputs.rig.rest();
-    let source = BindingSource::Bind {
-        owners: &inputs.owners,
-    };
+    let source = BindingSource::Bind { owners: &inputs.owners };
     let deformer = GpuDeformer::new(context, rest, &inputs.mesh.positions, source, None)?;
     let coefficients = SweepCoefficients::new(rest);
-    Ok(deformer
-        .read_bindings()?
-        .iter()
-        .map(|b| coefficients.reference_binding(rest, b))
-        .collect())
+    Ok(deformer.read_bindings()?.iter().map(|b| coefficients.reference_binding(rest, b)).collect())
 }
 
 /// Binds with a progress bar (f64 reference path, all cores).
 pub fn bind_with_progress(inputs: &Inputs, quiet: bool) -> Vec<Binding> {
     let bar = vertex_bar(inputs.mesh.positions.len(), "binding", quiet);
-    let bindings = bind_vertices(
-        inputs.rig.rest(),
-        &inputs.owners,
-        &inputs.mesh.positions,
-        &|done| {
-            bar.inc(done as u64);
-        },
-    );
+    let bindings = bind_vertices(inputs.rig.rest(), &inputs.owners, &inputs.mesh.positions, &|done| {
+        bar.inc(done as u64);
+    });
     bar.finish_and_clear();
     bindings
 }
 
-pub fn run(
-    mesh_path: &Path,
-    rig_path: &Path,
-    out: &Path,
-    backend: Backend,
-    quiet: bool,
-) -> CliResult {
+pub fn run(mesh_path: &Path, rig_path: &Path, out: &Path, backend: Backend, quiet: bool) -> CliResult {
     let inputs = load_inputs(mesh_path, rig_path)?;
     let context = resolve(backend, quiet)?;
     let start = Instant::now();
@@ -76,11 +56,7 @@ pub fn run(
         None => bind_with_progress(&inputs, quiet),
     };
     let seconds = start.elapsed().as_secs_f64();
-    let owned = inputs
-        .owners
-        .iter()
-        .filter(|&&o| o != sweepffd::bind::UNOWNED)
-        .count();
+    let owned = inputs.owners.iter().filter(|&&o| o != sweepffd::bind::UNOWNED).count();
     BindingsFile::new(&inputs.rig, &inputs.mesh.positions, bindings).save(out)?;
     if !quiet {
         println!(

@@ -43,9 +43,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     let (positions, owners) = match &context {
         Some(context) => deform_on_gpu(context, &inputs, &posed, saved.as_deref())?,
         None => {
-            let bindings = saved
-                .clone()
-                .unwrap_or_else(|| bind_with_progress(&inputs, quiet));
+            let bindings = saved.clone().unwrap_or_else(|| bind_with_progress(&inputs, quiet));
             let mut positions = vec![DVec3::ZERO; inputs.mesh.positions.len()];
             deform_vertices(&posed, &bindings, &inputs.mesh.positions, &mut positions);
             (positions, bindings.iter().map(|b| b.sweep).collect())
@@ -63,10 +61,8 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     inputs.mesh.save(&args.out, &positions)?;
     if !quiet {
         let owned = owners.iter().filter(|&&o| o != UNOWNED).count();
-        let (source, backend) = (
-            if saved.is_some() { "saved" } else { "new" },
-            if context.is_some() { "GPU" } else { "CPU" },
-        );
+        let (source, backend) =
+            (if saved.is_some() { "saved" } else { "new" }, if context.is_some() { "GPU" } else { "CPU" });
         println!(
             "deformed {owned} of {} vertices on the {backend} ({source} bindings) in {seconds:.3} s -> {}",
             positions.len(),
@@ -86,17 +82,11 @@ fn deform_on_gpu(
 ) -> Result<(Vec<DVec3>, Vec<u32>), GpuError> {
     let rest = inputs.rig.rest();
     let coefficients = SweepCoefficients::new(rest);
-    let converted: Option<Vec<GpuBinding>> = saved.map(|saved| {
-        saved
-            .iter()
-            .map(|b| coefficients.gpu_binding(rest, b))
-            .collect()
-    });
+    let converted: Option<Vec<GpuBinding>> =
+        saved.map(|saved| saved.iter().map(|b| coefficients.gpu_binding(rest, b)).collect());
     let source = match &converted {
         Some(bindings) => BindingSource::Precomputed(bindings),
-        None => BindingSource::Bind {
-            owners: &inputs.owners,
-        },
+        None => BindingSource::Bind { owners: &inputs.owners },
     };
     let mut deformer = GpuDeformer::new(context, rest, &inputs.mesh.positions, source, None)?;
     deformer.deform(posed)?;
@@ -109,13 +99,7 @@ fn deform_on_gpu(
         .chunks_exact(3)
         .zip(&inputs.mesh.positions)
         .zip(&owners)
-        .map(|((p, rest), &owner)| {
-            if owner == UNOWNED {
-                *rest
-            } else {
-                Vec3::from_slice(p).as_dvec3()
-            }
-        })
+        .map(|((p, rest), &owner)| if owner == UNOWNED { *rest } else { Vec3::from_slice(p).as_dvec3() })
         .collect();
     Ok((positions, owners))
 }

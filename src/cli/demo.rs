@@ -16,19 +16,10 @@ use sweepffd::synthetic::{BendTwistTaper, Tube, tube_rig};
 
 pub fn run(out: &Path, quiet: bool) -> CliResult {
     std::fs::create_dir_all(out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
-    let tube = Tube {
-        rings: 160,
-        around: 96,
-        length: 4.0,
-        radius: 0.5,
-    };
+    let tube = Tube { rings: 160, around: 96, length: 4.0, radius: 0.5 };
     let mesh = tube.mesh();
     let rig = tube_rig(&tube, 5, 16);
-    let pose = BendTwistTaper {
-        bend: 0.6 * std::f64::consts::PI,
-        twist: 0.75 * std::f64::consts::PI,
-        taper: 0.45,
-    };
+    let pose = BendTwistTaper { bend: 0.6 * std::f64::consts::PI, twist: 0.75 * std::f64::consts::PI, taper: 0.45 };
     let posed_keys = pose.keys(&rig);
     let posed = rig.pose(&posed_keys)?;
 

@@ -12,30 +12,12 @@ pub fn run() -> CliResult {
     println!("backend:   {:?}", info.backend);
     println!("type:      {:?}", info.device_type);
     println!("driver:    {} {}", info.driver, info.driver_info);
-    println!(
-        "timestamp queries:                 {}",
-        context.has_timestamps()
-    );
-    println!(
-        "max_storage_buffer_binding_size:   {} bytes",
-        limits.max_storage_buffer_binding_size
-    );
-    println!(
-        "max_buffer_size:                   {} bytes",
-        limits.max_buffer_size
-    );
-    println!(
-        "max_storage_buffers_per_shader_stage: {}",
-        limits.max_storage_buffers_per_shader_stage
-    );
-    println!(
-        "max_compute_workgroups_per_dimension: {}",
-        limits.max_compute_workgroups_per_dimension
-    );
-    println!(
-        "min_storage_buffer_offset_alignment:  {} bytes",
-        limits.min_storage_buffer_offset_alignment
-    );
+    println!("timestamp queries:                 {}", context.has_timestamps());
+    println!("max_storage_buffer_binding_size:   {} bytes", limits.max_storage_buffer_binding_size);
+    println!("max_buffer_size:                   {} bytes", limits.max_buffer_size);
+    println!("max_storage_buffers_per_shader_stage: {}", limits.max_storage_buffers_per_shader_stage);
+    println!("max_compute_workgroups_per_dimension: {}", limits.max_compute_workgroups_per_dimension);
+    println!("min_storage_buffer_offset_alignment:  {} bytes", limits.min_storage_buffer_offset_alignment);
     println!("workgroup size of the kernels:     {WORKGROUP_SIZE}");
     Ok(())
 }

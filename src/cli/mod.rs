@@ -114,50 +114,15 @@ pub fn run() -> ExitCode {
     let cli = Cli::parse();
     let quiet = cli.quiet;
     let result = match cli.command {
-        Command::Bind {
-            mesh,
-            rig,
-            out,
-            backend,
-        } => bind::run(&mesh, &rig, &out, backend, quiet),
-        Command::Deform {
-            mesh,
-            rig,
-            pose,
-            out,
-            bindings,
-            backend,
-        } => deform::run(
-            &deform::Args {
-                mesh,
-                rig,
-                pose,
-                out,
-                bindings,
-                backend,
-            },
-            quiet,
-        ),
+        Command::Bind { mesh, rig, out, backend } => bind::run(&mesh, &rig, &out, backend, quiet),
+        Command::Deform { mesh, rig, pose, out, bindings, backend } => {
+            deform::run(&deform::Args { mesh, rig, pose, out, bindings, backend }, quiet)
+        }
         Command::Volume { rig, pose } => volume::run(&rig, pose.as_deref()),
         Command::Info => info::run(),
-        Command::Bench {
-            vertices,
-            mesh,
-            rig,
-            backend,
-            runs,
-            json,
-        } => bench::run(
-            &bench::Args {
-                vertices,
-                mesh,
-                rig,
-                backend,
-                runs,
-                json,
-            },
-            quiet,
-        ),
+        Command::Bench { vertices, mesh, rig, backend, runs, json } => {
+            bench::run(&bench::Args { vertices, mesh, rig, backend, runs, json }, quiet)
+        }
         Command::Demo { out } => demo::run(&out, quiet),
     };
     match result {

@@ -29,33 +29,16 @@ pub fn run(rig_path: &Path, pose: Option<&Path>) -> CliResult {
         .sweeps()
         .iter()
         .zip(&sweeps)
-        .map(|(sweep, surface)| SweepVolume {
-            name: &sweep.name,
-            volume: surface.volume(),
-        })
+        .map(|(sweep, surface)| SweepVolume { name: &sweep.name, volume: surface.volume() })
         .collect();
     if let Some(bad) = volumes.iter().find(|v| !v.volume.is_finite()) {
         let file = pose.unwrap_or(rig_path).display();
-        return Err(format!(
-            "{file}: sweep {:?}: the volume (Eq. 1) is not a finite number",
-            bad.name
-        )
-        .into());
+        return Err(format!("{file}: sweep {:?}: the volume (Eq. 1) is not a finite number", bad.name).into());
     }
     let total: f64 = volumes.iter().map(|v| v.volume).sum();
     if !total.is_finite() {
-        return Err(format!(
-            "{}: the total volume is not a finite number",
-            pose.unwrap_or(rig_path).display()
-        )
-        .into());
+        return Err(format!("{}: the total volume is not a finite number", pose.unwrap_or(rig_path).display()).into());
     }
-    println!(
-        "{}",
-        serde_json::to_string(&Report {
-            sweeps: volumes,
-            total
-        })?
-    );
+    println!("{}", serde_json::to_string(&Report { sweeps: volumes, total })?);
     Ok(())
 }

@@ -15,15 +15,14 @@ impl SweepCoefficients {
         let Some((sweep, info)) = (binding.cell != UNBOUND)
             .then(|| {
                 self.sweeps.iter().enumerate().find(|(_, info)| {
-                    (info.first_patch..info.first_patch + info.segment_count * info.samples)
-                        .contains(&binding.cell)
+                    (info.first_cell..info.first_cell + info.segment_count * info.samples).contains(&binding.cell)
                 })
             })
             .flatten()
         else {
             return Binding::UNOWNED;
         };
-        let local = binding.cell - info.first_patch;
+        let local = binding.cell - info.first_cell;
         let (k, j) = ((local / info.samples) as usize, local % info.samples);
         let segment = &rest[sweep].segments()[k];
         let s = binding.s as f64;
@@ -41,19 +40,13 @@ impl SweepCoefficients {
     /// The GPU form of a reference binding, in f32.
     pub fn gpu_binding(&self, rest: &[Sweep], binding: &Binding) -> GpuBinding {
         if binding.sweep == UNOWNED {
-            return GpuBinding {
-                cell: UNBOUND,
-                s: 0.0,
-                phi: 0.0,
-                d: 0.0,
-                h: 0.0,
-            };
+            return GpuBinding { cell: UNBOUND, s: 0.0, phi: 0.0, d: 0.0, h: 0.0 };
         }
         let info = self.sweeps[binding.sweep as usize];
         let at = rest[binding.sweep as usize].locate(binding.params.t);
         let (j, phi) = angular_cell(binding.params.theta, info.samples as usize);
         GpuBinding {
-            cell: info.first_patch + at.segment as u32 * info.samples + j as u32,
+            cell: info.first_cell + at.segment as u32 * info.samples + j as u32,
             s: at.s as f32,
             phi: phi as f32,
             d: binding.params.d as f32,
@@ -72,30 +65,13 @@ mod tests {
 
     #[test]
     fn reference_and_gpu_forms_convert_both_ways() {
-        let rig = tube_rig(
-            &Tube {
-                rings: 3,
-                around: 8,
-                length: 2.0,
-                radius: 0.5,
-            },
-            4,
-            8,
-        );
+        let rig = tube_rig(&Tube { rings: 3, around: 8, length: 2.0, radius: 0.5 }, 4, 8);
         let rest = rig.rest();
         let coefficients = SweepCoefficients::new(rest);
         let binder = SweepBinder::new(&rest[0]);
-        for v in [
-            DVec3::new(0.3, -0.2, 0.1),
-            DVec3::new(-0.6, 0.1, 1.3),
-            DVec3::new(0.0, 0.7, 2.4),
-        ] {
-            let reference = Binding {
-                sweep: 0,
-                params: binder.bind(v),
-            };
-            let back =
-                coefficients.reference_binding(rest, &coefficients.gpu_binding(rest, &reference));
+        for v in [DVec3::new(0.3, -0.2, 0.1), DVec3::new(-0.6, 0.1, 1.3), DVec3::new(0.0, 0.7, 2.4)] {
+            let reference = Binding { sweep: 0, params: binder.bind(v) };
+            let back = coefficients.reference_binding(rest, &coefficients.gpu_binding(rest, &reference));
             assert_eq!(back.sweep, 0);
             assert!((back.params.t - reference.params.t).abs() < 1e-7);
             assert!((back.params.theta - reference.params.theta).abs() < 1e-6);
@@ -103,9 +79,6 @@ mod tests {
         }
         let unowned = coefficients.gpu_binding(rest, &Binding::UNOWNED);
         assert_eq!(unowned.cell, UNBOUND);
-        assert_eq!(
-            coefficients.reference_binding(rest, &unowned),
-            Binding::UNOWNED
-        );
+        assert_eq!(coefficients.reference_binding(rest, &unowned), Binding::UNOWNED);
     }
 }

@@ -13,48 +13,58 @@ pub const WORKGROUP_SIZE: u32 = 256;
 /// `GpuBinding::cell` of a vertex that no sweep owns; the deform kernel leaves it in place.
 pub const UNBOUND: u32 = u32::MAX;
 
-/// One knot interval of a posed sweep: C(s) = origin + c1·s + c2·s² + c3·s³ and the
-/// sign-aligned end quaternions of R(t) (§3). Rebuilt every frame. 96 bytes.
+/// Most cells a rig may have for the deform kernel to read them from a uniform buffer (64 KiB,
+/// the portable limit); larger rigs use the storage-buffer variant of the kernel.
+pub const UNIFORM_CELL_CAPACITY: u32 = 409;
+
+/// Everything a vertex needs to follow its posed sweep, for one cell: knot interval k of a
+/// sweep and angular interval j of its radius function (§3). Rebuilt every frame; 160 bytes.
+///
+/// - `radius`: the bicubic r(s, φ) = Σ_p Σ_q `radius[p][q]`·s^p·φ^q.
+/// - `curve[i].xyz`: C(s) = c0 + c1·s + c2·s² + c3·s³ on the interval (c0 = p_k).
+/// - `curve[0].w`, `curve[1].w`, `curve[2].w`: cos and sin of the cell's middle angle
+///   θ_j + π/M, and π/M (`curve[3].w` is unused).
+/// - `q0`, `q1`: q_k and the sign-aligned q̃_{k+1} of R(t), as (x, y, z, w).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
-pub struct SegmentCoeffs {
-    /// C(0) = p_k in xyz; w unused.
-    pub origin: [f32; 4],
-    /// c1, c2, c3 in xyz; w unused.
-    pub curve: [[f32; 4]; 3],
-    /// q_k as (x, y, z, w).
+pub struct CellCoeffs {
+    /// Power-basis coefficients of r, `[power of s][power of φ]`.
+    pub radius: [[f32; 4]; 4],
+    /// The curve's coefficients in xyz; the cell's angular constants in w.
+    pub curve: [[f32; 4]; 4],
+    /// q_k.
     pub q0: [f32; 4],
-    /// q̃_{k+1} as (x, y, z, w), sign-aligned with q_k.
+    /// q̃_{k+1}.
     pub q1: [f32; 4],
 }
 
-/// One (knot interval, angular interval) cell of r(θ, t): the bicubic radius patch, rebuilt
-/// every frame, and the cell's fixed angular data. 80 bytes.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
-pub struct PatchCoeffs {
-    /// r(s, φ) = Σ_p Σ_q `radius[p][q]`·s^p·φ^q.
-    pub radius: [[f32; 4]; 4],
-    /// Index of the cell's knot interval in the segment array.
-    pub segment: u32,
-    /// cos of the cell's middle angle θ_j + π/M.
-    pub cos_mid: f32,
-    /// sin of the cell's middle angle θ_j + π/M.
-    pub sin_mid: f32,
+impl CellCoeffs {
+    /// cos of the cell's middle angle.
+    pub fn cos_mid(&self) -> f32 {
+        self.curve[0][3]
+    }
+
+    /// sin of the cell's middle angle.
+    pub fn sin_mid(&self) -> f32 {
+        self.curve[1][3]
+    }
+
     /// Half the angular step, π/M.
-    pub half_step: f32,
+    pub fn half_step(&self) -> f32 {
+        self.curve[2][3]
+    }
 }
 
-/// Where one sweep's segments and patches start; used by binding. 16 bytes.
+/// Where one sweep's knot intervals and cells start; used by binding. 16 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Pod, Zeroable)]
 pub struct SweepInfo {
-    /// Index of the sweep's first knot interval in the segment arrays.
+    /// Index of the sweep's first knot interval in the [`BindSegment`] array.
     pub first_segment: u32,
     /// Number of knot intervals n.
     pub segment_count: u32,
-    /// Index of the sweep's first patch; patch (k, j) is `first_patch + k·M + j`.
-    pub first_patch: u32,
+    /// Index of the sweep's first cell; cell (k, j) is `first_cell + k·M + j`.
+    pub first_cell: u32,
     /// M, the number of radii per key.
     pub samples: u32,
 }
@@ -80,16 +90,16 @@ pub struct BindSegment {
     pub _pad: f32,
 }
 
-/// A vertex's binding as the GPU stores it: the radius patch it lies in, local parameters in
-/// that cell, and (d, h). 20 bytes, so positions (12) and bindings fit in 32 bytes a vertex.
+/// A vertex's binding as the GPU stores it: the cell it lies in, local parameters in that
+/// cell, and (d, h). 20 bytes, so positions (12) and bindings fit in 32 bytes a vertex.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuBinding {
-    /// Global patch index, or [`UNBOUND`].
+    /// Global cell index, or [`UNBOUND`].
     pub cell: u32,
-    /// Local axis parameter s ∈ [0, 1] in the patch's knot interval.
+    /// Local axis parameter s ∈ [0, 1] in the cell's knot interval.
     pub s: f32,
-    /// Local angle parameter φ ∈ [0, 1] in the patch's angular interval: θ = θ_j + φ·2π/M.
+    /// Local angle parameter φ ∈ [0, 1] in the cell's angular interval: θ = θ_j + φ·2π/M.
     pub phi: f32,
     /// Signed distance d from the sweep surface.
     pub d: f32,
@@ -132,8 +142,8 @@ pub struct Joint {
     pub rows: [[f32; 4]; 3],
 }
 
-const _: () = assert!(size_of::<SegmentCoeffs>() == 96);
-const _: () = assert!(size_of::<PatchCoeffs>() == 80);
+const _: () = assert!(size_of::<CellCoeffs>() == 160);
+const _: () = assert!(UNIFORM_CELL_CAPACITY as usize * size_of::<CellCoeffs>() <= 65536);
 const _: () = assert!(size_of::<SweepInfo>() == 16);
 const _: () = assert!(size_of::<BindSegment>() == 96);
 const _: () = assert!(size_of::<GpuBinding>() == 20);

@@ -3,11 +3,11 @@
 //!
 //! Data flow: rig → sweep → **sweep coefficients** → bind → deform → normals → output.
 //!
-//! Every frame the posed sweeps become a few KB of [`SegmentCoeffs`] (curve and orientation per
-//! knot interval) and [`PatchCoeffs`] (bicubic radius per knot × angular interval); only these
-//! travel to the GPU. Binding additionally needs the rest rig's [`BindSegment`]s and
-//! [`SweepInfo`]s. Indices are global across the rig: sweep i's intervals and patches follow
-//! those of sweeps 0..i.
+//! Every frame the posed sweeps become a few KB of [`CellCoeffs`], one record per (knot
+//! interval, angular interval) cell holding everything a vertex in it needs (bicubic radius,
+//! curve, orientation ends, angular constants); only these travel to the GPU. Binding
+//! additionally needs the rest rig's [`BindSegment`]s and [`SweepInfo`]s. Indices are global
+//! across the rig: sweep i's intervals and cells follow those of sweeps 0..i.
 
 mod convert;
 pub mod layout;
@@ -17,50 +17,37 @@ use std::f64::consts::PI;
 use glam::{DQuat, DVec3};
 
 pub use layout::{
-    BindSegment, DispatchParams, GpuBinding, Joint, PatchCoeffs, SegmentCoeffs, SkinInfluence,
-    SweepInfo, UNBOUND, WORKGROUP_SIZE,
+    BindSegment, CellCoeffs, DispatchParams, GpuBinding, Joint, SkinInfluence, SweepInfo, UNBOUND,
+    UNIFORM_CELL_CAPACITY, WORKGROUP_SIZE,
 };
 
 use crate::sweep::Sweep;
 use crate::sweep::plane_quintic::PlaneQuintic;
 
-/// The per-frame coefficient arrays of a rig, sized once for its structure and refilled in
+/// The per-frame coefficient array of a rig, sized once for its structure and refilled in
 /// place for each pose.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SweepCoefficients {
-    /// One entry per knot interval of every sweep.
-    pub segments: Vec<SegmentCoeffs>,
-    /// One entry per (knot interval, angular interval) of every sweep.
-    pub patches: Vec<PatchCoeffs>,
-    /// Where each sweep's segments and patches start.
+    /// One record per (knot interval, angular interval) cell of every sweep.
+    pub cells: Vec<CellCoeffs>,
+    /// Where each sweep's knot intervals and cells start.
     pub sweeps: Vec<SweepInfo>,
 }
 
 impl SweepCoefficients {
-    /// Sizes the arrays for the structure of `sweeps` (interval and radius counts) and fills
-    /// them with their coefficients.
+    /// Sizes the array for the structure of `sweeps` (interval and radius counts) and fills it
+    /// with their coefficients.
     pub fn new(sweeps: &[Sweep]) -> SweepCoefficients {
         let mut infos = Vec::with_capacity(sweeps.len());
-        let (mut segments, mut patches) = (0u32, 0u32);
+        let (mut segments, mut cells) = (0u32, 0u32);
         for sweep in sweeps {
             let (n, m) = (sweep.segments().len() as u32, sweep.radius_samples() as u32);
-            infos.push(SweepInfo {
-                first_segment: segments,
-                segment_count: n,
-                first_patch: patches,
-                samples: m,
-            });
+            infos.push(SweepInfo { first_segment: segments, segment_count: n, first_cell: cells, samples: m });
             segments += n;
-            patches += n * m;
+            cells += n * m;
         }
-        let mut coefficients = SweepCoefficients {
-            segments: vec![SegmentCoeffs::default(); segments as usize],
-            patches: vec![PatchCoeffs::default(); patches as usize],
-            sweeps: infos,
-        };
-        coefficients
-            .update(sweeps)
-            .expect("arrays sized from these very sweeps");
+        let mut coefficients = SweepCoefficients { cells: vec![CellCoeffs::default(); cells as usize], sweeps: infos };
+        coefficients.update(sweeps).expect("arrays sized from these very sweeps");
         coefficients
     }
 
@@ -68,14 +55,13 @@ impl SweepCoefficients {
     pub fn fits(&self, sweeps: &[Sweep]) -> bool {
         sweeps.len() == self.sweeps.len()
             && sweeps.iter().zip(&self.sweeps).all(|(sweep, info)| {
-                sweep.segments().len() == info.segment_count as usize
-                    && sweep.radius_samples() == info.samples as usize
+                sweep.segments().len() == info.segment_count as usize && sweep.radius_samples() == info.samples as usize
             })
     }
 
-    /// Refills the arrays from posed `sweeps` without allocating. Fails, changing nothing, if
-    /// the sweeps lack the structure the arrays were built for ([`SweepCoefficients::fits`]);
-    /// a pose checked by [`crate::rig::Rig::pose`] always has it.
+    /// Refills the array from posed `sweeps` without allocating. Fails, changing nothing, if
+    /// the sweeps lack the structure the array was built for ([`SweepCoefficients::fits`]); a
+    /// pose checked by [`crate::rig::Rig::pose`] always has it.
     pub fn update(&mut self, sweeps: &[Sweep]) -> Result<(), StructureMismatch> {
         if !self.fits(sweeps) {
             return Err(StructureMismatch);
@@ -84,28 +70,26 @@ impl SweepCoefficients {
             let m = info.samples as usize;
             let half_step = PI / m as f64;
             for (k, segment) in sweep.segments().iter().enumerate() {
-                let global = info.first_segment as usize + k;
-                let [origin, c1, c2, c3] = segment.curve.power_coefficients();
-                self.segments[global] = SegmentCoeffs {
-                    origin: vec4(origin),
-                    curve: [vec4(c1), vec4(c2), vec4(c3)],
-                    q0: quat4(segment.orientation.start),
-                    q1: quat4(segment.orientation.end),
-                };
+                let curve = segment.curve.power_coefficients().map(vec4);
+                let (q0, q1) = (quat4(segment.orientation.start), quat4(segment.orientation.end));
                 for j in 0..m {
-                    let patch = sweep.radius_field().patch(k, j);
                     let mid = (2 * j + 1) as f64 * half_step;
-                    self.patches[info.first_patch as usize + k * m + j] = PatchCoeffs {
-                        radius: patch.c.map(|row| row.map(|c| c as f32)),
-                        segment: global as u32,
-                        cos_mid: mid.cos() as f32,
-                        sin_mid: mid.sin() as f32,
-                        half_step: half_step as f32,
-                    };
+                    let mut curve = curve;
+                    curve[0][3] = mid.cos() as f32;
+                    curve[1][3] = mid.sin() as f32;
+                    curve[2][3] = half_step as f32;
+                    let radius = sweep.radius_field().patch(k, j).c.map(|row| row.map(|c| c as f32));
+                    self.cells[info.first_cell as usize + k * m + j] = CellCoeffs { radius, curve, q0, q1 };
                 }
             }
         }
         Ok(())
+    }
+
+    /// The index of cell (k, 0) of sweep `sweep`: the first cell of its knot interval k.
+    pub fn first_cell_of_segment(&self, sweep: usize, k: usize) -> u32 {
+        let info = self.sweeps[sweep];
+        info.first_cell + k as u32 * info.samples
     }
 }
 

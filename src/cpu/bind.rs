@@ -10,7 +10,7 @@ use rayon::prelude::*;
 
 use super::position;
 use super::sweep_eval::{curve_at, quat_at, radius_at, rotate_inverse};
-use crate::coeffs::{BindSegment, GpuBinding, PatchCoeffs, SegmentCoeffs, SweepInfo, UNBOUND};
+use crate::coeffs::{BindSegment, CellCoeffs, GpuBinding, SweepInfo, UNBOUND};
 
 /// Dyadic subdivision depth: intervals of width 2⁻¹² that still show several sign variations
 /// hold a (near-)double root and report their midpoint.
@@ -22,20 +22,19 @@ const MAX_REFINE_STEPS: u32 = 32;
 /// The kernel's read-only inputs, as bound to it.
 #[derive(Clone, Copy, Debug)]
 pub struct BindInputs<'a> {
-    /// Rest curve and orientation coefficients.
-    pub segments: &'a [SegmentCoeffs],
-    /// Rest radius patches.
-    pub patches: &'a [PatchCoeffs],
+    /// The rest rig's cell records.
+    pub cells: &'a [CellCoeffs],
     /// Rest binding quintics.
     pub bind_segments: &'a [BindSegment],
     /// Where each sweep starts.
     pub sweeps: &'a [SweepInfo],
 }
 
-/// The nearest root found so far: its knot interval, local parameter and squared distance.
+/// The nearest root found so far: the first cell of its knot interval (which holds the
+/// interval's curve and orientation), its local parameter and squared distance.
 #[derive(Clone, Copy, Debug)]
 struct Nearest {
-    segment: u32,
+    cell: u32,
     s: f32,
     distance2: f32,
     found: bool,
@@ -45,14 +44,7 @@ struct Nearest {
 fn plane_quintic(b: &BindSegment, v: Vec3) -> [f32; 6] {
     let w = v - Vec4::from_array(b.origin).xyz();
     let n = b.normal.map(|n| Vec4::from_array(n).xyz());
-    [
-        w.dot(n[0]),
-        w.dot(n[1]) - b.e_low[0],
-        w.dot(n[2]) - b.e_low[1],
-        -b.e_low[2],
-        -b.e_low[3],
-        -b.e5,
-    ]
+    [w.dot(n[0]), w.dot(n[1]) - b.e_low[0], w.dot(n[2]) - b.e_low[1], -b.e_low[2], -b.e_low[3], -b.e5]
 }
 
 fn eval_quintic(g: &[f32; 6], s: f32) -> f32 {
@@ -132,26 +124,23 @@ fn refine_root(g: &[f32; 6], lo_in: f32, hi_in: f32, positive_at_lo: bool) -> f3
     s
 }
 
-/// Keeps root s of knot interval k if it is nearer to v than the nearest so far.
-fn consider_root(inputs: &BindInputs, k: u32, s: f32, v: Vec3, nearest: &mut Nearest) {
-    let offset = v - curve_at(&inputs.segments[k as usize], s);
+/// Keeps root s of the knot interval whose first cell is `cell` if it is nearer to v than the
+/// nearest so far.
+fn consider_root(inputs: &BindInputs, cell: u32, s: f32, v: Vec3, nearest: &mut Nearest) {
+    let offset = v - curve_at(&inputs.cells[cell as usize], s);
     let distance2 = offset.dot(offset);
     if !nearest.found || distance2 < nearest.distance2 {
-        *nearest = Nearest {
-            segment: k,
-            s,
-            distance2,
-            found: true,
-        };
+        *nearest = Nearest { cell, s, distance2, found: true };
     }
 }
 
-/// Visits the dyadic subintervals of [0, 1] depth first without a stack (level, index encode the
-/// interval [index/2^level, (index + 1)/2^level]), refining every certified root.
-fn roots_on_segment(inputs: &BindInputs, k: u32, v: Vec3, nearest: &mut Nearest) {
+/// Every root on knot interval k (first cell `cell`): visits the dyadic subintervals of [0, 1]
+/// depth first without a stack (level, index encode the interval
+/// [index/2^level, (index + 1)/2^level]), refining every certified root.
+fn roots_on_segment(inputs: &BindInputs, k: u32, cell: u32, v: Vec3, nearest: &mut Nearest) {
     let g = plane_quintic(&inputs.bind_segments[k as usize], v);
     if g[0] == 0.0 {
-        consider_root(inputs, k, 0.0, v, nearest);
+        consider_root(inputs, cell, 0.0, v, nearest);
     }
     let mut level = 0u32;
     let mut index = 0u32;
@@ -166,15 +155,9 @@ fn roots_on_segment(inputs: &BindInputs, k: u32, v: Vec3, nearest: &mut Nearest)
             continue;
         }
         if variations == 1 || (variations > 1 && (b[0] >= 0.0) != (b[5] >= 0.0)) {
-            consider_root(
-                inputs,
-                k,
-                refine_root(&g, a, a + w, b[0] >= 0.0),
-                v,
-                nearest,
-            );
+            consider_root(inputs, cell, refine_root(&g, a, a + w, b[0] >= 0.0), v, nearest);
         } else if variations > 1 {
-            consider_root(inputs, k, a + 0.5 * w, v, nearest);
+            consider_root(inputs, cell, a + 0.5 * w, v, nearest);
         }
         // Next interval: climb while on a right child, then step to the right sibling.
         while index & 1 == 1 {
@@ -187,7 +170,7 @@ fn roots_on_segment(inputs: &BindInputs, k: u32, v: Vec3, nearest: &mut Nearest)
         index += 1;
     }
     if eval_quintic(&g, 1.0) == 0.0 {
-        consider_root(inputs, k, 1.0, v, nearest);
+        consider_root(inputs, cell, 1.0, v, nearest);
     }
 }
 
@@ -195,43 +178,24 @@ fn roots_on_segment(inputs: &BindInputs, k: u32, v: Vec3, nearest: &mut Nearest)
 /// [`UNBOUND`]).
 pub fn bind_vertex(inputs: &BindInputs, owner: u32, v: Vec3) -> GpuBinding {
     if owner == UNBOUND {
-        return GpuBinding {
-            cell: UNBOUND,
-            s: 0.0,
-            phi: 0.0,
-            d: 0.0,
-            h: 0.0,
-        };
+        return GpuBinding { cell: UNBOUND, s: 0.0, phi: 0.0, d: 0.0, h: 0.0 };
     }
     let sweep = inputs.sweeps[owner as usize];
-    let mut nearest = Nearest {
-        segment: sweep.first_segment,
-        s: 0.0,
-        distance2: 0.0,
-        found: false,
-    };
-    for k in sweep.first_segment..sweep.first_segment + sweep.segment_count {
-        roots_on_segment(inputs, k, v, &mut nearest);
+    let mut nearest = Nearest { cell: sweep.first_cell, s: 0.0, distance2: 0.0, found: false };
+    for k in 0..sweep.segment_count {
+        roots_on_segment(inputs, sweep.first_segment + k, sweep.first_cell + k * sweep.samples, v, &mut nearest);
     }
     if !nearest.found {
         // Beyond an end: the nearer of C(0) and C(1).
-        let last = sweep.first_segment + sweep.segment_count - 1;
-        let to_start = v - curve_at(&inputs.segments[sweep.first_segment as usize], 0.0);
-        let to_end = v - curve_at(&inputs.segments[last as usize], 1.0);
+        let last = sweep.first_cell + (sweep.segment_count - 1) * sweep.samples;
+        let to_start = v - curve_at(&inputs.cells[sweep.first_cell as usize], 0.0);
+        let to_end = v - curve_at(&inputs.cells[last as usize], 1.0);
         if to_end.dot(to_end) < to_start.dot(to_start) {
-            nearest = Nearest {
-                segment: last,
-                s: 1.0,
-                distance2: 0.0,
-                found: true,
-            };
+            nearest = Nearest { cell: last, s: 1.0, distance2: 0.0, found: true };
         }
     }
-    let segment = &inputs.segments[nearest.segment as usize];
-    let local = rotate_inverse(
-        quat_at(segment, nearest.s),
-        v - curve_at(segment, nearest.s),
-    );
+    let interval = &inputs.cells[nearest.cell as usize];
+    let local = rotate_inverse(quat_at(interval, nearest.s), v - curve_at(interval, nearest.s));
     // On the axis θ is arbitrary; atan2(0, 0) is not defined in WGSL, so pin it to 0.
     let mut theta = 0.0;
     if local.x != 0.0 || local.y != 0.0 {
@@ -243,22 +207,13 @@ pub fn bind_vertex(inputs: &BindInputs, owner: u32, v: Vec3) -> GpuBinding {
     let x = theta * (sweep.samples as f32 / TAU);
     let j = (x as u32).min(sweep.samples - 1);
     let phi = (x - j as f32).clamp(0.0, 1.0);
-    let cell = sweep.first_patch + (nearest.segment - sweep.first_segment) * sweep.samples + j;
-    let r = radius_at(&inputs.patches[cell as usize], nearest.s, phi);
-    GpuBinding {
-        cell,
-        s: nearest.s,
-        phi,
-        d: local.truncate().length() - r,
-        h: local.z,
-    }
+    let cell = nearest.cell + j;
+    let r = radius_at(&inputs.cells[cell as usize], nearest.s, phi);
+    GpuBinding { cell, s: nearest.s, phi, d: local.truncate().length() - r, h: local.z }
 }
 
 /// Every invocation of the kernel: the binding of each vertex of `positions` (tightly packed
 /// xyz) owned by `owners[i]`, in parallel.
 pub fn bind(inputs: &BindInputs, owners: &[u32], positions: &[f32]) -> Vec<GpuBinding> {
-    (0..owners.len())
-        .into_par_iter()
-        .map(|i| bind_vertex(inputs, owners[i], position(positions, i)))
-        .collect()
+    (0..owners.len()).into_par_iter().map(|i| bind_vertex(inputs, owners[i], position(positions, i))).collect()
 }

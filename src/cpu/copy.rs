@@ -15,12 +15,9 @@ pub fn copy_vertex(b: &GpuBinding, xyz: &mut [f32]) {
 /// Every invocation of the kernel, in parallel.
 pub fn copy(bindings: &[GpuBinding], positions: &mut [f32]) {
     const CHUNK: usize = 4096;
-    positions
-        .par_chunks_mut(3 * CHUNK)
-        .zip(bindings.par_chunks(CHUNK))
-        .for_each(|(positions, bindings)| {
-            for (xyz, b) in positions.chunks_exact_mut(3).zip(bindings) {
-                copy_vertex(b, xyz);
-            }
-        });
+    positions.par_chunks_mut(3 * CHUNK).zip(bindings.par_chunks(CHUNK)).for_each(|(positions, bindings)| {
+        for (xyz, b) in positions.chunks_exact_mut(3).zip(bindings) {
+            copy_vertex(b, xyz);
+        }
+    });
 }

@@ -5,44 +5,31 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::sweep_eval::{curve_at, direction_at, quat_at, radius_at, rotate};
-use crate::coeffs::{GpuBinding, PatchCoeffs, SegmentCoeffs, UNBOUND};
+use crate::coeffs::{CellCoeffs, GpuBinding, UNBOUND};
 
 /// One invocation of the kernel: the new position of a vertex, or `None` if it is unbound and
 /// keeps its rest position.
-pub fn deform_vertex(
-    segments: &[SegmentCoeffs],
-    patches: &[PatchCoeffs],
-    binding: &GpuBinding,
-) -> Option<Vec3> {
+pub fn deform_vertex(cells: &[CellCoeffs], binding: &GpuBinding) -> Option<Vec3> {
     if binding.cell == UNBOUND {
         return None;
     }
-    let cell = &patches[binding.cell as usize];
-    let segment = &segments[cell.segment as usize];
+    let cell = &cells[binding.cell as usize];
     let rho = radius_at(cell, binding.s, binding.phi) + binding.d;
     let direction = direction_at(cell, binding.phi);
     let local = Vec3::new(rho * direction.x, rho * direction.y, binding.h);
-    let p = curve_at(segment, binding.s) + rotate(quat_at(segment, binding.s), local);
+    let p = curve_at(cell, binding.s) + rotate(quat_at(cell, binding.s), local);
     Some(p)
 }
 
 /// Every invocation of the kernel: overwrites the bound vertices of `positions` (tightly
 /// packed xyz, one triple per binding), in parallel.
-pub fn deform(
-    segments: &[SegmentCoeffs],
-    patches: &[PatchCoeffs],
-    bindings: &[GpuBinding],
-    positions: &mut [f32],
-) {
+pub fn deform(cells: &[CellCoeffs], bindings: &[GpuBinding], positions: &mut [f32]) {
     const CHUNK: usize = 4096;
-    positions
-        .par_chunks_mut(3 * CHUNK)
-        .zip(bindings.par_chunks(CHUNK))
-        .for_each(|(positions, bindings)| {
-            for (xyz, binding) in positions.chunks_exact_mut(3).zip(bindings) {
-                if let Some(p) = deform_vertex(segments, patches, binding) {
-                    xyz.copy_from_slice(&p.to_array());
-                }
+    positions.par_chunks_mut(3 * CHUNK).zip(bindings.par_chunks(CHUNK)).for_each(|(positions, bindings)| {
+        for (xyz, binding) in positions.chunks_exact_mut(3).zip(bindings) {
+            if let Some(p) = deform_vertex(cells, binding) {
+                xyz.copy_from_slice(&p.to_array());
             }
-        });
+        }
+    });
 }

@@ -14,8 +14,7 @@ pub fn vertex_normal(positions: &[f32], offsets: &[u32], corners: &[[u32; 2]], i
     let mut sum = Vec3::ZERO;
     for c in offsets[i]..offsets[i + 1] {
         let corner = corners[c as usize];
-        sum += (position(positions, corner[0] as usize) - p)
-            .cross(position(positions, corner[1] as usize) - p);
+        sum += (position(positions, corner[0] as usize) - p).cross(position(positions, corner[1] as usize) - p);
     }
     let mut n = Vec3::ZERO;
     let length2 = sum.dot(sum);
@@ -29,8 +28,6 @@ pub fn vertex_normal(positions: &[f32], offsets: &[u32], corners: &[[u32; 2]], i
 /// xyz), written tightly packed into `normals`, in parallel.
 pub fn normals(positions: &[f32], adjacency: &NormalAdjacency, normals: &mut [f32]) {
     normals.par_chunks_mut(3).enumerate().for_each(|(i, out)| {
-        out.copy_from_slice(
-            &vertex_normal(positions, &adjacency.offsets, &adjacency.corners, i).to_array(),
-        );
+        out.copy_from_slice(&vertex_normal(positions, &adjacency.offsets, &adjacency.corners, i).to_array());
     });
 }

@@ -27,16 +27,8 @@ pub fn skin_vertex(joints: &[Joint], rest: &[f32], influences: &[SkinInfluence],
 }
 
 /// Every invocation of the kernel, in parallel.
-pub fn skinning(
-    joints: &[Joint],
-    rest: &[f32],
-    influences: &[SkinInfluence],
-    positions: &mut [f32],
-) {
-    positions
-        .par_chunks_mut(3)
-        .enumerate()
-        .for_each(|(i, xyz)| {
-            xyz.copy_from_slice(&skin_vertex(joints, rest, influences, i).to_array());
-        });
+pub fn skinning(joints: &[Joint], rest: &[f32], influences: &[SkinInfluence], positions: &mut [f32]) {
+    positions.par_chunks_mut(3).enumerate().for_each(|(i, xyz)| {
+        xyz.copy_from_slice(&skin_vertex(joints, rest, influences, i).to_array());
+    });
 }

@@ -24,9 +24,8 @@ pub fn deform_vertex(sweep: &Sweep, binding: &VertexBinding) -> DVec3 {
 /// sweep (`posed[binding.sweep]`), unowned vertices keep their `rest` position. In parallel.
 pub fn deform_vertices(posed: &[Sweep], bindings: &[Binding], rest: &[DVec3], out: &mut [DVec3]) {
     const CHUNK: usize = 4096;
-    out.par_chunks_mut(CHUNK)
-        .zip(bindings.par_chunks(CHUNK).zip(rest.par_chunks(CHUNK)))
-        .for_each(|(out, (bindings, rest))| {
+    out.par_chunks_mut(CHUNK).zip(bindings.par_chunks(CHUNK).zip(rest.par_chunks(CHUNK))).for_each(
+        |(out, (bindings, rest))| {
             for ((v, binding), &rest) in out.iter_mut().zip(bindings).zip(rest) {
                 *v = if binding.sweep == UNOWNED {
                     rest
@@ -34,5 +33,6 @@ pub fn deform_vertices(posed: &[Sweep], bindings: &[Binding], rest: &[DVec3], ou
                     deform_vertex(&posed[binding.sweep as usize], &binding.params)
                 };
             }
-        });
+        },
+    );
 }

@@ -16,8 +16,7 @@ use crate::sweep::Sweep;
 pub(crate) struct Binder {
     kernel: Kernel,
     device: wgpu::Device,
-    segments: wgpu::Buffer,
-    patches: wgpu::Buffer,
+    cells: wgpu::Buffer,
     bind_segments: wgpu::Buffer,
     sweeps: wgpu::Buffer,
 }
@@ -27,8 +26,7 @@ impl Binder {
         context: &GpuContext,
         rest: &[Sweep],
         coefficients: &SweepCoefficients,
-        segments: &wgpu::Buffer,
-        patches: &wgpu::Buffer,
+        cells: &wgpu::Buffer,
     ) -> Binder {
         let device = &context.device;
         let table = |label, bytes: &[u8]| {
@@ -41,24 +39,14 @@ impl Binder {
         Binder {
             kernel: kernels::bind(device),
             device: device.clone(),
-            segments: segments.clone(),
-            patches: patches.clone(),
-            bind_segments: table(
-                "sweepffd bind segments",
-                bytemuck::cast_slice(&bind_segments(rest)),
-            ),
-            sweeps: table(
-                "sweepffd sweeps",
-                bytemuck::cast_slice(&coefficients.sweeps),
-            ),
+            cells: cells.clone(),
+            bind_segments: table("sweepffd bind segments", bytemuck::cast_slice(&bind_segments(rest))),
+            sweeps: table("sweepffd sweeps", bytemuck::cast_slice(&coefficients.sweeps)),
         }
     }
 
     /// Records the binding of the vertices in `range` into `bindings`.
-    #[expect(
-        clippy::too_many_arguments,
-        reason = "one per resource of the dispatch"
-    )]
+    #[expect(clippy::too_many_arguments, reason = "one per resource of the dispatch")]
     pub(crate) fn encode(
         &self,
         encoder: &mut wgpu::CommandEncoder,
@@ -75,20 +63,13 @@ impl Binder {
             contents: bytemuck::cast_slice(owners),
             usage: wgpu::BufferUsages::STORAGE,
         });
-        let params = params_buffer(
-            device,
-            DispatchParams {
-                vertex_count: range.len() as u32,
-                ..Default::default()
-            },
-        );
+        let params = params_buffer(device, DispatchParams { vertex_count: range.len() as u32, ..Default::default() });
         let group = self.kernel.bind_group(
             device,
             "sweepffd bind",
             &[
                 params.as_entire_binding(),
-                self.segments.as_entire_binding(),
-                self.patches.as_entire_binding(),
+                self.cells.as_entire_binding(),
                 self.bind_segments.as_entire_binding(),
                 self.sweeps.as_entire_binding(),
                 owners.as_entire_binding(),

@@ -24,7 +24,7 @@ impl ChunkLimits {
     /// The limits of a device.
     pub fn of(limits: &wgpu::Limits) -> ChunkLimits {
         ChunkLimits {
-            max_binding: limits.max_storage_buffer_binding_size as u64,
+            max_binding: limits.max_storage_buffer_binding_size,
             max_buffer: limits.max_buffer_size,
             offset_alignment: limits.min_storage_buffer_offset_alignment as u64,
             max_workgroups: limits.max_compute_workgroups_per_dimension,
@@ -49,34 +49,25 @@ pub fn uniform_chunks(vertex_count: u32, stride: u64, limits: &ChunkLimits) -> V
     let granule = limits.granule();
     let fit = (limits.max_chunk_bytes() / stride).min(u32::MAX as u64) as u32;
     let cap = (fit / granule * granule).max(granule);
-    (0..vertex_count.div_ceil(cap))
-        .map(|c| c * cap..((c + 1) * cap).min(vertex_count))
-        .collect()
+    (0..vertex_count.div_ceil(cap)).map(|c| c * cap..((c + 1) * cap).min(vertex_count)).collect()
 }
 
 /// Consecutive vertex ranges for the normals kernel: each chunk's rows of the adjacency
 /// (`offsets`, one more entry than vertices; `corner_bytes` per corner pair), its own offsets
 /// and its window of the normals (12 bytes a vertex) each fit one binding. `None` if a single
 /// vertex has more corners than one binding holds.
-pub fn normal_chunks(
-    offsets: &[u32],
-    corner_bytes: u64,
-    limits: &ChunkLimits,
-) -> Option<Vec<Range<u32>>> {
+pub fn normal_chunks(offsets: &[u32], corner_bytes: u64, limits: &ChunkLimits) -> Option<Vec<Range<u32>>> {
     let vertex_count = (offsets.len() - 1) as u32;
     let granule = limits.granule();
     let budget = limits.max_chunk_bytes();
-    let vertex_cap = (budget / 12)
-        .min((budget / 4).saturating_sub(1))
-        .min(u32::MAX as u64) as u32;
+    let vertex_cap = (budget / 12).min((budget / 4).saturating_sub(1)).min(u32::MAX as u64) as u32;
     let mut chunks = Vec::new();
     let mut start = 0u32;
     while start < vertex_count {
         let limit = start.saturating_add(vertex_cap).min(vertex_count);
         let max_corner = offsets[start as usize] as u64 + budget / corner_bytes;
         // The last end ≤ limit whose rows still fit: offsets is non-decreasing.
-        let fitting = offsets[start as usize..=limit as usize]
-            .partition_point(|&o| o as u64 <= max_corner) as u32;
+        let fitting = offsets[start as usize..=limit as usize].partition_point(|&o| o as u64 <= max_corner) as u32;
         let mut end = start + fitting.saturating_sub(1);
         if end < vertex_count {
             end = start + (end - start) / granule * granule;
@@ -121,11 +112,7 @@ mod tests {
         }
         for chunk in &chunks {
             assert!((chunk.len() as u64) * 20 <= LAVAPIPE.max_binding);
-            assert_eq!(
-                (chunk.start as u64 * 12) % 256,
-                0,
-                "positions window offset"
-            );
+            assert_eq!((chunk.start as u64 * 12) % 256, 0, "positions window offset");
         }
     }
 
@@ -139,16 +126,13 @@ mod tests {
         let (x, y) = dispatch_grid(16 << 20, &LAVAPIPE);
         assert_eq!(x, 65535);
         assert!(x as u64 * y as u64 * WORKGROUP_SIZE as u64 >= 16 << 20);
-        assert_eq!(dispatch_grid(100, &LAVAPIPE), (2, 1));
+        assert_eq!(dispatch_grid(WORKGROUP_SIZE + 1, &LAVAPIPE), (2, 1));
     }
 
     #[test]
     fn normal_chunks_respect_the_corner_budget() {
         // Six corners per vertex, 8 bytes each, with a 4 KiB binding limit.
-        let limits = ChunkLimits {
-            max_binding: 4096,
-            ..LAVAPIPE
-        };
+        let limits = ChunkLimits { max_binding: 4096, ..LAVAPIPE };
         let offsets: Vec<u32> = (0..=1000).map(|i| 6 * i).collect();
         let chunks = normal_chunks(&offsets, 8, &limits).unwrap();
         assert_eq!(chunks.last().unwrap().end, 1000);
@@ -161,10 +145,7 @@ mod tests {
 
     #[test]
     fn vertex_with_more_corners_than_a_binding_holds_is_refused() {
-        let limits = ChunkLimits {
-            max_binding: 64,
-            ..LAVAPIPE
-        };
+        let limits = ChunkLimits { max_binding: 64, ..LAVAPIPE };
         assert!(normal_chunks(&[0, 100], 8, &limits).is_none());
     }
 }

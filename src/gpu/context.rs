@@ -34,11 +34,7 @@ impl GpuContext {
         let instance = wgpu::Instance::new(descriptor);
         let adapter = pick_adapter(&instance).await.ok_or(GpuError::NoAdapter)?;
         let info = adapter.get_info();
-        if !adapter
-            .get_downlevel_capabilities()
-            .flags
-            .contains(wgpu::DownlevelFlags::COMPUTE_SHADERS)
-        {
+        if !adapter.get_downlevel_capabilities().flags.contains(wgpu::DownlevelFlags::COMPUTE_SHADERS) {
             return Err(GpuError::NoCompute { adapter: info.name });
         }
         let required_features = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
@@ -52,10 +48,7 @@ impl GpuContext {
                 trace: wgpu::Trace::Off,
             })
             .await
-            .map_err(|e| GpuError::Device {
-                adapter: info.name.clone(),
-                reason: e.to_string(),
-            })?;
+            .map_err(|e| GpuError::Device { adapter: info.name.clone(), reason: e.to_string() })?;
         let lost = Arc::new(Mutex::new(None));
         let flag = Arc::clone(&lost);
         device.set_device_lost_callback(move |reason, message| {
@@ -63,26 +56,12 @@ impl GpuContext {
                 *lost = Some(format!("{reason:?}: {message}"));
             }
         });
-        Ok(GpuContext {
-            device,
-            queue,
-            info,
-            lost,
-        })
+        Ok(GpuContext { device, queue, info, lost })
     }
 
     /// Wraps a host application's device and queue; `info` describes its adapter.
-    pub fn from_device(
-        device: wgpu::Device,
-        queue: wgpu::Queue,
-        info: wgpu::AdapterInfo,
-    ) -> GpuContext {
-        GpuContext {
-            device,
-            queue,
-            info,
-            lost: Arc::new(Mutex::new(None)),
-        }
+    pub fn from_device(device: wgpu::Device, queue: wgpu::Queue, info: wgpu::AdapterInfo) -> GpuContext {
+        GpuContext { device, queue, info, lost: Arc::new(Mutex::new(None)) }
     }
 
     /// `Err(DeviceLost)` if the device created by [`GpuContext::new`] has been lost.
@@ -95,9 +74,7 @@ impl GpuContext {
 
     /// Whether timestamp queries are enabled on the device.
     pub fn has_timestamps(&self) -> bool {
-        self.device
-            .features()
-            .contains(wgpu::Features::TIMESTAMP_QUERY)
+        self.device.features().contains(wgpu::Features::TIMESTAMP_QUERY)
     }
 }
 

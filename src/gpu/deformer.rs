@@ -11,7 +11,7 @@ use super::chunks::{ChunkLimits, dispatch_grid, normal_chunks, uniform_chunks};
 use super::kernels::{self, Kernel};
 use super::readback::{read_bytes, wait};
 use super::{GpuContext, GpuError};
-use crate::coeffs::{DispatchParams, GpuBinding, SweepCoefficients, UNBOUND};
+use crate::coeffs::{CellCoeffs, DispatchParams, GpuBinding, SweepCoefficients, UNBOUND, UNIFORM_CELL_CAPACITY};
 use crate::mesh::Faces;
 use crate::normals::NormalAdjacency;
 use crate::sweep::Sweep;
@@ -21,7 +21,7 @@ pub const POSITION_STRIDE: u64 = 12;
 /// Bytes per vertex of the binding buffers.
 pub const BINDING_STRIDE: u64 = size_of::<GpuBinding>() as u64;
 /// Storage buffers the bind kernel uses in one stage, the most of any kernel.
-const STORAGE_BUFFERS_NEEDED: u32 = 7;
+const STORAGE_BUFFERS_NEEDED: u32 = 6;
 
 /// How the deformer gets its bindings.
 #[derive(Clone, Copy, Debug)]
@@ -73,8 +73,7 @@ pub struct GpuDeformer {
     kernel: Kernel,
     vertex_count: u32,
     positions: wgpu::Buffer,
-    segments: wgpu::Buffer,
-    patches: wgpu::Buffer,
+    cells: wgpu::Buffer,
     coefficients: SweepCoefficients,
     chunks: Vec<DeformChunk>,
     normals: Option<NormalsStage>,
@@ -87,6 +86,55 @@ struct DeformChunk {
     bindings: wgpu::Buffer,
     group: wgpu::BindGroup,
     grid: (u32, u32),
+}
+
+impl DeformChunk {
+    /// The deform dispatch of the vertices in `range`, whose bindings are in `bindings`.
+    fn new(
+        device: &wgpu::Device,
+        kernel: &Kernel,
+        range: Range<u32>,
+        bindings: wgpu::Buffer,
+        cells: &wgpu::Buffer,
+        positions: &wgpu::Buffer,
+        limits: &ChunkLimits,
+    ) -> DeformChunk {
+        let params = params_buffer(device, DispatchParams { vertex_count: range.len() as u32, ..Default::default() });
+        let group = kernel.bind_group(
+            device,
+            "sweepffd deform",
+            &[
+                params.as_entire_binding(),
+                cells.as_entire_binding(),
+                bindings.as_entire_binding(),
+                window(positions, &range, POSITION_STRIDE),
+            ],
+        );
+        let grid = dispatch_grid(range.len() as u32, limits);
+        DeformChunk { range, bindings, group, grid }
+    }
+}
+
+/// Where the deform kernel reads the cell records from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DeformVariant {
+    /// A uniform buffer of [`UNIFORM_CELL_CAPACITY`] records: much faster on lavapipe and many
+    /// GPUs; for rigs of up to that many cells on devices that allow 64 KiB uniform buffers.
+    Uniform,
+    /// A storage buffer: rigs of any size.
+    Storage,
+}
+
+impl DeformVariant {
+    /// The uniform variant when the rig's `cells` and the device allow it.
+    pub fn for_cells(cells: usize, limits: &wgpu::Limits) -> DeformVariant {
+        let bytes = UNIFORM_CELL_CAPACITY as u64 * size_of::<CellCoeffs>() as u64;
+        if cells <= UNIFORM_CELL_CAPACITY as usize && limits.max_uniform_buffer_binding_size >= bytes {
+            DeformVariant::Uniform
+        } else {
+            DeformVariant::Storage
+        }
+    }
 }
 
 /// The normals pass: its kernel, output buffer and dispatches.
@@ -119,121 +167,41 @@ impl GpuDeformer {
         }
         let limits = ChunkLimits::of(&device_limits);
         let vertex_count = positions.len() as u32;
-        check_fits(
-            "the position buffer",
-            vertex_count as u64 * POSITION_STRIDE,
-            limits.max_buffer,
-        )?;
+        check_fits("the position buffer", vertex_count as u64 * POSITION_STRIDE, limits.max_buffer)?;
 
         let out_of_memory = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
         let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let coefficients = SweepCoefficients::new(rest);
-        let rest_f32: Vec<f32> = positions
-            .iter()
-            .flat_map(|p| p.as_vec3().to_array())
-            .collect();
-        let positions_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("sweepffd positions"),
-            contents: bytemuck::cast_slice(&rest_f32),
-            usage: wgpu::BufferUsages::VERTEX
-                | wgpu::BufferUsages::STORAGE
-                | wgpu::BufferUsages::COPY_SRC
-                | wgpu::BufferUsages::COPY_DST,
-        });
-        let coefficient_buffer = |label, bytes: &[u8]| {
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents: bytes,
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-            })
-        };
-        let segments = coefficient_buffer(
-            "sweepffd segments",
-            bytemuck::cast_slice(&coefficients.segments),
-        );
-        let patches = coefficient_buffer(
-            "sweepffd patches",
-            bytemuck::cast_slice(&coefficients.patches),
-        );
-
-        let kernel = kernels::deform(device);
-        let ranges = uniform_chunks(vertex_count, BINDING_STRIDE, &limits);
-        let mut chunks = Vec::with_capacity(ranges.len());
-        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-            label: Some("sweepffd bind"),
-        });
+        let positions_buffer = upload_positions(device, positions);
+        let variant = DeformVariant::for_cells(coefficients.cells.len(), &device_limits);
+        let cells = cells_buffer(device, &coefficients, variant);
+        let kernel = kernels::deform(device, variant);
+        let mut encoder =
+            device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd bind") });
         let binder = match bindings {
-            BindingSource::Bind { .. } => Some(Binder::new(
-                context,
-                rest,
-                &coefficients,
-                &segments,
-                &patches,
-            )),
+            BindingSource::Bind { .. } => Some(Binder::new(context, rest, &coefficients, &cells)),
             BindingSource::Precomputed(_) => None,
         };
-        for range in ranges {
-            let bindings_buffer = match bindings {
-                BindingSource::Bind { owners } => {
-                    let buffer = empty_binding_buffer(device, range.len());
-                    let binder = binder.as_ref().expect("made for BindingSource::Bind");
-                    binder.encode(
-                        &mut encoder,
-                        &range,
-                        &owners[range.start as usize..range.end as usize],
-                        &positions_buffer,
-                        &buffer,
-                        &limits,
-                        None,
-                    );
-                    buffer
-                }
-                BindingSource::Precomputed(all) => {
-                    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                        label: Some("sweepffd bindings"),
-                        contents: bytemuck::cast_slice(
-                            &all[range.start as usize..range.end as usize],
-                        ),
-                        usage: wgpu::BufferUsages::STORAGE
-                            | wgpu::BufferUsages::COPY_SRC
-                            | wgpu::BufferUsages::COPY_DST,
-                    })
-                }
-            };
-            let params = params_buffer(
-                device,
-                DispatchParams {
-                    vertex_count: range.len() as u32,
-                    ..Default::default()
-                },
-            );
-            let group = kernel.bind_group(
-                device,
-                "sweepffd deform",
-                &[
-                    params.as_entire_binding(),
-                    segments.as_entire_binding(),
-                    patches.as_entire_binding(),
-                    bindings_buffer.as_entire_binding(),
-                    window(&positions_buffer, &range, POSITION_STRIDE),
-                ],
-            );
-            let grid = dispatch_grid(range.len() as u32, &limits);
-            chunks.push(DeformChunk {
-                range,
-                bindings: bindings_buffer,
-                group,
-                grid,
-            });
-        }
+        let chunks = uniform_chunks(vertex_count, BINDING_STRIDE, &limits)
+            .into_iter()
+            .map(|range| {
+                let bindings_buffer = match bindings {
+                    BindingSource::Bind { owners } => {
+                        let buffer = empty_binding_buffer(device, range.len());
+                        let owners = &owners[range.start as usize..range.end as usize];
+                        let binder = binder.as_ref().expect("made for BindingSource::Bind");
+                        binder.encode(&mut encoder, &range, owners, &positions_buffer, &buffer, &limits, None);
+                        buffer
+                    }
+                    BindingSource::Precomputed(all) => {
+                        binding_buffer_with(device, &all[range.start as usize..range.end as usize])
+                    }
+                };
+                DeformChunk::new(device, &kernel, range, bindings_buffer, &cells, &positions_buffer, &limits)
+            })
+            .collect();
         let normals = match faces {
-            Some(faces) => Some(NormalsStage::new(
-                device,
-                faces,
-                &positions_buffer,
-                vertex_count,
-                &limits,
-            )?),
+            Some(faces) => Some(NormalsStage::new(device, faces, &positions_buffer, vertex_count, &limits)?),
             None => None,
         };
         let deformer = GpuDeformer {
@@ -242,8 +210,7 @@ impl GpuDeformer {
             kernel,
             vertex_count,
             positions: positions_buffer,
-            segments,
-            patches,
+            cells,
             coefficients,
             chunks,
             normals,
@@ -286,17 +253,8 @@ impl GpuDeformer {
     /// a few KB. Fails if the sweeps lack the rest rig's structure.
     pub fn set_pose(&mut self, posed: &[Sweep]) -> Result<(), GpuError> {
         self.coefficients.update(posed)?;
-        let queue = &self.context.queue;
-        queue.write_buffer(
-            &self.segments,
-            0,
-            bytemuck::cast_slice(&self.coefficients.segments),
-        );
-        queue.write_buffer(
-            &self.patches,
-            0,
-            bytemuck::cast_slice(&self.coefficients.patches),
-        );
+        let bytes = bytemuck::cast_slice(&self.coefficients.cells);
+        self.context.queue.write_buffer(&self.cells, 0, bytes);
         Ok(())
     }
 
@@ -344,12 +302,10 @@ impl GpuDeformer {
     /// Convenience for tools: sets the pose, records and submits the frame's work.
     pub fn deform(&mut self, posed: &[Sweep]) -> Result<(), GpuError> {
         self.set_pose(posed)?;
-        let mut encoder =
-            self.context
-                .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some("sweepffd frame"),
-                });
+        let mut encoder = self
+            .context
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd frame") });
         self.encode(&mut encoder);
         self.context.queue.submit([encoder.finish()]);
         self.context.check_alive()
@@ -357,12 +313,7 @@ impl GpuDeformer {
 
     /// Copies the positions back to the CPU (blocking), tightly packed f32 xyz.
     pub fn read_positions(&self) -> Result<Vec<f32>, GpuError> {
-        let bytes = read_bytes(
-            &self.context,
-            &self.positions,
-            0,
-            self.vertex_count as u64 * POSITION_STRIDE,
-        )?;
+        let bytes = read_bytes(&self.context, &self.positions, 0, self.vertex_count as u64 * POSITION_STRIDE)?;
         Ok(bytemuck::pod_collect_to_vec(&bytes))
     }
 
@@ -371,12 +322,7 @@ impl GpuDeformer {
         let Some(normals) = &self.normals else {
             return Ok(None);
         };
-        let bytes = read_bytes(
-            &self.context,
-            &normals.buffer,
-            0,
-            self.vertex_count as u64 * POSITION_STRIDE,
-        )?;
+        let bytes = read_bytes(&self.context, &normals.buffer, 0, self.vertex_count as u64 * POSITION_STRIDE)?;
         Ok(Some(bytemuck::pod_collect_to_vec(&bytes)))
     }
 
@@ -384,12 +330,7 @@ impl GpuDeformer {
     pub fn read_bindings(&self) -> Result<Vec<GpuBinding>, GpuError> {
         let mut bindings = Vec::with_capacity(self.vertex_count as usize);
         for chunk in &self.chunks {
-            let bytes = read_bytes(
-                &self.context,
-                &chunk.bindings,
-                0,
-                chunk.range.len() as u64 * BINDING_STRIDE,
-            )?;
+            let bytes = read_bytes(&self.context, &chunk.bindings, 0, chunk.range.len() as u64 * BINDING_STRIDE)?;
             bindings.extend(bytemuck::pod_collect_to_vec::<u8, GpuBinding>(&bytes));
         }
         Ok(bindings)
@@ -402,19 +343,12 @@ impl GpuDeformer {
 
     /// Each deform dispatch's vertex range and binding buffer.
     pub(crate) fn binding_chunks(&self) -> impl Iterator<Item = (&Range<u32>, &wgpu::Buffer)> {
-        self.chunks
-            .iter()
-            .map(|chunk| (&chunk.range, &chunk.bindings))
+        self.chunks.iter().map(|chunk| (&chunk.range, &chunk.bindings))
     }
 
-    /// The per-frame segment coefficient buffer.
-    pub(crate) fn segments(&self) -> &wgpu::Buffer {
-        &self.segments
-    }
-
-    /// The per-frame radius patch buffer.
-    pub(crate) fn patches(&self) -> &wgpu::Buffer {
-        &self.patches
+    /// The per-frame cell record buffer.
+    pub(crate) fn cells(&self) -> &wgpu::Buffer {
+        &self.cells
     }
 
     /// The context the deformer runs on.
@@ -439,30 +373,23 @@ impl NormalsStage {
         let adjacency = NormalAdjacency::new(faces, vertex_count as usize);
         let corner_bytes = size_of::<[u32; 2]>() as u64;
         let chunks = normal_chunks(&adjacency.offsets, corner_bytes, limits).ok_or_else(|| {
-            GpuError::Input(
-                "a vertex has more incident triangles than one storage binding holds".into(),
-            )
+            GpuError::Input("a vertex has more incident triangles than one storage binding holds".into())
         })?;
         // Positions are read at any index, through two windows of at most one binding each.
-        let split = (limits.max_binding.min(limits.max_buffer) / POSITION_STRIDE / 64 * 64)
-            .min(vertex_count as u64) as u32;
+        let split =
+            (limits.max_binding.min(limits.max_buffer) / POSITION_STRIDE / 64 * 64).min(vertex_count as u64) as u32;
         check_fits(
             "the normals' second position window",
             (vertex_count - split) as u64 * POSITION_STRIDE,
             limits.max_binding,
         )?;
         let low = window(positions, &(0..split.max(1)), POSITION_STRIDE);
-        let high = if split < vertex_count {
-            window(positions, &(split..vertex_count), POSITION_STRIDE)
-        } else {
-            low.clone()
-        };
+        let high =
+            if split < vertex_count { window(positions, &(split..vertex_count), POSITION_STRIDE) } else { low.clone() };
         let buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("sweepffd normals"),
             size: vertex_count as u64 * POSITION_STRIDE,
-            usage: wgpu::BufferUsages::VERTEX
-                | wgpu::BufferUsages::STORAGE
-                | wgpu::BufferUsages::COPY_SRC,
+            usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
         let kernel = kernels::normals(device);
@@ -470,19 +397,11 @@ impl NormalsStage {
             .iter()
             .map(|range| {
                 let first = adjacency.offsets[range.start as usize];
-                let offsets: Vec<u32> = adjacency.offsets
-                    [range.start as usize..=range.end as usize]
-                    .iter()
-                    .map(|o| o - first)
-                    .collect();
-                let corners = &adjacency.corners
-                    [first as usize..adjacency.offsets[range.end as usize] as usize];
+                let offsets: Vec<u32> =
+                    adjacency.offsets[range.start as usize..=range.end as usize].iter().map(|o| o - first).collect();
+                let corners = &adjacency.corners[first as usize..adjacency.offsets[range.end as usize] as usize];
                 // A binding may not be empty: a chunk without triangles gets one unused pair.
-                let corners: &[[u32; 2]] = if corners.is_empty() {
-                    &[[0, 0]]
-                } else {
-                    corners
-                };
+                let corners: &[[u32; 2]] = if corners.is_empty() { &[[0, 0]] } else { corners };
                 let storage = |label, bytes: &[u8]| {
                     device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                         label: Some(label),
@@ -516,46 +435,26 @@ impl NormalsStage {
                 (group, dispatch_grid(range.len() as u32, limits))
             })
             .collect();
-        Ok(NormalsStage {
-            kernel,
-            buffer,
-            dispatches,
-        })
+        Ok(NormalsStage { kernel, buffer, dispatches })
     }
 }
 
-fn check_input(
-    rest: &[Sweep],
-    positions: &[DVec3],
-    bindings: &BindingSource,
-) -> Result<(), GpuError> {
+fn check_input(rest: &[Sweep], positions: &[DVec3], bindings: &BindingSource) -> Result<(), GpuError> {
     if positions.is_empty() {
         return Err(GpuError::Input("the mesh has no vertices".into()));
     }
     if positions.len() >= UNBOUND as usize {
-        return Err(GpuError::Input(format!(
-            "{} vertices are more than the GPU path indexes",
-            positions.len()
-        )));
+        return Err(GpuError::Input(format!("{} vertices are more than the GPU path indexes", positions.len())));
     }
     if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
-        return Err(GpuError::Input(format!(
-            "vertex {i} has a non-finite position"
-        )));
+        return Err(GpuError::Input(format!("vertex {i} has a non-finite position")));
     }
     match bindings {
         BindingSource::Bind { owners } => {
             if owners.len() != positions.len() {
-                return Err(GpuError::Input(format!(
-                    "{} owners for {} vertices",
-                    owners.len(),
-                    positions.len()
-                )));
+                return Err(GpuError::Input(format!("{} owners for {} vertices", owners.len(), positions.len())));
             }
-            if let Some(i) = owners
-                .iter()
-                .position(|&o| o != UNBOUND && o as usize >= rest.len())
-            {
+            if let Some(i) = owners.iter().position(|&o| o != UNBOUND && o as usize >= rest.len()) {
                 return Err(GpuError::Input(format!(
                     "vertex {i} is owned by sweep {}, but the rig has {}",
                     owners[i],
@@ -565,20 +464,10 @@ fn check_input(
         }
         BindingSource::Precomputed(bindings) => {
             if bindings.len() != positions.len() {
-                return Err(GpuError::Input(format!(
-                    "{} bindings for {} vertices",
-                    bindings.len(),
-                    positions.len()
-                )));
+                return Err(GpuError::Input(format!("{} bindings for {} vertices", bindings.len(), positions.len())));
             }
-            let cells: usize = rest
-                .iter()
-                .map(|s| s.segments().len() * s.radius_samples())
-                .sum();
-            if let Some(i) = bindings
-                .iter()
-                .position(|b| b.cell != UNBOUND && b.cell as usize >= cells)
-            {
+            let cells: usize = rest.iter().map(|s| s.segments().len() * s.radius_samples()).sum();
+            if let Some(i) = bindings.iter().position(|b| b.cell != UNBOUND && b.cell as usize >= cells) {
                 return Err(GpuError::Input(format!(
                     "binding {i} refers to radius cell {} of {cells}",
                     bindings[i].cell
@@ -590,23 +479,11 @@ fn check_input(
 }
 
 fn check_fits(what: &'static str, needed: u64, limit: u64) -> Result<(), GpuError> {
-    if needed > limit {
-        Err(GpuError::TooLarge {
-            what,
-            needed,
-            limit,
-        })
-    } else {
-        Ok(())
-    }
+    if needed > limit { Err(GpuError::TooLarge { what, needed, limit }) } else { Ok(()) }
 }
 
 /// The window of a per-vertex stream covering `range`.
-pub(crate) fn window<'a>(
-    buffer: &'a wgpu::Buffer,
-    range: &Range<u32>,
-    stride: u64,
-) -> wgpu::BindingResource<'a> {
+pub(crate) fn window<'a>(buffer: &'a wgpu::Buffer, range: &Range<u32>, stride: u64) -> wgpu::BindingResource<'a> {
     wgpu::BindingResource::Buffer(wgpu::BufferBinding {
         buffer,
         offset: range.start as u64 * stride,
@@ -622,13 +499,46 @@ pub(crate) fn params_buffer(device: &wgpu::Device, params: DispatchParams) -> wg
     })
 }
 
+/// Rest positions, tightly packed f32, in the output buffer (unbound vertices keep them).
+fn upload_positions(device: &wgpu::Device, positions: &[DVec3]) -> wgpu::Buffer {
+    let rest: Vec<f32> = positions.iter().flat_map(|p| p.as_vec3().to_array()).collect();
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("sweepffd positions"),
+        contents: bytemuck::cast_slice(&rest),
+        usage: wgpu::BufferUsages::VERTEX
+            | wgpu::BufferUsages::STORAGE
+            | wgpu::BufferUsages::COPY_SRC
+            | wgpu::BufferUsages::COPY_DST,
+    })
+}
+
+/// The cell records, padded to the uniform array's size for the uniform variant.
+fn cells_buffer(device: &wgpu::Device, coefficients: &SweepCoefficients, variant: DeformVariant) -> wgpu::Buffer {
+    let mut cells = coefficients.cells.clone();
+    if variant == DeformVariant::Uniform {
+        cells.resize(UNIFORM_CELL_CAPACITY as usize, CellCoeffs::default());
+    }
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("sweepffd cells"),
+        contents: bytemuck::cast_slice(&cells),
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+    })
+}
+
+/// A binding buffer holding `bindings`.
+fn binding_buffer_with(device: &wgpu::Device, bindings: &[GpuBinding]) -> wgpu::Buffer {
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("sweepffd bindings"),
+        contents: bytemuck::cast_slice(bindings),
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+    })
+}
+
 pub(crate) fn empty_binding_buffer(device: &wgpu::Device, vertices: usize) -> wgpu::Buffer {
     device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("sweepffd bindings"),
         size: vertices as u64 * BINDING_STRIDE,
-        usage: wgpu::BufferUsages::STORAGE
-            | wgpu::BufferUsages::COPY_SRC
-            | wgpu::BufferUsages::COPY_DST,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
     })
 }

@@ -16,14 +16,8 @@ pub enum GpuError {
     NoCompute { adapter: String },
     #[error("the GPU adapter {adapter} could not create a device: {reason}")]
     Device { adapter: String, reason: String },
-    #[error(
-        "{what} needs {needed} bytes in one buffer, more than this device allows ({limit} bytes)"
-    )]
-    TooLarge {
-        what: &'static str,
-        needed: u64,
-        limit: u64,
-    },
+    #[error("{what} needs {needed} bytes in one buffer, more than this device allows ({limit} bytes)")]
+    TooLarge { what: &'static str, needed: u64, limit: u64 },
     #[error("invalid input for the GPU deformer: {0}")]
     Input(String),
     #[error("wgpu reported a validation error: {0}")]

@@ -2,6 +2,7 @@
 
 use std::borrow::Cow;
 
+use super::deformer::DeformVariant;
 use super::shaders;
 
 /// How a kernel sees one of its bindings.
@@ -26,13 +27,7 @@ pub struct Kernel {
 
 impl Kernel {
     /// Compiles `source` and builds the pipeline of `entry` with group 0 laid out as `slots`.
-    pub fn new(
-        device: &wgpu::Device,
-        label: &str,
-        source: &str,
-        entry: &str,
-        slots: &[Slot],
-    ) -> Kernel {
+    pub fn new(device: &wgpu::Device, label: &str, source: &str, entry: &str, slots: &[Slot]) -> Kernel {
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(label),
             source: wgpu::ShaderSource::Wgsl(Cow::Borrowed(source)),
@@ -55,10 +50,8 @@ impl Kernel {
                 count: None,
             })
             .collect();
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some(label),
-            entries: &entries,
-        });
+        let layout =
+            device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(label), entries: &entries });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some(label),
             bind_group_layouts: &[Some(&layout)],
@@ -85,10 +78,7 @@ impl Kernel {
         let entries: Vec<wgpu::BindGroupEntry> = resources
             .iter()
             .enumerate()
-            .map(|(binding, resource)| wgpu::BindGroupEntry {
-                binding: binding as u32,
-                resource: resource.clone(),
-            })
+            .map(|(binding, resource)| wgpu::BindGroupEntry { binding: binding as u32, resource: resource.clone() })
             .collect();
         device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some(label),
@@ -100,57 +90,38 @@ impl Kernel {
 
 use Slot::{Read, ReadWrite, Uniform};
 
-/// `shaders/bind.wgsl`: params, segments, patches, bind segments, sweeps, owners, positions
-/// (read); bindings (written).
+/// `shaders/bind.wgsl`: params, cells, bind segments, sweeps, owners, positions (read);
+/// bindings (written).
 pub fn bind(device: &wgpu::Device) -> Kernel {
-    let slots = [Uniform, Read, Read, Read, Read, Read, Read, ReadWrite];
+    let slots = [Uniform, Read, Read, Read, Read, Read, ReadWrite];
     Kernel::new(device, "sweepffd bind", shaders::BIND, "bind_main", &slots)
 }
 
-/// `shaders/deform.wgsl`: params, segments, patches, bindings (read); positions (written).
-pub fn deform(device: &wgpu::Device) -> Kernel {
-    Kernel::new(
-        device,
-        "sweepffd deform",
-        shaders::DEFORM,
-        "deform_main",
-        &[Uniform, Read, Read, Read, ReadWrite],
-    )
+/// `shaders/deform.wgsl`: params, cells (uniform or storage), bindings (read); positions
+/// (written).
+pub fn deform(device: &wgpu::Device, variant: DeformVariant) -> Kernel {
+    let (source, cells) = match variant {
+        DeformVariant::Uniform => (shaders::DEFORM_UNIFORM, Uniform),
+        DeformVariant::Storage => (shaders::DEFORM_STORAGE, Read),
+    };
+    Kernel::new(device, "sweepffd deform", source, "deform_main", &[Uniform, cells, Read, ReadWrite])
 }
 
 /// `shaders/normals.wgsl`: params, positions (two windows), offsets, corners (read); normals
 /// (written).
 pub fn normals(device: &wgpu::Device) -> Kernel {
     let slots = [Uniform, Read, Read, Read, Read, ReadWrite];
-    Kernel::new(
-        device,
-        "sweepffd normals",
-        shaders::NORMALS,
-        "normals_main",
-        &slots,
-    )
+    Kernel::new(device, "sweepffd normals", shaders::NORMALS, "normals_main", &slots)
 }
 
 /// `shaders/copy.wgsl`: params, bindings (read); positions (written).
 pub fn copy(device: &wgpu::Device) -> Kernel {
-    Kernel::new(
-        device,
-        "sweepffd copy baseline",
-        shaders::COPY,
-        "copy_main",
-        &[Uniform, Read, ReadWrite],
-    )
+    Kernel::new(device, "sweepffd copy baseline", shaders::COPY, "copy_main", &[Uniform, Read, ReadWrite])
 }
 
 /// `shaders/skinning.wgsl`: params, joints, rest positions, influences (read); positions
 /// (written).
 pub fn skinning(device: &wgpu::Device) -> Kernel {
     let slots = [Uniform, Read, Read, Read, ReadWrite];
-    Kernel::new(
-        device,
-        "sweepffd skinning baseline",
-        shaders::SKINNING,
-        "skinning_main",
-        &slots,
-    )
+    Kernel::new(device, "sweepffd skinning baseline", shaders::SKINNING, "skinning_main", &slots)
 }

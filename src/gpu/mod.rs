@@ -18,6 +18,6 @@ pub mod shaders;
 
 pub use chunks::{ChunkLimits, dispatch_grid, normal_chunks, uniform_chunks};
 pub use context::GpuContext;
-pub use deformer::{BINDING_STRIDE, BindingSource, GpuDeformer, POSITION_STRIDE};
+pub use deformer::{BINDING_STRIDE, BindingSource, DeformVariant, GpuDeformer, POSITION_STRIDE};
 pub use error::GpuError;
 pub use readback::{read_bytes, wait};

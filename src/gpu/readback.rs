@@ -6,12 +6,7 @@ use super::{GpuContext, GpuError};
 
 /// The bytes `offset..offset + size` of `buffer` (which needs `COPY_SRC`), read through a
 /// temporary mappable buffer. Blocks until the GPU has finished all work before the copy.
-pub fn read_bytes(
-    context: &GpuContext,
-    buffer: &wgpu::Buffer,
-    offset: u64,
-    size: u64,
-) -> Result<Vec<u8>, GpuError> {
+pub fn read_bytes(context: &GpuContext, buffer: &wgpu::Buffer, offset: u64, size: u64) -> Result<Vec<u8>, GpuError> {
     let device = &context.device;
     let staging = device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("sweepffd readback"),
@@ -19,9 +14,8 @@ pub fn read_bytes(
         usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
     });
-    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-        label: Some("sweepffd readback"),
-    });
+    let mut encoder =
+        device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd readback") });
     encoder.copy_buffer_to_buffer(buffer, offset, &staging, 0, size);
     context.queue.submit([encoder.finish()]);
     let slice = staging.slice(..);
@@ -34,19 +28,13 @@ pub fn read_bytes(
         .recv()
         .map_err(|_| GpuError::DeviceLost("the readback was never completed".to_string()))?
         .map_err(|e| GpuError::Validation(format!("mapping the readback buffer failed: {e}")))?;
-    let bytes = slice
-        .get_mapped_range()
-        .map_err(|e| GpuError::Validation(e.to_string()))?
-        .to_vec();
+    let bytes = slice.get_mapped_range().map_err(|e| GpuError::Validation(e.to_string()))?.to_vec();
     staging.unmap();
     Ok(bytes)
 }
 
 /// Waits until the GPU has finished every submitted command.
 pub fn wait(context: &GpuContext) -> Result<(), GpuError> {
-    context
-        .device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .map_err(|e| GpuError::DeviceLost(e.to_string()))?;
+    context.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| GpuError::DeviceLost(e.to_string()))?;
     context.check_alive()
 }

@@ -4,8 +4,12 @@
 
 /// Binding (§3) of every owned vertex: `shaders/bind.wgsl`, entry point `bind_main`.
 pub const BIND: &str = include_str!(concat!(env!("OUT_DIR"), "/bind.wgsl"));
-/// Eq. 2 for every bound vertex: `shaders/deform.wgsl`, entry point `deform_main`.
-pub const DEFORM: &str = include_str!(concat!(env!("OUT_DIR"), "/deform.wgsl"));
+/// Eq. 2 for every bound vertex, cell records in a uniform buffer: `shaders/deform.wgsl` after
+/// `shaders/cells_uniform.wgsl`, entry point `deform_main`.
+pub const DEFORM_UNIFORM: &str = include_str!(concat!(env!("OUT_DIR"), "/deform_uniform.wgsl"));
+/// Eq. 2 for every bound vertex, cell records in a storage buffer: `shaders/deform.wgsl` after
+/// `shaders/cells_storage.wgsl`, entry point `deform_main`.
+pub const DEFORM_STORAGE: &str = include_str!(concat!(env!("OUT_DIR"), "/deform_storage.wgsl"));
 /// Area-weighted vertex normals: `shaders/normals.wgsl`, entry point `normals_main`.
 pub const NORMALS: &str = include_str!(concat!(env!("OUT_DIR"), "/normals.wgsl"));
 /// Benchmark baseline moving the deform kernel's bytes: `shaders/copy.wgsl`, `copy_main`.
@@ -15,9 +19,10 @@ pub const COPY: &str = include_str!(concat!(env!("OUT_DIR"), "/copy.wgsl"));
 pub const SKINNING: &str = include_str!(concat!(env!("OUT_DIR"), "/skinning.wgsl"));
 
 /// Every kernel as (name, composed source, entry point).
-pub const ALL: [(&str, &str, &str); 5] = [
+pub const ALL: [(&str, &str, &str); 6] = [
     ("bind", BIND, "bind_main"),
-    ("deform", DEFORM, "deform_main"),
+    ("deform_uniform", DEFORM_UNIFORM, "deform_main"),
+    ("deform_storage", DEFORM_STORAGE, "deform_main"),
     ("normals", NORMALS, "normals_main"),
     ("copy", COPY, "copy_main"),
     ("skinning", SKINNING, "skinning_main"),

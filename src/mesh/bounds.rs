@@ -22,9 +22,7 @@ pub(crate) fn bounds_of(positions: &[DVec3]) -> (DVec3, DVec3) {
     let Some(&first) = positions.first() else {
         return (DVec3::ZERO, DVec3::ZERO);
     };
-    positions
-        .iter()
-        .fold((first, first), |(min, max), &p| (min.min(p), max.max(p)))
+    positions.iter().fold((first, first), |(min, max), &p| (min.min(p), max.max(p)))
 }
 
 #[cfg(test)]
@@ -33,11 +31,7 @@ mod tests {
 
     #[test]
     fn bounds_of_scattered_points() {
-        let points = [
-            DVec3::new(1.0, -2.0, 3.0),
-            DVec3::new(-1.0, 5.0, 0.5),
-            DVec3::new(0.0, 0.0, 4.0),
-        ];
+        let points = [DVec3::new(1.0, -2.0, 3.0), DVec3::new(-1.0, 5.0, 0.5), DVec3::new(0.0, 0.0, 4.0)];
         let (min, max) = bounds_of(&points);
         assert_eq!(min, DVec3::new(-1.0, -2.0, 0.5));
         assert_eq!(max, DVec3::new(1.0, 5.0, 4.0));
@@ -50,12 +44,9 @@ mod tests {
 
     #[test]
     fn diagonal_of_a_box() {
-        let mesh = Mesh::from_parts(
-            vec![DVec3::ZERO, DVec3::new(1.0, 2.0, 2.0)],
-            crate::mesh::Faces::new(),
-            Vec::new(),
-        )
-        .unwrap();
+        let mesh =
+            Mesh::from_parts(vec![DVec3::ZERO, DVec3::new(1.0, 2.0, 2.0)], crate::mesh::Faces::new(), Vec::new())
+                .unwrap();
         assert_eq!(mesh.diagonal(), 3.0);
     }
 }

@@ -205,18 +205,12 @@ pub enum MeshDataError {
 impl MeshError {
     /// Wraps an I/O error met while reading `path`.
     pub(crate) fn read(path: &Path, source: std::io::Error) -> Self {
-        Self::Read {
-            path: path.to_path_buf(),
-            source,
-        }
+        Self::Read { path: path.to_path_buf(), source }
     }
 
     /// Wraps an I/O error met while writing `path`.
     pub(crate) fn write(path: &Path, source: std::io::Error) -> Self {
-        Self::Write {
-            path: path.to_path_buf(),
-            source,
-        }
+        Self::Write { path: path.to_path_buf(), source }
     }
 }
 
@@ -229,28 +223,17 @@ mod tests {
         let e = MeshError::Obj {
             path: PathBuf::from("bunny.obj"),
             line: 1234,
-            problem: ObjLineError::IndexOutOfRange {
-                index: 40000,
-                count: 35947,
-            },
+            problem: ObjLineError::IndexOutOfRange { index: 40000, count: 35947 },
         };
-        assert_eq!(
-            e.to_string(),
-            "bunny.obj:1234: face refers to vertex 40000 but the file has 35947 vertices"
-        );
+        assert_eq!(e.to_string(), "bunny.obj:1234: face refers to vertex 40000 but the file has 35947 vertices");
     }
 
     #[test]
     fn io_errors_name_the_path() {
-        let e = MeshError::read(
-            Path::new("m.obj"),
-            std::io::Error::new(std::io::ErrorKind::NotFound, "gone"),
-        );
+        let e = MeshError::read(Path::new("m.obj"), std::io::Error::new(std::io::ErrorKind::NotFound, "gone"));
         assert_eq!(e.to_string(), "cannot read m.obj: gone");
-        let e = MeshError::write(
-            Path::new("out.obj"),
-            std::io::Error::new(std::io::ErrorKind::PermissionDenied, "denied"),
-        );
+        let e =
+            MeshError::write(Path::new("out.obj"), std::io::Error::new(std::io::ErrorKind::PermissionDenied, "denied"));
         assert_eq!(e.to_string(), "cannot write out.obj: denied");
     }
 
@@ -262,33 +245,19 @@ mod tests {
             "m.ply: no \"vertex\" element with x, y, z properties"
         );
         assert_eq!(
-            MeshError::UnsupportedFormat {
-                path: PathBuf::from("x.stl")
-            }
-            .to_string(),
+            MeshError::UnsupportedFormat { path: PathBuf::from("x.stl") }.to_string(),
             "x.stl: unsupported mesh format (expected .obj or .ply)"
         );
         assert_eq!(
-            MeshError::Empty {
-                path: PathBuf::from("empty.obj")
-            }
-            .to_string(),
+            MeshError::Empty { path: PathBuf::from("empty.obj") }.to_string(),
             "empty.obj: the mesh has no vertices"
         );
         assert_eq!(
-            MeshError::PositionCount {
-                expected: 12,
-                found: 10
-            }
-            .to_string(),
+            MeshError::PositionCount { expected: 12, found: 10 }.to_string(),
             "positions has 10 entries but the mesh has 12 vertices"
         );
         assert_eq!(
-            MeshError::PlyData {
-                path: p(),
-                problem: MeshDataError::ShortFace { face: 3, count: 2 }
-            }
-            .to_string(),
+            MeshError::PlyData { path: p(), problem: MeshDataError::ShortFace { face: 3, count: 2 } }.to_string(),
             "m.ply: face 3 has 2 vertices; a face needs at least 3"
         );
     }

@@ -5,10 +5,7 @@ use super::{Faces, MeshDataError};
 impl Faces {
     /// An empty face list (`offsets == [0]`).
     pub fn new() -> Faces {
-        Faces {
-            offsets: vec![0],
-            indices: Vec::new(),
-        }
+        Faces { offsets: vec![0], indices: Vec::new() }
     }
 
     /// The number of faces. An `offsets` list left empty (as by `Faces::default()`) counts as
@@ -33,9 +30,7 @@ impl Faces {
 
     /// The faces in order, each as its vertex indices.
     pub fn iter(&self) -> impl Iterator<Item = &[u32]> + '_ {
-        self.offsets
-            .windows(2)
-            .map(|w| &self.indices[w[0] as usize..w[1] as usize])
+        self.offsets.windows(2).map(|w| &self.indices[w[0] as usize..w[1] as usize])
     }
 
     /// Fan triangulation of every face: a polygon v0 … v(n−1) gives the n − 2 triangles
@@ -44,9 +39,7 @@ impl Faces {
     pub fn triangles(&self) -> impl Iterator<Item = [u32; 3]> + '_ {
         self.iter().flat_map(|face| {
             let first = face.first().copied().unwrap_or(0);
-            face.windows(2)
-                .skip(1)
-                .map(move |pair| [first, pair[0], pair[1]])
+            face.windows(2).skip(1).map(move |pair| [first, pair[0], pair[1]])
         })
     }
 
@@ -62,12 +55,7 @@ impl Faces {
     /// Appends a face; returns false, leaving the faces unchanged, if the total number of
     /// indices would exceed `u32::MAX`.
     pub(crate) fn try_push(&mut self, face: &[u32]) -> bool {
-        let Some(end) = self
-            .indices
-            .len()
-            .checked_add(face.len())
-            .and_then(|end| u32::try_from(end).ok())
-        else {
+        let Some(end) = self.indices.len().checked_add(face.len()).and_then(|end| u32::try_from(end).ok()) else {
             return false;
         };
         if self.offsets.is_empty() {
@@ -166,13 +154,7 @@ mod tests {
         ];
         for (offsets, indices) in broken {
             let faces = Faces { offsets, indices };
-            assert!(
-                matches!(
-                    faces.check_offsets(),
-                    Err(MeshDataError::MalformedFaces { .. })
-                ),
-                "{faces:?}"
-            );
+            assert!(matches!(faces.check_offsets(), Err(MeshDataError::MalformedFaces { .. })), "{faces:?}");
         }
     }
 }

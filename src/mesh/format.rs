@@ -20,9 +20,7 @@ impl Format {
         match extension.map(str::to_ascii_lowercase).as_deref() {
             Some("obj") => Ok(Format::Obj),
             Some("ply") => Ok(Format::Ply),
-            _ => Err(MeshError::UnsupportedFormat {
-                path: path.to_path_buf(),
-            }),
+            _ => Err(MeshError::UnsupportedFormat { path: path.to_path_buf() }),
         }
     }
 }
@@ -41,10 +39,7 @@ mod tests {
     fn other_or_missing_extension_is_unsupported() {
         for name in ["x.stl", "obj", "x.obj.gz", "x."] {
             let err = Format::of(Path::new(name)).unwrap_err();
-            assert_eq!(
-                err.to_string(),
-                format!("{name}: unsupported mesh format (expected .obj or .ply)")
-            );
+            assert_eq!(err.to_string(), format!("{name}: unsupported mesh format (expected .obj or .ply)"));
         }
     }
 }

@@ -32,16 +32,8 @@ mod tests {
         faces.push(&[5, 1, 2]);
         faces.push(&[0, 1, 2, 3]);
         faces.push(&[2, 4, 5]);
-        let groups = vec![
-            FaceGroup {
-                name: "a".into(),
-                faces: vec![0, 2],
-            },
-            FaceGroup {
-                name: "b".into(),
-                faces: vec![1],
-            },
-        ];
+        let groups =
+            vec![FaceGroup { name: "a".into(), faces: vec![0, 2] }, FaceGroup { name: "b".into(), faces: vec![1] }];
         let mesh = Mesh::from_parts(positions, faces, groups).unwrap();
         assert_eq!(mesh.group_vertices("a"), Some(vec![1, 2, 4, 5]));
         assert_eq!(mesh.group_vertices("b"), Some(vec![0, 1, 2, 3]));

@@ -16,11 +16,7 @@ impl Mesh {
     /// vertices or an index `>= positions.len()`, or when a group's face list is not strictly
     /// increasing or names a face that does not exist. Numbers in the error are zero-based.
     /// Empty `offsets` (as from `Faces::default()`) are taken as no face.
-    pub fn from_parts(
-        positions: Vec<DVec3>,
-        mut faces: Faces,
-        groups: Vec<FaceGroup>,
-    ) -> Result<Mesh, MeshError> {
+    pub fn from_parts(positions: Vec<DVec3>, mut faces: Faces, groups: Vec<FaceGroup>) -> Result<Mesh, MeshError> {
         check_positions(&positions)?;
         faces.check_offsets()?;
         if faces.offsets.is_empty() {
@@ -28,12 +24,7 @@ impl Mesh {
         }
         check_faces(&faces, positions.len())?;
         check_groups(&groups, faces.len())?;
-        Ok(Mesh {
-            positions,
-            faces,
-            groups,
-            source: Source::Code,
-        })
+        Ok(Mesh { positions, faces, groups, source: Source::Code })
     }
 }
 
@@ -96,10 +87,7 @@ mod tests {
     #[test]
     fn valid_parts_build_a_mesh() {
         let (positions, faces) = triangle();
-        let group = FaceGroup {
-            name: "all".into(),
-            faces: vec![0],
-        };
+        let group = FaceGroup { name: "all".into(), faces: vec![0] };
         let mesh = Mesh::from_parts(positions, faces, vec![group]).unwrap();
         assert_eq!(mesh.faces.len(), 1);
         assert_eq!(mesh.groups[0].name, "all");
@@ -132,10 +120,7 @@ mod tests {
         let (positions, mut faces) = triangle();
         faces.push(&[0, 2, 3]);
         let e = invalid(Mesh::from_parts(positions, faces, Vec::new()));
-        assert_eq!(
-            e.to_string(),
-            "face 1 refers to vertex 3 but the mesh has 3 vertices"
-        );
+        assert_eq!(e.to_string(), "face 1 refers to vertex 3 but the mesh has 3 vertices");
     }
 
     #[test]
@@ -149,10 +134,7 @@ mod tests {
     #[test]
     fn malformed_offsets_are_an_error() {
         let (positions, _) = triangle();
-        let faces = Faces {
-            offsets: vec![0, 4],
-            indices: vec![0, 1, 2],
-        };
+        let faces = Faces { offsets: vec![0, 4], indices: vec![0, 1, 2] };
         let e = invalid(Mesh::from_parts(positions, faces, Vec::new()));
         assert!(matches!(e, MeshDataError::MalformedFaces { .. }), "{e}");
     }
@@ -160,19 +142,9 @@ mod tests {
     #[test]
     fn group_errors() {
         let (positions, faces) = triangle();
-        let group = |faces| FaceGroup {
-            name: "g".into(),
-            faces,
-        };
-        let e = invalid(Mesh::from_parts(
-            positions.clone(),
-            faces.clone(),
-            vec![group(vec![1])],
-        ));
-        assert_eq!(
-            e.to_string(),
-            "group \"g\" refers to face 1 but the mesh has 1 faces"
-        );
+        let group = |faces| FaceGroup { name: "g".into(), faces };
+        let e = invalid(Mesh::from_parts(positions.clone(), faces.clone(), vec![group(vec![1])]));
+        assert_eq!(e.to_string(), "group \"g\" refers to face 1 but the mesh has 1 faces");
         let e = invalid(Mesh::from_parts(positions, faces, vec![group(vec![0, 0])]));
         assert_eq!(e, MeshDataError::GroupNotIncreasing { group: "g".into() });
     }

@@ -32,10 +32,7 @@ impl Mesh {
     /// cannot be written.
     pub fn save(&self, path: &Path, positions: &[DVec3]) -> Result<(), MeshError> {
         if positions.len() != self.positions.len() {
-            return Err(MeshError::PositionCount {
-                expected: self.positions.len(),
-                found: positions.len(),
-            });
+            return Err(MeshError::PositionCount { expected: self.positions.len(), found: positions.len() });
         }
         let format = Format::of(path)?;
         if let Some(vertex) = positions.iter().position(|p| !p.is_finite()) {
@@ -48,9 +45,7 @@ impl Mesh {
             (Source::Ply(p), Format::Ply) if p.describes(self) => {
                 ply::write::write_faithful(out, &p.file, &p.positions, positions)
             }
-            (_, Format::Obj) => {
-                obj::write::write_generic(out, positions, &self.faces, &self.groups)
-            }
+            (_, Format::Obj) => obj::write::write_generic(out, positions, &self.faces, &self.groups),
             (_, Format::Ply) => ply::write::write_generic(out, positions, &self.faces),
         })
         .map_err(|e| MeshError::write(path, e))

@@ -47,9 +47,7 @@ impl<F> Original<F> {
     /// Whether `mesh` still has this file's connectivity (vertex count, faces and groups),
     /// so that the file can be written back with only positions changed.
     pub fn describes(&self, mesh: &Mesh) -> bool {
-        mesh.positions.len() == self.positions.len()
-            && mesh.faces == self.faces
-            && mesh.groups == self.groups
+        mesh.positions.len() == self.positions.len() && mesh.faces == self.faces && mesh.groups == self.groups
     }
 }
 

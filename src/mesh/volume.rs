@@ -47,10 +47,7 @@ impl Mesh {
     /// one entry per vertex.
     pub fn try_enclosed_volume(&self, positions: &[DVec3]) -> Result<f64, MeshError> {
         if positions.len() != self.positions.len() {
-            return Err(MeshError::PositionCount {
-                expected: self.positions.len(),
-                found: positions.len(),
-            });
+            return Err(MeshError::PositionCount { expected: self.positions.len(), found: positions.len() });
         }
         Ok(self.enclosed_volume(positions))
     }
@@ -63,9 +60,8 @@ mod tests {
 
     /// Unit cube [0, 1]³ as six outward quads.
     fn cube() -> Mesh {
-        let positions = (0..8)
-            .map(|i| DVec3::new((i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64))
-            .collect();
+        let positions =
+            (0..8).map(|i| DVec3::new((i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64)).collect();
         let mut faces = Faces::new();
         for quad in [
             [0, 2, 3, 1], // z = 0, normal −z
@@ -91,10 +87,7 @@ mod tests {
     fn reversed_cube_has_volume_minus_one() {
         let mut cube = cube();
         for f in 0..cube.faces.len() {
-            let (s, e) = (
-                cube.faces.offsets[f] as usize,
-                cube.faces.offsets[f + 1] as usize,
-            );
+            let (s, e) = (cube.faces.offsets[f] as usize, cube.faces.offsets[f + 1] as usize);
             cube.faces.indices[s..e].reverse();
         }
         let v = cube.enclosed_volume(&cube.positions);
@@ -104,11 +97,7 @@ mod tests {
     #[test]
     fn far_translated_scaled_cube_keeps_its_volume() {
         let cube = cube();
-        let moved: Vec<DVec3> = cube
-            .positions
-            .iter()
-            .map(|&p| p * 2.0 + DVec3::new(1e6, -3e6, 2e6))
-            .collect();
+        let moved: Vec<DVec3> = cube.positions.iter().map(|&p| p * 2.0 + DVec3::new(1e6, -3e6, 2e6)).collect();
         let v = cube.enclosed_volume(&moved);
         assert!((v - 8.0).abs() < 1e-12, "{v}");
     }
@@ -117,10 +106,7 @@ mod tests {
     fn try_enclosed_volume_checks_the_length() {
         let cube = cube();
         let err = cube.try_enclosed_volume(&cube.positions[..7]).unwrap_err();
-        assert_eq!(
-            err.to_string(),
-            "positions has 7 entries but the mesh has 8 vertices"
-        );
+        assert_eq!(err.to_string(), "positions has 7 entries but the mesh has 8 vertices");
         assert!((cube.try_enclosed_volume(&cube.positions).unwrap() - 1.0).abs() < 1e-14);
     }
 }

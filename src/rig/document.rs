@@ -83,11 +83,7 @@ impl From<&KeyDocument> for Key {
 
 impl From<&Key> for KeyDocument {
     fn from(key: &Key) -> KeyDocument {
-        KeyDocument {
-            center: key.center.to_array(),
-            rotation: key.rotation.to_array(),
-            radii: key.radii.clone(),
-        }
+        KeyDocument { center: key.center.to_array(), rotation: key.rotation.to_array(), radii: key.radii.clone() }
     }
 }
 
@@ -99,8 +95,7 @@ impl RigDocument {
 
     /// The file's text: pretty JSON, one key per line.
     pub fn to_json(&self) -> String {
-        let mut text =
-            serde_json::to_string_pretty(self).expect("a rig document always serializes");
+        let mut text = serde_json::to_string_pretty(self).expect("a rig document always serializes");
         text.push('\n');
         text
     }

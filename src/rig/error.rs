@@ -55,42 +55,15 @@ pub enum RigErrorKind {
     #[error("the pose has a sweep {sweep:?}, which the rest rig does not have")]
     PoseUnknownSweep { sweep: String },
     #[error("sweep {sweep:?}: the pose has {found} keys but the rest rig has {expected}")]
-    PoseKeyCount {
-        sweep: String,
-        expected: usize,
-        found: usize,
-    },
-    #[error(
-        "sweep {sweep:?}: key {key}: the pose has {found} radii but the rest rig has {expected}"
-    )]
-    PoseRadiusCount {
-        sweep: String,
-        key: usize,
-        expected: usize,
-        found: usize,
-    },
+    PoseKeyCount { sweep: String, expected: usize, found: usize },
+    #[error("sweep {sweep:?}: key {key}: the pose has {found} radii but the rest rig has {expected}")]
+    PoseRadiusCount { sweep: String, key: usize, expected: usize, found: usize },
     #[error("sweep {sweep:?}: the mesh {mesh} has no group {group:?} (its groups: {available})")]
-    UnknownGroup {
-        sweep: String,
-        group: String,
-        mesh: String,
-        available: String,
-    },
+    UnknownGroup { sweep: String, group: String, mesh: String, available: String },
     #[error(
         "sweep {sweep:?}: vertex index {index} (zero-based) is out of range (the mesh {mesh} has {count} vertices)"
     )]
-    VertexOutOfRange {
-        sweep: String,
-        index: u32,
-        mesh: String,
-        count: usize,
-    },
-    #[error(
-        "vertex index {vertex} (zero-based) is claimed by both sweep {first:?} and sweep {second:?}"
-    )]
-    VertexClaimedTwice {
-        vertex: u32,
-        first: String,
-        second: String,
-    },
+    VertexOutOfRange { sweep: String, index: u32, mesh: String, count: usize },
+    #[error("vertex index {vertex} (zero-based) is claimed by both sweep {first:?} and sweep {second:?}")]
+    VertexClaimedTwice { vertex: u32, first: String, second: String },
 }

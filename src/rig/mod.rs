@@ -75,20 +75,14 @@ impl Rig {
         }
         for (i, sweep) in sweeps.iter().enumerate() {
             if sweeps[..i].iter().any(|other| other.name == sweep.name) {
-                return Err(fail(RigErrorKind::DuplicateName {
-                    name: sweep.name.clone(),
-                }));
+                return Err(fail(RigErrorKind::DuplicateName { name: sweep.name.clone() }));
             }
         }
         let rest = sweeps
             .iter()
             .map(|sweep| {
-                Sweep::try_new(&sweep.keys, sweep.knots.as_deref()).map_err(|source| {
-                    fail(RigErrorKind::Sweep {
-                        sweep: sweep.name.clone(),
-                        source,
-                    })
-                })
+                Sweep::try_new(&sweep.keys, sweep.knots.as_deref())
+                    .map_err(|source| fail(RigErrorKind::Sweep { sweep: sweep.name.clone(), source }))
             })
             .collect::<Result<Vec<_>, _>>()?;
         Ok(Rig { file, sweeps, rest })
@@ -140,12 +134,7 @@ impl Rig {
     /// The posed sweep surfaces for `keys[i]` on sweep i (rest knots), checked against the rest
     /// rig: same number of sweeps, keys and radii.
     pub fn pose(&self, keys: &[Vec<Key>]) -> Result<Vec<Sweep>, RigError> {
-        self.pose_named(
-            keys.iter()
-                .zip(&self.sweeps)
-                .map(|(k, s)| (s.name.as_str(), k.as_slice())),
-            None,
-        )
+        self.pose_named(keys.iter().zip(&self.sweeps).map(|(k, s)| (s.name.as_str(), k.as_slice())), None)
     }
 
     /// Reads a pose file and returns the posed sweep surfaces in rig order. Errors name the
@@ -156,26 +145,14 @@ impl Rig {
     }
 
     /// The posed sweep surfaces of a parsed pose file; `file` is named in errors.
-    pub fn pose_from_document(
-        &self,
-        document: &RigDocument,
-        file: Option<PathBuf>,
-    ) -> Result<Vec<Sweep>, RigError> {
+    pub fn pose_from_document(&self, document: &RigDocument, file: Option<PathBuf>) -> Result<Vec<Sweep>, RigError> {
         check_header(document, &file)?;
         let keys: Vec<(&str, Vec<Key>)> = document
             .sweeps
             .iter()
-            .map(|sweep| {
-                (
-                    sweep.name.as_str(),
-                    sweep.keys.iter().map(Key::from).collect(),
-                )
-            })
+            .map(|sweep| (sweep.name.as_str(), sweep.keys.iter().map(Key::from).collect()))
             .collect();
-        self.pose_named(
-            keys.iter().map(|(name, keys)| (*name, keys.as_slice())),
-            file,
-        )
+        self.pose_named(keys.iter().map(|(name, keys)| (*name, keys.as_slice())), file)
     }
 
     fn pose_named<'a>(
@@ -186,9 +163,7 @@ impl Rig {
         let fail = |kind| RigError::new(file.clone(), kind);
         for (name, _) in posed.clone() {
             if !self.sweeps.iter().any(|sweep| sweep.name == name) {
-                return Err(fail(RigErrorKind::PoseUnknownSweep {
-                    sweep: name.to_string(),
-                }));
+                return Err(fail(RigErrorKind::PoseUnknownSweep { sweep: name.to_string() }));
             }
         }
         self.sweeps
@@ -201,32 +176,15 @@ impl Rig {
                 };
                 if keys.len() != sweep.keys.len() {
                     let (expected, found) = (sweep.keys.len(), keys.len());
-                    return Err(fail(RigErrorKind::PoseKeyCount {
-                        sweep: name,
-                        expected,
-                        found,
-                    }));
+                    return Err(fail(RigErrorKind::PoseKeyCount { sweep: name, expected, found }));
                 }
                 let expected = rest.radius_samples();
-                if let Some((key, k)) = keys
-                    .iter()
-                    .enumerate()
-                    .find(|(_, k)| k.radii.len() != expected)
-                {
+                if let Some((key, k)) = keys.iter().enumerate().find(|(_, k)| k.radii.len() != expected) {
                     let found = k.radii.len();
-                    return Err(fail(RigErrorKind::PoseRadiusCount {
-                        sweep: name,
-                        key,
-                        expected,
-                        found,
-                    }));
+                    return Err(fail(RigErrorKind::PoseRadiusCount { sweep: name, key, expected, found }));
                 }
-                Sweep::try_new(keys, Some(rest.knots())).map_err(|source| {
-                    fail(RigErrorKind::Sweep {
-                        sweep: name,
-                        source,
-                    })
-                })
+                Sweep::try_new(keys, Some(rest.knots()))
+                    .map_err(|source| fail(RigErrorKind::Sweep { sweep: name, source }))
             })
             .collect()
     }
@@ -234,27 +192,16 @@ impl Rig {
 
 fn read_document(path: &Path) -> Result<RigDocument, RigError> {
     let file = Some(path.to_path_buf());
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| RigError::new(file.clone(), RigErrorKind::Io(e)))?;
+    let text = std::fs::read_to_string(path).map_err(|e| RigError::new(file.clone(), RigErrorKind::Io(e)))?;
     RigDocument::parse(&text).map_err(|e| RigError::new(file, RigErrorKind::Json(e)))
 }
 
 fn check_header(document: &RigDocument, file: &Option<PathBuf>) -> Result<(), RigError> {
     if document.format != FORMAT {
-        return Err(RigError::new(
-            file.clone(),
-            RigErrorKind::Format {
-                found: document.format.clone(),
-            },
-        ));
+        return Err(RigError::new(file.clone(), RigErrorKind::Format { found: document.format.clone() }));
     }
     if document.version != VERSION {
-        return Err(RigError::new(
-            file.clone(),
-            RigErrorKind::Version {
-                found: document.version,
-            },
-        ));
+        return Err(RigError::new(file.clone(), RigErrorKind::Version { found: document.version }));
     }
     Ok(())
 }

@@ -19,12 +19,7 @@ impl Rig {
                 Some(VertexSelection::Indices(indices)) => {
                     if let Some(&index) = indices.iter().find(|&&i| i as usize >= count) {
                         let (sweep, mesh) = (sweep.name.clone(), mesh_name.to_string());
-                        return Err(fail(RigErrorKind::VertexOutOfRange {
-                            sweep,
-                            index,
-                            mesh,
-                            count,
-                        }));
+                        return Err(fail(RigErrorKind::VertexOutOfRange { sweep, index, mesh, count }));
                     }
                     let mut indices = indices.clone();
                     indices.sort_unstable();
@@ -35,21 +30,12 @@ impl Rig {
                     let mut vertices = Vec::new();
                     for group in groups {
                         let Some(members) = mesh.group_vertices(group) else {
-                            let available = mesh
-                                .groups
-                                .iter()
-                                .map(|g| g.name.as_str())
-                                .collect::<Vec<_>>()
-                                .join(", ");
+                            let available = mesh.groups.iter().map(|g| g.name.as_str()).collect::<Vec<_>>().join(", ");
                             return Err(fail(RigErrorKind::UnknownGroup {
                                 sweep: sweep.name.clone(),
                                 group: group.clone(),
                                 mesh: mesh_name.to_string(),
-                                available: if available.is_empty() {
-                                    "none".to_string()
-                                } else {
-                                    available
-                                },
+                                available: if available.is_empty() { "none".to_string() } else { available },
                             }));
                         };
                         vertices.extend(members);

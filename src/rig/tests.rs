@@ -22,10 +22,7 @@ fn message(result: Result<impl std::fmt::Debug, RigError>) -> String {
 fn example_rig_parses_with_chord_length_knots() {
     let rig = example();
     assert_eq!(rig.sweeps()[0].name, "neck");
-    assert_eq!(
-        rig.sweeps()[0].vertices,
-        Some(VertexSelection::Groups(vec!["neck".into()]))
-    );
+    assert_eq!(rig.sweeps()[0].vertices, Some(VertexSelection::Groups(vec!["neck".into()])));
     assert_eq!(rig.rest()[0].knots(), &[0.0, 1.0]);
 }
 
@@ -39,16 +36,8 @@ fn document_round_trips_through_json() {
 fn vertex_selection_spellings() {
     let parse = |json: &str| serde_json::from_str::<VertexSelection>(json);
     assert_eq!(parse(r#""all""#).unwrap(), VertexSelection::All);
-    assert_eq!(
-        parse(r#"{"indices": [3, 1]}"#).unwrap(),
-        VertexSelection::Indices(vec![3, 1])
-    );
-    assert!(
-        parse(r#"{"group": ["a"]}"#)
-            .unwrap_err()
-            .to_string()
-            .contains("unknown variant `group`")
-    );
+    assert_eq!(parse(r#"{"indices": [3, 1]}"#).unwrap(), VertexSelection::Indices(vec![3, 1]));
+    assert!(parse(r#"{"group": ["a"]}"#).unwrap_err().to_string().contains("unknown variant `group`"));
 }
 
 #[test]
@@ -56,10 +45,7 @@ fn errors_name_the_file_sweep_and_key() {
     let mut document = RigDocument::parse(EXAMPLE).unwrap();
     document.sweeps[0].keys[1].radii[2] = -0.5;
     let error = message(Rig::from_document(&document, Some("rigs/neck.json".into())));
-    assert_eq!(
-        error,
-        "rigs/neck.json: sweep \"neck\": key 1: radius 2 is negative (-0.5)"
-    );
+    assert_eq!(error, "rigs/neck.json: sweep \"neck\": key 1: radius 2 is negative (-0.5)");
 }
 
 #[test]
@@ -76,10 +62,7 @@ fn wrong_format_and_version_are_rejected() {
 fn duplicate_sweep_names_are_rejected() {
     let mut document = RigDocument::parse(EXAMPLE).unwrap();
     document.sweeps.push(document.sweeps[0].clone());
-    assert_eq!(
-        message(Rig::from_document(&document, None)),
-        "two sweeps are named \"neck\""
-    );
+    assert_eq!(message(Rig::from_document(&document, None)), "two sweeps are named \"neck\"");
 }
 
 #[test]
@@ -87,12 +70,7 @@ fn pose_reuses_the_rest_knots() {
     let rig = example();
     let keys = vec![vec![
         Key::circle(DVec3::ZERO, DQuat::IDENTITY, 1.0, 8),
-        Key::circle(
-            DVec3::new(0.0, 5.0, 0.0),
-            DQuat::from_rotation_x(-1.0),
-            0.5,
-            8,
-        ),
+        Key::circle(DVec3::new(0.0, 5.0, 0.0), DQuat::from_rotation_x(-1.0), 0.5, 8),
     ]];
     let posed = rig.pose(&keys).unwrap();
     assert_eq!(posed[0].knots(), rig.rest()[0].knots());
@@ -125,12 +103,6 @@ fn pose_may_bring_coincident_centers_but_not_a_zero_rotation() {
     let rig = example();
     let key = Key::circle(DVec3::ZERO, DQuat::IDENTITY, 1.0, 8);
     assert!(rig.pose(&[vec![key.clone(), key.clone()]]).is_ok());
-    let zero = Key {
-        rotation: DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0),
-        ..key.clone()
-    };
-    assert_eq!(
-        message(rig.pose(&[vec![key, zero]])),
-        "sweep \"neck\": key 1: rotation is the zero quaternion"
-    );
+    let zero = Key { rotation: DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0), ..key.clone() };
+    assert_eq!(message(rig.pose(&[vec![key, zero]])), "sweep \"neck\": key 1: rotation is the zero quaternion");
 }

@@ -37,8 +37,7 @@ impl CubicPiece {
     /// First derivative with respect to the global parameter at local parameter `s`.
     pub fn derivative(&self, s: f64) -> f64 {
         let r = 1.0 - s;
-        (self.y1 - self.y0) / self.h
-            + self.h / 6.0 * ((1.0 - 3.0 * r * r) * self.m0 + (3.0 * s * s - 1.0) * self.m1)
+        (self.y1 - self.y0) / self.h + self.h / 6.0 * ((1.0 - 3.0 * r * r) * self.m0 + (3.0 * s * s - 1.0) * self.m1)
     }
 
     /// Second derivative with respect to the global parameter at local parameter `s`.
@@ -50,12 +49,7 @@ impl CubicPiece {
     /// `y(s) = a0 + a1·s + a2·s² + a3·s³`.
     pub fn power_coefficients(&self) -> [f64; 4] {
         let k = self.h * self.h / 6.0;
-        [
-            self.y0,
-            (self.y1 - self.y0) - k * (2.0 * self.m0 + self.m1),
-            3.0 * k * self.m0,
-            k * (self.m1 - self.m0),
-        ]
+        [self.y0, (self.y1 - self.y0) - k * (2.0 * self.m0 + self.m1), 3.0 * k * self.m0, k * (self.m1 - self.m0)]
     }
 }
 
@@ -63,13 +57,7 @@ impl CubicPiece {
 mod tests {
     use super::*;
 
-    const PIECE: CubicPiece = CubicPiece {
-        y0: 1.5,
-        y1: -0.25,
-        m0: 3.0,
-        m1: -7.0,
-        h: 0.4,
-    };
+    const PIECE: CubicPiece = CubicPiece { y0: 1.5, y1: -0.25, m0: 3.0, m1: -7.0, h: 0.4 };
 
     #[test]
     fn value_is_exact_at_both_ends() {
@@ -96,10 +84,7 @@ mod tests {
             let fd1 = (PIECE.value(s + ds) - PIECE.value(s - ds)) / (2.0 * eps);
             let fd2 = (PIECE.derivative(s + ds) - PIECE.derivative(s - ds)) / (2.0 * eps);
             assert!((fd1 - PIECE.derivative(s)).abs() < 1e-7, "C' at s = {s}");
-            assert!(
-                (fd2 - PIECE.second_derivative(s)).abs() < 1e-6,
-                "C'' at s = {s}"
-            );
+            assert!((fd2 - PIECE.second_derivative(s)).abs() < 1e-6, "C'' at s = {s}");
         }
     }
 }

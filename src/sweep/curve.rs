@@ -29,11 +29,7 @@ impl CurvePiece {
     /// d²C/dt² at local parameter `s`.
     pub fn second_derivative(&self, s: f64) -> DVec3 {
         let [x, y, z] = &self.axes;
-        DVec3::new(
-            x.second_derivative(s),
-            y.second_derivative(s),
-            z.second_derivative(s),
-        )
+        DVec3::new(x.second_derivative(s), y.second_derivative(s), z.second_derivative(s))
     }
 
     /// Power-basis coefficients `[a0, a1, a2, a3]` with `C(s) = a0 + a1·s + a2·s² + a3·s³`;
@@ -51,9 +47,5 @@ pub fn center_curve(knots: &[f64], centers: &[DVec3]) -> Vec<CurvePiece> {
         natural_spline_pieces(knots, &values)
     };
     let (xs, ys, zs) = (axis(|p| p.x), axis(|p| p.y), axis(|p| p.z));
-    xs.into_iter()
-        .zip(ys)
-        .zip(zs)
-        .map(|((x, y), z)| CurvePiece { axes: [x, y, z] })
-        .collect()
+    xs.into_iter().zip(ys).zip(zs).map(|((x, y), z)| CurvePiece { axes: [x, y, z] }).collect()
 }

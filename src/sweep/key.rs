@@ -22,10 +22,6 @@ pub struct Key {
 impl Key {
     /// A circular key of radius `radius` with `samples` radii.
     pub fn circle(center: DVec3, rotation: DQuat, radius: f64, samples: usize) -> Key {
-        Key {
-            center,
-            rotation,
-            radii: vec![radius; samples],
-        }
+        Key { center, rotation, radii: vec![radius; samples] }
     }
 }

@@ -17,16 +17,10 @@ pub fn chord_length_knots(centers: &[DVec3]) -> Result<Vec<f64>, SweepError> {
     for (i, pair) in centers.windows(2).enumerate() {
         let chord = pair[0].distance(pair[1]);
         if !chord.is_finite() {
-            return Err(SweepError::ChordOverflow {
-                key: i + 1,
-                previous: i,
-            });
+            return Err(SweepError::ChordOverflow { key: i + 1, previous: i });
         }
         if chord == 0.0 {
-            return Err(SweepError::CoincidentCenters {
-                key: i + 1,
-                previous: i,
-            });
+            return Err(SweepError::CoincidentCenters { key: i + 1, previous: i });
         }
         total += chord;
         knots.push(total);
@@ -44,10 +38,7 @@ pub fn chord_length_knots(centers: &[DVec3]) -> Result<Vec<f64>, SweepError> {
 /// Checks explicit knots: one per key, finite, from exactly 0 to exactly 1, strictly increasing.
 pub fn validate_knots(knots: &[f64], keys: usize) -> Result<(), SweepError> {
     if knots.len() != keys {
-        return Err(SweepError::KnotCount {
-            keys,
-            found: knots.len(),
-        });
+        return Err(SweepError::KnotCount { keys, found: knots.len() });
     }
     if let Some(index) = knots.iter().position(|u| !u.is_finite()) {
         return Err(SweepError::NonFiniteKnot { index });
@@ -58,11 +49,7 @@ pub fn validate_knots(knots: &[f64], keys: usize) -> Result<(), SweepError> {
     }
     for (index, pair) in knots.windows(2).enumerate() {
         if pair[1] <= pair[0] {
-            return Err(SweepError::KnotsNotIncreasing {
-                index: index + 1,
-                previous: pair[0],
-                value: pair[1],
-            });
+            return Err(SweepError::KnotsNotIncreasing { index: index + 1, previous: pair[0], value: pair[1] });
         }
     }
     Ok(())
@@ -74,44 +61,25 @@ mod tests {
 
     #[test]
     fn knots_follow_chord_length() {
-        let centers = [
-            DVec3::ZERO,
-            DVec3::new(1.0, 0.0, 0.0),
-            DVec3::new(1.0, 3.0, 0.0),
-        ];
+        let centers = [DVec3::ZERO, DVec3::new(1.0, 0.0, 0.0), DVec3::new(1.0, 3.0, 0.0)];
         assert_eq!(chord_length_knots(&centers).unwrap(), vec![0.0, 0.25, 1.0]);
     }
 
     #[test]
     fn coincident_consecutive_centers_are_rejected() {
         let centers = [DVec3::ZERO, DVec3::X, DVec3::X];
-        assert_eq!(
-            chord_length_knots(&centers),
-            Err(SweepError::CoincidentCenters {
-                key: 2,
-                previous: 1
-            })
-        );
+        assert_eq!(chord_length_knots(&centers), Err(SweepError::CoincidentCenters { key: 2, previous: 1 }));
     }
 
     #[test]
     fn explicit_knots_must_increase_from_zero_to_one() {
         assert!(validate_knots(&[0.0, 0.5, 1.0], 3).is_ok());
-        assert!(matches!(
-            validate_knots(&[0.0, 1.0], 3),
-            Err(SweepError::KnotCount { .. })
-        ));
-        assert!(matches!(
-            validate_knots(&[0.1, 0.5, 1.0], 3),
-            Err(SweepError::KnotRange { .. })
-        ));
+        assert!(matches!(validate_knots(&[0.0, 1.0], 3), Err(SweepError::KnotCount { .. })));
+        assert!(matches!(validate_knots(&[0.1, 0.5, 1.0], 3), Err(SweepError::KnotRange { .. })));
         assert!(matches!(
             validate_knots(&[0.0, 0.5, 0.5, 1.0], 4),
             Err(SweepError::KnotsNotIncreasing { index: 2, .. })
         ));
-        assert!(matches!(
-            validate_knots(&[0.0, f64::NAN, 1.0], 3),
-            Err(SweepError::NonFiniteKnot { index: 1 })
-        ));
+        assert!(matches!(validate_knots(&[0.0, f64::NAN, 1.0], 3), Err(SweepError::NonFiniteKnot { index: 1 })));
     }
 }

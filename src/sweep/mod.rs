@@ -101,11 +101,7 @@ impl Sweep {
             .collect();
         let radii: Vec<&[f64]> = keys.iter().map(|key| key.radii.as_slice()).collect();
         let radius = RadiusField::new(&knots, &radii);
-        Sweep {
-            knots,
-            segments,
-            radius,
-        }
+        Sweep { knots, segments, radius }
     }
 
     /// The knots u_0 = 0 < … < u_n = 1.
@@ -135,10 +131,7 @@ impl Sweep {
         let last = self.segments.len() - 1;
         let segment = (self.knots.partition_point(|&u| u <= t).max(1) - 1).min(last);
         let Segment { t0, t1, .. } = self.segments[segment];
-        AxisPoint {
-            segment,
-            s: ((t - t0) / (t1 - t0)).clamp(0.0, 1.0),
-        }
+        AxisPoint { segment, s: ((t - t0) / (t1 - t0)).clamp(0.0, 1.0) }
     }
 
     /// The center C(t); exactly p_i at t = u_i.
@@ -188,8 +181,7 @@ impl Sweep {
         let segment = &self.segments[at.segment];
         let rho = self.radius.value(at.segment, at.s, theta) + d;
         let (sin, cos) = theta.sin_cos();
-        segment.curve.value(at.s)
-            + segment.orientation.value(at.s) * DVec3::new(rho * cos, rho * sin, h)
+        segment.curve.value(at.s) + segment.orientation.value(at.s) * DVec3::new(rho * cos, rho * sin, h)
     }
 }
 
@@ -198,49 +190,25 @@ fn validate_keys(keys: &[Key]) -> Result<(), SweepError> {
         return Err(SweepError::TooFewKeys { count: keys.len() });
     }
     let samples = keys[0].radii.len();
-    for (
-        key,
-        Key {
-            center,
-            rotation,
-            radii,
-        },
-    ) in keys.iter().enumerate()
-    {
+    for (key, Key { center, rotation, radii }) in keys.iter().enumerate() {
         if !center.is_finite() {
-            return Err(SweepError::NonFinite {
-                key,
-                field: "center",
-            });
+            return Err(SweepError::NonFinite { key, field: "center" });
         }
         if !rotation.is_finite() {
-            return Err(SweepError::NonFinite {
-                key,
-                field: "rotation",
-            });
+            return Err(SweepError::NonFinite { key, field: "rotation" });
         }
         if rotation.length_squared() == 0.0 {
             return Err(SweepError::ZeroRotation { key });
         }
         if radii.len() < 3 {
-            return Err(SweepError::TooFewRadii {
-                key,
-                count: radii.len(),
-            });
+            return Err(SweepError::TooFewRadii { key, count: radii.len() });
         }
         if radii.len() != samples {
-            return Err(SweepError::RadiusCountMismatch {
-                key,
-                expected: samples,
-                found: radii.len(),
-            });
+            return Err(SweepError::RadiusCountMismatch { key, expected: samples, found: radii.len() });
         }
         for (index, &value) in radii.iter().enumerate() {
             if !value.is_finite() {
-                return Err(SweepError::NonFinite {
-                    key,
-                    field: "radius",
-                });
+                return Err(SweepError::NonFinite { key, field: "radius" });
             }
             if value < 0.0 {
                 return Err(SweepError::NegativeRadius { key, index, value });

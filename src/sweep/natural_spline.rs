@@ -45,13 +45,7 @@ pub fn natural_second_derivatives(knots: &[f64], values: &[f64]) -> Vec<f64> {
 pub fn natural_spline_pieces(knots: &[f64], values: &[f64]) -> Vec<CubicPiece> {
     let m = natural_second_derivatives(knots, values);
     (0..knots.len() - 1)
-        .map(|i| CubicPiece {
-            y0: values[i],
-            y1: values[i + 1],
-            m0: m[i],
-            m1: m[i + 1],
-            h: knots[i + 1] - knots[i],
-        })
+        .map(|i| CubicPiece { y0: values[i], y1: values[i + 1], m0: m[i], m1: m[i + 1], h: knots[i + 1] - knots[i] })
         .collect()
 }
 

@@ -86,10 +86,7 @@ mod tests {
             let q = p.unnormalized(s);
             let expected = p.value(s) * DVec3::Z;
             let numerator = n0 + n1 * s + n2 * s * s;
-            assert!(
-                (numerator / q.length_squared() - expected).length() < 1e-14,
-                "s = {s}"
-            );
+            assert!((numerator / q.length_squared() - expected).length() < 1e-14, "s = {s}");
         }
     }
 }

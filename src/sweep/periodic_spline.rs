@@ -55,15 +55,7 @@ fn solve_unit_tridiagonal(diag: &[f64], rhs: &[f64]) -> Vec<f64> {
 pub fn periodic_spline_pieces(values: &[f64], h: f64) -> Vec<CubicPiece> {
     let n = values.len();
     let m = periodic_second_derivatives(values, h);
-    (0..n)
-        .map(|j| CubicPiece {
-            y0: values[j],
-            y1: values[(j + 1) % n],
-            m0: m[j],
-            m1: m[(j + 1) % n],
-            h,
-        })
-        .collect()
+    (0..n).map(|j| CubicPiece { y0: values[j], y1: values[(j + 1) % n], m0: m[j], m1: m[(j + 1) % n], h }).collect()
 }
 
 #[cfg(test)]
@@ -111,10 +103,7 @@ mod tests {
         for j in 0..n {
             let (left, right) = (&pieces[j], &pieces[(j + 1) % n]);
             assert!((left.value(1.0) - right.value(0.0)).abs() < 1e-14);
-            assert!(
-                (left.derivative(1.0) - right.derivative(0.0)).abs() < 1e-12,
-                "C¹ at node {j}"
-            );
+            assert!((left.derivative(1.0) - right.derivative(0.0)).abs() < 1e-12, "C¹ at node {j}");
             assert!((left.second_derivative(1.0) - right.second_derivative(0.0)).abs() < 1e-12);
         }
     }

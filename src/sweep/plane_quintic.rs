@@ -50,13 +50,6 @@ impl PlaneQuintic {
         let w = v - self.origin;
         let [n0, n1, n2] = self.normal;
         let e = self.curve_dot_normal;
-        [
-            w.dot(n0),
-            w.dot(n1) - e[0],
-            w.dot(n2) - e[1],
-            -e[2],
-            -e[3],
-            -e[4],
-        ]
+        [w.dot(n0), w.dot(n1) - e[0], w.dot(n2) - e[1], -e[2], -e[3], -e[4]]
     }
 }

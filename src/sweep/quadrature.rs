@@ -35,12 +35,7 @@ impl GaussLegendre {
     /// ∫_a^b f.
     pub fn integrate(&self, a: f64, b: f64, mut f: impl FnMut(f64) -> f64) -> f64 {
         let width = b - a;
-        let sum: f64 = self
-            .nodes
-            .iter()
-            .zip(&self.weights)
-            .map(|(x, w)| w * f(a + width * x))
-            .sum();
+        let sum: f64 = self.nodes.iter().zip(&self.weights).map(|(x, w)| w * f(a + width * x)).sum();
         sum * width
     }
 }
@@ -116,9 +111,6 @@ mod tests {
         let mut f = |x: f64| 1.0 / (1e-4 + (x - 0.5) * (x - 0.5));
         let exact = 200.0 * 50f64.atan();
         let integral = integrate_adaptive(0.0, 1.0, 1e-12, &mut f);
-        assert!(
-            ((integral - exact) / exact).abs() < 1e-11,
-            "{integral} vs {exact}"
-        );
+        assert!(((integral - exact) / exact).abs() < 1e-11, "{integral} vs {exact}");
     }
 }

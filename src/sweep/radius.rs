@@ -113,20 +113,13 @@ mod tests {
     #[test]
     fn interpolates_every_key_radius() {
         let knots = [0.0, 0.3, 1.0];
-        let radii: [&[f64]; 3] = [
-            &[1.0, 2.0, 1.5, 0.5],
-            &[0.7, 0.7, 0.9, 1.1],
-            &[2.0, 1.0, 3.0, 2.5],
-        ];
+        let radii: [&[f64]; 3] = [&[1.0, 2.0, 1.5, 0.5], &[0.7, 0.7, 0.9, 1.1], &[2.0, 1.0, 3.0, 2.5]];
         let field = RadiusField::new(&knots, &radii);
         for (i, key) in radii.iter().enumerate() {
             for (j, rho) in key.iter().enumerate() {
                 let theta = TAU * j as f64 / 4.0;
                 let (segment, s) = if i < 2 { (i, 0.0) } else { (1, 1.0) };
-                assert!(
-                    (field.value(segment, s, theta) - rho).abs() < 1e-14,
-                    "key {i}, node {j}"
-                );
+                assert!((field.value(segment, s, theta) - rho).abs() < 1e-14, "key {i}, node {j}");
             }
         }
     }

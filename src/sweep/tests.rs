@@ -12,14 +12,7 @@ fn straight(length: f64, radii: &[f64]) -> Sweep {
     let keys: Vec<Key> = radii
         .iter()
         .enumerate()
-        .map(|(i, &r)| {
-            Key::circle(
-                DVec3::new(0.0, 0.0, length * i as f64 / n as f64),
-                DQuat::IDENTITY,
-                r,
-                12,
-            )
-        })
+        .map(|(i, &r)| Key::circle(DVec3::new(0.0, 0.0, length * i as f64 / n as f64), DQuat::IDENTITY, r, 12))
         .collect();
     Sweep::try_new(&keys, None).unwrap()
 }
@@ -37,11 +30,8 @@ fn bent_keys() -> Vec<Key> {
         .enumerate()
         .map(|(i, &center)| Key {
             center,
-            rotation: DQuat::from_rotation_y(0.45 * i as f64)
-                * DQuat::from_rotation_z(0.3 * i as f64),
-            radii: (0..8)
-                .map(|j| 0.3 + 0.05 * ((i + 2 * j) % 5) as f64)
-                .collect(),
+            rotation: DQuat::from_rotation_y(0.45 * i as f64) * DQuat::from_rotation_z(0.3 * i as f64),
+            radii: (0..8).map(|j| 0.3 + 0.05 * ((i + 2 * j) % 5) as f64).collect(),
         })
         .collect()
 }
@@ -54,11 +44,7 @@ fn relative_error(value: f64, exact: f64) -> f64 {
 fn cylinder_volume_is_pi_r_squared_l() {
     let sweep = straight(3.0, &[0.7, 0.7, 0.7, 0.7]);
     let exact = PI * 0.7 * 0.7 * 3.0;
-    assert!(
-        relative_error(sweep.volume(), exact) <= 1e-9,
-        "{} vs {exact}",
-        sweep.volume()
-    );
+    assert!(relative_error(sweep.volume(), exact) <= 1e-9, "{} vs {exact}", sweep.volume());
 }
 
 #[test]
@@ -66,11 +52,7 @@ fn frustum_volume_matches_closed_form() {
     let (r0, r1, length) = (1.3, 0.4, 2.5);
     let sweep = straight(length, &[r0, r1]);
     let exact = PI * length * (r0 * r0 + r0 * r1 + r1 * r1) / 3.0;
-    assert!(
-        relative_error(sweep.volume(), exact) <= 1e-9,
-        "{} vs {exact}",
-        sweep.volume()
-    );
+    assert!(relative_error(sweep.volume(), exact) <= 1e-9, "{} vs {exact}", sweep.volume());
 }
 
 #[test]
@@ -80,12 +62,7 @@ fn frustum_volume_is_unchanged_by_a_rigid_motion() {
     let offset = DVec3::new(10.0, -4.0, 7.5);
     let keys = [
         Key::circle(offset, motion, r0, 16),
-        Key::circle(
-            offset + motion * DVec3::new(0.0, 0.0, length),
-            motion,
-            r1,
-            16,
-        ),
+        Key::circle(offset + motion * DVec3::new(0.0, 0.0, length), motion, r1, 16),
     ];
     let sweep = Sweep::try_new(&keys, None).unwrap();
     let exact = PI * length * (r0 * r0 + r0 * r1 + r1 * r1) / 3.0;
@@ -99,11 +76,7 @@ fn volume_of_a_bent_sweep_is_invariant_under_rigid_motion() {
     let offset = DVec3::new(-3.0, 5.0, 1.0);
     let moved: Vec<Key> = keys
         .iter()
-        .map(|key| Key {
-            center: motion * key.center + offset,
-            rotation: motion * key.rotation,
-            ..key.clone()
-        })
+        .map(|key| Key { center: motion * key.center + offset, rotation: motion * key.rotation, ..key.clone() })
         .collect();
     let a = Sweep::try_new(&keys, None).unwrap().volume();
     let b = Sweep::try_new(&moved, None).unwrap().volume();
@@ -134,19 +107,11 @@ fn center_derivatives_are_continuous_at_the_knots_by_finite_differences() {
         // One-sided difference quotients from each side must agree (C¹) …
         let left = (sweep.center(u) - sweep.center(u - eps)) / eps;
         let right = (sweep.center(u + eps) - sweep.center(u)) / eps;
-        assert!(
-            (left - right).length() < 1e-4 * left.length().max(1.0),
-            "C′ jumps at {u}"
-        );
+        assert!((left - right).length() < 1e-4 * left.length().max(1.0), "C′ jumps at {u}");
         // … and so must the second difference quotients (C²).
-        let left2 = (sweep.center(u) - 2.0 * sweep.center(u - eps) + sweep.center(u - 2.0 * eps))
-            / (eps * eps);
-        let right2 = (sweep.center(u + 2.0 * eps) - 2.0 * sweep.center(u + eps) + sweep.center(u))
-            / (eps * eps);
-        assert!(
-            (left2 - right2).length() < 1e-2 * left2.length().max(1.0),
-            "C″ jumps at {u}"
-        );
+        let left2 = (sweep.center(u) - 2.0 * sweep.center(u - eps) + sweep.center(u - 2.0 * eps)) / (eps * eps);
+        let right2 = (sweep.center(u + 2.0 * eps) - 2.0 * sweep.center(u + eps) + sweep.center(u)) / (eps * eps);
+        assert!((left2 - right2).length() < 1e-2 * left2.length().max(1.0), "C″ jumps at {u}");
         // The analytic derivatives agree with the central differences.
         let central = (sweep.center(u + eps) - sweep.center(u - eps)) / (2.0 * eps);
         assert!((central - sweep.center_derivative(u)).length() < 1e-6);
@@ -160,13 +125,7 @@ fn orientation_at_each_knot_is_the_key_rotation() {
     for (key, &u) in keys.iter().zip(sweep.knots()) {
         let expected = DMat3::from_quat(key.rotation.normalize());
         let actual = DMat3::from_quat(sweep.orientation(u));
-        assert!(
-            (expected - actual)
-                .to_cols_array()
-                .iter()
-                .all(|e| e.abs() < 1e-15),
-            "at u = {u}"
-        );
+        assert!((expected - actual).to_cols_array().iter().all(|e| e.abs() < 1e-15), "at u = {u}");
     }
 }
 
@@ -177,8 +136,7 @@ fn surface_point_at_a_key_is_the_key_radius_away_from_its_center() {
     let (key, u) = (&keys[2], sweep.knots()[2]);
     for (j, rho) in key.radii.iter().enumerate() {
         let theta = std::f64::consts::TAU * j as f64 / key.radii.len() as f64;
-        let expected =
-            key.center + key.rotation * DVec3::new(rho * theta.cos(), rho * theta.sin(), 0.0);
+        let expected = key.center + key.rotation * DVec3::new(rho * theta.cos(), rho * theta.sin(), 0.0);
         assert!((sweep.surface_point(theta, u) - expected).length() < 1e-14);
     }
 }
@@ -196,43 +154,17 @@ fn locate_puts_interior_knots_at_the_start_of_their_interval() {
 fn invalid_keys_are_rejected_with_the_key_at_fault() {
     let mut keys = bent_keys();
     keys[3].radii[5] = -1.0;
-    assert_eq!(
-        Sweep::try_new(&keys, None),
-        Err(SweepError::NegativeRadius {
-            key: 3,
-            index: 5,
-            value: -1.0
-        })
-    );
+    assert_eq!(Sweep::try_new(&keys, None), Err(SweepError::NegativeRadius { key: 3, index: 5, value: -1.0 }));
     let mut keys = bent_keys();
     keys[1].rotation = DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0);
-    assert_eq!(
-        Sweep::try_new(&keys, None),
-        Err(SweepError::ZeroRotation { key: 1 })
-    );
+    assert_eq!(Sweep::try_new(&keys, None), Err(SweepError::ZeroRotation { key: 1 }));
     let mut keys = bent_keys();
     keys[4].radii.pop();
-    assert_eq!(
-        Sweep::try_new(&keys, None),
-        Err(SweepError::RadiusCountMismatch {
-            key: 4,
-            expected: 8,
-            found: 7
-        })
-    );
+    assert_eq!(Sweep::try_new(&keys, None), Err(SweepError::RadiusCountMismatch { key: 4, expected: 8, found: 7 }));
     let mut keys = bent_keys();
     keys[2].center.y = f64::NAN;
-    assert_eq!(
-        Sweep::try_new(&keys, None),
-        Err(SweepError::NonFinite {
-            key: 2,
-            field: "center"
-        })
-    );
-    assert_eq!(
-        Sweep::try_new(&bent_keys()[..1], None),
-        Err(SweepError::TooFewKeys { count: 1 })
-    );
+    assert_eq!(Sweep::try_new(&keys, None), Err(SweepError::NonFinite { key: 2, field: "center" }));
+    assert_eq!(Sweep::try_new(&bent_keys()[..1], None), Err(SweepError::TooFewKeys { count: 1 }));
 }
 
 use glam::DMat3;

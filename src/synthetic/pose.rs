@@ -22,11 +22,7 @@ impl BendTwistTaper {
     /// The posed keys of `rig`'s sweeps, each key transformed relative to the previous one
     /// (bend), about its own normal (twist) and in its radii (taper).
     pub fn keys(&self, rig: &Rig) -> Vec<Vec<Key>> {
-        rig.sweeps()
-            .iter()
-            .zip(rig.rest())
-            .map(|(sweep, rest)| self.sweep_keys(&sweep.keys, rest.knots()))
-            .collect()
+        rig.sweeps().iter().zip(rig.rest()).map(|(sweep, rest)| self.sweep_keys(&sweep.keys, rest.knots())).collect()
     }
 
     fn sweep_keys(&self, keys: &[Key], knots: &[f64]) -> Vec<Key> {
@@ -44,11 +40,7 @@ impl BendTwistTaper {
             };
             let rotation = bend * key.rotation.normalize() * DQuat::from_rotation_z(self.twist * u);
             let scale = 1.0 + (self.taper - 1.0) * u;
-            posed.push(Key {
-                center,
-                rotation,
-                radii: key.radii.iter().map(|r| r * scale).collect(),
-            });
+            posed.push(Key { center, rotation, radii: key.radii.iter().map(|r| r * scale).collect() });
         }
         posed
     }
@@ -61,49 +53,18 @@ mod tests {
 
     #[test]
     fn identity_parameters_reproduce_the_rest_keys() {
-        let rig = tube_rig(
-            &Tube {
-                rings: 3,
-                around: 8,
-                length: 2.0,
-                radius: 0.3,
-            },
-            5,
-            8,
-        );
-        let keys = BendTwistTaper {
-            bend: 0.0,
-            twist: 0.0,
-            taper: 1.0,
-        }
-        .keys(&rig);
+        let rig = tube_rig(&Tube { rings: 3, around: 8, length: 2.0, radius: 0.3 }, 5, 8);
+        let keys = BendTwistTaper { bend: 0.0, twist: 0.0, taper: 1.0 }.keys(&rig);
         assert_eq!(keys[0], rig.sweeps()[0].keys);
     }
 
     #[test]
     fn quarter_bend_turns_the_last_key_a_quarter() {
-        let rig = tube_rig(
-            &Tube {
-                rings: 3,
-                around: 8,
-                length: 2.0,
-                radius: 0.3,
-            },
-            9,
-            8,
-        );
-        let keys = BendTwistTaper {
-            bend: std::f64::consts::FRAC_PI_2,
-            twist: 0.0,
-            taper: 0.5,
-        }
-        .keys(&rig);
+        let rig = tube_rig(&Tube { rings: 3, around: 8, length: 2.0, radius: 0.3 }, 9, 8);
+        let keys = BendTwistTaper { bend: std::f64::consts::FRAC_PI_2, twist: 0.0, taper: 0.5 }.keys(&rig);
         let last = &keys[0][8];
         let normal = last.rotation * DVec3::Z;
-        assert!(
-            (normal - DVec3::new(0.0, -1.0, 0.0)).length() < 1e-12,
-            "{normal}"
-        );
+        assert!((normal - DVec3::new(0.0, -1.0, 0.0)).length() < 1e-12, "{normal}");
         assert!((last.radii[0] - 0.15).abs() < 1e-15);
     }
 }

@@ -27,12 +27,7 @@ impl Tube {
     pub fn with_vertex_count(vertices: usize, length: f64, radius: f64) -> Tube {
         let around = 256;
         let rings = (vertices.saturating_sub(2) / around as usize).max(2) as u32;
-        Tube {
-            rings,
-            around,
-            length,
-            radius,
-        }
+        Tube { rings, around, length, radius }
     }
 
     /// Number of vertices: `rings·around + 2`.
@@ -49,11 +44,7 @@ impl Tube {
             let z = self.length * ring as f64 / (rings - 1) as f64;
             for k in 0..around {
                 let angle = TAU * k as f64 / around as f64;
-                positions.push(DVec3::new(
-                    self.radius * angle.cos(),
-                    self.radius * angle.sin(),
-                    z,
-                ));
+                positions.push(DVec3::new(self.radius * angle.cos(), self.radius * angle.sin(), z));
             }
         }
         let (bottom, top) = (rings * around, rings * around + 1);
@@ -64,12 +55,7 @@ impl Tube {
         let mut faces = Faces::new();
         for ring in 0..rings - 1 {
             for k in 0..around {
-                faces.push(&[
-                    vertex(ring, k),
-                    vertex(ring, k + 1),
-                    vertex(ring + 1, k + 1),
-                    vertex(ring + 1, k),
-                ]);
+                faces.push(&[vertex(ring, k), vertex(ring, k + 1), vertex(ring + 1, k + 1), vertex(ring + 1, k)]);
             }
         }
         let wall = (0..faces.len() as u32).collect();
@@ -79,17 +65,10 @@ impl Tube {
         }
         let caps = (wall_len(rings, around)..faces.len() as u32).collect();
         let groups = vec![
-            FaceGroup {
-                name: "wall".to_string(),
-                faces: wall,
-            },
-            FaceGroup {
-                name: "caps".to_string(),
-                faces: caps,
-            },
+            FaceGroup { name: "wall".to_string(), faces: wall },
+            FaceGroup { name: "caps".to_string(), faces: caps },
         ];
-        Mesh::from_parts(positions, faces, groups)
-            .expect("a tube with rings >= 2 and around >= 3 is a valid mesh")
+        Mesh::from_parts(positions, faces, groups).expect("a tube with rings >= 2 and around >= 3 is a valid mesh")
     }
 }
 
@@ -103,20 +82,10 @@ pub fn tube_rig(tube: &Tube, keys: usize, samples: usize) -> Rig {
     let keys = (0..keys)
         .map(|i| {
             let z = tube.length * i as f64 / (keys - 1) as f64;
-            Key::circle(
-                DVec3::new(0.0, 0.0, z),
-                DQuat::IDENTITY,
-                tube.radius,
-                samples,
-            )
+            Key::circle(DVec3::new(0.0, 0.0, z), DQuat::IDENTITY, tube.radius, samples)
         })
         .collect();
-    let sweep = RigSweep {
-        name: "tube".to_string(),
-        vertices: Some(VertexSelection::All),
-        keys,
-        knots: None,
-    };
+    let sweep = RigSweep { name: "tube".to_string(), vertices: Some(VertexSelection::All), keys, knots: None };
     Rig::new(vec![sweep]).expect("a straight rig with distinct keys is valid")
 }
 
@@ -127,32 +96,19 @@ mod tests {
 
     #[test]
     fn tube_is_closed_and_outward() {
-        let tube = Tube {
-            rings: 40,
-            around: 64,
-            length: 3.0,
-            radius: 0.5,
-        };
+        let tube = Tube { rings: 40, around: 64, length: 3.0, radius: 0.5 };
         let mesh = tube.mesh();
         assert_eq!(mesh.positions.len(), tube.vertex_count());
         // The inscribed prism's volume: n/2·r²·sin(2π/n)·L.
         let exact = 64.0 / 2.0 * 0.25 * (TAU / 64.0).sin() * 3.0;
         let volume = mesh.enclosed_volume(&mesh.positions);
-        assert!(
-            ((volume - exact) / exact).abs() < 1e-12,
-            "{volume} vs {exact}"
-        );
+        assert!(((volume - exact) / exact).abs() < 1e-12, "{volume} vs {exact}");
         assert!(volume < PI * 0.25 * 3.0);
     }
 
     #[test]
     fn rig_owns_every_vertex() {
-        let tube = Tube {
-            rings: 4,
-            around: 8,
-            length: 1.0,
-            radius: 0.2,
-        };
+        let tube = Tube { rings: 4, around: 8, length: 1.0, radius: 0.2 };
         let rig = tube_rig(&tube, 3, 8);
         let owners = rig.owners(&tube.mesh(), "tube").unwrap();
         assert!(owners.iter().all(|&o| o == 0));

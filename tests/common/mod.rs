@@ -1,9 +1,6 @@
 //! Shared helpers for the integration tests: locating the test meshes in `../shared/meshes`.
 
-#![allow(
-    dead_code,
-    reason = "each test binary uses a different subset of the helpers"
-)]
+#![allow(dead_code, reason = "each test binary uses a different subset of the helpers")]
 
 use std::path::PathBuf;
 
@@ -20,10 +17,7 @@ pub fn shared_mesh(name: &str) -> Option<PathBuf> {
         return Some(path);
     }
     if std::env::var("CI").is_ok_and(|v| v == "true" || v == "1") {
-        panic!(
-            "CI=true but the shared test mesh {} is missing",
-            path.display()
-        );
+        panic!("CI=true but the shared test mesh {} is missing", path.display());
     }
     eprintln!(
         "skipping: shared test mesh {} not found (the ../shared folder is not beside this clone)",
@@ -60,19 +54,11 @@ pub fn principal_axis(points: &[DVec3]) -> (DVec3, DVec3) {
 /// does, so binding meets several roots.
 pub fn axis_rig(mesh: &Mesh, keys: usize, samples: usize) -> Rig {
     let (centroid, axis) = principal_axis(&mesh.positions);
-    let along: Vec<f64> = mesh
-        .positions
-        .iter()
-        .map(|p| (*p - centroid).dot(axis))
-        .collect();
-    let (lo, hi) = along
-        .iter()
-        .fold((f64::MAX, f64::MIN), |(lo, hi), &a| (lo.min(a), hi.max(a)));
+    let along: Vec<f64> = mesh.positions.iter().map(|p| (*p - centroid).dot(axis)).collect();
+    let (lo, hi) = along.iter().fold((f64::MAX, f64::MIN), |(lo, hi), &a| (lo.min(a), hi.max(a)));
     let span = hi - lo;
     let slab = 0.7 * span / (keys - 1) as f64;
-    let stations: Vec<f64> = (0..keys)
-        .map(|i| lo + span * (0.15 + 0.7 * i as f64 / (keys - 1) as f64))
-        .collect();
+    let stations: Vec<f64> = (0..keys).map(|i| lo + span * (0.15 + 0.7 * i as f64 / (keys - 1) as f64)).collect();
     let slab_members = |station: f64| -> Vec<DVec3> {
         mesh.positions
             .iter()
@@ -86,11 +72,7 @@ pub fn axis_rig(mesh: &Mesh, keys: usize, samples: usize) -> Rig {
         .map(|&station| {
             let members = slab_members(station);
             let on_axis = centroid + axis * station;
-            if members.is_empty() {
-                on_axis
-            } else {
-                members.iter().copied().sum::<DVec3>() / members.len() as f64
-            }
+            if members.is_empty() { on_axis } else { members.iter().copied().sum::<DVec3>() / members.len() as f64 }
         })
         .collect();
     // Frames by parallel transport of the tangent of the center polyline.
@@ -111,35 +93,19 @@ pub fn axis_rig(mesh: &Mesh, keys: usize, samples: usize) -> Rig {
                 let local = rotations[i].inverse() * (*p - centers[i]);
                 let radius = local.truncate().length();
                 let theta = local.y.atan2(local.x).rem_euclid(std::f64::consts::TAU);
-                let j =
-                    ((theta / std::f64::consts::TAU * samples as f64) as usize).min(samples - 1);
+                let j = ((theta / std::f64::consts::TAU * samples as f64) as usize).min(samples - 1);
                 sums[j].0 += radius;
                 sums[j].1 += 1;
                 overall.0 += radius;
                 overall.1 += 1;
             }
-            let mean = if overall.1 > 0 {
-                overall.0 / overall.1 as f64
-            } else {
-                0.1 * span
-            };
-            let radii = sums
-                .iter()
-                .map(|&(sum, n)| if n > 0 { sum / n as f64 } else { mean })
-                .collect();
-            Key {
-                center: centers[i],
-                rotation: rotations[i],
-                radii,
-            }
+            let mean = if overall.1 > 0 { overall.0 / overall.1 as f64 } else { 0.1 * span };
+            let radii = sums.iter().map(|&(sum, n)| if n > 0 { sum / n as f64 } else { mean }).collect();
+            Key { center: centers[i], rotation: rotations[i], radii }
         })
         .collect();
-    let sweep = RigSweep {
-        name: "body".to_string(),
-        vertices: Some(VertexSelection::All),
-        keys: rig_keys,
-        knots: None,
-    };
+    let sweep =
+        RigSweep { name: "body".to_string(), vertices: Some(VertexSelection::All), keys: rig_keys, knots: None };
     Rig::new(vec![sweep]).expect("the axis rig is valid")
 }
 
@@ -181,4 +147,13 @@ pub fn worst_f32(a: &[f32], b: &[f32]) -> (f32, u32, usize) {
         worst.1 = worst.1.max(ulps);
     }
     worst
+}
+
+/// The `sweepffd` binary, run in `dir` with `XDG_RUNTIME_DIR` pointing at `dir` (a private
+/// temporary folder): on a machine with no desktop session Mesa's Vulkan drivers otherwise
+/// print warnings about it on stderr, which the tests compare.
+pub fn sweepffd(dir: &std::path::Path) -> std::process::Command {
+    let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_sweepffd"));
+    command.current_dir(dir).env("XDG_RUNTIME_DIR", dir);
+    command
 }

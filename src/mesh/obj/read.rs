@@ -18,15 +18,10 @@ use crate::mesh::{FaceGroup, Faces, Mesh, MeshError, ObjLineError};
 pub(crate) fn read(path: &Path, bytes: Vec<u8>) -> Result<Mesh, MeshError> {
     let mut reader = Reader::default();
     for line in Scanner::new(&bytes) {
-        reader
-            .statement(line.number, &line.body)
-            .map_err(|e| e.at(path, line.number))?;
+        reader.statement(line.number, &line.body).map_err(|e| e.at(path, line.number))?;
     }
     let mesh = reader.finish(path)?;
-    Ok(Mesh {
-        source: Source::Obj(Original::new(bytes, &mesh)),
-        ..mesh
-    })
+    Ok(Mesh { source: Source::Obj(Original::new(bytes, &mesh)), ..mesh })
 }
 
 /// A failure at one statement: a problem with the line, or a 32-bit limit.
@@ -38,14 +33,8 @@ enum Failure {
 impl Failure {
     fn at(self, path: &Path, line: usize) -> MeshError {
         match self {
-            Failure::Line(problem) => MeshError::Obj {
-                path: path.to_path_buf(),
-                line,
-                problem,
-            },
-            Failure::TooLarge => MeshError::TooLarge {
-                path: path.to_path_buf(),
-            },
+            Failure::Line(problem) => MeshError::Obj { path: path.to_path_buf(), line, problem },
+            Failure::TooLarge => MeshError::TooLarge { path: path.to_path_buf() },
         }
     }
 }
@@ -102,10 +91,7 @@ impl Reader {
 
     fn vertex(&mut self, code: &[u8], args: std::ops::Range<usize>) -> Result<(), Failure> {
         let ([x, y, z], _) = scan::vertex(code, args).map_err(|issue| match issue {
-            VertexIssue::NotANumber(token) => ObjLineError::NotANumber {
-                what: "vertex coordinate",
-                token,
-            },
+            VertexIssue::NotANumber(token) => ObjLineError::NotANumber { what: "vertex coordinate", token },
             VertexIssue::Missing(found) => ObjLineError::MissingCoordinates { found },
         })?;
         let p = DVec3::new(x, y, z);
@@ -125,10 +111,8 @@ impl Reader {
         for w in scan::words(args) {
             let word = &args[w];
             let index = word.split(|&b| b == b'/').next().unwrap_or(word);
-            let index: i64 = scan::number(index).ok_or_else(|| ObjLineError::NotANumber {
-                what: "face index",
-                token: scan::lossy(word),
-            })?;
+            let index: i64 = scan::number(index)
+                .ok_or_else(|| ObjLineError::NotANumber { what: "face index", token: scan::lossy(word) })?;
             let resolved = self.resolve(index)?;
             self.face.push(resolved);
         }
@@ -163,9 +147,7 @@ impl Reader {
             return Err(ObjLineError::ZeroIndex);
         }
         let resolved = (preceding as i64).checked_add(index).filter(|&r| r >= 0);
-        resolved
-            .map(|r| r as u32)
-            .ok_or(ObjLineError::RelativeIndexOutOfRange { index, preceding })
+        resolved.map(|r| r as u32).ok_or(ObjLineError::RelativeIndexOutOfRange { index, preceding })
     }
 
     fn group_id(&mut self, name: &[u8]) -> usize {
@@ -174,10 +156,7 @@ impl Reader {
             return id;
         }
         let id = self.groups.len();
-        self.groups.push(FaceGroup {
-            name: name.clone(),
-            faces: Vec::new(),
-        });
+        self.groups.push(FaceGroup { name: name.clone(), faces: Vec::new() });
         self.group_ids.insert(name, id);
         id
     }
@@ -185,9 +164,7 @@ impl Reader {
     fn finish(mut self, path: &Path) -> Result<Mesh, MeshError> {
         let count = self.positions.len();
         if count == 0 {
-            return Err(MeshError::Empty {
-                path: path.to_path_buf(),
-            });
+            return Err(MeshError::Empty { path: path.to_path_buf() });
         }
         if let Some((index, line)) = self.largest.filter(|&(i, _)| i > count as i64) {
             let problem = ObjLineError::IndexOutOfRange { index, count };
@@ -197,12 +174,7 @@ impl Reader {
         if self.faces.offsets.is_empty() {
             self.faces = Faces::new();
         }
-        Ok(Mesh {
-            positions: self.positions,
-            faces: self.faces,
-            groups: self.groups,
-            source: Source::Code,
-        })
+        Ok(Mesh { positions: self.positions, faces: self.faces, groups: self.groups, source: Source::Code })
     }
 }
 
@@ -226,8 +198,7 @@ mod tests {
 
     #[test]
     fn reads_positions_in_file_order_with_unused_vertices() {
-        let mesh =
-            load(b"v 1 2 3\nv 4 5 6 1.0\nv 7 8 9 0.1 0.2 0.3\nv -1 -2 -3\nf 1 2 3\n").unwrap();
+        let mesh = load(b"v 1 2 3\nv 4 5 6 1.0\nv 7 8 9 0.1 0.2 0.3\nv -1 -2 -3\nf 1 2 3\n").unwrap();
         assert_eq!(mesh.positions.len(), 4);
         assert_eq!(mesh.positions[1], DVec3::new(4.0, 5.0, 6.0));
         assert_eq!(mesh.positions[2], DVec3::new(7.0, 8.0, 9.0));
@@ -246,16 +217,9 @@ mod tests {
 
     #[test]
     fn face_tokens_with_texture_and_normal_indices() {
-        let text = [
-            SQUARE,
-            b"vt 0 0\nvn 0 0 1\nf 1/1 2/1 3/1\nf 1//1 3//1 4//1\nf 4/1/1 3/1/1 2/1/1 1/1/1\n",
-        ]
-        .concat();
+        let text = [SQUARE, b"vt 0 0\nvn 0 0 1\nf 1/1 2/1 3/1\nf 1//1 3//1 4//1\nf 4/1/1 3/1/1 2/1/1 1/1/1\n"].concat();
         let mesh = load(&text).unwrap();
-        assert_eq!(
-            faces(&mesh),
-            vec![vec![0, 1, 2], vec![0, 2, 3], vec![3, 2, 1, 0]]
-        );
+        assert_eq!(faces(&mesh), vec![vec![0, 1, 2], vec![0, 2, 3], vec![3, 2, 1, 0]]);
     }
 
     #[test]
@@ -284,15 +248,9 @@ mod tests {
     #[test]
     fn index_past_the_last_vertex_is_an_error_at_its_line() {
         let text = [SQUARE, b"f 1 2 3\n# c\nf 1 2 5\nf 1 2 4\n"].concat();
-        assert_eq!(
-            error(&text),
-            "mesh.obj:7: face refers to vertex 5 but the file has 4 vertices"
-        );
+        assert_eq!(error(&text), "mesh.obj:7: face refers to vertex 5 but the file has 4 vertices");
         let huge = [SQUARE, b"f 1 2 99999999999999\n"].concat();
-        assert_eq!(
-            error(&huge),
-            "mesh.obj:5: face refers to vertex 99999999999999 but the file has 4 vertices"
-        );
+        assert_eq!(error(&huge), "mesh.obj:5: face refers to vertex 99999999999999 but the file has 4 vertices");
     }
 
     #[test]
@@ -304,72 +262,40 @@ mod tests {
     #[test]
     fn bad_face_index_is_an_error() {
         let text = [SQUARE, b"f 1 x/2 3\n"].concat();
-        assert_eq!(
-            error(&text),
-            "mesh.obj:5: face index \"x/2\" is not a number"
-        );
+        assert_eq!(error(&text), "mesh.obj:5: face index \"x/2\" is not a number");
         let text = [SQUARE, b"f 1 /2 3\n"].concat();
-        assert_eq!(
-            error(&text),
-            "mesh.obj:5: face index \"/2\" is not a number"
-        );
+        assert_eq!(error(&text), "mesh.obj:5: face index \"/2\" is not a number");
     }
 
     #[test]
     fn faces_with_fewer_than_three_vertices_are_errors() {
         let text = [SQUARE, b"f 1 2\n"].concat();
-        assert_eq!(
-            error(&text),
-            "mesh.obj:5: face has 2 vertices; a face needs at least 3"
-        );
+        assert_eq!(error(&text), "mesh.obj:5: face has 2 vertices; a face needs at least 3");
         let text = [SQUARE, b"f\n"].concat();
-        assert_eq!(
-            error(&text),
-            "mesh.obj:5: face has 0 vertices; a face needs at least 3"
-        );
+        assert_eq!(error(&text), "mesh.obj:5: face has 0 vertices; a face needs at least 3");
     }
 
     #[test]
     fn bad_coordinate_is_an_error() {
-        let text = [
-            b"v 1 2 3\n".to_vec(),
-            b"# x\n".repeat(10),
-            b"v 1 abc 3\n".to_vec(),
-        ]
-        .concat();
-        assert_eq!(
-            error(&text),
-            "mesh.obj:12: vertex coordinate \"abc\" is not a number"
-        );
+        let text = [b"v 1 2 3\n".to_vec(), b"# x\n".repeat(10), b"v 1 abc 3\n".to_vec()].concat();
+        assert_eq!(error(&text), "mesh.obj:12: vertex coordinate \"abc\" is not a number");
     }
 
     #[test]
     fn missing_coordinate_is_an_error() {
-        assert_eq!(
-            error(b"v 1 2\n"),
-            "mesh.obj:1: vertex has 2 coordinates; x, y and z are needed"
-        );
+        assert_eq!(error(b"v 1 2\n"), "mesh.obj:1: vertex has 2 coordinates; x, y and z are needed");
     }
 
     #[test]
     fn non_finite_coordinate_is_an_error_naming_the_vertex() {
         let text = [b"v 0 0 0\n".repeat(10), b"\nv 1 inf 2\n".to_vec()].concat();
-        assert_eq!(
-            error(&text),
-            "mesh.obj:12: vertex 11 has a non-finite coordinate"
-        );
-        assert_eq!(
-            error(b"v NaN 0 0\n"),
-            "mesh.obj:1: vertex 1 has a non-finite coordinate"
-        );
+        assert_eq!(error(&text), "mesh.obj:12: vertex 11 has a non-finite coordinate");
+        assert_eq!(error(b"v NaN 0 0\n"), "mesh.obj:1: vertex 1 has a non-finite coordinate");
     }
 
     #[test]
     fn errors_in_continued_lines_name_the_first_line() {
-        assert_eq!(
-            error(b"# a\nv 1 \\\n  2 \\\n q\n"),
-            "mesh.obj:2: vertex coordinate \"q\" is not a number"
-        );
+        assert_eq!(error(b"# a\nv 1 \\\n  2 \\\n q\n"), "mesh.obj:2: vertex coordinate \"q\" is not a number");
         assert_eq!(
             error(b"v 0 0 0\nv 1 0 0\\\n\nv 0 1 0\nf 1 2 \\\n 3 \\\n 9\n"),
             "mesh.obj:5: face refers to vertex 9 but the file has 3 vertices"
@@ -387,25 +313,11 @@ mod tests {
 
     #[test]
     fn face_belongs_to_every_current_group_and_the_object() {
-        let text = [
-            SQUARE,
-            b"f 1 2 3\no thing\ng a b\nf 1 2 3\ng b\nf 1 3 4\ng\nf 2 3 4\ng a\nfo 1 2 4\no\nf 1 2 3\n",
-        ]
-        .concat();
+        let text = [SQUARE, b"f 1 2 3\no thing\ng a b\nf 1 2 3\ng b\nf 1 3 4\ng\nf 2 3 4\ng a\nfo 1 2 4\no\nf 1 2 3\n"]
+            .concat();
         let mesh = load(&text).unwrap();
-        let groups: Vec<(&str, &[u32])> = mesh
-            .groups
-            .iter()
-            .map(|g| (g.name.as_str(), &g.faces[..]))
-            .collect();
-        assert_eq!(
-            groups,
-            vec![
-                ("thing", &[1, 2, 3, 4][..]),
-                ("a", &[1, 4, 5][..]),
-                ("b", &[1, 2][..])
-            ]
-        );
+        let groups: Vec<(&str, &[u32])> = mesh.groups.iter().map(|g| (g.name.as_str(), &g.faces[..])).collect();
+        assert_eq!(groups, vec![("thing", &[1, 2, 3, 4][..]), ("a", &[1, 4, 5][..]), ("b", &[1, 2][..])]);
     }
 
     #[test]
@@ -473,17 +385,13 @@ mod tests {
 
     #[test]
     fn statements_of_random_lines_do_not_panic() {
-        let pieces: [&[u8]; 14] = [
-            b"v", b"f", b"g", b"o", b" ", b"1", b"-1", b"0", b"/", b"\\", b"\n", b"\r\n", b"#",
-            b"1e999",
-        ];
+        let pieces: [&[u8]; 14] =
+            [b"v", b"f", b"g", b"o", b" ", b"1", b"-1", b"0", b"/", b"\\", b"\n", b"\r\n", b"#", b"1e999"];
         let mut state = 7_u64;
         for _ in 0..2_000 {
             let mut text = Vec::new();
             for _ in 0..30 {
-                state = state
-                    .wrapping_mul(6_364_136_223_846_793_005)
-                    .wrapping_add(1);
+                state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
                 text.extend_from_slice(pieces[(state >> 33) as usize % pieces.len()]);
             }
             let _ = load(&text);

@@ -35,11 +35,7 @@ pub(crate) struct Scanner<'a> {
 impl<'a> Scanner<'a> {
     /// Scans `bytes` from the start.
     pub fn new(bytes: &'a [u8]) -> Self {
-        Self {
-            bytes,
-            pos: 0,
-            line: 1,
-        }
+        Self { bytes, pos: 0, line: 1 }
     }
 
     /// The next physical line from `pos`: (content range, ending range).
@@ -47,11 +43,7 @@ impl<'a> Scanner<'a> {
         match self.bytes[pos..].iter().position(|&b| b == b'\n') {
             Some(i) => {
                 let lf = pos + i;
-                let content_end = if lf > pos && self.bytes[lf - 1] == b'\r' {
-                    lf - 1
-                } else {
-                    lf
-                };
+                let content_end = if lf > pos && self.bytes[lf - 1] == b'\r' { lf - 1 } else { lf };
                 (pos..content_end, content_end..lf + 1)
             }
             None => (pos..self.bytes.len(), self.bytes.len()..self.bytes.len()),
@@ -76,11 +68,7 @@ impl<'a> Iterator for Scanner<'a> {
             self.line += 1;
             let text = &self.bytes[content];
             let continued = text.last() == Some(&b'\\');
-            let text = if continued {
-                &text[..text.len() - 1]
-            } else {
-                text
-            };
+            let text = if continued { &text[..text.len() - 1] } else { text };
             if first {
                 body = Cow::Borrowed(text);
                 first = false;
@@ -112,10 +100,7 @@ pub(crate) fn words(code: &[u8]) -> impl Iterator<Item = Range<usize>> + '_ {
     let mut pos = 0;
     std::iter::from_fn(move || {
         let start = pos + code[pos..].iter().position(|b| !b.is_ascii_whitespace())?;
-        let len = code[start..]
-            .iter()
-            .position(|b| b.is_ascii_whitespace())
-            .unwrap_or(code.len() - start);
+        let len = code[start..].iter().position(|b| b.is_ascii_whitespace()).unwrap_or(code.len() - start);
         pos = start + len;
         Some(start..pos)
     })
@@ -198,31 +183,14 @@ mod tests {
     type Lines = Vec<(usize, Vec<u8>, Vec<u8>, Vec<u8>)>;
 
     fn lines(text: &[u8]) -> Lines {
-        Scanner::new(text)
-            .map(|l| {
-                (
-                    l.number,
-                    l.raw.to_vec(),
-                    l.body.into_owned(),
-                    l.ending.to_vec(),
-                )
-            })
-            .collect()
+        Scanner::new(text).map(|l| (l.number, l.raw.to_vec(), l.body.into_owned(), l.ending.to_vec())).collect()
     }
 
     #[test]
     fn lf_crlf_and_missing_final_ending() {
         let got = lines(b"v 1 2 3\r\nf 1 2 3\n# end");
         assert_eq!(got.len(), 3);
-        assert_eq!(
-            got[0],
-            (
-                1,
-                b"v 1 2 3\r\n".to_vec(),
-                b"v 1 2 3".to_vec(),
-                b"\r\n".to_vec()
-            )
-        );
+        assert_eq!(got[0], (1, b"v 1 2 3\r\n".to_vec(), b"v 1 2 3".to_vec(), b"\r\n".to_vec()));
         assert_eq!(got[1].2, b"f 1 2 3");
         assert_eq!(got[1].3, b"\n");
         assert_eq!(got[2], (3, b"# end".to_vec(), b"# end".to_vec(), vec![]));
@@ -285,15 +253,9 @@ mod tests {
         let c = b"v 1 2";
         assert_eq!(vertex(c, keyword(c).1), Err(VertexIssue::Missing(2)));
         let c = b"v 1 abc 3";
-        assert_eq!(
-            vertex(c, keyword(c).1),
-            Err(VertexIssue::NotANumber("abc".into()))
-        );
+        assert_eq!(vertex(c, keyword(c).1), Err(VertexIssue::NotANumber("abc".into())));
         let c = b"v 1 \xff 3";
-        assert_eq!(
-            vertex(c, keyword(c).1),
-            Err(VertexIssue::NotANumber("\u{fffd}".into()))
-        );
+        assert_eq!(vertex(c, keyword(c).1), Err(VertexIssue::NotANumber("\u{fffd}".into())));
     }
 
     #[test]

@@ -57,13 +57,7 @@ pub(crate) fn write_faithful(
             continue;
         };
         out.write_all(&bytes[copied..line.start])?;
-        write!(
-            out,
-            "v {} {} {}",
-            Coordinate(new.x),
-            Coordinate(new.y),
-            Coordinate(new.z)
-        )?;
+        write!(out, "v {} {} {}", Coordinate(new.x), Coordinate(new.y), Coordinate(new.z))?;
         out.write_all(&line.body[tail..])?;
         out.write_all(line.ending)?;
         copied = line.start + line.raw.len();
@@ -92,13 +86,7 @@ pub(crate) fn write_generic(
 ) -> io::Result<()> {
     writeln!(out, "# written by sweepffd")?;
     for p in positions {
-        writeln!(
-            out,
-            "v {} {} {}",
-            Coordinate(p.x),
-            Coordinate(p.y),
-            Coordinate(p.z)
-        )?;
+        writeln!(out, "v {} {} {}", Coordinate(p.x), Coordinate(p.y), Coordinate(p.z))?;
     }
     let owner = first_groups(faces.len(), groups);
     write_faces(out, faces, &owner, None)?;
@@ -106,11 +94,7 @@ pub(crate) fn write_generic(
         if !owner.contains(&Some(g)) {
             continue;
         }
-        let name: String = group
-            .name
-            .chars()
-            .map(|c| if c.is_whitespace() { '_' } else { c })
-            .collect();
+        let name: String = group.name.chars().map(|c| if c.is_whitespace() { '_' } else { c }).collect();
         writeln!(out, "g {name}")?;
         write_faces(out, faces, &owner, Some(g))?;
     }
@@ -131,12 +115,7 @@ fn first_groups(face_count: usize, groups: &[FaceGroup]) -> Vec<Option<usize>> {
 }
 
 /// Writes the `f` lines of the faces whose first group is `group`.
-fn write_faces(
-    out: &mut impl Write,
-    faces: &Faces,
-    owner: &[Option<usize>],
-    group: Option<usize>,
-) -> io::Result<()> {
+fn write_faces(out: &mut impl Write, faces: &Faces, owner: &[Option<usize>], group: Option<usize>) -> io::Result<()> {
     for (face, _) in faces.iter().zip(owner).filter(|(_, o)| **o == group) {
         out.write_all(b"f")?;
         for &v in face {
@@ -190,8 +169,7 @@ mod tests {
         let mut moved = mesh.positions.clone();
         moved[2].x = -3.5;
         let out = faithful(MIXED, &moved);
-        let expected =
-            String::from_utf8_lossy(MIXED).replace("v 0 \\\r\n 1 0\r\n", "v -3.5 1 0\r\n");
+        let expected = String::from_utf8_lossy(MIXED).replace("v 0 \\\r\n 1 0\r\n", "v -3.5 1 0\r\n");
         assert_eq!(String::from_utf8(out).unwrap(), expected);
         let reread = read(Path::new("m.obj"), expected.into_bytes()).unwrap();
         assert_eq!(reread.positions, moved);
@@ -208,10 +186,7 @@ mod tests {
     #[test]
     fn last_line_without_ending_stays_without_ending() {
         let text = b"v 1 2 3\nv 4 5 6";
-        let out = faithful(
-            text,
-            &[DVec3::new(1.0, 2.0, 3.0), DVec3::new(4.0, 5.0, 7.5)],
-        );
+        let out = faithful(text, &[DVec3::new(1.0, 2.0, 3.0), DVec3::new(4.0, 5.0, 7.5)]);
         assert_eq!(out, b"v 1 2 3\nv 4 5 7.5");
     }
 
@@ -223,14 +198,8 @@ mod tests {
             faces.push(&face);
         }
         let groups = vec![
-            FaceGroup {
-                name: "left side".into(),
-                faces: vec![1, 3],
-            },
-            FaceGroup {
-                name: "right".into(),
-                faces: vec![0, 1],
-            },
+            FaceGroup { name: "left side".into(), faces: vec![1, 3] },
+            FaceGroup { name: "right".into(), faces: vec![0, 1] },
         ];
         let mut out = Vec::new();
         write_generic(&mut out, &positions, &faces, &groups).unwrap();
@@ -243,10 +212,7 @@ mod tests {
         let back = read(Path::new("m.obj"), text.into_bytes()).unwrap();
         assert_eq!(back.positions, positions);
         let back_faces: Vec<Vec<u32>> = back.faces.iter().map(<[u32]>::to_vec).collect();
-        assert_eq!(
-            back_faces,
-            vec![vec![1, 2, 3], vec![0, 2, 3], vec![0, 1, 3], vec![0, 1, 2]]
-        );
+        assert_eq!(back_faces, vec![vec![1, 2, 3], vec![0, 2, 3], vec![0, 1, 3], vec![0, 1, 2]]);
         assert_eq!(back.groups[0].name, "left_side");
         assert_eq!(back.groups[0].faces, vec![1, 2]);
         assert_eq!(back.groups[1].faces, vec![3]);
@@ -254,10 +220,7 @@ mod tests {
 
     #[test]
     fn generic_positions_round_trip_exactly() {
-        let positions = vec![
-            DVec3::new(0.1, -1e-300, 1e300),
-            DVec3::new(std::f64::consts::PI, -0.0, 123456.789),
-        ];
+        let positions = vec![DVec3::new(0.1, -1e-300, 1e300), DVec3::new(std::f64::consts::PI, -0.0, 123456.789)];
         let mut out = Vec::new();
         write_generic(&mut out, &positions, &Faces::new(), &[]).unwrap();
         let back = read(Path::new("m.obj"), out).unwrap();

@@ -16,35 +16,18 @@ const INDEX_LISTS: [&str; 2] = ["vertex_indices", "vertex_index"];
 pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
     let ply = Parser::<DefaultElement>::new()
         .read_ply(&mut &bytes[..])
-        .map_err(|e| MeshError::InvalidPly {
-            path: path.to_path_buf(),
-            reason: one_line(&e.to_string()),
-        })?;
+        .map_err(|e| MeshError::InvalidPly { path: path.to_path_buf(), reason: one_line(&e.to_string()) })?;
     let positions = positions(path, &ply)?;
     let faces = faces(path, &ply, positions.len())?;
-    let mesh = Mesh {
-        positions,
-        faces,
-        groups: Vec::new(),
-        source: Source::Code,
-    };
-    Ok(Mesh {
-        source: Source::Ply(Original::new(ply, &mesh)),
-        ..mesh
-    })
+    let mesh = Mesh { positions, faces, groups: Vec::new(), source: Source::Code };
+    Ok(Mesh { source: Source::Ply(Original::new(ply, &mesh)), ..mesh })
 }
 
 /// The parser's multi-line message on one line, without the parser's internal state (a debug
 /// dump that follows `Error:`).
 fn one_line(message: &str) -> String {
     let message = message.split("; Error:").next().unwrap_or(message);
-    message
-        .replace("\n'", "'")
-        .lines()
-        .map(str::trim)
-        .filter(|l| !l.is_empty())
-        .collect::<Vec<_>>()
-        .join("; ")
+    message.replace("\n'", "'").lines().map(str::trim).filter(|l| !l.is_empty()).collect::<Vec<_>>().join("; ")
 }
 
 /// Whether the `vertex` element declares float or double `x`, `y` and `z`.
@@ -58,23 +41,17 @@ fn has_coordinates(vertex: &ElementDef) -> bool {
 }
 
 fn positions(path: &Path, ply: &Ply<DefaultElement>) -> Result<Vec<DVec3>, MeshError> {
-    let no_vertices = || MeshError::NoPlyVertices {
-        path: path.to_path_buf(),
-    };
+    let no_vertices = || MeshError::NoPlyVertices { path: path.to_path_buf() };
     let def = ply.header.elements.get("vertex").ok_or_else(no_vertices)?;
     if !has_coordinates(def) {
         return Err(no_vertices());
     }
     let vertices = ply.payload.get("vertex").map_or(&[][..], Vec::as_slice);
     if vertices.is_empty() {
-        return Err(MeshError::Empty {
-            path: path.to_path_buf(),
-        });
+        return Err(MeshError::Empty { path: path.to_path_buf() });
     }
     if vertices.len() > u32::MAX as usize {
-        return Err(MeshError::TooLarge {
-            path: path.to_path_buf(),
-        });
+        return Err(MeshError::TooLarge { path: path.to_path_buf() });
     }
     let mut positions = Vec::with_capacity(vertices.len());
     for (vertex, element) in vertices.iter().enumerate() {
@@ -83,16 +60,12 @@ fn positions(path: &Path, ply: &Ply<DefaultElement>) -> Result<Vec<DVec3>, MeshE
             Some(Property::Double(v)) => Some(*v),
             _ => None,
         };
-        let (Some(x), Some(y), Some(z)) = (coordinate("x"), coordinate("y"), coordinate("z"))
-        else {
+        let (Some(x), Some(y), Some(z)) = (coordinate("x"), coordinate("y"), coordinate("z")) else {
             return Err(no_vertices());
         };
         let p = DVec3::new(x, y, z);
         if !p.is_finite() {
-            return Err(MeshError::PlyData {
-                path: path.to_path_buf(),
-                problem: MeshDataError::NonFinite { vertex },
-            });
+            return Err(MeshError::PlyData { path: path.to_path_buf(), problem: MeshDataError::NonFinite { vertex } });
         }
         positions.push(p);
     }
@@ -112,26 +85,15 @@ fn faces(path: &Path, ply: &Ply<DefaultElement>, count: usize) -> Result<Faces, 
                 Some(PropertyType::List(_, t)) if !matches!(t, ScalarType::Float | ScalarType::Double)
             )
         })
-        .ok_or_else(|| MeshError::NoPlyFaceIndices {
-            path: path.to_path_buf(),
-        })?;
-    let data_error = |problem| MeshError::PlyData {
-        path: path.to_path_buf(),
-        problem,
-    };
+        .ok_or_else(|| MeshError::NoPlyFaceIndices { path: path.to_path_buf() })?;
+    let data_error = |problem| MeshError::PlyData { path: path.to_path_buf(), problem };
     let mut face = Vec::new();
     for (f, element) in ply.payload.get("face").into_iter().flatten().enumerate() {
         face.clear();
         let list = element.get(name).map(integers).unwrap_or_default();
         for index in list {
             let vertex = u32::try_from(index).ok().filter(|&v| (v as usize) < count);
-            let vertex = vertex.ok_or_else(|| {
-                data_error(MeshDataError::IndexOutOfRange {
-                    face: f,
-                    index,
-                    count,
-                })
-            })?;
+            let vertex = vertex.ok_or_else(|| data_error(MeshDataError::IndexOutOfRange { face: f, index, count }))?;
             face.push(vertex);
         }
         if face.len() < 3 {
@@ -139,9 +101,7 @@ fn faces(path: &Path, ply: &Ply<DefaultElement>, count: usize) -> Result<Faces, 
             return Err(data_error(MeshDataError::ShortFace { face: f, count }));
         }
         if !faces.try_push(&face) {
-            return Err(MeshError::TooLarge {
-                path: path.to_path_buf(),
-            });
+            return Err(MeshError::TooLarge { path: path.to_path_buf() });
         }
     }
     Ok(faces)
@@ -186,11 +146,7 @@ mod tests {
 
     #[test]
     fn reads_float_and_double_coordinates_and_index_lists() {
-        let text = ply(
-            XYZ,
-            "property list uchar uint vertex_indices\n",
-            &format!("{SQUARE}3 0 1 2\n4 0 1 2 3\n"),
-        );
+        let text = ply(XYZ, "property list uchar uint vertex_indices\n", &format!("{SQUARE}3 0 1 2\n4 0 1 2 3\n"));
         let mesh = load(text.as_bytes()).unwrap();
         assert_eq!(mesh.positions[2], DVec3::new(1.0, 1.0, 0.5));
         assert_eq!(mesh.faces.face(1), &[0, 1, 2, 3]);
@@ -199,81 +155,39 @@ mod tests {
 
     #[test]
     fn vertex_index_name_and_signed_short_lists_are_accepted() {
-        let text = ply(
-            XYZ,
-            "property list int short vertex_index\n",
-            &format!("{SQUARE}3 0 1 2\n3 2 3 0\n"),
-        );
+        let text = ply(XYZ, "property list int short vertex_index\n", &format!("{SQUARE}3 0 1 2\n3 2 3 0\n"));
         let mesh = load(text.as_bytes()).unwrap();
         assert_eq!(mesh.faces.face(1), &[2, 3, 0]);
     }
 
     #[test]
     fn index_out_of_range_names_the_face() {
-        let text = ply(
-            XYZ,
-            "property list uchar int vertex_indices\n",
-            &format!("{SQUARE}3 0 1 2\n3 0 4 2\n"),
-        );
-        assert_eq!(
-            error(&text),
-            "m.ply: face 1 refers to vertex 4 but the mesh has 4 vertices"
-        );
-        let text = ply(
-            XYZ,
-            "property list uchar int vertex_indices\n",
-            &format!("{SQUARE}3 0 -1 2\n3 0 1 2\n"),
-        );
-        assert_eq!(
-            error(&text),
-            "m.ply: face 0 refers to vertex -1 but the mesh has 4 vertices"
-        );
+        let text = ply(XYZ, "property list uchar int vertex_indices\n", &format!("{SQUARE}3 0 1 2\n3 0 4 2\n"));
+        assert_eq!(error(&text), "m.ply: face 1 refers to vertex 4 but the mesh has 4 vertices");
+        let text = ply(XYZ, "property list uchar int vertex_indices\n", &format!("{SQUARE}3 0 -1 2\n3 0 1 2\n"));
+        assert_eq!(error(&text), "m.ply: face 0 refers to vertex -1 but the mesh has 4 vertices");
     }
 
     #[test]
     fn short_face_is_an_error() {
-        let text = ply(
-            XYZ,
-            "property list uchar int vertex_indices\n",
-            &format!("{SQUARE}3 0 1 2\n2 0 1\n"),
-        );
-        assert_eq!(
-            error(&text),
-            "m.ply: face 1 has 2 vertices; a face needs at least 3"
-        );
+        let text = ply(XYZ, "property list uchar int vertex_indices\n", &format!("{SQUARE}3 0 1 2\n2 0 1\n"));
+        assert_eq!(error(&text), "m.ply: face 1 has 2 vertices; a face needs at least 3");
     }
 
     #[test]
     fn integer_or_missing_coordinates_are_no_vertex_element() {
         let ints = "property int x\nproperty int y\nproperty int z\n";
-        let text = ply(
-            ints,
-            "property list uchar int vertex_indices\n",
-            "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n3 0 1 3\n",
-        );
-        assert_eq!(
-            error(&text),
-            "m.ply: no \"vertex\" element with x, y, z properties"
-        );
+        let text =
+            ply(ints, "property list uchar int vertex_indices\n", "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n3 0 1 3\n");
+        assert_eq!(error(&text), "m.ply: no \"vertex\" element with x, y, z properties");
         let text = "ply\nformat ascii 1.0\nelement point 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n";
-        assert_eq!(
-            error(text),
-            "m.ply: no \"vertex\" element with x, y, z properties"
-        );
+        assert_eq!(error(text), "m.ply: no \"vertex\" element with x, y, z properties");
     }
 
     #[test]
     fn face_without_index_list_is_an_error() {
-        let text = ply(
-            XYZ,
-            "property list uchar float vertex_indices\n",
-            &format!("{SQUARE}3 0 1 2\n3 0 1 2\n"),
-        );
-        assert!(
-            error(&text).contains("no integer list property vertex_indices"),
-            "{}",
-            error(&text)
-        );
+        let text = ply(XYZ, "property list uchar float vertex_indices\n", &format!("{SQUARE}3 0 1 2\n3 0 1 2\n"));
+        assert!(error(&text).contains("no integer list property vertex_indices"), "{}", error(&text));
     }
 
     #[test]
@@ -298,16 +212,11 @@ mod tests {
 
     #[test]
     fn parser_failures_are_invalid_ply_on_one_line() {
-        for text in [
-            "",
-            "not a ply\n",
-            "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nend_header\n1\nabc\n",
-        ] {
+        for text in
+            ["", "not a ply\n", "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nend_header\n1\nabc\n"]
+        {
             let message = error(text);
-            assert!(
-                message.starts_with("m.ply: not a valid PLY file: "),
-                "{message}"
-            );
+            assert!(message.starts_with("m.ply: not a valid PLY file: "), "{message}");
             assert!(!message.contains('\n'), "{message}");
         }
     }

@@ -4,8 +4,7 @@ use std::io::{self, Write};
 
 use glam::DVec3;
 use ply_rs_bw::ply::{
-    DefaultElement, ElementDef, Encoding, Header, Ply, Property, PropertyAccess, PropertyDef,
-    PropertyType, ScalarType,
+    DefaultElement, ElementDef, Encoding, Header, Ply, Property, PropertyAccess, PropertyDef, PropertyType, ScalarType,
 };
 use ply_rs_bw::writer::Writer;
 
@@ -27,12 +26,10 @@ pub(crate) fn write_faithful(
     let writer = Writer::<DefaultElement>::new();
     writer.write_header(out, &ply.header)?;
     for (name, def) in &ply.header.elements {
-        let elements = ply.payload.get(name).ok_or_else(|| {
-            io::Error::new(
-                io::ErrorKind::InvalidData,
-                format!("no data for \"{name}\""),
-            )
-        })?;
+        let elements = ply
+            .payload
+            .get(name)
+            .ok_or_else(|| io::Error::new(io::ErrorKind::InvalidData, format!("no data for \"{name}\"")))?;
         if name != "vertex" {
             writer.write_payload_of_element(out, elements, def, &ply.header)?;
             continue;
@@ -89,11 +86,7 @@ fn write_element<E: PropertyAccess>(
 /// `element face` with `property list uchar int vertex_indices` — `uint` instead of `uchar`
 /// for the count when a face has more than 255 vertices, and `uint` instead of `int` for the
 /// indices when there are more than `i32::MAX` vertices.
-pub(crate) fn write_generic(
-    out: &mut impl Write,
-    positions: &[DVec3],
-    faces: &Faces,
-) -> io::Result<()> {
+pub(crate) fn write_generic(out: &mut impl Write, positions: &[DVec3], faces: &Faces) -> io::Result<()> {
     let header = generic_header(positions.len(), faces);
     let writer = Writer::<Element>::new();
     writer.write_header(out, &header)?;
@@ -123,16 +116,9 @@ fn generic_header(vertex_count: usize, faces: &Faces) -> Header {
     }
     let mut face = ElementDef::new("face".to_string());
     face.count = faces.len();
-    let count_type = if faces.iter().all(|f| f.len() <= usize::from(u8::MAX)) {
-        ScalarType::UChar
-    } else {
-        ScalarType::UInt
-    };
-    let index_type = if vertex_count <= i32::MAX as usize {
-        ScalarType::Int
-    } else {
-        ScalarType::UInt
-    };
+    let count_type =
+        if faces.iter().all(|f| f.len() <= usize::from(u8::MAX)) { ScalarType::UChar } else { ScalarType::UInt };
+    let index_type = if vertex_count <= i32::MAX as usize { ScalarType::Int } else { ScalarType::UInt };
     let list = PropertyType::List(count_type, index_type);
     let def = PropertyDef::new("vertex_indices".to_string(), list);
     face.properties.insert(def.name.clone(), def);
@@ -149,10 +135,7 @@ struct Element {
 
 impl PropertyAccess for Element {
     fn new() -> Self {
-        Element {
-            xyz: [0.0; 3],
-            indices: Vec::new(),
-        }
+        Element { xyz: [0.0; 3], indices: Vec::new() }
     }
 
     fn get_float(&self, name: &str) -> Option<f32> {
@@ -184,9 +167,7 @@ mod tests {
     const ASCII: &str = "ply\nformat ascii 1.0\ncomment keep me\nelement vertex 3\nproperty float x\nproperty double y\nproperty float z\nproperty uchar red\nelement face 1\nproperty list uchar int vertex_indices\nproperty float quality\nelement extra 1\nproperty int stuff\nend_header\n0 0 0 10\n1 0.1 0 20\n0 1 0.5 30\n3 0 1 2 0.75\n42\n";
 
     fn parse(bytes: &[u8]) -> Ply<DefaultElement> {
-        ply_rs_bw::parser::Parser::<DefaultElement>::new()
-            .read_ply(&mut &bytes[..])
-            .unwrap()
+        ply_rs_bw::parser::Parser::<DefaultElement>::new().read_ply(&mut &bytes[..]).unwrap()
     }
 
     #[test]
@@ -204,11 +185,7 @@ mod tests {
         let original = parse(ASCII.as_bytes());
         let mut moved = mesh.positions.clone();
         moved[1] = DVec3::new(0.1, 0.2, 0.3);
-        for encoding in [
-            Encoding::Ascii,
-            Encoding::BinaryLittleEndian,
-            Encoding::BinaryBigEndian,
-        ] {
+        for encoding in [Encoding::Ascii, Encoding::BinaryLittleEndian, Encoding::BinaryBigEndian] {
             let mut source = original.clone();
             source.header.encoding = encoding;
             let mut out = Vec::new();
@@ -238,10 +215,7 @@ mod tests {
             PropertyType::List(ScalarType::UChar, ScalarType::Int)
         );
         assert_eq!(back.payload["vertex"][2]["y"], Property::Float(0.2));
-        assert_eq!(
-            back.payload["face"][0]["vertex_indices"],
-            Property::ListInt(vec![0, 1, 2])
-        );
+        assert_eq!(back.payload["face"][0]["vertex_indices"], Property::ListInt(vec![0, 1, 2]));
     }
 
     #[test]
