@@ -14,6 +14,7 @@
 @group(0) @binding(6) var<storage, read_write> bindings: array<GpuBinding>;
 
 const TAU: f32 = 6.283185307179586;
+const PI: f32 = 3.141592653589793;
 // Dyadic subdivision depth: intervals of width 2^-12 that still show several sign variations
 // hold a (near-)double root and report their midpoint.
 const MAX_LEVEL: u32 = 12u;
@@ -28,6 +29,34 @@ struct Nearest {
     s: f32,
     distance2: f32,
     found: bool,
+}
+
+// The angle of (x, y) in [-pi, pi], for (x, y) != 0, to about 2e-7 rad on every device (WGSL's
+// atan2 may be far less accurate): octant reduction to atan(a), a in [0, 1]; above tan(pi / 8),
+// atan(a) = pi / 4 + atan((a - 1) / (a + 1)); then the odd series to z^15 (|z| <= tan(pi / 8)).
+fn angle_of(x: f32, y: f32) -> f32 {
+    let ax = abs(x);
+    let ay = abs(y);
+    var a = min(ax, ay) / max(ax, ay);
+    var base = 0.0;
+    if (a > 0.41421356) {
+        a = (a - 1.0) / (a + 1.0);
+        base = 0.25 * PI;
+    }
+    let z2 = a * a;
+    let series = a * (1.0 - z2 * (1.0 / 3.0 - z2 * (1.0 / 5.0 - z2 * (1.0 / 7.0 - z2 * (1.0 / 9.0
+        - z2 * (1.0 / 11.0 - z2 * (1.0 / 13.0 - z2 * (1.0 / 15.0))))))));
+    var angle = base + series;
+    if (ay > ax) {
+        angle = 0.5 * PI - angle;
+    }
+    if (x < 0.0) {
+        angle = PI - angle;
+    }
+    if (y < 0.0) {
+        angle = -angle;
+    }
+    return angle;
 }
 
 // Power coefficients of g(s) = <v - C(s), n(s)> on a knot interval.
@@ -55,15 +84,20 @@ fn eval_quintic_derivative(g: array<f32, 6>, s: f32) -> f32 {
 // power-to-Bernstein change of basis for degree 5.
 fn bernstein_on(g: array<f32, 6>, a: f32, w: f32) -> array<f32, 6> {
     var c = g;
-    for (var k = 0; k < 5; k++) {
-        for (var i = 4; i >= k; i--) {
-            c[i] += a * c[i + 1];
+    // Most intervals visited are the whole of [0, 1] (a = 0, w = 1), which needs neither step.
+    if (a != 0.0) {
+        for (var k = 0; k < 5; k++) {
+            for (var i = 4; i >= k; i--) {
+                c[i] += a * c[i + 1];
+            }
         }
     }
-    var scale = 1.0;
-    for (var k = 0; k < 6; k++) {
-        c[k] *= scale;
-        scale *= w;
+    if (w != 1.0) {
+        var scale = 1.0;
+        for (var k = 0; k < 6; k++) {
+            c[k] *= scale;
+            scale *= w;
+        }
     }
     return array<f32, 6>(
         c[0],
@@ -201,13 +235,17 @@ fn bind_main(
     }
     let interval = cells[nearest.cell];
     let local = rotate_inverse(quat_at(interval, nearest.s), v - curve_at(interval, nearest.s));
-    // On the axis theta is arbitrary; atan2(0, 0) is not defined in WGSL, so pin it to 0.
+    // The interval's first cell is turned by its middle angle pi / M. On the axis theta is
+    // arbitrary: every path pins it to 0.
     var theta = 0.0;
     if (local.x != 0.0 || local.y != 0.0) {
-        theta = atan2(local.y, local.x);
+        theta = interval.curve[0].w + angle_of(local.x, local.y);
     }
     if (theta < 0.0) {
         theta += TAU;
+    }
+    if (theta >= TAU) {
+        theta -= TAU;
     }
     let x = theta * (f32(sweep.samples) / TAU);
     let j = min(u32(x), sweep.samples - 1u);

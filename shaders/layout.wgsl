@@ -1,21 +1,21 @@
 // Buffer layouts shared by every kernel.
 // Twin: src/coeffs/layout.rs (sizes and member offsets are checked against it by a test).
 
-const WORKGROUP_SIZE: u32 = 256u;
+const WORKGROUP_SIZE: u32 = 128u;
 const UNBOUND: u32 = 0xffffffffu;
 
 // Most cells a rig may have for the deform kernel to read them from a uniform buffer (64 KiB).
 const UNIFORM_CELL_CAPACITY: u32 = 409u;
 
 // Everything a vertex needs to follow its posed sweep, for one cell (knot interval k, angular
-// interval j): the bicubic r(s, phi) = sum radius[p][q] s^p phi^q; C(s) = c0 + c1 s + c2 s^2 + c3 s^3
-// in curve[i].xyz, with cos and sin of the cell's middle angle and pi / M in curve[0..3].w; and the
-// sign-aligned end quaternions (x, y, z, w) of R(t).
+// interval j): the bicubic r(s, phi) = sum c_pq s^p phi^q stored as radius[q][p]; C(s) = c0 + c1 s
+// + c2 s^2 + c3 s^3 in curve[i].xyz, with pi / M in curve[0].w; and R(t) Rz(theta_mid) as the
+// quaternion q0 + s dq (x, y, z, w) before normalization, theta_mid the cell's middle angle.
 struct CellCoeffs {
     radius: array<vec4<f32>, 4>,
     curve: array<vec4<f32>, 4>,
     q0: vec4<f32>,
-    q1: vec4<f32>,
+    dq: vec4<f32>,
 }
 
 // Where one sweep's knot intervals and cells start; cell (k, j) is first_cell + k * samples + j.

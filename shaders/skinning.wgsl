@@ -1,10 +1,11 @@
 // Benchmark baseline: four-influence linear-blend skinning, what real-time applications run
 // today. Reads a 12-byte rest position and 8 bytes of packed joints and weights (20 bytes, as
 // deform reads), writes 12 bytes: p' = sum_k w_k M_k (p, 1).
-// Composed after layout.wgsl. Twin: src/cpu/skinning.rs.
+// Joint matrices in a uniform buffer, as engines keep them. Composed after layout.wgsl.
+// Twin: src/cpu/skinning.rs.
 
 @group(0) @binding(0) var<uniform> params: DispatchParams;
-@group(0) @binding(1) var<storage, read> joints: array<Joint>;
+@group(0) @binding(1) var<uniform> joints: array<Joint, 64>;
 @group(0) @binding(2) var<storage, read> rest: array<f32>;
 @group(0) @binding(3) var<storage, read> influences: array<SkinInfluence>;
 @group(0) @binding(4) var<storage, read_write> positions: array<f32>;

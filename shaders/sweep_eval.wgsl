@@ -8,18 +8,16 @@ fn curve_at(cell: CellCoeffs, s: f32) -> vec3<f32> {
     return c[0].xyz + s * (c[1].xyz + s * (c[2].xyz + s * c[3].xyz));
 }
 
-// R(t) as the unnormalized quaternion (1 - s) q_k + s q~_{k+1}; rotate() divides by its norm.
+// R(t) Rz(theta_mid) as the unnormalized quaternion q0 + s dq; rotate() normalizes it.
 fn quat_at(cell: CellCoeffs, s: f32) -> vec4<f32> {
-    return mix(cell.q0, cell.q1, s);
+    return cell.q0 + s * cell.dq;
 }
 
-// v rotated by the unit quaternion q / |q|:
-// ((w^2 - |u|^2) v + 2 (u.v) u + 2 w (u x v)) / |q|^2.
+// v rotated by the unit quaternion q / |q|: v + w t + u x t with q = (u, w) and
+// t = 2 (u x v) / |q|^2, which is the usual formula for q / |q| with the normalization folded in.
 fn rotate(q: vec4<f32>, v: vec3<f32>) -> vec3<f32> {
-    let u = q.xyz;
-    let w = q.w;
-    let scaled = (w * w - dot(u, u)) * v + 2.0 * dot(u, v) * u + 2.0 * w * cross(u, v);
-    return scaled / dot(q, q);
+    let t = (2.0 / dot(q, q)) * cross(q.xyz, v);
+    return v + q.w * t + cross(q.xyz, t);
 }
 
 // v rotated by the inverse of q / |q| (the transpose of R).
@@ -27,25 +25,21 @@ fn rotate_inverse(q: vec4<f32>, v: vec3<f32>) -> vec3<f32> {
     return rotate(vec4<f32>(-q.xyz, q.w), v);
 }
 
-// r at local parameters (s, phi) of the cell.
+// r at local parameters (s, phi) of the cell: Horner in phi over the four powers of s at once
+// (radius[q] holds the coefficients of phi^q for s^0..s^3), then a dot product with the powers of s.
 fn radius_at(cell: CellCoeffs, s: f32, phi: f32) -> f32 {
-    let powers = vec4<f32>(1.0, phi, phi * phi, phi * phi * phi);
-    let r0 = dot(cell.radius[0], powers);
-    let r1 = dot(cell.radius[1], powers);
-    let r2 = dot(cell.radius[2], powers);
-    let r3 = dot(cell.radius[3], powers);
-    return r0 + s * (r1 + s * (r2 + s * r3));
+    let c = cell.radius;
+    let along_s = c[0] + phi * (c[1] + phi * (c[2] + phi * c[3]));
+    return dot(along_s, vec4<f32>(1.0, s, s * s, s * s * s));
 }
 
-// (cos theta, sin theta) for theta = theta_mid + delta, delta = (2 phi - 1) pi / M, |delta| <= pi / 3:
-// Taylor polynomials of sin (to delta^9) and cos (to delta^10), both accurate to 5e-8, so that no
-// transcendental function runs per vertex per frame.
+// (cos delta, sin delta) for the vertex's angle theta_mid + delta in its cell, delta = (2 phi - 1) pi / M,
+// |delta| <= pi / 3: near-minimax polynomials (sin to delta^7, cos to delta^8, fitted on [-pi/3, pi/3])
+// accurate to 2e-8 before f32 rounding, so that no transcendental function runs per vertex per frame.
 fn direction_at(cell: CellCoeffs, phi: f32) -> vec2<f32> {
-    let cos_mid = cell.curve[0].w;
-    let sin_mid = cell.curve[1].w;
-    let delta = (2.0 * phi - 1.0) * cell.curve[2].w;
+    let delta = (2.0 * phi - 1.0) * cell.curve[0].w;
     let d2 = delta * delta;
-    let sin_d = delta * (1.0 - d2 * (1.0 / 6.0) * (1.0 - d2 * (1.0 / 20.0) * (1.0 - d2 * (1.0 / 42.0) * (1.0 - d2 * (1.0 / 72.0)))));
-    let cos_d = 1.0 - d2 * 0.5 * (1.0 - d2 * (1.0 / 12.0) * (1.0 - d2 * (1.0 / 30.0) * (1.0 - d2 * (1.0 / 56.0) * (1.0 - d2 * (1.0 / 90.0)))));
-    return vec2<f32>(cos_mid * cos_d - sin_mid * sin_d, sin_mid * cos_d + cos_mid * sin_d);
+    let sin_d = delta * (0.9999998635311992 + d2 * (-0.16666500356755126 + d2 * (0.008327856912345286 + d2 * -0.0001917176645069119)));
+    let cos_d = 0.9999999991674327 + d2 * (-0.4999999619760431 + d2 * (0.04166638875586918 + d2 * (-0.0013881774166947518 + d2 * 2.4056512057197938e-05)));
+    return vec2<f32>(cos_d, sin_d);
 }

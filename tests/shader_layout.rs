@@ -21,7 +21,7 @@ macro_rules! layout {
 
 fn rust_layouts() -> Vec<RustLayout> {
     vec![
-        layout!(CellCoeffs { radius, curve, q0, q1 }),
+        layout!(CellCoeffs { radius, curve, q0, dq }),
         layout!(SweepInfo { first_segment, segment_count, first_cell, samples }),
         layout!(BindSegment { origin, normal, e_low, e5, t0, t1, _pad }),
         layout!(GpuBinding { cell, s, phi, d, h }),

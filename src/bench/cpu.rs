@@ -3,7 +3,6 @@
 
 use glam::DVec3;
 
-use super::scene::BENCH_POSE;
 use super::skinning::{skinning_influences, skinning_joints};
 use std::time::Instant;
 
@@ -47,7 +46,6 @@ impl CpuBench {
             bind_vertices(scene.rig.rest(), &scene.owners, &scene.mesh.positions, &|_| {});
         });
         let (joints, influences) = (skinning_joints(), skinning_influences(n));
-        let keys = BENCH_POSE.keys(&scene.rig);
         let time = |work: &mut dyn FnMut()| {
             let start = Instant::now();
             work();
@@ -60,9 +58,10 @@ impl CpuBench {
                 copy: time(&mut || cpu::copy::copy(&self.twin_bindings, &mut out_f32)),
                 lbs: time(&mut || cpu::skinning::skinning(&joints, &self.rest_f32, &influences, &mut out_f32)),
                 frame: time(&mut || {
-                    let posed = scene.rig.pose(&keys).expect("the bench pose fits its rig");
+                    let posed = scene.rig.pose(&scene.keys).expect("the bench pose fits its rig");
                     deform_vertices(&posed, &self.bindings, &scene.mesh.positions, &mut out);
                 }),
+                normals: 0.0,
             };
             if round >= WARMUP {
                 rounds.push(times);
@@ -83,6 +82,7 @@ impl CpuBench {
             deform_over_copy: column(|r| r.deform / r.copy),
             deform_over_lbs: column(|r| r.deform / r.lbs),
             frame_ms: frame * 1e3,
+            normals_ms: 0.0,
             readback_ms: None,
             device_bytes_per_vertex: None,
             runs,

@@ -41,9 +41,12 @@ pub struct BenchReport {
     pub deform_over_copy: f64,
     /// Deform time over skinning time.
     pub deform_over_lbs: f64,
-    /// One frame: pose upload (coefficients) plus the deform and normals dispatches, waited
-    /// for, no readback; milliseconds.
+    /// One frame: the rig posed from keys, its coefficients, their upload and the deform
+    /// dispatch, waited for, no readback; milliseconds.
     pub frame_ms: f64,
+    /// The normals pass over the deformed mesh, milliseconds (0 on the CPU backend, which does
+    /// not compute normals).
+    pub normals_ms: f64,
     /// Reading the positions back to the CPU, milliseconds (`null` on the CPU backend).
     pub readback_ms: Option<f64>,
     /// Device memory for bindings and positions, bytes per vertex (`null` on the CPU).
@@ -61,6 +64,7 @@ struct Round {
     copy: f64,
     lbs: f64,
     frame: f64,
+    normals: f64,
 }
 
 /// The median of `samples` (which it sorts).
@@ -80,6 +84,15 @@ pub fn median_of<E>(warmup: usize, runs: usize, mut measure: impl FnMut() -> Res
     }
     let mut samples = (0..runs).map(|_| measure()).collect::<Result<Vec<f64>, E>>()?;
     Ok(median(&mut samples))
+}
+
+/// The least of `count` measurements.
+pub fn best_of<E>(count: usize, mut measure: impl FnMut() -> Result<f64, E>) -> Result<f64, E> {
+    let mut best = f64::INFINITY;
+    for _ in 0..count.max(1) {
+        best = best.min(measure()?);
+    }
+    Ok(best)
 }
 
 /// Times `work` `warmup` times unrecorded, then `runs` times, and returns the median seconds.

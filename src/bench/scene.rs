@@ -2,7 +2,7 @@
 
 use crate::mesh::Mesh;
 use crate::rig::Rig;
-use crate::sweep::Sweep;
+use crate::sweep::{Key, Sweep};
 use crate::synthetic::{BendTwistTaper, Tube, tube_rig};
 
 /// The pose every bench applies: a bend, a twist and a taper of every sweep.
@@ -17,7 +17,9 @@ pub struct BenchScene {
     pub rig: Rig,
     /// The owning sweep of each vertex.
     pub owners: Vec<u32>,
-    /// The rig bent, twisted and tapered by [`BENCH_POSE`].
+    /// The keys of the rig bent, twisted and tapered by [`BENCH_POSE`].
+    pub keys: Vec<Vec<Key>>,
+    /// The posed sweeps of those keys.
     pub posed: Vec<Sweep>,
 }
 
@@ -31,8 +33,9 @@ impl BenchScene {
     /// `mesh` bound to `rig`; fails if the rig's vertex selection does not fit the mesh.
     pub fn new(mesh: Mesh, rig: Rig, mesh_name: &str) -> Result<BenchScene, crate::rig::RigError> {
         let owners = rig.owners(&mesh, mesh_name)?;
-        let posed = rig.pose(&BENCH_POSE.keys(&rig))?;
-        Ok(BenchScene { mesh, rig, owners, posed })
+        let keys = BENCH_POSE.keys(&rig);
+        let posed = rig.pose(&keys)?;
+        Ok(BenchScene { mesh, rig, owners, keys, posed })
     }
 
     /// Number of vertices.

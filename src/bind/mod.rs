@@ -101,7 +101,8 @@ impl<'a> SweepBinder<'a> {
         let at = self.cross_section(v);
         let segment = &self.sweep.segments()[at.segment];
         let local = segment.orientation.value(at.s).inverse() * (v - segment.curve.value(at.s));
-        let theta = wrap_angle(local.y.atan2(local.x));
+        // On the axis θ is arbitrary: every path (f64, f32 twin, GPU) pins it to 0.
+        let theta = if local.x == 0.0 && local.y == 0.0 { 0.0 } else { wrap_angle(local.y.atan2(local.x)) };
         let radius = self.sweep.radius_field().value(at.segment, at.s, theta);
         VertexBinding {
             t: segment.t0 + at.s * (segment.t1 - segment.t0),

@@ -53,7 +53,10 @@ fn print_table(r: &BenchReport) {
     );
     println!("  copy      {}   (baseline: the deform kernel's bytes)", rate(r.copy_verts_per_s));
     println!("  skinning  {}   (baseline: 4-influence linear-blend skinning)", rate(r.lbs_verts_per_s));
-    println!("  frame     {:>10.3} ms (pose upload + deform + normals)", r.frame_ms);
+    println!("  frame     {:>10.3} ms (pose to coefficients, upload, deform)", r.frame_ms);
+    if r.backend == "gpu" {
+        println!("  normals   {:>10.3} ms (area-weighted vertex normals of the deformed mesh)", r.normals_ms);
+    }
     if let Some(readback) = r.readback_ms {
         println!("  readback  {readback:>10.3} ms");
     }

@@ -8,7 +8,7 @@
 use bytemuck::{Pod, Zeroable};
 
 /// Threads per workgroup of every compute kernel; the shaders' `@workgroup_size` must match.
-pub const WORKGROUP_SIZE: u32 = 256;
+pub const WORKGROUP_SIZE: u32 = 128;
 
 /// `GpuBinding::cell` of a vertex that no sweep owns; the deform kernel leaves it in place.
 pub const UNBOUND: u32 = u32::MAX;
@@ -20,38 +20,30 @@ pub const UNIFORM_CELL_CAPACITY: u32 = 409;
 /// Everything a vertex needs to follow its posed sweep, for one cell: knot interval k of a
 /// sweep and angular interval j of its radius function (§3). Rebuilt every frame; 160 bytes.
 ///
-/// - `radius`: the bicubic r(s, φ) = Σ_p Σ_q `radius[p][q]`·s^p·φ^q.
-/// - `curve[i].xyz`: C(s) = c0 + c1·s + c2·s² + c3·s³ on the interval (c0 = p_k).
-/// - `curve[0].w`, `curve[1].w`, `curve[2].w`: cos and sin of the cell's middle angle
-///   θ_j + π/M, and π/M (`curve[3].w` is unused).
-/// - `q0`, `q1`: q_k and the sign-aligned q̃_{k+1} of R(t), as (x, y, z, w).
+/// - `radius`: the bicubic r(s, φ) = Σ_p Σ_q c_pq·s^p·φ^q, stored by powers of φ:
+///   `radius[q][p]` = c_pq.
+/// - `curve[i].xyz`: C(s) = c0 + c1·s + c2·s² + c3·s³ on the interval (c0 = p_k); `curve[0].w`
+///   is π/M (half the cell's angle); the other `w` are unused.
+/// - `q0`, `dq`: R(t)·Rz(θ_mid) is the quaternion q0 + s·dq normalized, with q0 = q_k ⊗ qz(θ_mid)
+///   and dq = q̃_{k+1} ⊗ qz(θ_mid) − q0, as (x, y, z, w); θ_mid = θ_j + π/M is the cell's middle
+///   angle: a vertex at angle θ_mid + δ turns by δ about z and then by that quaternion.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct CellCoeffs {
-    /// Power-basis coefficients of r, `[power of s][power of φ]`.
+    /// Power-basis coefficients of r, `[power of φ][power of s]`.
     pub radius: [[f32; 4]; 4],
-    /// The curve's coefficients in xyz; the cell's angular constants in w.
+    /// The curve's coefficients in xyz; π/M in `curve[0].w`.
     pub curve: [[f32; 4]; 4],
-    /// q_k.
+    /// q_k ⊗ qz(θ_mid).
     pub q0: [f32; 4],
-    /// q̃_{k+1}.
-    pub q1: [f32; 4],
+    /// q̃_{k+1} ⊗ qz(θ_mid) − q0.
+    pub dq: [f32; 4],
 }
 
 impl CellCoeffs {
-    /// cos of the cell's middle angle.
-    pub fn cos_mid(&self) -> f32 {
-        self.curve[0][3]
-    }
-
-    /// sin of the cell's middle angle.
-    pub fn sin_mid(&self) -> f32 {
-        self.curve[1][3]
-    }
-
     /// Half the angular step, π/M.
     pub fn half_step(&self) -> f32 {
-        self.curve[2][3]
+        self.curve[0][3]
     }
 }
 

@@ -70,16 +70,18 @@ impl SweepCoefficients {
             let m = info.samples as usize;
             let half_step = PI / m as f64;
             for (k, segment) in sweep.segments().iter().enumerate() {
-                let curve = segment.curve.power_coefficients().map(vec4);
-                let (q0, q1) = (quat4(segment.orientation.start), quat4(segment.orientation.end));
+                let mut curve = segment.curve.power_coefficients().map(vec4);
+                curve[0][3] = half_step as f32;
+                let (start, end) = (segment.orientation.start, segment.orientation.end);
                 for j in 0..m {
-                    let mid = (2 * j + 1) as f64 * half_step;
-                    let mut curve = curve;
-                    curve[0][3] = mid.cos() as f32;
-                    curve[1][3] = mid.sin() as f32;
-                    curve[2][3] = half_step as f32;
-                    let radius = sweep.radius_field().patch(k, j).c.map(|row| row.map(|c| c as f32));
-                    self.cells[info.first_cell as usize + k * m + j] = CellCoeffs { radius, curve, q0, q1 };
+                    // R(t)·Rz(θ_mid) as one quaternion: mixing the ends of q ⊗ qz(θ_mid) is the same
+                    // as mixing q first, since right multiplication is linear.
+                    let middle = DQuat::from_rotation_z((2 * j + 1) as f64 * half_step);
+                    let c = sweep.radius_field().patch(k, j).c;
+                    let radius = std::array::from_fn(|q| std::array::from_fn(|p| c[p][q] as f32));
+                    let (q0, q1) = (start * middle, end * middle);
+                    self.cells[info.first_cell as usize + k * m + j] =
+                        CellCoeffs { radius, curve, q0: quat4(q0), dq: quat4(q1 - q0) };
                 }
             }
         }

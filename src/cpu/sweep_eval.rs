@@ -11,17 +11,16 @@ pub fn curve_at(cell: &CellCoeffs, s: f32) -> Vec3 {
     c[0] + s * (c[1] + s * (c[2] + s * c[3]))
 }
 
-/// R(t) as the unnormalized quaternion (1 − s)·q_k + s·q̃_{k+1}; [`rotate`] divides by its norm.
+/// R(t)·Rz(θ_mid) as the unnormalized quaternion q0 + s·dq; [`rotate`] normalizes it.
 pub fn quat_at(cell: &CellCoeffs, s: f32) -> Vec4 {
-    Vec4::from_array(cell.q0).lerp(Vec4::from_array(cell.q1), s)
+    Vec4::from_array(cell.q0) + s * Vec4::from_array(cell.dq)
 }
 
-/// v rotated by the unit quaternion q/|q|: ((w² − |u|²)·v + 2(u·v)·u + 2w·(u × v)) / |q|².
+/// v rotated by the unit quaternion q/|q|: v + w·t + u × t with q = (u, w) and
+/// t = 2(u × v)/|q|², the usual formula for q/|q| with the normalization folded in.
 pub fn rotate(q: Vec4, v: Vec3) -> Vec3 {
-    let u = q.xyz();
-    let w = q.w;
-    let scaled = (w * w - u.dot(u)) * v + 2.0 * u.dot(v) * u + 2.0 * w * u.cross(v);
-    scaled / q.dot(q)
+    let t = (2.0 / q.dot(q)) * q.xyz().cross(v);
+    v + q.w * t + q.xyz().cross(t)
 }
 
 /// v rotated by the inverse of q/|q| (the transpose of R).
@@ -29,31 +28,28 @@ pub fn rotate_inverse(q: Vec4, v: Vec3) -> Vec3 {
     rotate(Vec4::new(-q.x, -q.y, -q.z, q.w), v)
 }
 
-/// r at local parameters (s, φ) of the cell.
+/// r at local parameters (s, φ) of the cell: Horner in φ over the four powers of s at once
+/// (`radius[q]` holds the coefficients of φ^q for s⁰..s³), then a dot product with the powers of s.
 pub fn radius_at(cell: &CellCoeffs, s: f32, phi: f32) -> f32 {
-    let powers = Vec4::new(1.0, phi, phi * phi, phi * phi * phi);
-    let r0 = Vec4::from_array(cell.radius[0]).dot(powers);
-    let r1 = Vec4::from_array(cell.radius[1]).dot(powers);
-    let r2 = Vec4::from_array(cell.radius[2]).dot(powers);
-    let r3 = Vec4::from_array(cell.radius[3]).dot(powers);
-    r0 + s * (r1 + s * (r2 + s * r3))
+    let c = cell.radius.map(Vec4::from_array);
+    let along_s = c[0] + phi * (c[1] + phi * (c[2] + phi * c[3]));
+    along_s.dot(Vec4::new(1.0, s, s * s, s * s * s))
 }
 
-/// (cos θ, sin θ) for θ = θ_mid + δ, δ = (2φ − 1)·π/M, |δ| ≤ π/3: Taylor polynomials of sin (to
-/// δ⁹) and cos (to δ¹⁰), both accurate to 5e-8, so no transcendental runs per vertex per frame.
+/// (cos δ, sin δ) for the vertex's angle θ_mid + δ in its cell, δ = (2φ − 1)·π/M, |δ| ≤ π/3:
+/// near-minimax polynomials (sin to δ⁷, cos to δ⁸, fitted on [−π/3, π/3]) accurate to 2e-8 before
+/// f32 rounding, so no transcendental runs per vertex per frame.
+#[expect(clippy::excessive_precision, reason = "the WGSL twin spells the same literals")]
 pub fn direction_at(cell: &CellCoeffs, phi: f32) -> Vec2 {
-    let cos_mid = cell.curve[0][3];
-    let sin_mid = cell.curve[1][3];
-    let delta = (2.0 * phi - 1.0) * cell.curve[2][3];
+    let delta = (2.0 * phi - 1.0) * cell.curve[0][3];
     let d2 = delta * delta;
     let sin_d = delta
-        * (1.0 - d2 * (1.0 / 6.0) * (1.0 - d2 * (1.0 / 20.0) * (1.0 - d2 * (1.0 / 42.0) * (1.0 - d2 * (1.0 / 72.0)))));
-    let cos_d = 1.0
-        - d2 * 0.5
-            * (1.0
-                - d2 * (1.0 / 12.0)
-                    * (1.0 - d2 * (1.0 / 30.0) * (1.0 - d2 * (1.0 / 56.0) * (1.0 - d2 * (1.0 / 90.0)))));
-    Vec2::new(cos_mid * cos_d - sin_mid * sin_d, sin_mid * cos_d + cos_mid * sin_d)
+        * (0.9999998635311992
+            + d2 * (-0.16666500356755126 + d2 * (0.008327856912345286 + d2 * -0.0001917176645069119)));
+    let cos_d = 0.9999999991674327
+        + d2 * (-0.4999999619760431
+            + d2 * (0.04166638875586918 + d2 * (-0.0013881774166947518 + d2 * 2.4056512057197938e-05)));
+    Vec2::new(cos_d, sin_d)
 }
 
 #[cfg(test)]
@@ -64,16 +60,13 @@ mod tests {
     #[test]
     fn direction_polynomial_matches_cos_and_sin_at_the_coarsest_step() {
         // M = 3 gives the widest cells, |δ| up to π/3.
-        for j in 0..3 {
-            let mid = (2 * j + 1) as f32 * PI / 3.0;
-            let mut cell = CellCoeffs::default();
-            (cell.curve[0][3], cell.curve[1][3], cell.curve[2][3]) = (mid.cos(), mid.sin(), PI / 3.0);
-            for i in 0..=50 {
-                let phi = i as f32 / 50.0;
-                let theta = mid + (2.0 * phi - 1.0) * PI / 3.0;
-                let direction = direction_at(&cell, phi);
-                assert!((direction - Vec2::new(theta.cos(), theta.sin())).length() < 3e-7, "θ = {theta}");
-            }
+        let mut cell = CellCoeffs::default();
+        cell.curve[0][3] = PI / 3.0;
+        for i in 0..=50 {
+            let phi = i as f32 / 50.0;
+            let delta = (2.0 * phi - 1.0) * PI / 3.0;
+            let direction = direction_at(&cell, phi);
+            assert!((direction - Vec2::new(delta.cos(), delta.sin())).length() < 3e-7, "δ = {delta}");
         }
     }
 

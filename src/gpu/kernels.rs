@@ -119,9 +119,9 @@ pub fn copy(device: &wgpu::Device) -> Kernel {
     Kernel::new(device, "sweepffd copy baseline", shaders::COPY, "copy_main", &[Uniform, Read, ReadWrite])
 }
 
-/// `shaders/skinning.wgsl`: params, joints, rest positions, influences (read); positions
+/// `shaders/skinning.wgsl`: params, joints (uniform), rest positions, influences (read); positions
 /// (written).
 pub fn skinning(device: &wgpu::Device) -> Kernel {
-    let slots = [Uniform, Read, Read, Read, ReadWrite];
+    let slots = [Uniform, Uniform, Read, Read, ReadWrite];
     Kernel::new(device, "sweepffd skinning baseline", shaders::SKINNING, "skinning_main", &slots)
 }
