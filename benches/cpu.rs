@@ -34,7 +34,7 @@ fn scene(vertices: usize) -> Scene {
 fn bind(c: &mut Criterion) {
     let mut group = c.benchmark_group("bind");
     group.sample_size(10);
-    for n in [100_000, 1_000_000] {
+    for n in [100_000, 1_000_000, 4_000_000] {
         let scene = scene(n);
         group.throughput(Throughput::Elements(scene.mesh.positions.len() as u64));
         group.bench_function(BenchmarkId::new("f64", n), |b| {
@@ -54,7 +54,7 @@ fn bind(c: &mut Criterion) {
 
 fn deform(c: &mut Criterion) {
     let mut group = c.benchmark_group("deform");
-    for n in [100_000, 1_000_000] {
+    for n in [100_000, 1_000_000, 4_000_000] {
         let scene = scene(n);
         let count = scene.mesh.positions.len();
         group.throughput(Throughput::Elements(count as u64));

@@ -87,12 +87,6 @@ impl SweepCoefficients {
         }
         Ok(())
     }
-
-    /// The index of cell (k, 0) of sweep `sweep`: the first cell of its knot interval k.
-    pub fn first_cell_of_segment(&self, sweep: usize, k: usize) -> u32 {
-        let info = self.sweeps[sweep];
-        info.first_cell + k as u32 * info.samples
-    }
 }
 
 /// Posed sweeps whose number of sweeps, knot intervals or radii differs from the rig that a

@@ -336,11 +336,6 @@ impl GpuDeformer {
         Ok(bindings)
     }
 
-    /// The coefficient arrays of the current pose (or of the rest rig before any pose).
-    pub fn coefficients(&self) -> &SweepCoefficients {
-        &self.coefficients
-    }
-
     /// Each deform dispatch's vertex range and binding buffer.
     pub(crate) fn binding_chunks(&self) -> impl Iterator<Item = (&Range<u32>, &wgpu::Buffer)> {
         self.chunks.iter().map(|chunk| (&chunk.range, &chunk.bindings))

@@ -1,0 +1,48 @@
+//! GPU throughput of binding and deformation at 100k, 1M and 4M vertices, with the copy and
+//! linear-blend-skinning baselines measured on the same device in the same run. Kernel times
+//! come from timestamp queries (wall-clock where the device has none).
+//!
+//! `cargo bench --bench gpu`; without a GPU adapter the benches print why and measure nothing.
+
+use std::time::Duration;
+
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use sweepffd::bench::{BenchScene, GpuBench};
+use sweepffd::gpu::{GpuContext, GpuError};
+
+/// Criterion's closure for a kernel timed by `measure`: the sum of `iterations` GPU timings.
+fn gpu_time(iterations: u64, mut measure: impl FnMut() -> Result<f64, GpuError>) -> Duration {
+    (0..iterations).map(|_| Duration::from_secs_f64(measure().expect("the GPU bench runs"))).sum()
+}
+
+fn gpu(c: &mut Criterion) {
+    let context = match GpuContext::new() {
+        Ok(context) => context,
+        Err(error) => {
+            eprintln!("skipping the GPU benches: {error}");
+            return;
+        }
+    };
+    let mut group = c.benchmark_group(format!("gpu {}", context.info.name));
+    group.sample_size(10);
+    for n in [100_000, 1_000_000, 4_000_000] {
+        let mut bench = GpuBench::new(&context, BenchScene::tube(n)).expect("the GPU bench sets up");
+        group.throughput(Throughput::Elements(bench.deformer().vertex_count() as u64));
+        // Binding first: it reads the rest positions, which deforming overwrites.
+        group.bench_function(BenchmarkId::new("bind", n), |b| b.iter_custom(|i| gpu_time(i, || bench.time_bind())));
+        group.bench_function(BenchmarkId::new("deform", n), |b| b.iter_custom(|i| gpu_time(i, || bench.time_deform())));
+        group.bench_function(BenchmarkId::new("copy_baseline", n), |b| {
+            b.iter_custom(|i| gpu_time(i, || bench.time_copy()))
+        });
+        group.bench_function(BenchmarkId::new("skinning_baseline", n), |b| {
+            b.iter_custom(|i| gpu_time(i, || bench.time_skinning()))
+        });
+        group.bench_function(BenchmarkId::new("normals", n), |b| {
+            b.iter_custom(|i| gpu_time(i, || bench.time_normals()))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, gpu);
+criterion_main!(benches);
