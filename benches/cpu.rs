@@ -44,7 +44,7 @@ fn bind(c: &mut Criterion) {
         let tables = bind_segments(scene.rig.rest());
         let inputs =
             cpu::bind::BindInputs { cells: &coefficients.cells, bind_segments: &tables, sweeps: &coefficients.sweeps };
-        let positions: Vec<f32> = scene.mesh.positions.iter().flat_map(|p| p.as_vec3().to_array()).collect();
+        let positions = cpu::packed(&scene.mesh.positions);
         group.bench_function(BenchmarkId::new("f32_twin", n), |b| {
             b.iter(|| cpu::bind::bind(&inputs, &scene.owners, &positions))
         });
@@ -64,11 +64,8 @@ fn deform(c: &mut Criterion) {
             b.iter(|| deform_vertices(&scene.posed, &bindings, &scene.mesh.positions, &mut out))
         });
         let mut coefficients = SweepCoefficients::new(scene.rig.rest());
-        let tables = bind_segments(scene.rig.rest());
-        let inputs =
-            cpu::bind::BindInputs { cells: &coefficients.cells, bind_segments: &tables, sweeps: &coefficients.sweeps };
-        let positions: Vec<f32> = scene.mesh.positions.iter().flat_map(|p| p.as_vec3().to_array()).collect();
-        let gpu_bindings = cpu::bind::bind(&inputs, &scene.owners, &positions);
+        let positions = cpu::packed(&scene.mesh.positions);
+        let gpu_bindings = cpu::bind::bind_to(scene.rig.rest(), &scene.owners, &positions);
         coefficients.update(&scene.posed).unwrap();
         let mut out32 = positions.clone();
         group.bench_function(BenchmarkId::new("f32_twin", n), |b| {

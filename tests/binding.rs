@@ -7,7 +7,7 @@ mod common;
 use glam::{DQuat, DVec3};
 use rayon::prelude::*;
 use sweepffd::bind::{Binding, bind_vertices};
-use sweepffd::coeffs::{SweepCoefficients, bind_segments};
+use sweepffd::coeffs::SweepCoefficients;
 use sweepffd::cpu;
 use sweepffd::deform::deform_vertices;
 use sweepffd::mesh::Mesh;
@@ -153,12 +153,8 @@ fn f32_twin_binds_like_the_f64_reference() {
     for case in cases() {
         let rest = case.rig.rest();
         let coefficients = SweepCoefficients::new(rest);
-        let tables = bind_segments(rest);
-        let inputs =
-            cpu::bind::BindInputs { cells: &coefficients.cells, bind_segments: &tables, sweeps: &coefficients.sweeps };
         let owners: Vec<u32> = case.bindings.iter().map(|b| b.sweep).collect();
-        let positions: Vec<f32> = case.mesh.positions.iter().flat_map(|p| p.as_vec3().to_array()).collect();
-        let twin = cpu::bind::bind(&inputs, &owners, &positions);
+        let twin = cpu::bind::bind_to(rest, &owners, &cpu::packed(&case.mesh.positions));
         let mut worst = (0.0f64, 0usize);
         let mut flips = 0;
         for (i, (b32, b64)) in twin.iter().zip(&case.bindings).enumerate() {
@@ -199,11 +195,8 @@ fn f32_twin_deforms_like_the_f64_reference_under_a_pose() {
         deform_vertices(&posed, &bindings, &mesh.positions, &mut reference);
 
         let mut coefficients = SweepCoefficients::new(rig.rest());
-        let tables = bind_segments(rig.rest());
-        let inputs =
-            cpu::bind::BindInputs { cells: &coefficients.cells, bind_segments: &tables, sweeps: &coefficients.sweeps };
-        let rest: Vec<f32> = mesh.positions.iter().flat_map(|p| p.as_vec3().to_array()).collect();
-        let twin_bindings = cpu::bind::bind(&inputs, &owners, &rest);
+        let rest = cpu::packed(&mesh.positions);
+        let twin_bindings = cpu::bind::bind_to(rig.rest(), &owners, &rest);
         coefficients.update(&posed).unwrap();
         let mut twin = rest.clone();
         cpu::deform::deform(&coefficients.cells, &twin_bindings, &mut twin);

@@ -393,3 +393,87 @@ fn help_of_each_subcommand_lists_its_options() {
     }
     assert!(fs::read_dir(dir.path()).unwrap().next().is_none());
 }
+
+/// A tube mesh, its rig and a bend-twist-taper pose written into `dir`.
+fn write_tube_scene(dir: &Path) {
+    let tube = Tube { rings: 20, around: 16, length: 2.0, radius: 0.3 };
+    let mesh = tube.mesh();
+    mesh.save(&dir.join("tube.obj"), &mesh.positions).unwrap();
+    let rig = tube_rig(&tube, 4, 8);
+    fs::write(dir.join("rig.json"), rig.to_document().to_json()).unwrap();
+    let keys = BendTwistTaper { bend: 0.8, twist: 1.0, taper: 0.7 }.keys(&rig);
+    fs::write(dir.join("pose.json"), rig.pose_document(&keys).to_json()).unwrap();
+}
+
+#[test]
+fn gpu_backend_without_an_adapter_is_a_clear_error_and_auto_falls_back() {
+    let dir = tempfile::tempdir().unwrap();
+    write_tube_scene(dir.path());
+    let deform = ["deform", "--mesh", "tube.obj", "--rig", "rig.json", "--pose", "pose.json", "--out", "out.obj"];
+    // Off Apple platforms WGPU_BACKEND=metal leaves no adapter to pick.
+    if cfg!(target_vendor = "apple") {
+        return;
+    }
+    let gpu = common::sweepffd(dir.path())
+        .args(deform)
+        .args(["--backend", "gpu"])
+        .env("WGPU_BACKEND", "metal")
+        .output()
+        .unwrap();
+    assert_eq!(gpu.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&gpu.stderr);
+    assert!(stderr.starts_with("error: no GPU adapter is available"), "{stderr}");
+    assert!(!dir.path().join("out.obj").exists());
+
+    let auto = common::sweepffd(dir.path()).args(deform).env("WGPU_BACKEND", "metal").output().unwrap();
+    assert!(auto.status.success(), "{}", String::from_utf8_lossy(&auto.stderr));
+    let stderr = String::from_utf8_lossy(&auto.stderr);
+    assert_eq!(stderr.lines().count(), 1, "one notice line: {stderr}");
+    assert!(stderr.starts_with("note: using the CPU, the GPU is not available: no GPU adapter"), "{stderr}");
+    assert!(dir.path().join("out.obj").exists());
+}
+
+#[test]
+fn info_names_the_adapter_and_its_limits() {
+    if common::gpu().is_none() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let stdout = succeed(dir.path(), &["info"]);
+    assert!(stdout.starts_with("adapter:"), "{stdout}");
+    assert!(stdout.contains("max_storage_buffer_binding_size:"), "{stdout}");
+    assert!(stdout.contains("workgroup size of the kernels:"), "{stdout}");
+}
+
+#[test]
+fn bench_prints_one_json_line_with_every_figure() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut backends = vec!["cpu"];
+    if common::gpu().is_some() {
+        backends.push("gpu");
+    }
+    for backend in backends {
+        let stdout =
+            succeed(dir.path(), &["bench", "--vertices", "20000", "--runs", "3", "--backend", backend, "--json"]);
+        assert_eq!(stdout.lines().count(), 1, "{stdout}");
+        let report: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+        assert_eq!(report["backend"], backend);
+        assert!(report["n"].as_u64().unwrap() >= 19_000);
+        for field in [
+            "bind_verts_per_s",
+            "deform_verts_per_s",
+            "copy_verts_per_s",
+            "lbs_verts_per_s",
+            "deform_over_copy",
+            "deform_over_lbs",
+            "frame_ms",
+        ] {
+            let value = report[field].as_f64().unwrap_or_else(|| panic!("{backend}: {field} missing in {stdout}"));
+            assert!(value.is_finite() && value > 0.0, "{backend}: {field} = {value}");
+        }
+        if backend == "gpu" {
+            assert_eq!(report["device_bytes_per_vertex"].as_f64(), Some(32.0));
+            assert!(report["readback_ms"].as_f64().is_some_and(|ms| ms > 0.0));
+        }
+    }
+}

@@ -9,7 +9,7 @@
 mod common;
 
 use glam::{DVec3, Vec3};
-use sweepffd::coeffs::{GpuBinding, SweepCoefficients, UNBOUND, bind_segments};
+use sweepffd::coeffs::{GpuBinding, SweepCoefficients, UNBOUND};
 use sweepffd::cpu;
 use sweepffd::gpu::{BindingSource, GpuDeformer};
 use sweepffd::mesh::Mesh;
@@ -35,11 +35,8 @@ fn check(name: &str, mesh: &Mesh, rig: &Rig) {
             .unwrap();
     let gpu_bindings = deformer.read_bindings().unwrap();
     let mut coefficients = SweepCoefficients::new(rest);
-    let tables = bind_segments(rest);
-    let inputs =
-        cpu::bind::BindInputs { cells: &coefficients.cells, bind_segments: &tables, sweeps: &coefficients.sweeps };
-    let rest_f32: Vec<f32> = mesh.positions.iter().flat_map(|p| p.as_vec3().to_array()).collect();
-    let twin_bindings = cpu::bind::bind(&inputs, &owners, &rest_f32);
+    let rest_f32 = cpu::packed(&mesh.positions);
+    let twin_bindings = cpu::bind::bind_to(rest, &owners, &rest_f32);
     let (mut worst_dt, mut worst_at) = (0.0, 0);
     for (i, (gpu, twin)) in gpu_bindings.iter().zip(&twin_bindings).enumerate() {
         assert_eq!(gpu.cell == UNBOUND, twin.cell == UNBOUND, "{name}: vertex {i} bound on one side only");

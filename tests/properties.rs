@@ -6,7 +6,7 @@ use std::f64::consts::TAU;
 use glam::{DQuat, DVec3};
 use proptest::prelude::*;
 use sweepffd::bind::SweepBinder;
-use sweepffd::coeffs::{SweepCoefficients, bind_segments};
+use sweepffd::coeffs::SweepCoefficients;
 use sweepffd::cpu;
 use sweepffd::deform::deform_vertex;
 use sweepffd::sweep::{Key, Sweep};
@@ -58,14 +58,8 @@ proptest! {
     fn f32_twin_bind_then_deform_at_rest_is_the_identity(keys in keys(), points in prop::collection::vec(point(), 40)) {
         let sweeps = [Sweep::try_new(&keys, None).unwrap()];
         let coefficients = SweepCoefficients::new(&sweeps);
-        let tables = bind_segments(&sweeps);
-        let inputs = cpu::bind::BindInputs {
-            cells: &coefficients.cells,
-            bind_segments: &tables,
-            sweeps: &coefficients.sweeps,
-        };
-        let positions: Vec<f32> = points.iter().flat_map(|p| p.as_vec3().to_array()).collect();
-        let bindings = cpu::bind::bind(&inputs, &vec![0; points.len()], &positions);
+        let positions = cpu::packed(&points);
+        let bindings = cpu::bind::bind_to(&sweeps, &vec![0; points.len()], &positions);
         let mut out = positions.clone();
         cpu::deform::deform(&coefficients.cells, &bindings, &mut out);
         for (i, v) in points.iter().enumerate() {

@@ -7,7 +7,7 @@ mod common;
 
 use glam::DVec3;
 use sweepffd::bind::{Binding, UNOWNED, bind_vertices};
-use sweepffd::coeffs::{SweepCoefficients, bind_segments};
+use sweepffd::coeffs::SweepCoefficients;
 use sweepffd::cpu;
 use sweepffd::deform::deform_vertices;
 use sweepffd::mesh::Mesh;
@@ -55,11 +55,8 @@ fn f64_round_trip(case: &Case) -> Vec<Binding> {
 fn f32_twin_round_trip(case: &Case) {
     let rest = case.rig.rest();
     let coefficients = SweepCoefficients::new(rest);
-    let bind_tables = bind_segments(rest);
-    let inputs =
-        cpu::bind::BindInputs { cells: &coefficients.cells, bind_segments: &bind_tables, sweeps: &coefficients.sweeps };
-    let positions: Vec<f32> = case.mesh.positions.iter().flat_map(|p| p.as_vec3().to_array()).collect();
-    let bindings = cpu::bind::bind(&inputs, &case.owners, &positions);
+    let positions = cpu::packed(&case.mesh.positions);
+    let bindings = cpu::bind::bind_to(rest, &case.owners, &positions);
     let mut out = positions.clone();
     cpu::deform::deform(&coefficients.cells, &bindings, &mut out);
     let back: Vec<DVec3> = out.chunks_exact(3).map(|p| DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64)).collect();

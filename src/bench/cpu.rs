@@ -8,7 +8,7 @@ use std::time::Instant;
 
 use super::{BenchReport, BenchScene, Round, median, median_seconds};
 use crate::bind::{Binding, bind_vertices};
-use crate::coeffs::{GpuBinding, SweepCoefficients, bind_segments};
+use crate::coeffs::GpuBinding;
 use crate::cpu;
 use crate::deform::deform_vertices;
 
@@ -27,12 +27,8 @@ impl CpuBench {
     pub fn new(scene: BenchScene) -> CpuBench {
         let bindings = bind_vertices(scene.rig.rest(), &scene.owners, &scene.mesh.positions, &|_| {});
         let rest = scene.rig.rest();
-        let coefficients = SweepCoefficients::new(rest);
-        let tables = bind_segments(rest);
-        let inputs =
-            cpu::bind::BindInputs { cells: &coefficients.cells, bind_segments: &tables, sweeps: &coefficients.sweeps };
-        let rest_f32: Vec<f32> = scene.mesh.positions.iter().flat_map(|p| p.as_vec3().to_array()).collect();
-        let twin_bindings = cpu::bind::bind(&inputs, &scene.owners, &rest_f32);
+        let rest_f32 = cpu::packed(&scene.mesh.positions);
+        let twin_bindings = cpu::bind::bind_to(rest, &scene.owners, &rest_f32);
         CpuBench { scene, bindings, twin_bindings, rest_f32 }
     }
 

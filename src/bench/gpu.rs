@@ -9,7 +9,7 @@ use super::skinning::{skinning_influences, skinning_joints};
 use super::{BenchReport, BenchScene, GpuTimer, Round, best_of, median, median_of};
 use crate::coeffs::{DispatchParams, SweepCoefficients};
 use crate::gpu::binder::Binder;
-use crate::gpu::deformer::{params_buffer, window};
+use crate::gpu::buffers::{params_buffer, window};
 use crate::gpu::{
     BINDING_STRIDE, BindingSource, GpuContext, GpuDeformer, GpuError, POSITION_STRIDE, dispatch_grid, kernels,
     uniform_chunks, wait,
@@ -88,7 +88,7 @@ impl GpuBench {
             contents: bytemuck::cast_slice(&skinning_joints()),
             usage: wgpu::BufferUsages::UNIFORM,
         });
-        let rest_f32: Vec<f32> = scene.mesh.positions.iter().flat_map(|p| p.as_vec3().to_array()).collect();
+        let rest_f32 = crate::cpu::packed(&scene.mesh.positions);
         let rest_buffer = storage("sweepffd bench rest", bytemuck::cast_slice(&rest_f32));
         let influences = storage("sweepffd bench influences", bytemuck::cast_slice(&skinning_influences(n as usize)));
         let skinning_dispatches = uniform_chunks(n, POSITION_STRIDE, &limits)

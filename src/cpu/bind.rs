@@ -10,7 +10,8 @@ use rayon::prelude::*;
 
 use super::position;
 use super::sweep_eval::{curve_at, quat_at, radius_at, rotate_inverse};
-use crate::coeffs::{BindSegment, CellCoeffs, GpuBinding, SweepInfo, UNBOUND};
+use crate::coeffs::{BindSegment, CellCoeffs, GpuBinding, SweepCoefficients, SweepInfo, UNBOUND, bind_segments};
+use crate::sweep::Sweep;
 
 /// Dyadic subdivision depth: intervals of width 2⁻¹² that still show several sign variations
 /// hold a (near-)double root and report their midpoint.
@@ -251,6 +252,15 @@ pub fn bind_vertex(inputs: &BindInputs, owner: u32, v: Vec3) -> GpuBinding {
     let cell = nearest.cell + j;
     let r = radius_at(&inputs.cells[cell as usize], nearest.s, phi);
     GpuBinding { cell, s: nearest.s, phi, d: local.truncate().length() - r, h: local.z }
+}
+
+/// The bindings of `positions` (tightly packed xyz) owned by `owners[i]` to the rest sweeps
+/// `rest`: builds the kernel's tables from the sweeps, then runs [`bind`].
+pub fn bind_to(rest: &[Sweep], owners: &[u32], positions: &[f32]) -> Vec<GpuBinding> {
+    let coefficients = SweepCoefficients::new(rest);
+    let tables = bind_segments(rest);
+    let inputs = BindInputs { cells: &coefficients.cells, bind_segments: &tables, sweeps: &coefficients.sweeps };
+    bind(&inputs, owners, positions)
 }
 
 /// Every invocation of the kernel: the binding of each vertex of `positions` (tightly packed

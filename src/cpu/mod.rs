@@ -16,7 +16,12 @@ pub mod normals;
 pub mod skinning;
 pub mod sweep_eval;
 
-use glam::Vec3;
+use glam::{DVec3, Vec3};
+
+/// Positions as the kernels take them: f32, tightly packed xyz.
+pub fn packed(positions: &[DVec3]) -> Vec<f32> {
+    positions.iter().flat_map(|p| p.as_vec3().to_array()).collect()
+}
 
 /// The vertex at index `i` of a tightly packed xyz array.
 fn position(positions: &[f32], i: usize) -> Vec3 {

@@ -6,8 +6,8 @@ use std::ops::Range;
 use wgpu::util::DeviceExt;
 
 use super::GpuContext;
+use super::buffers::{POSITION_STRIDE, params_buffer, window};
 use super::chunks::{ChunkLimits, dispatch_grid};
-use super::deformer::{POSITION_STRIDE, params_buffer, window};
 use super::kernels::{self, Kernel};
 use crate::coeffs::{DispatchParams, SweepCoefficients, bind_segments};
 use crate::sweep::Sweep;

@@ -4,22 +4,21 @@
 use std::ops::Range;
 
 use glam::DVec3;
-use wgpu::util::DeviceExt;
 
 use super::binder::Binder;
-use super::chunks::{ChunkLimits, dispatch_grid, normal_chunks, uniform_chunks};
-use super::kernels::{self, Kernel};
+use super::buffers::{
+    BINDING_STRIDE, POSITION_STRIDE, binding_buffer_with, cells_buffer, check_fits, empty_binding_buffer,
+    params_buffer, upload_positions, window,
+};
+use super::chunks::{ChunkLimits, dispatch_grid, uniform_chunks};
+use super::kernels::{self, DeformVariant, Kernel};
+use super::normals_pass::NormalsStage;
 use super::readback::{read_bytes, wait};
 use super::{GpuContext, GpuError};
-use crate::coeffs::{CellCoeffs, DispatchParams, GpuBinding, SweepCoefficients, UNBOUND, UNIFORM_CELL_CAPACITY};
+use crate::coeffs::{DispatchParams, GpuBinding, SweepCoefficients, UNBOUND};
 use crate::mesh::Faces;
-use crate::normals::NormalAdjacency;
 use crate::sweep::Sweep;
 
-/// Bytes per vertex of the position and normal buffers (tightly packed f32 xyz).
-pub const POSITION_STRIDE: u64 = 12;
-/// Bytes per vertex of the binding buffers.
-pub const BINDING_STRIDE: u64 = size_of::<GpuBinding>() as u64;
 /// Storage buffers the bind kernel uses in one stage, the most of any kernel.
 const STORAGE_BUFFERS_NEEDED: u32 = 6;
 
@@ -113,36 +112,6 @@ impl DeformChunk {
         let grid = dispatch_grid(range.len() as u32, limits);
         DeformChunk { range, bindings, group, grid }
     }
-}
-
-/// Where the deform kernel reads the cell records from.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum DeformVariant {
-    /// A uniform buffer of [`UNIFORM_CELL_CAPACITY`] records: much faster on lavapipe and many
-    /// GPUs; for rigs of up to that many cells on devices that allow 64 KiB uniform buffers.
-    Uniform,
-    /// A storage buffer: rigs of any size.
-    Storage,
-}
-
-impl DeformVariant {
-    /// The uniform variant when the rig's `cells` and the device allow it.
-    pub fn for_cells(cells: usize, limits: &wgpu::Limits) -> DeformVariant {
-        let bytes = UNIFORM_CELL_CAPACITY as u64 * size_of::<CellCoeffs>() as u64;
-        if cells <= UNIFORM_CELL_CAPACITY as usize && limits.max_uniform_buffer_binding_size >= bytes {
-            DeformVariant::Uniform
-        } else {
-            DeformVariant::Storage
-        }
-    }
-}
-
-/// The normals pass: its kernel, output buffer and dispatches.
-#[derive(Debug)]
-struct NormalsStage {
-    kernel: Kernel,
-    buffer: wgpu::Buffer,
-    dispatches: Vec<(wgpu::BindGroup, (u32, u32))>,
 }
 
 impl GpuDeformer {
@@ -357,83 +326,6 @@ impl GpuDeformer {
     }
 }
 
-impl NormalsStage {
-    fn new(
-        device: &wgpu::Device,
-        faces: &Faces,
-        positions: &wgpu::Buffer,
-        vertex_count: u32,
-        limits: &ChunkLimits,
-    ) -> Result<NormalsStage, GpuError> {
-        let adjacency = NormalAdjacency::new(faces, vertex_count as usize);
-        let corner_bytes = size_of::<[u32; 2]>() as u64;
-        let chunks = normal_chunks(&adjacency.offsets, corner_bytes, limits).ok_or_else(|| {
-            GpuError::Input("a vertex has more incident triangles than one storage binding holds".into())
-        })?;
-        // Positions are read at any index, through two windows of at most one binding each.
-        let split =
-            (limits.max_binding.min(limits.max_buffer) / POSITION_STRIDE / 64 * 64).min(vertex_count as u64) as u32;
-        check_fits(
-            "the normals' second position window",
-            (vertex_count - split) as u64 * POSITION_STRIDE,
-            limits.max_binding,
-        )?;
-        let low = window(positions, &(0..split.max(1)), POSITION_STRIDE);
-        let high =
-            if split < vertex_count { window(positions, &(split..vertex_count), POSITION_STRIDE) } else { low.clone() };
-        let buffer = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("sweepffd normals"),
-            size: vertex_count as u64 * POSITION_STRIDE,
-            usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
-        let kernel = kernels::normals(device);
-        let dispatches = chunks
-            .iter()
-            .map(|range| {
-                let first = adjacency.offsets[range.start as usize];
-                let offsets: Vec<u32> =
-                    adjacency.offsets[range.start as usize..=range.end as usize].iter().map(|o| o - first).collect();
-                let corners = &adjacency.corners[first as usize..adjacency.offsets[range.end as usize] as usize];
-                // A binding may not be empty: a chunk without triangles gets one unused pair.
-                let corners: &[[u32; 2]] = if corners.is_empty() { &[[0, 0]] } else { corners };
-                let storage = |label, bytes: &[u8]| {
-                    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                        label: Some(label),
-                        contents: bytes,
-                        usage: wgpu::BufferUsages::STORAGE,
-                    })
-                };
-                let offsets = storage("sweepffd normal offsets", bytemuck::cast_slice(&offsets));
-                let corners = storage("sweepffd normal corners", bytemuck::cast_slice(corners));
-                let params = params_buffer(
-                    device,
-                    DispatchParams {
-                        vertex_count: range.len() as u32,
-                        first_vertex: range.start,
-                        window_split: split,
-                        _pad: 0,
-                    },
-                );
-                let group = kernel.bind_group(
-                    device,
-                    "sweepffd normals",
-                    &[
-                        params.as_entire_binding(),
-                        low.clone(),
-                        high.clone(),
-                        offsets.as_entire_binding(),
-                        corners.as_entire_binding(),
-                        window(&buffer, range, POSITION_STRIDE),
-                    ],
-                );
-                (group, dispatch_grid(range.len() as u32, limits))
-            })
-            .collect();
-        Ok(NormalsStage { kernel, buffer, dispatches })
-    }
-}
-
 fn check_input(rest: &[Sweep], positions: &[DVec3], bindings: &BindingSource) -> Result<(), GpuError> {
     if positions.is_empty() {
         return Err(GpuError::Input("the mesh has no vertices".into()));
@@ -471,69 +363,4 @@ fn check_input(rest: &[Sweep], positions: &[DVec3], bindings: &BindingSource) ->
         }
     }
     Ok(())
-}
-
-fn check_fits(what: &'static str, needed: u64, limit: u64) -> Result<(), GpuError> {
-    if needed > limit { Err(GpuError::TooLarge { what, needed, limit }) } else { Ok(()) }
-}
-
-/// The window of a per-vertex stream covering `range`.
-pub(crate) fn window<'a>(buffer: &'a wgpu::Buffer, range: &Range<u32>, stride: u64) -> wgpu::BindingResource<'a> {
-    wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-        buffer,
-        offset: range.start as u64 * stride,
-        size: wgpu::BufferSize::new(range.len() as u64 * stride),
-    })
-}
-
-pub(crate) fn params_buffer(device: &wgpu::Device, params: DispatchParams) -> wgpu::Buffer {
-    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("sweepffd dispatch params"),
-        contents: bytemuck::bytes_of(&params),
-        usage: wgpu::BufferUsages::UNIFORM,
-    })
-}
-
-/// Rest positions, tightly packed f32, in the output buffer (unbound vertices keep them).
-fn upload_positions(device: &wgpu::Device, positions: &[DVec3]) -> wgpu::Buffer {
-    let rest: Vec<f32> = positions.iter().flat_map(|p| p.as_vec3().to_array()).collect();
-    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("sweepffd positions"),
-        contents: bytemuck::cast_slice(&rest),
-        usage: wgpu::BufferUsages::VERTEX
-            | wgpu::BufferUsages::STORAGE
-            | wgpu::BufferUsages::COPY_SRC
-            | wgpu::BufferUsages::COPY_DST,
-    })
-}
-
-/// The cell records, padded to the uniform array's size for the uniform variant.
-fn cells_buffer(device: &wgpu::Device, coefficients: &SweepCoefficients, variant: DeformVariant) -> wgpu::Buffer {
-    let mut cells = coefficients.cells.clone();
-    if variant == DeformVariant::Uniform {
-        cells.resize(UNIFORM_CELL_CAPACITY as usize, CellCoeffs::default());
-    }
-    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("sweepffd cells"),
-        contents: bytemuck::cast_slice(&cells),
-        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-    })
-}
-
-/// A binding buffer holding `bindings`.
-fn binding_buffer_with(device: &wgpu::Device, bindings: &[GpuBinding]) -> wgpu::Buffer {
-    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("sweepffd bindings"),
-        contents: bytemuck::cast_slice(bindings),
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
-    })
-}
-
-pub(crate) fn empty_binding_buffer(device: &wgpu::Device, vertices: usize) -> wgpu::Buffer {
-    device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("sweepffd bindings"),
-        size: vertices as u64 * BINDING_STRIDE,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    })
 }

@@ -2,8 +2,8 @@
 
 use std::borrow::Cow;
 
-use super::deformer::DeformVariant;
 use super::shaders;
+use crate::coeffs::{CellCoeffs, UNIFORM_CELL_CAPACITY};
 
 /// How a kernel sees one of its bindings.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -89,6 +89,28 @@ impl Kernel {
 }
 
 use Slot::{Read, ReadWrite, Uniform};
+
+/// Where the deform kernel reads the cell records from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DeformVariant {
+    /// A uniform buffer of [`UNIFORM_CELL_CAPACITY`] records: much faster on lavapipe and many
+    /// GPUs; for rigs of up to that many cells on devices that allow 64 KiB uniform buffers.
+    Uniform,
+    /// A storage buffer: rigs of any size.
+    Storage,
+}
+
+impl DeformVariant {
+    /// The uniform variant when the rig's `cells` and the device allow it.
+    pub fn for_cells(cells: usize, limits: &wgpu::Limits) -> DeformVariant {
+        let bytes = UNIFORM_CELL_CAPACITY as u64 * size_of::<CellCoeffs>() as u64;
+        if cells <= UNIFORM_CELL_CAPACITY as usize && limits.max_uniform_buffer_binding_size >= bytes {
+            DeformVariant::Uniform
+        } else {
+            DeformVariant::Storage
+        }
+    }
+}
 
 /// `shaders/bind.wgsl`: params, cells, bind segments, sweeps, owners, positions (read);
 /// bindings (written).

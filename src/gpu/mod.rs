@@ -8,16 +8,20 @@
 //! them (and with the f64 reference) on lavapipe.
 
 pub(crate) mod binder;
+pub(crate) mod buffers;
 mod chunks;
 mod context;
 pub(crate) mod deformer;
 mod error;
 pub mod kernels;
+mod normals_pass;
 mod readback;
 pub mod shaders;
 
+pub use buffers::{BINDING_STRIDE, POSITION_STRIDE};
 pub use chunks::{ChunkLimits, dispatch_grid, normal_chunks, uniform_chunks};
 pub use context::GpuContext;
-pub use deformer::{BINDING_STRIDE, BindingSource, DeformVariant, GpuDeformer, POSITION_STRIDE};
+pub use deformer::{BindingSource, GpuDeformer};
 pub use error::GpuError;
+pub use kernels::DeformVariant;
 pub use readback::{read_bytes, wait};
