@@ -9,7 +9,8 @@ const KERNELS: &[(&str, &[&str])] = &[
     ("bind", &["layout.wgsl", "cells_storage.wgsl", "sweep_eval.wgsl", "bind.wgsl"]),
     ("deform_uniform", &["layout.wgsl", "cells_uniform.wgsl", "sweep_eval.wgsl", "deform.wgsl"]),
     ("deform_storage", &["layout.wgsl", "cells_storage.wgsl", "sweep_eval.wgsl", "deform.wgsl"]),
-    ("normals", &["layout.wgsl", "normals.wgsl"]),
+    ("normals_one_window", &["layout.wgsl", "normals.wgsl", "positions_one_window.wgsl"]),
+    ("normals_two_windows", &["layout.wgsl", "normals.wgsl", "positions_two_windows.wgsl"]),
     ("copy", &["layout.wgsl", "copy.wgsl"]),
     ("skinning", &["layout.wgsl", "skinning.wgsl"]),
 ];

@@ -1,26 +1,24 @@
 // Area-weighted vertex normals of the deformed mesh: for vertex i, the normalized sum of
-// (p_j - p_i) x (p_k - p_i) over its incident triangles (i, j, k), gathered per vertex from a
-// precomputed adjacency, so no atomics are needed.
-// Composed after layout.wgsl. Twin: src/cpu/normals.rs.
+// (p_j - p_i) x (p_k - p_i) over its incident triangles (i, j, k), gathered per vertex from its
+// precomputed fans of one-ring neighbours (consecutive entries make a triangle; an entry with
+// FAN_START begins a new fan), so no atomics are needed.
+// Composed after layout.wgsl and positions_one_window.wgsl or positions_two_windows.wgsl (which
+// define position(v)). Twin: src/cpu/normals.rs.
 
 @group(0) @binding(0) var<uniform> params: DispatchParams;
 // All positions through two windows, each within the storage binding limit: vertices below
-// params.window_split are read from the first, the others from the second.
+// params.window_split are read from the first, the others from the second (a mesh whose
+// positions fit one binding binds the same window twice and reads only the first).
 @group(0) @binding(1) var<storage, read> positions_low: array<f32>;
 @group(0) @binding(2) var<storage, read> positions_high: array<f32>;
-// This chunk's rows: vertex first_vertex + l has corner pairs offsets[l] .. offsets[l + 1].
+// This chunk's rows: vertex first_vertex + l has fan entries offsets[l] .. offsets[l + 1].
 @group(0) @binding(3) var<storage, read> offsets: array<u32>;
-@group(0) @binding(4) var<storage, read> corners: array<vec2<u32>>;
+@group(0) @binding(4) var<storage, read> fans: array<u32>;
+
+const FAN_START: u32 = 0x80000000u;
+const FAN_INDEX: u32 = 0x7fffffffu;
 // This chunk's window of the normals buffer, tightly packed xyz.
 @group(0) @binding(5) var<storage, read_write> normals: array<f32>;
-
-fn position(v: u32) -> vec3<f32> {
-    if (v < params.window_split) {
-        return vec3<f32>(positions_low[3u * v], positions_low[3u * v + 1u], positions_low[3u * v + 2u]);
-    }
-    let w = v - params.window_split;
-    return vec3<f32>(positions_high[3u * w], positions_high[3u * w + 1u], positions_high[3u * w + 2u]);
-}
 
 @compute @workgroup_size(WORKGROUP_SIZE)
 fn normals_main(
@@ -34,9 +32,14 @@ fn normals_main(
     }
     let p = position(params.first_vertex + l);
     var sum = vec3<f32>(0.0);
+    var previous = vec3<f32>(0.0);
     for (var c = offsets[l]; c < offsets[l + 1u]; c++) {
-        let corner = corners[c];
-        sum += cross(position(corner.x) - p, position(corner.y) - p);
+        let entry = fans[c];
+        let q = position(entry & FAN_INDEX) - p;
+        if ((entry & FAN_START) == 0u) {
+            sum += cross(previous, q);
+        }
+        previous = q;
     }
     var n = vec3<f32>(0.0);
     let length2 = dot(sum, sum);

@@ -5,10 +5,11 @@
 use std::mem::{offset_of, size_of};
 
 use sweepffd::coeffs::{
-    BindSegment, CellCoeffs, DispatchParams, GpuBinding, Joint, SkinInfluence, SweepInfo, UNIFORM_CELL_CAPACITY,
-    WORKGROUP_SIZE,
+    BindSegment, CellCoeffs, DispatchParams, GpuBinding, Joint, SkinInfluence, SweepInfo, UNBOUND,
+    UNIFORM_CELL_CAPACITY, WORKGROUP_SIZE,
 };
 use sweepffd::gpu::shaders;
+use sweepffd::normals::{FAN_INDEX, FAN_START};
 
 /// (struct name, size, [(member, offset)]) of a Rust buffer struct.
 type RustLayout = (&'static str, usize, Vec<(&'static str, usize)>);
@@ -84,18 +85,25 @@ fn shared_structs_have_the_rust_layout() {
     assert_eq!(checked, 7 * shaders::ALL.len());
 }
 
+/// The value of the `u32` constant `name` in a kernel, if it declares it.
+fn u32_constant(module: &naga::Module, name: &str) -> Option<u32> {
+    let (_, constant) = module.constants.iter().find(|(_, c)| c.name.as_deref() == Some(name))?;
+    match module.global_expressions[constant.init] {
+        naga::Expression::Literal(naga::Literal::U32(value)) => Some(value),
+        _ => None,
+    }
+}
+
 #[test]
-fn uniform_cell_capacity_is_the_rust_constant() {
+fn shared_constants_have_the_rust_values() {
     for (name, source, _) in shaders::ALL {
         let module = parse(name, source);
-        let capacity = module
-            .constants
-            .iter()
-            .find(|(_, c)| c.name.as_deref() == Some("UNIFORM_CELL_CAPACITY"))
-            .map(|(_, c)| &module.global_expressions[c.init]);
-        let Some(naga::Expression::Literal(naga::Literal::U32(capacity))) = capacity else {
-            panic!("{name}: no u32 UNIFORM_CELL_CAPACITY");
-        };
-        assert_eq!(*capacity, UNIFORM_CELL_CAPACITY, "{name}");
+        assert_eq!(u32_constant(&module, "UNIFORM_CELL_CAPACITY"), Some(UNIFORM_CELL_CAPACITY), "{name}");
+        assert_eq!(u32_constant(&module, "UNBOUND"), Some(UNBOUND), "{name}");
+    }
+    for source in [shaders::NORMALS_ONE_WINDOW, shaders::NORMALS_TWO_WINDOWS] {
+        let normals = parse("normals", source);
+        assert_eq!(u32_constant(&normals, "FAN_START"), Some(FAN_START));
+        assert_eq!(u32_constant(&normals, "FAN_INDEX"), Some(FAN_INDEX));
     }
 }

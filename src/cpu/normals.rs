@@ -1,20 +1,26 @@
 //! Twin of `shaders/normals.wgsl`: area-weighted vertex normals in f32, the normalized sum of
-//! (p_j − p_i) × (p_k − p_i) over the incident triangles (i, j, k) of each vertex.
+//! (p_j − p_i) × (p_k − p_i) over the incident triangles (i, j, k) of each vertex, read from its
+//! fans of one-ring neighbours.
 
 use glam::Vec3;
 use rayon::prelude::*;
 
 use super::position;
-use crate::normals::NormalAdjacency;
+use crate::normals::{FAN_INDEX, FAN_START, NormalAdjacency};
 
 /// One invocation of the kernel: the unit normal of vertex `i`, or zero if its triangles have
 /// no area. (The kernel reads positions through two windows; here one slice holds them all.)
-pub fn vertex_normal(positions: &[f32], offsets: &[u32], corners: &[[u32; 2]], i: usize) -> Vec3 {
+pub fn vertex_normal(positions: &[f32], offsets: &[u32], fans: &[u32], i: usize) -> Vec3 {
     let p = position(positions, i);
     let mut sum = Vec3::ZERO;
+    let mut previous = Vec3::ZERO;
     for c in offsets[i]..offsets[i + 1] {
-        let corner = corners[c as usize];
-        sum += (position(positions, corner[0] as usize) - p).cross(position(positions, corner[1] as usize) - p);
+        let entry = fans[c as usize];
+        let q = position(positions, (entry & FAN_INDEX) as usize) - p;
+        if entry & FAN_START == 0 {
+            sum += previous.cross(q);
+        }
+        previous = q;
     }
     let mut n = Vec3::ZERO;
     let length2 = sum.dot(sum);
@@ -28,6 +34,6 @@ pub fn vertex_normal(positions: &[f32], offsets: &[u32], corners: &[[u32; 2]], i
 /// xyz), written tightly packed into `normals`, in parallel.
 pub fn normals(positions: &[f32], adjacency: &NormalAdjacency, normals: &mut [f32]) {
     normals.par_chunks_mut(3).enumerate().for_each(|(i, out)| {
-        out.copy_from_slice(&vertex_normal(positions, &adjacency.offsets, &adjacency.corners, i).to_array());
+        out.copy_from_slice(&vertex_normal(positions, &adjacency.offsets, &adjacency.fans, i).to_array());
     });
 }

@@ -53,10 +53,10 @@ pub fn uniform_chunks(vertex_count: u32, stride: u64, limits: &ChunkLimits) -> V
 }
 
 /// Consecutive vertex ranges for the normals kernel: each chunk's rows of the adjacency
-/// (`offsets`, one more entry than vertices; `corner_bytes` per corner pair), its own offsets
-/// and its window of the normals (12 bytes a vertex) each fit one binding. `None` if a single
-/// vertex has more corners than one binding holds.
-pub fn normal_chunks(offsets: &[u32], corner_bytes: u64, limits: &ChunkLimits) -> Option<Vec<Range<u32>>> {
+/// (`offsets`, one more entry than vertices; `entry_bytes` per adjacency entry), its own
+/// offsets and its window of the normals (12 bytes a vertex) each fit one binding. `None` if a
+/// single vertex has more adjacency entries than one binding holds.
+pub fn normal_chunks(offsets: &[u32], entry_bytes: u64, limits: &ChunkLimits) -> Option<Vec<Range<u32>>> {
     let vertex_count = (offsets.len() - 1) as u32;
     let granule = limits.granule();
     let budget = limits.max_chunk_bytes();
@@ -65,9 +65,9 @@ pub fn normal_chunks(offsets: &[u32], corner_bytes: u64, limits: &ChunkLimits) -
     let mut start = 0u32;
     while start < vertex_count {
         let limit = start.saturating_add(vertex_cap).min(vertex_count);
-        let max_corner = offsets[start as usize] as u64 + budget / corner_bytes;
+        let max_entry = offsets[start as usize] as u64 + budget / entry_bytes;
         // The last end ≤ limit whose rows still fit: offsets is non-decreasing.
-        let fitting = offsets[start as usize..=limit as usize].partition_point(|&o| o as u64 <= max_corner) as u32;
+        let fitting = offsets[start as usize..=limit as usize].partition_point(|&o| o as u64 <= max_entry) as u32;
         let mut end = start + fitting.saturating_sub(1);
         if end < vertex_count {
             end = start + (end - start) / granule * granule;
@@ -130,21 +130,21 @@ mod tests {
     }
 
     #[test]
-    fn normal_chunks_respect_the_corner_budget() {
-        // Six corners per vertex, 8 bytes each, with a 4 KiB binding limit.
+    fn normal_chunks_respect_the_adjacency_budget() {
+        // Six entries per vertex, 8 bytes each, with a 4 KiB binding limit.
         let limits = ChunkLimits { max_binding: 4096, ..LAVAPIPE };
         let offsets: Vec<u32> = (0..=1000).map(|i| 6 * i).collect();
         let chunks = normal_chunks(&offsets, 8, &limits).unwrap();
         assert_eq!(chunks.last().unwrap().end, 1000);
         for chunk in &chunks {
-            let corners = (offsets[chunk.end as usize] - offsets[chunk.start as usize]) as u64;
-            assert!(corners * 8 <= 4096, "{chunk:?}");
+            let entries = (offsets[chunk.end as usize] - offsets[chunk.start as usize]) as u64;
+            assert!(entries * 8 <= 4096, "{chunk:?}");
             assert_eq!(chunk.start % 64, 0);
         }
     }
 
     #[test]
-    fn vertex_with_more_corners_than_a_binding_holds_is_refused() {
+    fn vertex_with_more_entries_than_a_binding_holds_is_refused() {
         let limits = ChunkLimits { max_binding: 64, ..LAVAPIPE };
         assert!(normal_chunks(&[0, 100], 8, &limits).is_none());
     }

@@ -129,11 +129,12 @@ pub fn deform(device: &wgpu::Device, variant: DeformVariant) -> Kernel {
     Kernel::new(device, "sweepffd deform", source, "deform_main", &[Uniform, cells, Read, ReadWrite])
 }
 
-/// `shaders/normals.wgsl`: params, positions (two windows), offsets, corners (read); normals
-/// (written).
-pub fn normals(device: &wgpu::Device) -> Kernel {
+/// `shaders/normals.wgsl`: params, positions (two windows), offsets, fans (read); normals
+/// (written). `two_windows` when the positions do not fit one storage binding.
+pub fn normals(device: &wgpu::Device, two_windows: bool) -> Kernel {
+    let source = if two_windows { shaders::NORMALS_TWO_WINDOWS } else { shaders::NORMALS_ONE_WINDOW };
     let slots = [Uniform, Read, Read, Read, Read, ReadWrite];
-    Kernel::new(device, "sweepffd normals", shaders::NORMALS, "normals_main", &slots)
+    Kernel::new(device, "sweepffd normals", source, "normals_main", &slots)
 }
 
 /// `shaders/copy.wgsl`: params, bindings (read); positions (written).

@@ -29,11 +29,12 @@ impl NormalsStage {
         limits: &ChunkLimits,
     ) -> Result<NormalsStage, GpuError> {
         let adjacency = NormalAdjacency::new(faces, vertex_count as usize);
-        let corner_bytes = size_of::<[u32; 2]>() as u64;
-        let chunks = normal_chunks(&adjacency.offsets, corner_bytes, limits).ok_or_else(|| {
+        let entry_bytes = size_of::<u32>() as u64;
+        let chunks = normal_chunks(&adjacency.offsets, entry_bytes, limits).ok_or_else(|| {
             GpuError::Input("a vertex has more incident triangles than one storage binding holds".into())
         })?;
-        // Positions are read at any index, through two windows of at most one binding each.
+        // Positions are read at any index, through two windows of at most one binding each; the
+        // second starts at a multiple of 64 vertices (768 bytes), aligned for any device.
         let split =
             (limits.max_binding.min(limits.max_buffer) / POSITION_STRIDE / 64 * 64).min(vertex_count as u64) as u32;
         check_fits(
@@ -50,16 +51,16 @@ impl NormalsStage {
             usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
-        let kernel = kernels::normals(device);
+        let kernel = kernels::normals(device, split < vertex_count);
         let dispatches = chunks
             .iter()
             .map(|range| {
                 let first = adjacency.offsets[range.start as usize];
                 let offsets: Vec<u32> =
                     adjacency.offsets[range.start as usize..=range.end as usize].iter().map(|o| o - first).collect();
-                let corners = &adjacency.corners[first as usize..adjacency.offsets[range.end as usize] as usize];
-                // A binding may not be empty: a chunk without triangles gets one unused pair.
-                let corners: &[[u32; 2]] = if corners.is_empty() { &[[0, 0]] } else { corners };
+                let fans = &adjacency.fans[first as usize..adjacency.offsets[range.end as usize] as usize];
+                // A binding may not be empty: a chunk without triangles gets one unused entry.
+                let fans: &[u32] = if fans.is_empty() { &[0] } else { fans };
                 let storage = |label, bytes: &[u8]| {
                     device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                         label: Some(label),
@@ -68,7 +69,7 @@ impl NormalsStage {
                     })
                 };
                 let offsets = storage("sweepffd normal offsets", bytemuck::cast_slice(&offsets));
-                let corners = storage("sweepffd normal corners", bytemuck::cast_slice(corners));
+                let fans = storage("sweepffd normal fans", bytemuck::cast_slice(fans));
                 let params = params_buffer(
                     device,
                     DispatchParams {
@@ -86,7 +87,7 @@ impl NormalsStage {
                         low.clone(),
                         high.clone(),
                         offsets.as_entire_binding(),
-                        corners.as_entire_binding(),
+                        fans.as_entire_binding(),
                         window(&buffer, range, POSITION_STRIDE),
                     ],
                 );

@@ -10,8 +10,12 @@ pub const DEFORM_UNIFORM: &str = include_str!(concat!(env!("OUT_DIR"), "/deform_
 /// Eq. 2 for every bound vertex, cell records in a storage buffer: `shaders/deform.wgsl` after
 /// `shaders/cells_storage.wgsl`, entry point `deform_main`.
 pub const DEFORM_STORAGE: &str = include_str!(concat!(env!("OUT_DIR"), "/deform_storage.wgsl"));
-/// Area-weighted vertex normals: `shaders/normals.wgsl`, entry point `normals_main`.
-pub const NORMALS: &str = include_str!(concat!(env!("OUT_DIR"), "/normals.wgsl"));
+/// Area-weighted vertex normals when the positions fit one storage binding:
+/// `shaders/normals.wgsl` with `shaders/positions_one_window.wgsl`, entry point `normals_main`.
+pub const NORMALS_ONE_WINDOW: &str = include_str!(concat!(env!("OUT_DIR"), "/normals_one_window.wgsl"));
+/// Area-weighted vertex normals reading the positions through two storage bindings:
+/// `shaders/normals.wgsl` with `shaders/positions_two_windows.wgsl`, entry point `normals_main`.
+pub const NORMALS_TWO_WINDOWS: &str = include_str!(concat!(env!("OUT_DIR"), "/normals_two_windows.wgsl"));
 /// Benchmark baseline moving the deform kernel's bytes: `shaders/copy.wgsl`, `copy_main`.
 pub const COPY: &str = include_str!(concat!(env!("OUT_DIR"), "/copy.wgsl"));
 /// Benchmark baseline, four-influence linear-blend skinning: `shaders/skinning.wgsl`,
@@ -19,11 +23,12 @@ pub const COPY: &str = include_str!(concat!(env!("OUT_DIR"), "/copy.wgsl"));
 pub const SKINNING: &str = include_str!(concat!(env!("OUT_DIR"), "/skinning.wgsl"));
 
 /// Every kernel as (name, composed source, entry point).
-pub const ALL: [(&str, &str, &str); 6] = [
+pub const ALL: [(&str, &str, &str); 7] = [
     ("bind", BIND, "bind_main"),
     ("deform_uniform", DEFORM_UNIFORM, "deform_main"),
     ("deform_storage", DEFORM_STORAGE, "deform_main"),
-    ("normals", NORMALS, "normals_main"),
+    ("normals_one_window", NORMALS_ONE_WINDOW, "normals_main"),
+    ("normals_two_windows", NORMALS_TWO_WINDOWS, "normals_main"),
     ("copy", COPY, "copy_main"),
     ("skinning", SKINNING, "skinning_main"),
 ];

@@ -13,40 +13,56 @@ use rayon::prelude::*;
 
 use crate::mesh::Faces;
 
-/// For each vertex i, the other two corners (j, k) of every triangle (i, j, k) incident to it,
-/// in the triangle's winding order, so that (p_j − p_i) × (p_k − p_i) is the triangle's
-/// area-weighted normal. Compressed rows: vertex i's corners are
-/// `corners[offsets[i]..offsets[i + 1]]`.
+/// Marks the first neighbour of a fan in [`NormalAdjacency::fans`].
+pub const FAN_START: u32 = 1 << 31;
+/// The neighbour's vertex index in a [`NormalAdjacency::fans`] entry.
+pub const FAN_INDEX: u32 = FAN_START - 1;
+
+/// For each vertex i, its incident triangles as fans: runs of one-ring neighbours j_0, j_1, …
+/// where each consecutive pair (j_m, j_{m+1}) makes the triangle (i, j_m, j_{m+1}) in winding
+/// order, so that (p_{j_m} − p_i) × (p_{j_{m+1}} − p_i) is its area-weighted normal. A closed
+/// manifold vertex of m triangles is one fan of m + 1 entries (the first neighbour repeated at
+/// the end); a boundary or non-manifold vertex has several fans, each entry that starts one
+/// carrying [`FAN_START`]. Every triangle is counted once. Compressed rows: vertex i's entries
+/// are `fans[offsets[i]..offsets[i + 1]]`.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct NormalAdjacency {
-    /// `vertex count + 1` row starts into `corners`.
+    /// `vertex count + 1` row starts into `fans`.
     pub offsets: Vec<u32>,
-    /// Corner pairs, row by row.
-    pub corners: Vec<[u32; 2]>,
+    /// Fan entries, row by row: a neighbour index, with [`FAN_START`] on a fan's first entry.
+    pub fans: Vec<u32>,
 }
 
 impl NormalAdjacency {
-    /// Builds the adjacency of the fan triangulation of `faces` over `vertex_count` vertices.
+    /// Builds the fans of the fan triangulation of `faces` over `vertex_count` vertices
+    /// (`vertex_count` below 2³¹).
     pub fn new(faces: &Faces, vertex_count: usize) -> NormalAdjacency {
-        let mut counts = vec![0u32; vertex_count + 1];
-        for [a, b, c] in faces.triangles() {
-            for v in [a, b, c] {
-                counts[v as usize + 1] += 1;
+        // Each vertex's triangles as directed edges (j → k) of its one-ring, grouped by vertex.
+        let mut starts = vec![0usize; vertex_count + 1];
+        for triangle in faces.triangles() {
+            for v in triangle {
+                starts[v as usize + 1] += 1;
             }
         }
         for i in 0..vertex_count {
-            counts[i + 1] += counts[i];
+            starts[i + 1] += starts[i];
         }
-        let offsets = counts;
-        let mut cursor = offsets.clone();
-        let mut corners = vec![[0u32; 2]; offsets[vertex_count] as usize];
+        let mut cursor = starts.clone();
+        let mut edges = vec![(0u32, 0u32); starts[vertex_count]];
         for [a, b, c] in faces.triangles() {
-            for (v, pair) in [(a, [b, c]), (b, [c, a]), (c, [a, b])] {
-                corners[cursor[v as usize] as usize] = pair;
+            for (v, edge) in [(a, (b, c)), (b, (c, a)), (c, (a, b))] {
+                edges[cursor[v as usize]] = edge;
                 cursor[v as usize] += 1;
             }
         }
-        NormalAdjacency { offsets, corners }
+        let mut offsets = Vec::with_capacity(vertex_count + 1);
+        let mut fans = Vec::with_capacity(edges.len() + vertex_count);
+        offsets.push(0);
+        for i in 0..vertex_count {
+            chain_edges(&mut edges[starts[i]..starts[i + 1]], &mut fans);
+            offsets.push(fans.len() as u32);
+        }
+        NormalAdjacency { offsets, fans }
     }
 
     /// Number of vertices.
@@ -54,9 +70,38 @@ impl NormalAdjacency {
         self.offsets.len() - 1
     }
 
-    /// The corner pairs of vertex `i`.
-    pub fn incident(&self, i: usize) -> &[[u32; 2]] {
-        &self.corners[self.offsets[i] as usize..self.offsets[i + 1] as usize]
+    /// The fan entries of vertex `i`.
+    pub fn fans_of(&self, i: usize) -> &[u32] {
+        &self.fans[self.offsets[i] as usize..self.offsets[i + 1] as usize]
+    }
+}
+
+/// Appends to `fans` the one-ring edges (j → k) of one vertex chained into fans: first from
+/// every j that no edge ends at (boundaries), then around the remaining cycles. Each edge is
+/// used once. Sorting by j makes finding the edge that continues a fan a binary search.
+fn chain_edges(edges: &mut [(u32, u32)], fans: &mut Vec<u32>) {
+    edges.sort_unstable();
+    let mut ends: Vec<u32> = edges.iter().map(|&(_, k)| k).collect();
+    ends.sort_unstable();
+    let mut used = vec![false; edges.len()];
+    let next_unused = |used: &[bool], j: u32| {
+        let first = edges.partition_point(|&(a, _)| a < j);
+        (first..edges.len()).take_while(|&e| edges[e].0 == j).find(|&e| !used[e])
+    };
+    let boundary_starts: Vec<usize> = (0..edges.len()).filter(|&e| ends.binary_search(&edges[e].0).is_err()).collect();
+    for start in boundary_starts.into_iter().chain(0..edges.len()) {
+        if used[start] {
+            continue;
+        }
+        used[start] = true;
+        let (j, mut k) = edges[start];
+        fans.push(j | FAN_START);
+        fans.push(k);
+        while let Some(e) = next_unused(&used, k) {
+            used[e] = true;
+            k = edges[e].1;
+            fans.push(k);
+        }
     }
 }
 
@@ -67,81 +112,18 @@ pub fn vertex_normals(positions: &[DVec3], adjacency: &NormalAdjacency) -> Vec<D
         .into_par_iter()
         .map(|i| {
             let p = positions[i];
-            let sum: DVec3 = adjacency
-                .incident(i)
-                .iter()
-                .map(|&[j, k]| (positions[j as usize] - p).cross(positions[k as usize] - p))
-                .sum();
+            let (mut sum, mut previous) = (DVec3::ZERO, DVec3::ZERO);
+            for &entry in adjacency.fans_of(i) {
+                let q = positions[(entry & FAN_INDEX) as usize] - p;
+                if entry & FAN_START == 0 {
+                    sum += previous.cross(q);
+                }
+                previous = q;
+            }
             sum.normalize_or_zero()
         })
         .collect()
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A unit cube of outward quads.
-    fn cube() -> (Vec<DVec3>, Faces) {
-        let positions: Vec<DVec3> =
-            (0..8).map(|i| DVec3::new((i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64)).collect();
-        let mut faces = Faces::new();
-        for quad in [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]] {
-            faces.push(&quad);
-        }
-        (positions, faces)
-    }
-
-    /// A regular octahedron, outward triangles: by symmetry each vertex normal is its axis.
-    fn octahedron() -> (Vec<DVec3>, Faces) {
-        let positions = vec![DVec3::X, DVec3::NEG_X, DVec3::Y, DVec3::NEG_Y, DVec3::Z, DVec3::NEG_Z];
-        let mut faces = Faces::new();
-        for [a, b, c] in [[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]] {
-            faces.push(&[a, b, c]);
-        }
-        (positions, faces)
-    }
-
-    #[test]
-    fn octahedron_vertex_normals_are_its_axes() {
-        let (positions, faces) = octahedron();
-        let normals = vertex_normals(&positions, &NormalAdjacency::new(&faces, positions.len()));
-        for (p, n) in positions.iter().zip(&normals) {
-            assert!((*n - *p).length() < 1e-15, "{p}: {n}");
-        }
-    }
-
-    #[test]
-    fn cube_corner_normals_point_outward() {
-        let (positions, faces) = cube();
-        let normals = vertex_normals(&positions, &NormalAdjacency::new(&faces, positions.len()));
-        for (p, n) in positions.iter().zip(&normals) {
-            let diagonal = (*p - DVec3::splat(0.5)).normalize();
-            // Fan-triangulated quads weight a corner's faces 1 or ½: within 0.35 rad of the diagonal.
-            assert!(n.angle_between(diagonal) < 0.35, "{p}: {n}");
-            assert!((n.length() - 1.0).abs() < 1e-15);
-        }
-    }
-
-    #[test]
-    fn every_triangle_corner_appears_once() {
-        let (positions, faces) = cube();
-        let adjacency = NormalAdjacency::new(&faces, positions.len());
-        assert_eq!(adjacency.corners.len(), 3 * faces.triangles().count());
-        for i in 0..positions.len() as u32 {
-            let containing = faces.triangles().filter(|t| t.contains(&i)).count();
-            assert_eq!(adjacency.incident(i as usize).len(), containing, "vertex {i}");
-            for &[j, k] in adjacency.incident(i as usize) {
-                assert!(faces.triangles().any(|t| t == [i, j, k] || t == [k, i, j] || t == [j, k, i]));
-            }
-        }
-    }
-
-    #[test]
-    fn isolated_vertex_has_zero_normal() {
-        let (mut positions, faces) = cube();
-        positions.push(DVec3::splat(9.0));
-        let normals = vertex_normals(&positions, &NormalAdjacency::new(&faces, positions.len()));
-        assert_eq!(normals[8], DVec3::ZERO);
-    }
-}
+mod tests;
