@@ -38,6 +38,7 @@ pub mod bind;
 pub mod coeffs;
 pub mod cpu;
 pub mod deform;
+pub mod edit;
 pub mod gpu;
 pub mod mesh;
 pub mod normals;

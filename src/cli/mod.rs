@@ -7,6 +7,7 @@ mod bind;
 mod deform;
 mod demo;
 mod info;
+mod pose;
 mod progress;
 mod volume;
 
@@ -16,6 +17,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 use backend::Backend;
+use sweepffd::edit::VolumeRule;
 
 /// Sweep-based freeform deformation of 3D meshes (Yoon & Kim).
 #[derive(Debug, Parser)]
@@ -65,6 +67,24 @@ enum Command {
         /// Where to bind and deform: the GPU kernels, the CPU, or the GPU when one is available.
         #[arg(long, value_enum, default_value_t = Backend::Auto)]
         backend: Backend,
+    },
+    /// Apply edits to a rig (with its hierarchy and a volume rule) and write the pose.
+    Pose {
+        /// The rest rig (JSON).
+        #[arg(long)]
+        rig: PathBuf,
+        /// The edits (JSON array), applied in order.
+        #[arg(long)]
+        edits: PathBuf,
+        /// Where to write the pose (a rig file `deform` takes as --pose).
+        #[arg(long)]
+        out: PathBuf,
+        /// Which volumes each edit keeps.
+        #[arg(long, value_enum, default_value_t = VolumeRule::None)]
+        volume: VolumeRule,
+        /// The closed mesh whose enclosed volume `--volume mesh` keeps.
+        #[arg(long)]
+        mesh: Option<PathBuf>,
     },
     /// Print each sweep's volume (Eq. 1) as JSON.
     Volume {
@@ -117,6 +137,9 @@ pub fn run() -> ExitCode {
         Command::Bind { mesh, rig, out, backend } => bind::run(&mesh, &rig, &out, backend, quiet),
         Command::Deform { mesh, rig, pose, out, bindings, backend } => {
             deform::run(&deform::Args { mesh, rig, pose, out, bindings, backend }, quiet)
+        }
+        Command::Pose { rig, edits, out, volume, mesh } => {
+            pose::run(&pose::Args { rig, edits, out, volume, mesh }, quiet)
         }
         Command::Volume { rig, pose } => volume::run(&rig, pose.as_deref()),
         Command::Info => info::run(),

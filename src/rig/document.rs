@@ -45,6 +45,29 @@ pub struct SweepDocument {
     /// Knots u_i, one per key, from 0 to 1, increasing; absent: chord length of the centers.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub knots: Option<Vec<f64>>,
+    /// The sweep this one hangs from in the hierarchy (§5); absent: a root.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub parent: Option<ParentLink>,
+}
+
+/// `"parent": {"sweep": "body", "kind": "branch"}`: a sweep's place in the hierarchy (§5).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ParentLink {
+    /// The parent sweep's name.
+    pub sweep: String,
+    /// How the child's keys are bound to the parent.
+    pub kind: LinkKind,
+}
+
+/// How a child sweep's keys are bound to cross-sections of its parent (§5, Fig. 11).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum LinkKind {
+    /// The first key is bound (the teapot's spout).
+    Branch,
+    /// The first and the last key are bound (the teapot's handle).
+    Loop,
 }
 
 /// The vertices a sweep owns: `"all"`, `{"groups": [...]}` or `{"indices": [...]}`.

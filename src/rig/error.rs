@@ -64,6 +64,18 @@ pub enum RigErrorKind {
         "sweep {sweep:?}: vertex index {index} (zero-based) is out of range (the mesh {mesh} has {count} vertices)"
     )]
     VertexOutOfRange { sweep: String, index: u32, mesh: String, count: usize },
+    #[error("sweep {sweep:?}: its parent {parent:?} is not a sweep of the rig")]
+    UnknownParent { sweep: String, parent: String },
+    #[error("the hierarchy has a cycle: {chain}")]
+    ParentCycle { chain: String },
+    #[error(
+        "sweep {sweep:?}: a loop child needs at least 3 keys (its first and last are bound to the parent), found {keys}"
+    )]
+    LoopTooShort { sweep: String, keys: usize },
+    #[error(
+        "sweep {sweep:?}: key {key} cannot be bound to its parent {parent:?}: its center lies beyond the parent's ends"
+    )]
+    LinkUnbound { sweep: String, key: usize, parent: String },
     #[error("vertex index {vertex} (zero-based) is claimed by both sweep {first:?} and sweep {second:?}")]
     VertexClaimedTwice { vertex: u32, first: String, second: String },
 }

@@ -9,12 +9,14 @@
 
 mod document;
 mod error;
+mod links;
 mod ownership;
 
 use std::path::{Path, PathBuf};
 
-pub use document::{FORMAT, KeyDocument, RigDocument, SweepDocument, VERSION, VertexSelection};
+pub use document::{FORMAT, KeyDocument, LinkKind, ParentLink, RigDocument, SweepDocument, VERSION, VertexSelection};
 pub use error::{RigError, RigErrorKind};
+pub use links::{KeyBinding, Link};
 
 use crate::sweep::{Key, Sweep};
 
@@ -29,6 +31,8 @@ pub struct RigSweep {
     pub keys: Vec<Key>,
     /// Explicit knots, or `None` for the chord length of the rest centers.
     pub knots: Option<Vec<f64>>,
+    /// Its parent in the hierarchy, or `None` for a root.
+    pub parent: Option<ParentLink>,
 }
 
 /// A validated rest rig: its sweeps and their rest sweep surfaces.
@@ -37,6 +41,7 @@ pub struct Rig {
     file: Option<PathBuf>,
     sweeps: Vec<RigSweep>,
     rest: Vec<Sweep>,
+    links: Vec<Option<Link>>,
 }
 
 impl Rig {
@@ -63,6 +68,7 @@ impl Rig {
                 vertices: sweep.vertices.clone(),
                 keys: sweep.keys.iter().map(Key::from).collect(),
                 knots: sweep.knots.clone(),
+                parent: sweep.parent.clone(),
             })
             .collect();
         Rig::build(sweeps, file)
@@ -85,7 +91,8 @@ impl Rig {
                     .map_err(|source| fail(RigErrorKind::Sweep { sweep: sweep.name.clone(), source }))
             })
             .collect::<Result<Vec<_>, _>>()?;
-        Ok(Rig { file, sweeps, rest })
+        let links = links::bind_links(&sweeps, &rest).map_err(fail)?;
+        Ok(Rig { file, sweeps, rest, links })
     }
 
     /// The rig file this rig was read from, if any.
@@ -96,6 +103,17 @@ impl Rig {
     /// The sweeps as given.
     pub fn sweeps(&self) -> &[RigSweep] {
         &self.sweeps
+    }
+
+    /// Each sweep's link to its parent in the hierarchy (§5), in the order of
+    /// [`Rig::sweeps`]; `None` for a root.
+    pub fn links(&self) -> &[Option<Link>] {
+        &self.links
+    }
+
+    /// The index of the sweep named `name`.
+    pub fn sweep_index(&self, name: &str) -> Option<usize> {
+        self.sweeps.iter().position(|sweep| sweep.name == name)
     }
 
     /// The rest sweep surfaces, in the order of [`Rig::sweeps`].
@@ -126,6 +144,7 @@ impl Rig {
                     vertices: sweep.vertices.clone(),
                     keys: keys(i).iter().map(KeyDocument::from).collect(),
                     knots: sweep.knots.clone(),
+                    parent: sweep.parent.clone(),
                 })
                 .collect(),
         }

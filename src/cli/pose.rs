@@ -1,0 +1,58 @@
+//! `sweepffd pose`: apply a list of edits to a rest rig, with hierarchy propagation and a volume
+//! rule, and write the pose file that `deform` takes.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use super::CliResult;
+use sweepffd::bind::bind_vertices;
+use sweepffd::edit::{BoundMesh, Posing, VolumeRule, parse_edits};
+use sweepffd::mesh::{Mesh, write_atomically};
+use sweepffd::rig::Rig;
+
+pub struct Args {
+    pub rig: PathBuf,
+    pub edits: PathBuf,
+    pub out: PathBuf,
+    pub volume: VolumeRule,
+    pub mesh: Option<PathBuf>,
+}
+
+pub fn run(args: &Args, quiet: bool) -> CliResult {
+    let rig = Rig::load(&args.rig)?;
+    let text =
+        std::fs::read_to_string(&args.edits).map_err(|e| format!("cannot read {}: {e}", args.edits.display()))?;
+    let edits = parse_edits(&text).map_err(|e| format!("{}: not a valid edits file: {e}", args.edits.display()))?;
+    let mesh = match (&args.mesh, args.volume) {
+        (Some(path), _) => Some((Mesh::load(path)?, path)),
+        (None, VolumeRule::Mesh) => return Err("--volume mesh needs --mesh".into()),
+        (None, _) => None,
+    };
+    let mut posing = Posing::new(&rig);
+    posing.volume = args.volume;
+    if let Some((mesh, path)) = &mesh {
+        let owners = rig.owners(mesh, &path.display().to_string())?;
+        let bindings = bind_vertices(rig.rest(), &owners, &mesh.positions, &|_| {});
+        posing = posing.with_mesh(BoundMesh { mesh, bindings });
+    }
+    for (i, edit) in edits.iter().enumerate() {
+        posing.apply(edit).map_err(|e| {
+            format!(
+                "{}: edit {i} ({} on {:?}): {e}; nothing was written",
+                args.edits.display(),
+                edit.op(),
+                edit.sweep()
+            )
+        })?;
+    }
+    write_pose(&args.out, &rig.pose_document(posing.keys()).to_json())?;
+    if !quiet {
+        println!("applied {} edits -> {}", edits.len(), args.out.display());
+    }
+    Ok(())
+}
+
+fn write_pose(path: &Path, text: &str) -> CliResult {
+    write_atomically(path, |out| out.write_all(text.as_bytes()))
+        .map_err(|e| format!("cannot write {}: {e}", path.display()).into())
+}

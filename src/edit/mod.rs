@@ -1,0 +1,29 @@
+//! Editing sweeps (§4–5): key cross-section edits, direct control of a surface point and of an
+//! arbitrary cross-section, hierarchies of sweeps and volume-preserving interaction. Rig-level
+//! work in f64 on the CPU: it touches tens of keys, not millions of vertices; the vertices
+//! follow through the bind and deform stages on either backend.
+//!
+//! Data flow: **rig** (edited into a pose here) → sweep → sweep coefficients → bind → deform →
+//! normals → output.
+
+mod controls;
+mod drag;
+mod edits;
+mod error;
+mod hierarchy;
+mod keys;
+mod posing;
+mod rigid;
+mod section;
+mod volume;
+
+pub use controls::Controls;
+pub use drag::{DEFAULT_DRAG_KEYS, DragMode, drag_point};
+pub use edits::{Edit, parse_edits};
+pub use error::EditError;
+pub use hierarchy::{propagate, propagate_down};
+pub use keys::{KeyMode, move_key, scale_radii};
+pub use posing::Posing;
+pub use rigid::{Motion, angle_between, chord_length};
+pub use section::{SectionTarget, move_sections};
+pub use volume::{BoundMesh, VolumeRule, Volumes};

@@ -1,0 +1,151 @@
+//! A pose being edited: the current keys of every sweep, changed edit by edit with hierarchy
+//! propagation and a volume rule; an edit that fails changes nothing.
+
+use glam::{DQuat, DVec3};
+
+use super::EditError;
+use super::controls::Controls;
+use super::drag::drag_point;
+use super::edits::Edit;
+use super::hierarchy::propagate;
+use super::keys::{move_key, scale_radii};
+use super::section::{SectionTarget, move_sections};
+use super::volume::{BoundMesh, VolumeRule, Volumes, apply_rule};
+use crate::bind::VertexBinding;
+use crate::rig::Rig;
+use crate::sweep::{Key, Sweep};
+
+/// The keys of every sweep of a rig, edited in place.
+#[derive(Clone, Debug)]
+pub struct Posing<'a> {
+    rig: &'a Rig,
+    keys: Vec<Vec<Key>>,
+    /// Whether edits propagate through the hierarchy (§5). On by default; off shows the broken
+    /// topology of Fig. 12.
+    pub hierarchy: bool,
+    /// The volume rule applied after each edit.
+    pub volume: VolumeRule,
+    /// Iteration limits and tolerances.
+    pub controls: Controls,
+    mesh: Option<BoundMesh<'a>>,
+}
+
+impl<'a> Posing<'a> {
+    /// Starts from the rest keys of `rig`.
+    pub fn new(rig: &'a Rig) -> Posing<'a> {
+        let keys = rig.sweeps().iter().map(|sweep| sweep.keys.clone()).collect();
+        Posing { rig, keys, hierarchy: true, volume: VolumeRule::None, controls: Controls::default(), mesh: None }
+    }
+
+    /// Binds a closed mesh for [`VolumeRule::Mesh`].
+    pub fn with_mesh(mut self, mesh: BoundMesh<'a>) -> Posing<'a> {
+        self.mesh = Some(mesh);
+        self
+    }
+
+    /// The current keys, sweep by sweep.
+    pub fn keys(&self) -> &[Vec<Key>] {
+        &self.keys
+    }
+
+    /// The current posed sweeps.
+    pub fn sweeps(&self) -> Result<Vec<Sweep>, EditError> {
+        self.keys
+            .iter()
+            .zip(self.rig.rest())
+            .map(|(keys, rest)| Sweep::try_new(keys, Some(rest.knots())).map_err(EditError::from))
+            .collect()
+    }
+
+    /// Applies `edit`, then the hierarchy and the volume rule. Returns the rounds the edit's own
+    /// iteration took (0 for the direct edits). On error nothing changes.
+    pub fn apply(&mut self, edit: &Edit) -> Result<usize, EditError> {
+        let rig = self.rig;
+        let sweep =
+            rig.sweep_index(edit.sweep()).ok_or_else(|| EditError::UnknownSweep { sweep: edit.sweep().into() })?;
+        let before = match self.volume {
+            VolumeRule::None => None,
+            _ => Some(Volumes::measure(rig, &self.keys, self.mesh.as_ref())?),
+        };
+        let mut keys = self.keys.clone();
+        let knots = rig.rest()[sweep].knots();
+        let rounds = apply_edit(edit, &mut keys[sweep], knots, &self.controls)?;
+        Sweep::try_new(&keys[sweep], Some(knots))?;
+        if self.hierarchy {
+            propagate(rig, &mut keys, sweep, &self.controls)?;
+        }
+        if let Some(before) = &before {
+            apply_rule(self.volume, rig, &mut keys, sweep, before, self.mesh.as_ref())?;
+        }
+        self.keys = keys;
+        Ok(rounds)
+    }
+}
+
+/// Applies one edit to the keys of its sweep.
+fn apply_edit(edit: &Edit, keys: &mut [Key], knots: &[f64], controls: &Controls) -> Result<usize, EditError> {
+    let key_in_range = |key: usize| {
+        if key < keys.len() {
+            Ok(key)
+        } else {
+            Err(EditError::KeyOutOfRange { sweep: edit.sweep().into(), key, count: keys.len() })
+        }
+    };
+    match edit {
+        Edit::MoveKey { key, translate, rotate, mode, .. } => {
+            let key = key_in_range(*key)?;
+            move_key(keys, key, vector(translate, "translate")?, rotation(rotate)?, *mode);
+            Ok(0)
+        }
+        Edit::ScaleRadii { key, factor, theta_range, .. } => {
+            let key = key_in_range(*key)?;
+            if !(factor.is_finite() && *factor > 0.0) {
+                return Err(EditError::Invalid(format!("\"factor\" must be a positive number, found {factor}")));
+            }
+            if theta_range.is_some_and(|r| !r.iter().all(|v| v.is_finite())) {
+                return Err(EditError::Invalid("\"theta_range\" must hold two finite angles".into()));
+            }
+            scale_radii(&mut keys[key], *factor, theta_range.map(|[a, b]| (a, b)));
+            Ok(0)
+        }
+        Edit::DragPoint { theta, t, to, mode, keys: k, .. } => {
+            let t = parameter(*t)?;
+            if !theta.is_finite() || *k == 0 {
+                return Err(EditError::Invalid("\"theta\" must be finite and \"keys\" at least 1".into()));
+            }
+            let point = VertexBinding { theta: *theta, t, d: 0.0, h: 0.0 };
+            drag_point(keys, knots, point, vector(to, "to")?, *mode, *k, controls)
+        }
+        Edit::MoveSection { t, translate, rotate, .. } => {
+            let t = parameter(*t)?;
+            let sweep = Sweep::try_new(keys, Some(knots))?;
+            let target = SectionTarget {
+                t,
+                center: sweep.center(t) + vector(translate, "translate")?,
+                rotation: (rotation(rotate)? * sweep.orientation(t)).normalize(),
+            };
+            move_sections(keys, knots, &[target], controls)
+        }
+    }
+}
+
+fn vector(v: &[f64; 3], name: &str) -> Result<DVec3, EditError> {
+    let v = DVec3::from_array(*v);
+    if v.is_finite() { Ok(v) } else { Err(EditError::Invalid(format!("\"{name}\" must be finite"))) }
+}
+
+fn rotation(q: &[f64; 4]) -> Result<DQuat, EditError> {
+    let q = DQuat::from_array(*q);
+    if !q.is_finite() || q.length_squared() == 0.0 {
+        return Err(EditError::Invalid("\"rotate\" must be a finite, non-zero quaternion [x, y, z, w]".into()));
+    }
+    Ok(q.normalize())
+}
+
+fn parameter(t: f64) -> Result<f64, EditError> {
+    if (0.0..=1.0).contains(&t) {
+        Ok(t)
+    } else {
+        Err(EditError::Invalid(format!("\"t\" must lie in [0, 1], found {t}")))
+    }
+}
