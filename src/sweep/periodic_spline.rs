@@ -3,59 +3,104 @@
 
 use super::cubic::CubicPiece;
 
-/// Second derivatives at the nodes of the periodic cubic spline through `values` at uniform
-/// spacing `h` (the spline wraps from the last node back to the first).
+/// The cyclic system `M_{j−1} + 4·M_j + M_{j+1} = 6/h²·(y_{j+1} − 2·y_j + y_{j−1})` of the
+/// periodic spline on M uniform nodes at spacing `h`, factorized once and solved for any
+/// number of value sets on the same nodes (a sweep solves it 4× per knot interval).
 ///
-/// Solves the cyclic system `M_{j−1} + 4·M_j + M_{j+1} = 6/h²·(y_{j+1} − 2·y_j + y_{j−1})` by the
-/// Sherman–Morrison correction of the Thomas algorithm. Needs `values.len() >= 3`.
-pub fn periodic_second_derivatives(values: &[f64], h: f64) -> Vec<f64> {
-    let n = values.len();
-    let rhs: Vec<f64> = (0..n)
-        .map(|j| {
-            let prev = values[(j + n - 1) % n];
-            let next = values[(j + 1) % n];
-            6.0 / (h * h) * (next - 2.0 * values[j] + prev)
-        })
-        .collect();
-    // A = T + u·vᵀ with u = (γ, 0, …, 0, 1), v = (1, 0, …, 0, 1/γ): T is tridiagonal (1, 4, 1)
-    // with its first and last diagonal entries adjusted so that the corners are absorbed.
-    let gamma = -4.0;
-    let mut diag = vec![4.0; n];
-    diag[0] -= gamma;
-    diag[n - 1] -= 1.0 / gamma;
-    let x = solve_unit_tridiagonal(&diag, &rhs);
-    let mut u = vec![0.0; n];
-    u[0] = gamma;
-    u[n - 1] = 1.0;
-    let z = solve_unit_tridiagonal(&diag, &u);
-    let factor = (x[0] + x[n - 1] / gamma) / (1.0 + z[0] + z[n - 1] / gamma);
-    x.iter().zip(&z).map(|(xi, zi)| xi - factor * zi).collect()
+/// A = T + u·vᵀ with u = (γ, 0, …, 0, 1), v = (1, 0, …, 0, 1/γ): T is tridiagonal (1, 4, 1)
+/// with its first and last diagonal entries adjusted so that the corners are absorbed, solved
+/// by the Thomas algorithm, and the Sherman–Morrison correction along z = T⁻¹u restores A.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PeriodicSplineSystem {
+    h: f64,
+    /// 1/d_i, the reciprocals of T's pivots after forward elimination.
+    inverse_pivots: Vec<f64>,
+    /// T⁻¹u.
+    z: Vec<f64>,
+    /// 1/(1 + vᵀz).
+    inverse_denominator: f64,
 }
 
-/// Solves a tridiagonal system whose off-diagonal entries are all 1.
-fn solve_unit_tridiagonal(diag: &[f64], rhs: &[f64]) -> Vec<f64> {
-    let n = diag.len();
-    let mut d = diag.to_vec();
-    let mut y = rhs.to_vec();
-    for i in 1..n {
-        let w = 1.0 / d[i - 1];
-        d[i] -= w;
-        y[i] -= w * y[i - 1];
+/// γ of the Sherman–Morrison split.
+const GAMMA: f64 = -4.0;
+
+impl PeriodicSplineSystem {
+    /// Factorizes the system for `n >= 3` nodes at spacing `h`.
+    pub fn new(n: usize, h: f64) -> PeriodicSplineSystem {
+        let mut inverse_pivots = vec![0.0; n];
+        let mut pivot = 4.0 - GAMMA;
+        for (i, inverse) in inverse_pivots.iter_mut().enumerate() {
+            if i > 0 {
+                pivot = if i == n - 1 { 4.0 - 1.0 / GAMMA } else { 4.0 } - 1.0 / pivot;
+            }
+            *inverse = 1.0 / pivot;
+        }
+        let mut system = PeriodicSplineSystem { h, inverse_pivots, z: vec![0.0; n], inverse_denominator: 0.0 };
+        let mut u = vec![0.0; n];
+        u[0] = GAMMA;
+        u[n - 1] = 1.0;
+        let mut z = vec![0.0; n];
+        system.solve_tridiagonal(&mut u, &mut z);
+        system.inverse_denominator = 1.0 / (1.0 + z[0] + z[n - 1] / GAMMA);
+        system.z = z;
+        system
     }
-    let mut x = vec![0.0; n];
-    x[n - 1] = y[n - 1] / d[n - 1];
-    for i in (0..n - 1).rev() {
-        x[i] = (y[i] - x[i + 1]) / d[i];
+
+    /// Solves T·x = y (y is overwritten by the forward elimination).
+    fn solve_tridiagonal(&self, y: &mut [f64], x: &mut [f64]) {
+        let n = y.len();
+        for i in 1..n {
+            y[i] -= self.inverse_pivots[i - 1] * y[i - 1];
+        }
+        x[n - 1] = y[n - 1] * self.inverse_pivots[n - 1];
+        for i in (0..n - 1).rev() {
+            x[i] = (y[i] - x[i + 1]) * self.inverse_pivots[i];
+        }
     }
-    x
+
+    /// The second derivatives at the nodes of the spline through `values` into `m`, using
+    /// `scratch` (both of the system's length).
+    pub fn second_derivatives_into(&self, values: &[f64], scratch: &mut [f64], m: &mut [f64]) {
+        let n = values.len();
+        let k = 6.0 / (self.h * self.h);
+        for (j, rhs) in scratch.iter_mut().enumerate() {
+            let prev = values[(j + n - 1) % n];
+            let next = values[(j + 1) % n];
+            *rhs = k * (next - 2.0 * values[j] + prev);
+        }
+        self.solve_tridiagonal(scratch, m);
+        let factor = (m[0] + m[n - 1] / GAMMA) * self.inverse_denominator;
+        for (mj, zj) in m.iter_mut().zip(&self.z) {
+            *mj -= factor * zj;
+        }
+    }
+
+    /// Piece `j` (from node `j` to node `(j + 1) mod M`) of the spline with node values
+    /// `values` and second derivatives `m`.
+    pub fn piece(&self, values: &[f64], m: &[f64], j: usize) -> CubicPiece {
+        let n = values.len();
+        CubicPiece { y0: values[j], y1: values[(j + 1) % n], m0: m[j], m1: m[(j + 1) % n], h: self.h }
+    }
+}
+
+/// Second derivatives at the nodes of the periodic cubic spline through `values` at uniform
+/// spacing `h` (the spline wraps from the last node back to the first). Needs
+/// `values.len() >= 3`.
+pub fn periodic_second_derivatives(values: &[f64], h: f64) -> Vec<f64> {
+    let n = values.len();
+    let (mut scratch, mut m) = (vec![0.0; n], vec![0.0; n]);
+    PeriodicSplineSystem::new(n, h).second_derivatives_into(values, &mut scratch, &mut m);
+    m
 }
 
 /// The M cubic pieces of the periodic spline through `values` at spacing `h`; piece `j` runs
 /// from node `j` to node `(j + 1) mod M`.
 pub fn periodic_spline_pieces(values: &[f64], h: f64) -> Vec<CubicPiece> {
     let n = values.len();
-    let m = periodic_second_derivatives(values, h);
-    (0..n).map(|j| CubicPiece { y0: values[j], y1: values[(j + 1) % n], m0: m[j], m1: m[(j + 1) % n], h }).collect()
+    let system = PeriodicSplineSystem::new(n, h);
+    let (mut scratch, mut m) = (vec![0.0; n], vec![0.0; n]);
+    system.second_derivatives_into(values, &mut scratch, &mut m);
+    (0..n).map(|j| system.piece(values, &m, j)).collect()
 }
 
 #[cfg(test)]
@@ -95,6 +140,22 @@ mod tests {
         for (j, piece) in pieces.iter().enumerate() {
             let theta = (j as f64 + 0.5) * h;
             assert!((piece.value(0.5) - theta.cos()).abs() < 1e-5);
+        }
+    }
+
+    #[test]
+    fn one_factorization_solves_many_value_sets() {
+        let system = PeriodicSplineSystem::new(6, TAU / 6.0);
+        let (mut scratch, mut m) = ([0.0; 6], [0.0; 6]);
+        for shift in 0..3 {
+            let values: Vec<f64> = (0..6).map(|j| ((j + shift) as f64 * 0.9).sin() + 2.0).collect();
+            system.second_derivatives_into(&values, &mut scratch, &mut m);
+            let h2 = (TAU / 6.0).powi(2);
+            for j in 0..6 {
+                let lhs = m[(j + 5) % 6] + 4.0 * m[j] + m[(j + 1) % 6];
+                let rhs = 6.0 / h2 * (values[(j + 1) % 6] - 2.0 * values[j] + values[(j + 5) % 6]);
+                assert!((lhs - rhs).abs() < 1e-12, "row {j}: {lhs} vs {rhs}");
+            }
         }
     }
 

@@ -8,9 +8,8 @@
 
 use std::f64::consts::TAU;
 
-use super::natural_spline::natural_spline_pieces;
-use super::periodic_spline::periodic_spline_pieces;
-use super::quadrature::gauss_legendre_4;
+use super::natural_spline::NaturalSplineSystem;
+use super::periodic_spline::PeriodicSplineSystem;
 
 /// r on one (knot interval, angular interval) cell: `r(s, φ) = Σ_p Σ_q c[p][q]·s^p·φ^q`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -52,21 +51,30 @@ impl RadiusField {
         let samples = radii[0].len();
         let segments = knots.len() - 1;
         // Natural spline in t through each angular node: power coefficients a_p(k, j).
+        let along = NaturalSplineSystem::new(knots);
+        let (mut column, mut m) = (vec![0.0; knots.len()], vec![0.0; knots.len()]);
         let mut along_t = vec![[0.0; 4]; segments * samples];
         for j in 0..samples {
-            let column: Vec<f64> = radii.iter().map(|key| key[j]).collect();
-            for (k, piece) in natural_spline_pieces(knots, &column).iter().enumerate() {
-                along_t[k * samples + j] = piece.power_coefficients();
+            for (value, key) in column.iter_mut().zip(radii) {
+                *value = key[j];
+            }
+            along.second_derivatives_into(&column, &mut m);
+            for k in 0..segments {
+                along_t[k * samples + j] = along.piece(&column, &m, k).power_coefficients();
             }
         }
         // Periodic spline in θ through each power coefficient: the bicubic c[p][q].
-        let step = TAU / samples as f64;
+        let around = PeriodicSplineSystem::new(samples, TAU / samples as f64);
+        let (mut row, mut scratch, mut m) = (vec![0.0; samples], vec![0.0; samples], vec![0.0; samples]);
         let mut patches = vec![RadiusPatch { c: [[0.0; 4]; 4] }; segments * samples];
         for (cells, patch_row) in along_t.chunks(samples).zip(patches.chunks_mut(samples)) {
             for p in 0..4 {
-                let row: Vec<f64> = cells.iter().map(|cell| cell[p]).collect();
-                for (patch, piece) in patch_row.iter_mut().zip(periodic_spline_pieces(&row, step)) {
-                    patch.c[p] = piece.power_coefficients();
+                for (value, cell) in row.iter_mut().zip(cells) {
+                    *value = cell[p];
+                }
+                around.second_derivatives_into(&row, &mut scratch, &mut m);
+                for (j, patch) in patch_row.iter_mut().enumerate() {
+                    patch.c[p] = around.piece(&row, &m, j).power_coefficients();
                 }
             }
         }
@@ -90,18 +98,46 @@ impl RadiusField {
     }
 
     /// Cross-section area A = ½ ∫₀^{2π} r(θ, t)² dθ on knot interval `segment` at local
-    /// parameter `s`. r² is a polynomial of degree 6 in φ, so four Gauss–Legendre nodes per
-    /// angular interval integrate it exactly.
+    /// parameter `s`.
     pub fn area(&self, segment: usize, s: f64) -> f64 {
-        let rule = gauss_legendre_4();
-        let step = TAU / self.samples as f64;
-        let integral: f64 = (0..self.samples)
-            .map(|j| {
-                let patch = self.patch(segment, j);
-                rule.integrate(0.0, 1.0, |phi| patch.value(s, phi).powi(2))
-            })
-            .sum();
-        0.5 * integral * step
+        AreaPolynomial::new(self, segment).value(s)
+    }
+}
+
+/// A(s) = ½ ∫₀^{2π} r(θ, s)² dθ on one knot interval as the degree-6 polynomial it is (r is
+/// cubic in s), integrated in θ exactly: with r = Σ_p s^p Σ_q c[p][q] φ^q on each angular
+/// interval, ∫₀¹ φ^q φ^q′ dφ = 1/(q + q′ + 1).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AreaPolynomial {
+    /// Power-basis coefficients in s.
+    pub a: [f64; 7],
+}
+
+impl AreaPolynomial {
+    /// The area polynomial of knot interval `segment` of `field`.
+    pub fn new(field: &RadiusField, segment: usize) -> AreaPolynomial {
+        let mut a = [0.0; 7];
+        for j in 0..field.samples {
+            let c = &field.patch(segment, j).c;
+            for p in 0..4 {
+                for p2 in p..4 {
+                    let mut sum = 0.0;
+                    for q in 0..4 {
+                        for q2 in 0..4 {
+                            sum += c[p][q] * c[p2][q2] / (q + q2 + 1) as f64;
+                        }
+                    }
+                    a[p + p2] += if p2 == p { sum } else { 2.0 * sum };
+                }
+            }
+        }
+        let half_step = 0.5 * TAU / field.samples as f64;
+        AreaPolynomial { a: a.map(|x| x * half_step) }
+    }
+
+    /// A at local parameter `s`.
+    pub fn value(&self, s: f64) -> f64 {
+        self.a.iter().rev().fold(0.0, |acc, &c| acc * s + c)
     }
 }
 
@@ -128,6 +164,23 @@ mod tests {
     fn constant_radius_has_circle_area() {
         let field = RadiusField::new(&[0.0, 1.0], &[&[2.0; 6], &[2.0; 6]]);
         assert!((field.area(0, 0.4) - PI * 4.0).abs() < 1e-13);
+    }
+
+    #[test]
+    fn area_polynomial_matches_quadrature_of_r_squared() {
+        let knots = [0.0, 0.4, 1.0];
+        let radii: [&[f64]; 3] = [&[1.0, 2.0, 1.5, 0.5, 0.9], &[0.7, 0.7, 0.9, 1.1, 1.3], &[2.0, 1.0, 3.0, 2.5, 0.4]];
+        let field = RadiusField::new(&knots, &radii);
+        let rule = crate::sweep::quadrature::gauss_legendre_4();
+        for segment in 0..2 {
+            for s in [0.0, 0.3, 0.77, 1.0] {
+                let step = TAU / 5.0;
+                let expected: f64 = (0..5)
+                    .map(|j| 0.5 * step * rule.integrate(0.0, 1.0, |phi| field.patch(segment, j).value(s, phi).powi(2)))
+                    .sum();
+                assert!((field.area(segment, s) - expected).abs() < 1e-13 * expected, "{segment} {s}");
+            }
+        }
     }
 
     #[test]

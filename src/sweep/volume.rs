@@ -5,13 +5,14 @@ use glam::DVec3;
 
 use super::Sweep;
 use super::quadrature::integrate_adaptive;
+use super::radius::AreaPolynomial;
 
 /// Relative accuracy the quadrature aims at; the contract is 1e-9.
 const VOLUME_TOLERANCE: f64 = 1e-12;
 
 impl Sweep {
     /// The volume of Eq. 1, in cubic mesh units, by adaptive Gauss–Legendre quadrature over each
-    /// knot interval (A(t) itself is integrated exactly in θ). Signed: a sweep whose normals
+    /// knot interval (A(t) itself is integrated exactly in θ, as a polynomial in t). Signed: a sweep whose normals
     /// point against its direction of travel has negative volume.
     pub fn volume(&self) -> f64 {
         self.segments()
@@ -19,9 +20,10 @@ impl Sweep {
             .enumerate()
             .map(|(k, segment)| {
                 let h = segment.t1 - segment.t0;
+                let area = AreaPolynomial::new(self.radius_field(), k);
                 let mut integrand = |s: f64| {
                     let normal = segment.orientation.value(s) * DVec3::Z;
-                    self.radius_field().area(k, s) * normal.dot(segment.curve.derivative(s))
+                    area.value(s) * normal.dot(segment.curve.derivative(s))
                 };
                 h * integrate_adaptive(0.0, 1.0, VOLUME_TOLERANCE, &mut integrand)
             })
