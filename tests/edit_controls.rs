@@ -109,3 +109,34 @@ fn move_section_reaches_position_and_orientation() {
     assert!(iterations <= 50);
     assert!(distance <= 1e-4 * length && angle <= 1e-3, "{distance} {angle}");
 }
+
+#[test]
+fn dragging_a_bound_vertex_puts_the_deformed_vertex_on_target() {
+    use sweepffd::bind::bind_vertices;
+    use sweepffd::deform::deform_vertices;
+    use sweepffd::edit::{Edit, Posing};
+    use sweepffd::synthetic::{Tube, tube_rig};
+
+    // The rig's radius is smaller than the mesh's, so the vertices are bound with d > 0.
+    let tube = Tube { rings: 24, around: 16, length: 3.0, radius: 0.4 };
+    let mesh = tube.mesh();
+    let rig = tube_rig(&Tube { radius: 0.3, ..tube }, 5, 8);
+    let owners = rig.owners(&mesh, "tube").unwrap();
+    let bindings = bind_vertices(rig.rest(), &owners, &mesh.positions, &|_| {});
+    let vertex = 12 * 16 + 5;
+    assert_eq!(bindings[vertex].sweep, 0);
+    let VertexBinding { theta, t, d, h } = bindings[vertex].params;
+    assert!(d > 0.05, "the vertex lies off the sweep: d = {d}");
+    let target = mesh.positions[vertex] + DVec3::new(0.4, -0.3, 0.2);
+
+    let mut posing = Posing::new(&rig);
+    let edit =
+        Edit::DragPoint { sweep: "tube".into(), theta, t, d, h, to: target.to_array(), mode: DragMode::Both, keys: 2 };
+    posing.apply(&edit).unwrap();
+    let posed = posing.sweeps().unwrap();
+    let mut deformed = vec![DVec3::ZERO; mesh.positions.len()];
+    deform_vertices(&posed, &bindings, &mesh.positions, &mut deformed);
+    let miss = deformed[vertex].distance(target);
+    println!("bound vertex {vertex}: {:.2e} × length from its target", miss / 3.0);
+    assert!(miss <= 1e-4 * 3.0, "{} vs {target}", deformed[vertex]);
+}

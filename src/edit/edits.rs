@@ -37,11 +37,16 @@ pub enum Edit {
         #[serde(default)]
         theta_range: Option<[f64; 2]>,
     },
-    /// Drags the surface point S(θ, t) to `to` by editing up to `keys` keys below it.
+    /// Drags the point (θ, t, d, h) to `to` by editing up to `keys` keys below it: the surface
+    /// point S(θ, t) with d = h = 0 (the default), or a bound vertex with its binding's d and h.
     DragPoint {
         sweep: String,
         theta: f64,
         t: f64,
+        #[serde(default)]
+        d: f64,
+        #[serde(default)]
+        h: f64,
         to: [f64; 3],
         #[serde(default)]
         mode: DragMode,

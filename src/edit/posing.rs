@@ -108,12 +108,15 @@ fn apply_edit(edit: &Edit, keys: &mut [Key], knots: &[f64], controls: &Controls)
             scale_radii(&mut keys[key], *factor, theta_range.map(|[a, b]| (a, b)));
             Ok(0)
         }
-        Edit::DragPoint { theta, t, to, mode, keys: k, .. } => {
+        Edit::DragPoint { theta, t, d, h, to, mode, keys: k, .. } => {
             let t = parameter(*t)?;
-            if !theta.is_finite() || *k == 0 {
-                return Err(EditError::Invalid("\"theta\" must be finite and \"keys\" at least 1".into()));
+            if ![theta, d, h].iter().all(|v| v.is_finite()) {
+                return Err(EditError::Invalid("\"theta\", \"d\" and \"h\" must be finite".into()));
             }
-            let point = VertexBinding { theta: *theta, t, d: 0.0, h: 0.0 };
+            if *k == 0 {
+                return Err(EditError::Invalid("\"keys\" must be at least 1".into()));
+            }
+            let point = VertexBinding { theta: *theta, t, d: *d, h: *h };
             drag_point(keys, knots, point, vector(to, "to")?, *mode, *k, controls)
         }
         Edit::MoveSection { t, translate, rotate, .. } => {
