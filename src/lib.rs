@@ -39,6 +39,7 @@ pub mod coeffs;
 pub mod cpu;
 pub mod deform;
 pub mod edit;
+pub mod fit;
 pub mod gpu;
 pub mod mesh;
 pub mod normals;

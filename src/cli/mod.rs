@@ -6,6 +6,7 @@ mod bench;
 mod bind;
 mod deform;
 mod demo;
+mod fit;
 mod info;
 mod pose;
 mod progress;
@@ -18,6 +19,26 @@ use clap::{Parser, Subcommand};
 
 use backend::Backend;
 use sweepffd::edit::VolumeRule;
+use sweepffd::fit::FitOptions;
+use sweepffd::rig::LinkKind;
+
+/// How a fitted sweep hangs from its parent (§5).
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+enum LinkKindArg {
+    /// The first key is bound to the parent.
+    Branch,
+    /// The first and last keys are bound to the parent.
+    Loop,
+}
+
+impl From<LinkKindArg> for LinkKind {
+    fn from(kind: LinkKindArg) -> LinkKind {
+        match kind {
+            LinkKindArg::Branch => LinkKind::Branch,
+            LinkKindArg::Loop => LinkKind::Loop,
+        }
+    }
+}
 
 /// Sweep-based freeform deformation of 3D meshes (Yoon & Kim).
 #[derive(Debug, Parser)]
@@ -86,6 +107,48 @@ enum Command {
         #[arg(long)]
         mesh: Option<PathBuf>,
     },
+    /// Fit a control sweep to a part of a mesh (§3) and write it into a rig.
+    Fit {
+        /// The mesh (.obj or .ply).
+        #[arg(long)]
+        mesh: PathBuf,
+        /// A face group of the mesh that makes up the part; repeat for several.
+        #[arg(long = "group")]
+        groups: Vec<String>,
+        /// A file of the part's zero-based vertex indices (JSON array, or separated by spaces or commas).
+        #[arg(long)]
+        indices: Option<PathBuf>,
+        /// First guess at the axis, a polyline "x0,y0,z0;x1,y1,z1;..." (default: the part's principal axis).
+        #[arg(long, allow_hyphen_values = true)]
+        axis: Option<String>,
+        /// Keys placed along the axis before any is inserted.
+        #[arg(long, default_value_t = 6)]
+        keys: usize,
+        /// Radii M sampled per key.
+        #[arg(long, default_value_t = 16)]
+        radii: usize,
+        /// The most keys insertion may reach.
+        #[arg(long, default_value_t = 24)]
+        max_keys: usize,
+        /// A knot interval whose RMS |d| exceeds this fraction of the mean radius gets a key inserted.
+        #[arg(long, default_value_t = 0.05)]
+        tolerance: f64,
+        /// The sweep's name (default: the groups joined by "+", or the indices file's stem).
+        #[arg(long)]
+        name: Option<String>,
+        /// Hang the sweep from this sweep of the rig (--append-to) in the hierarchy.
+        #[arg(long)]
+        parent: Option<String>,
+        /// How the sweep hangs from --parent.
+        #[arg(long, value_enum, default_value_t = LinkKindArg::Branch)]
+        kind: LinkKindArg,
+        /// Where to write the rig.
+        #[arg(long)]
+        out: PathBuf,
+        /// Add the sweep to this rig's sweeps instead of starting a new rig (may equal --out).
+        #[arg(long)]
+        append_to: Option<PathBuf>,
+    },
     /// Print each sweep's volume (Eq. 1) as JSON.
     Volume {
         /// The rig (JSON).
@@ -140,6 +203,25 @@ pub fn run() -> ExitCode {
         }
         Command::Pose { rig, edits, out, volume, mesh } => {
             pose::run(&pose::Args { rig, edits, out, volume, mesh }, quiet)
+        }
+        Command::Fit {
+            mesh,
+            groups,
+            indices,
+            axis,
+            keys,
+            radii,
+            max_keys,
+            tolerance,
+            name,
+            parent,
+            kind,
+            out,
+            append_to,
+        } => {
+            let options = FitOptions { axis: None, keys, radii, max_keys, tolerance };
+            let kind = kind.into();
+            fit::run(&fit::Args { mesh, groups, indices, axis, options, name, parent, kind, out, append_to }, quiet)
         }
         Command::Volume { rig, pose } => volume::run(&rig, pose.as_deref()),
         Command::Info => info::run(),

@@ -209,6 +209,14 @@ impl Rig {
     }
 }
 
+impl RigDocument {
+    /// Reads and parses a rig or pose file without validating it (see [`Rig::from_document`]);
+    /// errors name the file.
+    pub fn load(path: &Path) -> Result<RigDocument, RigError> {
+        read_document(path)
+    }
+}
+
 fn read_document(path: &Path) -> Result<RigDocument, RigError> {
     let file = Some(path.to_path_buf());
     let text = std::fs::read_to_string(path).map_err(|e| RigError::new(file.clone(), RigErrorKind::Io(e)))?;

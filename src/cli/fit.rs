@@ -1,0 +1,191 @@
+//! `sweepffd fit`: fit a control sweep to a part of a mesh (§3, Fig. 3) and write it as a rig.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use glam::DVec3;
+
+use super::CliResult;
+use sweepffd::fit::{Fit, FitOptions, fit};
+use sweepffd::mesh::{Mesh, write_atomically};
+use sweepffd::rig::{
+    FORMAT, KeyDocument, LinkKind, ParentLink, Rig, RigDocument, SweepDocument, VERSION, VertexSelection,
+};
+
+pub struct Args {
+    pub mesh: PathBuf,
+    pub groups: Vec<String>,
+    pub indices: Option<PathBuf>,
+    pub axis: Option<String>,
+    pub options: FitOptions,
+    pub name: Option<String>,
+    pub parent: Option<String>,
+    pub kind: LinkKind,
+    pub out: PathBuf,
+    pub append_to: Option<PathBuf>,
+}
+
+pub fn run(args: &Args, quiet: bool) -> CliResult {
+    let mesh = Mesh::load(&args.mesh)?;
+    let (selection, vertices) = select(&mesh, args)?;
+    let name = args.name.clone().unwrap_or_else(|| default_name(args));
+    let mut options = args.options.clone();
+    if let Some(axis) = &args.axis {
+        options.axis = Some(parse_axis(axis)?);
+    }
+    let started = Instant::now();
+    let fitted = fit(&mesh, &vertices, &options)
+        .map_err(|e| format!("{}: fitting sweep {name:?}: {e}; nothing was written", args.mesh.display()))?;
+    let elapsed = started.elapsed().as_secs_f64();
+
+    let mut document = match &args.append_to {
+        Some(path) => RigDocument::load(path)?,
+        None => RigDocument { format: FORMAT.to_string(), version: VERSION, sweeps: Vec::new() },
+    };
+    if document.sweeps.iter().any(|s| s.name == name) {
+        let file = args.append_to.as_deref().unwrap_or(&args.out).display();
+        return Err(format!("{file}: the rig already has a sweep named {name:?}; choose another with --name").into());
+    }
+    document.sweeps.push(SweepDocument {
+        name: name.clone(),
+        vertices: Some(selection),
+        keys: fitted.keys.iter().map(KeyDocument::from).collect(),
+        knots: None,
+        parent: args.parent.clone().map(|sweep| ParentLink { sweep, kind: args.kind }),
+    });
+    // The written rig must load and own the mesh's vertices without conflict.
+    let rig = Rig::from_document(&document, args.append_to.clone())?;
+    rig.owners(&mesh, &args.mesh.display().to_string())?;
+    write_atomically(&args.out, |out| out.write_all(document.to_json().as_bytes()))
+        .map_err(|e| format!("cannot write {}: {e}", args.out.display()))?;
+    print_report(&name, &fitted, &options, elapsed);
+    if !quiet {
+        println!("wrote {} ({} sweeps)", args.out.display(), document.sweeps.len());
+    }
+    Ok(())
+}
+
+/// The selection written into the rig and the vertices it names.
+fn select(mesh: &Mesh, args: &Args) -> Result<(VertexSelection, Vec<u32>), Box<dyn std::error::Error>> {
+    match (&args.indices, args.groups.is_empty()) {
+        (Some(_), false) => Err("give either --group or --indices, not both".into()),
+        (None, true) => Err("say which part to fit with --group or --indices".into()),
+        (Some(path), true) => {
+            let indices = read_indices(path)?;
+            if let Some(&bad) = indices.iter().find(|&&i| i as usize >= mesh.positions.len()) {
+                let count = mesh.positions.len();
+                return Err(format!("{}: vertex {bad} is out of range: {} has {count} vertices", path.display(), args.mesh.display()).into());
+            }
+            Ok((VertexSelection::Indices(indices.clone()), indices))
+        }
+        (None, false) => {
+            let mut vertices = Vec::new();
+            for group in &args.groups {
+                let Some(members) = mesh.group_vertices(group) else {
+                    let available = mesh.groups.iter().map(|g| g.name.as_str()).collect::<Vec<_>>().join(", ");
+                    let available = if available.is_empty() { "none".to_string() } else { available };
+                    return Err(format!("{}: no group {group:?} (groups: {available})", args.mesh.display()).into());
+                };
+                vertices.extend(members);
+            }
+            Ok((VertexSelection::Groups(args.groups.clone()), vertices))
+        }
+    }
+}
+
+/// Zero-based vertex indices from a file: a JSON array, or integers separated by white space
+/// or commas.
+fn read_indices(path: &Path) -> Result<Vec<u32>, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let mut indices: Vec<u32> = if text.trim_start().starts_with('[') {
+        serde_json::from_str(&text)
+            .map_err(|e| format!("{}: not a JSON array of vertex indices: {e}", path.display()))?
+    } else {
+        text.split(|c: char| c.is_whitespace() || c == ',')
+            .filter(|token| !token.is_empty())
+            .map(|token| {
+                token.parse().map_err(|_| format!("{}: {token:?} is not a vertex index", path.display()))
+            })
+            .collect::<Result<_, _>>()?
+    };
+    if indices.is_empty() {
+        return Err(format!("{}: lists no vertices", path.display()));
+    }
+    indices.sort_unstable();
+    indices.dedup();
+    Ok(indices)
+}
+
+/// `x0,y0,z0;x1,y1,z1;…` as points.
+fn parse_axis(text: &str) -> Result<Vec<DVec3>, String> {
+    let points = text
+        .split(';')
+        .filter(|p| !p.trim().is_empty())
+        .enumerate()
+        .map(|(i, point)| {
+            let coordinates: Vec<f64> = point.split(',').map(|c| c.trim().parse::<f64>()).collect::<Result<_, _>>()
+                .map_err(|_| format!("--axis: point {i} ({point:?}) is not three numbers x,y,z"))?;
+            match coordinates[..] {
+                [x, y, z] if x.is_finite() && y.is_finite() && z.is_finite() => Ok(DVec3::new(x, y, z)),
+                _ => Err(format!("--axis: point {i} ({point:?}) is not three finite numbers x,y,z")),
+            }
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    if points.len() < 2 {
+        return Err(format!("--axis needs at least two points \"x0,y0,z0;x1,y1,z1\", found {}", points.len()));
+    }
+    Ok(points)
+}
+
+fn default_name(args: &Args) -> String {
+    match &args.indices {
+        Some(path) => path.file_stem().map_or("part".to_string(), |s| s.to_string_lossy().into_owned()),
+        None => args.groups.join("+"),
+    }
+}
+
+fn print_report(name: &str, fitted: &Fit, options: &FitOptions, seconds: f64) {
+    let q = &fitted.quality;
+    let placed = fitted.steps.get(1).map_or(fitted.keys.len(), |s| s.keys.len());
+    println!(
+        "fit {name:?}: {} vertices, {} keys ({placed} placed, {} inserted), {} radii per key, {seconds:.3} s",
+        q.vertices,
+        fitted.keys.len(),
+        fitted.keys.len() - placed,
+        options.radii
+    );
+    println!(
+        "  |d| / mean radius ({:.6}): max {:.2}%, RMS {:.2}%; {}",
+        q.mean_radius,
+        100.0 * q.max_d,
+        100.0 * q.rms_d,
+        if q.without_root == 0 {
+            "every vertex binds with a root".to_string()
+        } else {
+            format!("{} vertices lie beyond an end", q.without_root)
+        }
+    );
+    for (k, section) in fitted.sections.iter().enumerate() {
+        if !section.cut {
+            println!("  key {k}: its plane misses the part; radii interpolated from the neighbouring keys");
+            continue;
+        }
+        if section.several_crossings > 0 {
+            println!(
+                "  key {k}: section not star-shaped around its center: {} of {} rays cross the boundary more than once; outermost crossing taken",
+                section.several_crossings, options.radii
+            );
+        }
+        if section.missed > 0 {
+            println!(
+                "  key {k}: {} of {} rays meet no boundary (open section); their radii are interpolated",
+                section.missed, options.radii
+            );
+        }
+    }
+    for step in &fitted.steps {
+        let q = &step.quality;
+        println!("  step: {}: max {:.2}%, RMS {:.2}%", step.label, 100.0 * q.max_d, 100.0 * q.rms_d);
+    }
+}

@@ -1,0 +1,156 @@
+//! Fitting control sweeps to mesh parts (§3, Fig. 3): the construction step the paper does by
+//! hand, in one call.
+//!
+//! Data flow: mesh part → **fit** → rig → sweep → … (the fitted keys go into a rig file).
+//!
+//! [`fit`] follows the paper's steps:
+//! 1. **Axis.** The user's polyline, or else the part's principal axis (the direction of
+//!    largest variance of its vertices, [`axis::principal_axis`]) through its centroid. The
+//!    re-centering below turns this first guess into a skeleton that follows the part.
+//! 2. **Rough sweep** (Fig. 3a): circles along the axis enclosing every vertex, recorded as
+//!    the first [`FitStep`].
+//! 3. **Key sections** (Fig. 3b, c): `keys` planes along the axis, normal to it, cut the
+//!    part's faces ([`section::cut`]). Each key's section is the smallest closed contour around
+//!    the key's center (or the nearest contour) plus the contours as near as that one reaches;
+//!    its center is their area centroid, and M radii are sampled from that center to the
+//!    outermost crossing of each ray ([`radii::sample`]). A ray that crosses the boundary
+//!    more than once (a section that is not star-shaped around its center) is counted in
+//!    [`SectionReport::several_crossings`]; a ray that meets nothing takes the value
+//!    interpolated between its neighbours ([`SectionReport::missed`]).
+//! 4. **Re-centering.** The keys move to their sections' centers; the normals follow the
+//!    tangent C′(u_i) of the sweep through the new centers; frames are carried along by
+//!    parallel transport (θ = 0 does not twist between keys); the sections are cut again.
+//! 5. **End keys** sit on planes just past the part's extreme vertices (1% of its length),
+//!    so ⟨v − C(t), N(t)⟩ changes sign on [0, 1] and every vertex binds with a root; they
+//!    take their radii from the first section found a little inside.
+//! 6. **Key insertion.** The part's vertices are bound; in every knot interval whose RMS |d|
+//!    exceeds `tolerance` × the mean radius a key is inserted at the interval's middle, and
+//!    all keys are re-centered again, until no interval is loose, the fit stops improving,
+//!    or `max_keys` is reached.
+
+pub mod axis;
+mod error;
+pub mod frames;
+pub mod part;
+pub mod quality;
+pub mod radii;
+mod refine;
+pub mod section;
+pub mod star;
+
+use glam::DVec3;
+
+pub use error::FitError;
+pub use part::Part;
+pub use quality::FitQuality;
+
+use crate::mesh::Mesh;
+use crate::sweep::Key;
+
+/// How to fit a sweep.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FitOptions {
+    /// The first guess at the axis, a polyline from the first end of the part to the other;
+    /// `None`: the part's principal axis.
+    pub axis: Option<Vec<DVec3>>,
+    /// Keys placed along the axis before any insertion (at least 2).
+    pub keys: usize,
+    /// Radii M per key (at least 3).
+    pub radii: usize,
+    /// The most keys insertion may reach.
+    pub max_keys: usize,
+    /// A knot interval whose RMS |d| exceeds this fraction of the mean radius is loose.
+    pub tolerance: f64,
+}
+
+impl Default for FitOptions {
+    fn default() -> FitOptions {
+        FitOptions { axis: None, keys: 6, radii: 16, max_keys: 24, tolerance: 0.05 }
+    }
+}
+
+impl FitOptions {
+    fn check(&self) -> Result<(), FitError> {
+        let fail = |message: String| Err(FitError::Options(message));
+        if self.keys < 2 {
+            return fail(format!("--keys must be at least 2, found {}", self.keys));
+        }
+        if self.radii < 3 {
+            return fail(format!("--radii must be at least 3, found {}", self.radii));
+        }
+        if self.max_keys < self.keys {
+            return fail(format!("--max-keys ({}) must be at least --keys ({})", self.max_keys, self.keys));
+        }
+        if !(self.tolerance > 0.0 && self.tolerance.is_finite()) {
+            return fail(format!("--tolerance must be a positive number, found {}", self.tolerance));
+        }
+        Ok(())
+    }
+}
+
+/// How one key's section met the rays that sampled its radii.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SectionReport {
+    /// Whether the key's plane cut the part; if not, the key took its radii from its
+    /// neighbours.
+    pub cut: bool,
+    /// Whether the section's boundary is open: the plane leaves the part through its rim
+    /// (where the part meets the rest of the mesh), so the section is partial.
+    pub open: bool,
+    /// Rays that crossed the section's boundary more than once and took the outermost crossing.
+    pub several_crossings: usize,
+    /// Rays that met no boundary and took interpolated radii.
+    pub missed: usize,
+    /// Whether the section was partial or missing, so the key took its center from the line
+    /// through the nearest complete keys and its radii from the nearest complete key.
+    pub borrowed: bool,
+}
+
+impl SectionReport {
+    /// A plane that missed the part.
+    pub const MISSED: SectionReport = SectionReport { cut: false, open: false, several_crossings: 0, missed: 0, borrowed: false };
+}
+
+/// One stage of the fit, for showing the steps of Fig. 3.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FitStep {
+    /// What the step did.
+    pub label: String,
+    /// The keys after the step.
+    pub keys: Vec<Key>,
+    /// Their fit.
+    pub quality: FitQuality,
+}
+
+/// A fitted sweep.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Fit {
+    /// The keys, from the first end of the part to the other.
+    pub keys: Vec<Key>,
+    /// How tightly they fit the part.
+    pub quality: FitQuality,
+    /// How each key's section met its rays.
+    pub sections: Vec<SectionReport>,
+    /// Every stage, from the rough sweep to the final one.
+    pub steps: Vec<FitStep>,
+}
+
+/// Fits a control sweep to the part of `mesh` made of `vertices` (see the module docs).
+pub fn fit(mesh: &Mesh, vertices: &[u32], options: &FitOptions) -> Result<Fit, FitError> {
+    options.check()?;
+    if let Some(&index) = vertices.iter().find(|&&v| v as usize >= mesh.positions.len()) {
+        return Err(FitError::VertexOutOfRange { index, count: mesh.positions.len() });
+    }
+    let part = Part::new(mesh, vertices);
+    if part.positions.len() < 4 {
+        return Err(FitError::TooFewVertices(part.positions.len()));
+    }
+    if part.triangles.is_empty() {
+        return Err(FitError::NoFaces);
+    }
+    let (fitted, steps) = refine::run(&part, options)?;
+    Ok(Fit { keys: fitted.keys, quality: fitted.measured.quality, sections: fitted.sections, steps })
+}
+
+#[cfg(test)]
+mod tests;

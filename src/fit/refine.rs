@@ -1,0 +1,353 @@
+//! The fitting loop of §3 (Fig. 3): a rough sweep enclosing the part, key sections cut by
+//! planes along the axis, re-centering of the keys on their sections, and key insertion where
+//! the fit is loose, with the end keys kept just past the part.
+
+use glam::{DQuat, DVec2, DVec3};
+
+use super::axis::{Polyline, principal_axis};
+use super::frames::transported_frames;
+use super::part::Part;
+use super::quality::{Measured, measure};
+use super::radii::sample;
+use super::section::{Plane, around, center, cut};
+use super::star::star_center;
+use super::{FitError, FitOptions, FitStep, SectionReport};
+use crate::sweep::{Key, Sweep};
+
+/// The end planes sit this fraction of the part's length beyond its extreme vertices.
+const END_MARGIN: f64 = 0.01;
+/// An end key takes its radii from the first section found this far inside the end plane
+/// (fractions of the part's length), since its own plane lies just past the part.
+const END_INSETS: [f64; 8] = [0.02, 0.04, 0.07, 0.1, 0.14, 0.19, 0.25, 0.32];
+/// Re-centering passes after the first cut and after each key insertion.
+const RECENTER_PASSES: usize = 3;
+
+/// Where a key's plane is: a point of it (the key's center) and its normal.
+#[derive(Clone, Copy, Debug)]
+struct Station {
+    center: DVec3,
+    normal: DVec3,
+}
+
+/// A key's section: its center (in the key's plane), its radii and how the rays met it.
+#[derive(Clone, Debug)]
+struct Cut {
+    center: DVec3,
+    radii: Vec<f64>,
+    report: SectionReport,
+}
+
+impl Cut {
+    /// Closed contours met by every ray: the section is the part's whole cross-section.
+    fn complete(&self) -> bool {
+        !self.report.open && self.report.missed == 0
+    }
+}
+
+/// The complete keys nearest to key `i` on its inner side (towards the middle of the sweep),
+/// nearest first; the nearest complete keys on the other side when the inner side has none.
+fn inner_neighbours(complete: &[usize], i: usize, last: usize) -> Vec<usize> {
+    let after: Vec<usize> = complete.iter().copied().filter(|&k| k > i).take(2).collect();
+    let before: Vec<usize> = complete.iter().rev().copied().filter(|&k| k < i).take(2).collect();
+    let (inner, outer) = if 2 * i <= last { (after, before) } else { (before, after) };
+    if inner.is_empty() { outer } else { inner }
+}
+
+/// Where the line through the centers `a` (nearer) and `b` meets the station's plane; `None`
+/// when the line runs along the plane or meets it more than twice their distance beyond `a`.
+fn extrapolate(a: DVec3, b: DVec3, station: &Station) -> Option<DVec3> {
+    let direction = a - b;
+    let along = direction.dot(station.normal);
+    if along.abs() <= 1e-9 * direction.length() {
+        return None;
+    }
+    let lambda = (station.center - a).dot(station.normal) / along;
+    (lambda.abs() <= 2.0).then(|| a + direction * lambda)
+}
+
+/// A set of keys and what fitting them found.
+#[derive(Clone, Debug)]
+pub struct Fitted {
+    pub keys: Vec<Key>,
+    pub sections: Vec<SectionReport>,
+    pub sweep: Sweep,
+    pub measured: Measured,
+}
+
+/// Fits a sweep to `part`, recording each step.
+pub fn run(part: &Part, options: &FitOptions) -> Result<(Fitted, Vec<FitStep>), FitError> {
+    let axis = match &options.axis {
+        Some(points) => Polyline::new(points).ok_or(FitError::Axis)?,
+        None => {
+            let (centroid, direction) = principal_axis(&part.positions);
+            Polyline::new(&[centroid - direction, centroid + direction]).ok_or(FitError::Flat)?
+        }
+    };
+    let along: Vec<f64> = part.positions.iter().map(|&p| axis.project(p)).collect();
+    let (lo, hi) = along.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &s| (lo.min(s), hi.max(s)));
+    let length = hi - lo;
+    if !(length > 0.0) {
+        return Err(FitError::Flat);
+    }
+    let fitter = Fitter { part, options, length };
+    let margin = END_MARGIN * length;
+    let count = options.keys;
+    let stations: Vec<Station> = (0..count)
+        .map(|k| {
+            let s = lo - margin + (length + 2.0 * margin) * k as f64 / (count - 1) as f64;
+            Station { center: axis.point(s), normal: axis.tangent(s) }
+        })
+        .collect();
+
+    let mut steps = vec![fitter.rough(&axis, &stations)?];
+    let mut fitted = fitter.pass(&stations)?;
+    steps.push(fitter.step(format!("{} key sections cut along the axis", fitted.keys.len()), &fitted));
+    fitted = fitter.recenter(fitted)?;
+    steps.push(fitter.step("keys re-centered on their sections".to_string(), &fitted));
+
+    while fitted.keys.len() < options.max_keys {
+        let Some(refined) = fitter.insert_keys(&fitted)? else { break };
+        if refined.measured.quality.rms_d >= fitted.measured.quality.rms_d {
+            break;
+        }
+        let inserted = refined.keys.len() - fitted.keys.len();
+        fitted = refined;
+        let label = format!("{inserted} keys inserted where the fit was loose, {} in all", fitted.keys.len());
+        steps.push(fitter.step(label, &fitted));
+    }
+    Ok((fitted, steps))
+}
+
+struct Fitter<'a> {
+    part: &'a Part,
+    options: &'a FitOptions,
+    length: f64,
+}
+
+impl Fitter<'_> {
+    /// Fig. 3a: a circular sweep along the first axis enclosing every vertex.
+    fn rough(&self, axis: &Polyline, stations: &[Station]) -> Result<FitStep, FitError> {
+        let radius = self.part.positions.iter().map(|&p| p.distance(axis.point(axis.project(p)))).fold(0.0, f64::max);
+        let stations = self.with_ends_past_the_part(stations.to_vec());
+        let frames = transported_frames(&stations.iter().map(|s| s.normal).collect::<Vec<_>>());
+        let keys: Vec<Key> =
+            stations.iter().zip(frames).map(|(s, q)| Key::circle(s.center, q, radius, self.options.radii)).collect();
+        let sweep = Sweep::try_new(&keys, None)?;
+        let quality = measure(&sweep, &self.part.positions).quality;
+        Ok(FitStep { label: "rough sweep enclosing the part".to_string(), keys, quality })
+    }
+
+    /// One pass: end planes just past the part, frames transported along the normals, each
+    /// key re-centered on its section with radii sampled from the new center. A key whose
+    /// section is partial (its plane leaves the part through the part's open rim, as near a
+    /// slanted selection boundary) takes its center from the line through the two nearest
+    /// complete keys on its inner side and its radii from the nearest complete key.
+    fn pass(&self, stations: &[Station]) -> Result<Fitted, FitError> {
+        let stations = self.with_ends_past_the_part(stations.to_vec());
+        let frames = transported_frames(&stations.iter().map(|s| s.normal).collect::<Vec<_>>());
+        let last = stations.len() - 1;
+        let cuts: Vec<Option<Cut>> = stations
+            .iter()
+            .zip(&frames)
+            .enumerate()
+            .map(|(i, (station, &rotation))| match i {
+                0 => self.end_section(station, rotation, station.normal),
+                i if i == last => self.end_section(station, rotation, -station.normal),
+                _ => self.section(station.center, rotation),
+            })
+            .collect();
+        let complete: Vec<usize> = (0..cuts.len()).filter(|&i| cuts[i].as_ref().is_some_and(Cut::complete)).collect();
+        let mut centers = Vec::with_capacity(stations.len());
+        let mut radii: Vec<Option<Vec<f64>>> = Vec::with_capacity(stations.len());
+        let mut sections = Vec::with_capacity(stations.len());
+        for (i, (station, cut)) in stations.iter().zip(&cuts).enumerate() {
+            let mut report = cut.as_ref().map_or(SectionReport::MISSED, |c| c.report);
+            match cut {
+                Some(cut) if cut.complete() => {
+                    centers.push(cut.center);
+                    radii.push(Some(cut.radii.clone()));
+                }
+                _ if !complete.is_empty() => {
+                    let inner = inner_neighbours(&complete, i, last);
+                    let line = match inner[..] {
+                        [a, b, ..] => Some((cuts[a].as_ref(), cuts[b].as_ref())),
+                        _ => None,
+                    };
+                    let center = match line {
+                        Some((Some(a), Some(b))) => extrapolate(a.center, b.center, station),
+                        _ => None,
+                    };
+                    centers.push(center.unwrap_or_else(|| cut.as_ref().map_or(station.center, |c| c.center)));
+                    radii.push(cuts[inner[0]].as_ref().map(|c| c.radii.clone()));
+                    report.borrowed = true;
+                }
+                _ => {
+                    centers.push(cut.as_ref().map_or(station.center, |c| c.center));
+                    radii.push(cut.as_ref().map(|c| c.radii.clone()));
+                }
+            }
+            sections.push(report);
+        }
+        let radii = fill_missing_keys(radii).ok_or(FitError::NoSection)?;
+        let keys: Vec<Key> = centers
+            .into_iter()
+            .zip(frames)
+            .zip(radii)
+            .map(|((center, rotation), radii)| Key { center, rotation, radii })
+            .collect();
+        let sweep = Sweep::try_new(&keys, None)?;
+        let measured = measure(&sweep, &self.part.positions);
+        Ok(Fitted { keys, sections, sweep, measured })
+    }
+
+    /// An end key's section: its plane lies just past the part, so the section is taken from
+    /// the first complete section found inside it (see [`END_INSETS`]), moved back onto the
+    /// end plane; where a second complete section lies further in, the radii are extrapolated
+    /// linearly to the end plane, never growing and never below zero, so that a part narrowing
+    /// to a tip gets a narrow end.
+    fn end_section(&self, station: &Station, rotation: DQuat, inward: DVec3) -> Option<Cut> {
+        let mut complete: Vec<(f64, Cut)> = Vec::new();
+        let mut partial: Option<Cut> = None;
+        for &inset in &END_INSETS {
+            let offset = inward * inset * self.length;
+            let Some(mut cut) = self.section(station.center + offset, rotation) else { continue };
+            cut.center -= offset;
+            if cut.complete() {
+                complete.push((inset, cut));
+                if complete.len() == 2 {
+                    break;
+                }
+            } else if partial.as_ref().is_none_or(|best| cut.report.missed < best.report.missed) {
+                partial = Some(cut);
+            }
+        }
+        let mut complete = complete.into_iter();
+        match (complete.next(), complete.next()) {
+            (Some((a, mut near)), Some((b, far))) => {
+                let reach = a / (b - a);
+                for (r, f) in near.radii.iter_mut().zip(&far.radii) {
+                    *r = (*r + (*r - f) * reach).clamp(0.0, *r);
+                }
+                Some(near)
+            }
+            (Some((_, near)), None) => Some(near),
+            (None, _) => partial,
+        }
+    }
+
+    /// The section of the part in the plane through `origin` with frame `rotation`: its
+    /// center, its radii and how the rays met it; `None` when the plane misses the part.
+    fn section(&self, origin: DVec3, rotation: DQuat) -> Option<Cut> {
+        let plane = Plane { origin, x: rotation * DVec3::X, y: rotation * DVec3::Y, normal: rotation * DVec3::Z };
+        let contours = cut(self.part, &plane);
+        let chosen = around(&contours, DVec2::ZERO)?;
+        let middle = star_center(&chosen, center(&chosen));
+        let sampled = sample(&chosen, middle, self.options.radii)?;
+        let report = SectionReport {
+            cut: true,
+            open: chosen.iter().any(|c| !c.closed),
+            several_crossings: sampled.several_crossings,
+            missed: sampled.missed,
+            borrowed: false,
+        };
+        Some(Cut { center: plane.from_plane(middle), radii: sampled.radii, report })
+    }
+
+    /// Further re-centering passes, keeping the tightest fit (smallest RMS |d|) seen.
+    fn recenter(&self, mut fitted: Fitted) -> Result<Fitted, FitError> {
+        let mut current = fitted.clone();
+        for _ in 1..RECENTER_PASSES {
+            current = self.pass(&self.stations_of(&current))?;
+            if current.measured.quality.rms_d < fitted.measured.quality.rms_d {
+                fitted = current.clone();
+            }
+        }
+        Ok(fitted)
+    }
+
+    /// The stations of fitted keys, with normals along the tangent C′(u_i) of their sweep.
+    fn stations_of(&self, fitted: &Fitted) -> Vec<Station> {
+        let knots = fitted.sweep.knots();
+        fitted
+            .keys
+            .iter()
+            .zip(knots)
+            .map(|(key, &u)| Station {
+                center: key.center,
+                normal: fitted.sweep.center_derivative(u).try_normalize().unwrap_or(key.rotation * DVec3::Z),
+            })
+            .collect()
+    }
+
+    /// Moves the end stations along their normals so that every vertex lies strictly between
+    /// the end planes, a small margin inside each: then ⟨v − C(t), N(t)⟩ changes sign on
+    /// [0, 1] and every vertex binds with a root.
+    fn with_ends_past_the_part(&self, mut stations: Vec<Station>) -> Vec<Station> {
+        let margin = END_MARGIN * self.length;
+        let first = stations[0];
+        let nearest = self.part.positions.iter().map(|&v| (v - first.center).dot(first.normal)).fold(f64::INFINITY, f64::min);
+        stations[0].center += first.normal * (nearest - margin);
+        let last_index = stations.len() - 1;
+        let last = stations[last_index];
+        let farthest =
+            self.part.positions.iter().map(|&v| (v - last.center).dot(last.normal)).fold(f64::NEG_INFINITY, f64::max);
+        stations[last_index].center += last.normal * (farthest + margin);
+        stations
+    }
+
+    /// Inserts a key in the middle of each loose knot interval (RMS d above the tolerance),
+    /// loosest first, up to the key limit, then re-centers all keys. `None` when no interval
+    /// is loose.
+    fn insert_keys(&self, fitted: &Fitted) -> Result<Option<Fitted>, FitError> {
+        let rms = &fitted.measured.interval_rms;
+        let mut loose: Vec<usize> = (0..rms.len()).filter(|&k| rms[k] > self.options.tolerance).collect();
+        if loose.is_empty() {
+            return Ok(None);
+        }
+        loose.sort_by(|&a, &b| rms[b].total_cmp(&rms[a]));
+        loose.truncate(self.options.max_keys - fitted.keys.len());
+        loose.sort_unstable();
+        let knots = fitted.sweep.knots();
+        let mut stations = Vec::with_capacity(fitted.keys.len() + loose.len());
+        for (k, station) in self.stations_of(fitted).into_iter().enumerate() {
+            stations.push(station);
+            if loose.binary_search(&k).is_ok() {
+                let middle = 0.5 * (knots[k] + knots[k + 1]);
+                let normal = fitted.sweep.center_derivative(middle).try_normalize().unwrap_or(station.normal);
+                stations.push(Station { center: fitted.sweep.center(middle), normal });
+            }
+        }
+        let refined = self.pass(&stations)?;
+        Ok(Some(self.recenter(refined)?))
+    }
+
+    fn step(&self, label: String, fitted: &Fitted) -> FitStep {
+        FitStep { label, keys: fitted.keys.clone(), quality: fitted.measured.quality }
+    }
+}
+
+/// Gives keys whose plane missed the part the radii of the nearest keys that have some,
+/// interpolated linearly by key index between them; `None` when no key has radii.
+fn fill_missing_keys(radii: Vec<Option<Vec<f64>>>) -> Option<Vec<Vec<f64>>> {
+    let present: Vec<usize> = (0..radii.len()).filter(|&i| radii[i].is_some()).collect();
+    let (&first, &last) = (present.first()?, present.last()?);
+    let filled = (0..radii.len())
+        .map(|i| {
+            if let Some(r) = &radii[i] {
+                return r.clone();
+            }
+            if i < first {
+                return radii[first].clone().unwrap_or_default();
+            }
+            if i > last {
+                return radii[last].clone().unwrap_or_default();
+            }
+            let before = present[present.partition_point(|&p| p < i) - 1];
+            let after = present[present.partition_point(|&p| p < i)];
+            let u = (i - before) as f64 / (after - before) as f64;
+            let (a, b) = (radii[before].as_deref().unwrap_or_default(), radii[after].as_deref().unwrap_or_default());
+            a.iter().zip(b).map(|(a, b)| a + (b - a) * u).collect()
+        })
+        .collect();
+    Some(filled)
+}

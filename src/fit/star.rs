@@ -1,0 +1,98 @@
+//! A center from which a section looks star-shaped, so that radii sampled from it describe
+//! the whole boundary (a sweep's cross-section is a star-shaped curve r(θ) around C(t)).
+//!
+//! The area centroid serves when every ray from it crosses the boundary once. Otherwise (a
+//! crescent, such as the cupped section of a bunny's ear, whose centroid may even lie outside
+//! it), points inside the section are tried on a grid and then a finer grid around the best
+//! one, scoring each by the rays that cross more than once or not at all; the best point wins,
+//! ties going to the point nearest the centroid.
+
+use std::f64::consts::TAU;
+
+use glam::DVec2;
+
+use super::radii::ray_crossings;
+use super::section::Contour;
+
+/// Probe rays per candidate center.
+const PROBES: usize = 48;
+/// Grid points per side of the coarse search.
+const GRID: usize = 9;
+
+/// The center of the section made of `contours`, starting from its area centroid.
+pub fn star_center(contours: &[&Contour], centroid: DVec2) -> DVec2 {
+    if contours.iter().any(|c| !c.closed) {
+        return centroid;
+    }
+    let mut best = (blind_rays(contours, centroid), 0.0, centroid);
+    if best.0 == 0 {
+        return centroid;
+    }
+    let (lo, hi) = bounds(contours);
+    let mut step = (hi - lo) / (GRID - 1) as f64;
+    let search = |origin: DVec2, step: DVec2, best: &mut (usize, f64, DVec2)| {
+        for i in 0..GRID {
+            for j in 0..GRID {
+                let q = origin + DVec2::new(i as f64 * step.x, j as f64 * step.y);
+                if !contours.iter().any(|c| c.encloses(q)) {
+                    continue;
+                }
+                let candidate = (blind_rays(contours, q), q.distance(centroid), q);
+                if (candidate.0, candidate.1) < (best.0, best.1) {
+                    *best = candidate;
+                }
+            }
+        }
+    };
+    search(lo, step, &mut best);
+    step /= (GRID - 1) as f64 / 2.0;
+    let around = best.2 - step * ((GRID - 1) as f64 / 2.0);
+    search(around, step, &mut best);
+    best.2
+}
+
+/// Probe rays from `q` that cross the boundary more than once or not at all.
+fn blind_rays(contours: &[&Contour], q: DVec2) -> usize {
+    (0..PROBES).filter(|&j| ray_crossings(contours, q, TAU * j as f64 / PROBES as f64).0 != 1).count()
+}
+
+fn bounds(contours: &[&Contour]) -> (DVec2, DVec2) {
+    contours
+        .iter()
+        .flat_map(|c| c.points.iter())
+        .fold((DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)), |(lo, hi), p| (lo.min(*p), hi.max(*p)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_crescent_gets_a_center_that_sees_all_of_it() {
+        // A thick C shape: its centroid lies in the bay, from where rays cross twice.
+        let mut points = Vec::new();
+        for k in 0..=24 {
+            let a = 0.6 + (TAU - 1.2) * k as f64 / 24.0;
+            points.push(DVec2::new(a.cos(), a.sin()) * 2.0);
+        }
+        for k in (0..=24).rev() {
+            let a = 0.6 + (TAU - 1.2) * k as f64 / 24.0;
+            points.push(DVec2::new(a.cos(), a.sin()) * 1.2 + DVec2::new(0.9, 0.0));
+        }
+        let c = Contour { points, closed: true };
+        let contours = [&c];
+        let centroid = crate::fit::section::center(&contours);
+        let chosen = star_center(&contours, centroid);
+        assert!(blind_rays(&contours, chosen) < blind_rays(&contours, centroid));
+        assert!(c.encloses(chosen));
+    }
+
+    #[test]
+    fn a_convex_section_keeps_its_centroid() {
+        let c = Contour {
+            points: vec![DVec2::new(-1.0, -1.0), DVec2::new(2.0, -1.0), DVec2::new(2.0, 1.0), DVec2::new(-1.0, 1.0)],
+            closed: true,
+        };
+        assert_eq!(star_center(&[&c], DVec2::new(0.5, 0.0)), DVec2::new(0.5, 0.0));
+    }
+}
