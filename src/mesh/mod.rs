@@ -19,9 +19,11 @@ mod bounds;
 mod error;
 mod faces;
 mod format;
+mod gltf;
 mod groups;
 mod load;
 mod obj;
+mod off;
 mod parts;
 mod ply;
 mod save;
@@ -33,6 +35,8 @@ use glam::DVec3;
 pub use atomic::write_atomically;
 pub use error::{MeshDataError, MeshError, ObjLineError};
 pub use format::Format;
+pub use gltf::GltfDataError;
+pub use off::OffLineError;
 
 use source::Source;
 
