@@ -329,3 +329,104 @@ fn deform_a_glb_tube_through_the_command_line() {
     let (json, _) = parts(&dir.path().join("out.glb"));
     assert_eq!(json["meshes"][0]["primitives"][0]["attributes"]["NORMAL"], 1);
 }
+
+#[test]
+fn corrupted_glb_and_off_do_not_panic() {
+    let mesh = house();
+    let dir = tempfile::tempdir().unwrap();
+    let glb = dir.path().join("house.glb");
+    mesh.save(&glb, &mesh.positions).unwrap();
+    let bytes = fs::read(&glb).unwrap();
+    let noisy = dir.path().join("noisy.glb");
+    let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+    for _ in 0..300 {
+        let mut corrupt = bytes.clone();
+        for _ in 0..3 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let at = (state % corrupt.len() as u64) as usize;
+            corrupt[at] = (state >> 40) as u8;
+        }
+        fs::write(&noisy, &corrupt).unwrap();
+        if let Ok(loaded) = Mesh::load(&noisy) {
+            let _ = loaded.save(&dir.path().join("again.glb"), &loaded.positions);
+        }
+    }
+}
+
+/// Two meshes: `plate` drawn by two nodes, its two primitives sharing one POSITION accessor,
+/// and an unnamed triangle whose positions are sparse (element 1 replaced).
+fn scene_gltf() -> serde_json::Value {
+    let mut data = Vec::new();
+    let floats: [f32; 12] = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0, 0.0];
+    for f in floats {
+        data.extend_from_slice(&f.to_le_bytes());
+    }
+    for i in [0u16, 1, 2, 0, 2, 3] {
+        data.extend_from_slice(&i.to_le_bytes());
+    }
+    // Sparse substitution: index 1 → (5, 5, 5), at byte 60 (u16 index, padded) and 64.
+    data.extend_from_slice(&1u16.to_le_bytes());
+    data.extend_from_slice(&[0, 0]);
+    for f in [5.0f32, 5.0, 5.0] {
+        data.extend_from_slice(&f.to_le_bytes());
+    }
+    json!({
+        "asset": {"version": "2.0"},
+        "scenes": [{"nodes": [0, 1, 2]}],
+        "nodes": [{"mesh": 0}, {"mesh": 0, "translation": [0.0, 0.0, 10.0]}, {"mesh": 1}],
+        "meshes": [
+            {"name": "plate", "primitives": [
+                {"attributes": {"POSITION": 0}, "indices": 1},
+                {"attributes": {"POSITION": 0}, "indices": 2}
+            ]},
+            {"primitives": [{"attributes": {"POSITION": 3}}]}
+        ],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0.0, 0.0, 0.0], "max": [1.0, 1.0, 0.0]},
+            {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"},
+            {"bufferView": 1, "byteOffset": 6, "componentType": 5123, "count": 3, "type": "SCALAR"},
+            {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0.0, 0.0, 0.0], "max": [5.0, 5.0, 5.0],
+             "sparse": {"count": 1, "indices": {"bufferView": 2, "componentType": 5123}, "values": {"bufferView": 3}}}
+        ],
+        "bufferViews": [
+            {"buffer": 0, "byteOffset": 0, "byteLength": 48},
+            {"buffer": 0, "byteOffset": 48, "byteLength": 12},
+            {"buffer": 0, "byteOffset": 60, "byteLength": 2},
+            {"buffer": 0, "byteOffset": 64, "byteLength": 12}
+        ],
+        "buffers": [{"byteLength": data.len(), "uri": format!("data:application/octet-stream;base64,{}", STANDARD.encode(&data))}]
+    })
+}
+
+#[test]
+fn gltf_instances_shared_accessors_sparse_positions_and_groups() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("scene.gltf");
+    fs::write(&input, serde_json::to_vec(&scene_gltf()).unwrap()).unwrap();
+    let mesh = Mesh::load(&input).unwrap();
+    // Two instances of the plate's 4 shared vertices, then the sparse triangle's 3.
+    assert_eq!(mesh.positions.len(), 11);
+    assert_eq!(mesh.positions[6], DVec3::new(1.0, 1.0, 10.0));
+    assert_eq!(mesh.positions[9], DVec3::new(5.0, 5.0, 5.0), "sparse substitution applied");
+    assert_eq!(mesh.faces.face(1), &[0, 2, 3]);
+    assert_eq!(mesh.faces.face(2), &[4, 5, 6]);
+    let names: Vec<&str> = mesh.groups.iter().map(|g| g.name.as_str()).collect();
+    assert_eq!(names, ["plate", "mesh1"]);
+    assert_eq!(mesh.groups[0].faces, [0, 1, 2, 3]);
+    assert_eq!(mesh.group_vertices("mesh1").unwrap(), [8, 9, 10]);
+
+    let mut moved = mesh.positions.clone();
+    moved[9] = DVec3::new(6.0, 6.0, 6.0);
+    moved[1] = DVec3::new(2.0, 0.0, 0.0);
+    let out = dir.path().join("scene.glb");
+    mesh.save(&out, &moved).unwrap();
+    let back = Mesh::load(&out).unwrap();
+    assert_eq!(back.positions[9], moved[9], "the sparse accessor was made dense");
+    assert_eq!(back.positions[1], moved[1]);
+    assert_eq!(back.positions[5], DVec3::new(2.0, 0.0, 10.0), "the second instance follows the first");
+    let (json, _) = parts(&out);
+    assert!(json["accessors"][3].get("sparse").is_none());
+    assert_eq!(json["accessors"][3]["max"], json!([6.0, 6.0, 6.0]));
+}

@@ -12,7 +12,19 @@ use crate::mesh::source::{Original, Source};
 use crate::mesh::{FaceGroup, Faces, Mesh, MeshError};
 
 /// Reads the glTF (JSON) or GLB (binary, by its `glTF` magic) file `bytes` read from `path`.
+///
+/// The `gltf` crate (1.4) can panic on some malformed documents (its validation indexes
+/// arrays unchecked), so a panic while reading is caught and reported as
+/// [`MeshError::InvalidGltf`]; the default panic hook still prints its message.
 pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
+    std::panic::catch_unwind(|| read_unguarded(path, bytes)).unwrap_or_else(|_| {
+        let reason = "the glTF reader panicked on this malformed file".to_string();
+        Err(MeshError::InvalidGltf { path: path.to_path_buf(), reason })
+    })
+}
+
+/// [`read`] without the panic guard.
+fn read_unguarded(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
     let invalid = |reason: String| MeshError::InvalidGltf { path: path.to_path_buf(), reason };
     let data_error = |problem| MeshError::GltfData { path: path.to_path_buf(), problem };
     let gltf = ::gltf::Gltf::from_slice(bytes).map_err(|e| invalid(one_line(&e.to_string())))?;
