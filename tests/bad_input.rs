@@ -478,7 +478,7 @@ fn unsupported_input_extension() {
     scene.write("mesh.stl", PRISM);
     assert_eq!(
         scene.deform_fails("mesh.stl", "rig.json", "pose.json"),
-        "error: mesh.stl: unsupported mesh format (expected .obj or .ply)\n"
+        "error: mesh.stl: unsupported mesh format (expected .obj, .ply, .off, .gltf or .glb)\n"
     );
 }
 
@@ -487,7 +487,7 @@ fn unsupported_output_extension() {
     let scene = Scene::new();
     let stderr =
         scene.fail(&["deform", "--mesh", "mesh.obj", "--rig", "rig.json", "--pose", "pose.json", "--out", "out.stl"]);
-    assert_eq!(stderr, "error: out.stl: unsupported mesh format (expected .obj or .ply)\n");
+    assert_eq!(stderr, "error: out.stl: unsupported mesh format (expected .obj, .ply, .off, .gltf or .glb)\n");
 }
 
 #[test]

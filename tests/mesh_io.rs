@@ -349,7 +349,7 @@ fn load_errors_name_the_file() {
     assert!(matches!(err, MeshError::Read { .. }), "{err}");
     assert!(err.to_string().starts_with("cannot read no_such_mesh.obj: "), "{err}");
     let err = Mesh::load(Path::new("x.stl")).unwrap_err();
-    assert_eq!(err.to_string(), "x.stl: unsupported mesh format (expected .obj or .ply)");
+    assert_eq!(err.to_string(), "x.stl: unsupported mesh format (expected .obj, .ply, .off, .gltf or .glb)");
 
     let dir = tempfile::tempdir().unwrap();
     let empty = dir.path().join("empty.obj");

@@ -55,7 +55,7 @@ struct Cli {
 enum Command {
     /// Bind every owned vertex of a mesh to its sweep and save the bindings.
     Bind {
-        /// The mesh (.obj or .ply).
+        /// The mesh (.obj, .ply, .off, .gltf or .glb).
         #[arg(long)]
         mesh: PathBuf,
         /// The rest rig (JSON).
@@ -70,7 +70,7 @@ enum Command {
     },
     /// Deform a mesh by a pose of its rig and write the deformed mesh.
     Deform {
-        /// The mesh (.obj or .ply).
+        /// The mesh (.obj, .ply, .off, .gltf or .glb).
         #[arg(long)]
         mesh: PathBuf,
         /// The rest rig (JSON).
@@ -79,7 +79,7 @@ enum Command {
         /// The pose: a rig file with the same sweeps and key counts.
         #[arg(long)]
         pose: PathBuf,
-        /// Where to write the deformed mesh (.obj or .ply).
+        /// Where to write the deformed mesh (.obj, .ply, .off, .gltf or .glb).
         #[arg(long)]
         out: PathBuf,
         /// Bindings saved by `sweepffd bind` for this mesh and rig (otherwise binds anew).

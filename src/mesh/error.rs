@@ -1,12 +1,15 @@
 //! What can go wrong reading, building or writing a mesh.
 //!
 //! Every error that comes from a file names the file as it was given (`Path::display`), and
-//! for OBJ, a text format, the line at fault; numbers of vertices and faces are written the way
-//! the file writes them (1-based in OBJ, zero-based in PLY).
+//! for OBJ and OFF, text formats, the line at fault; numbers of vertices and faces are written
+//! the way the file writes them (1-based in OBJ, zero-based in PLY, OFF and glTF).
 
 use std::path::{Path, PathBuf};
 
 use thiserror::Error;
+
+use super::gltf::GltfDataError;
+use super::off::OffLineError;
 
 /// A reason a mesh file cannot be read or written, or mesh data cannot form a [`Mesh`].
 ///
@@ -29,8 +32,8 @@ pub enum MeshError {
         /// What the operating system said.
         source: std::io::Error,
     },
-    /// The file name ends in neither `.obj` nor `.ply`.
-    #[error("{}: unsupported mesh format (expected .obj or .ply)", path.display())]
+    /// The file name ends in none of `.obj`, `.ply`, `.off`, `.gltf`, `.glb`.
+    #[error("{}: unsupported mesh format (expected .obj, .ply, .off, .gltf or .glb)", path.display())]
     UnsupportedFormat {
         /// The file as given.
         path: PathBuf,
@@ -56,6 +59,32 @@ pub enum MeshError {
         line: usize,
         /// What is wrong with the line.
         problem: ObjLineError,
+    },
+    /// A line of an OFF file cannot be understood.
+    #[error("{}:{line}: {problem}", path.display())]
+    Off {
+        /// The file as given.
+        path: PathBuf,
+        /// 1-based line number.
+        line: usize,
+        /// What is wrong with the line.
+        problem: OffLineError,
+    },
+    /// The glTF parser rejected the file, or a buffer it needs cannot be read.
+    #[error("{}: not a valid glTF file: {reason}", path.display())]
+    InvalidGltf {
+        /// The file as given.
+        path: PathBuf,
+        /// The parser's reason, on one line.
+        reason: String,
+    },
+    /// The data of a glTF file do not form a mesh this crate reads.
+    #[error("{}: {problem}", path.display())]
+    GltfData {
+        /// The file as given.
+        path: PathBuf,
+        /// What is wrong with the data.
+        problem: GltfDataError,
     },
     /// The PLY parser rejected the file.
     #[error("{}: not a valid PLY file: {reason}", path.display())]
@@ -246,7 +275,7 @@ mod tests {
         );
         assert_eq!(
             MeshError::UnsupportedFormat { path: PathBuf::from("x.stl") }.to_string(),
-            "x.stl: unsupported mesh format (expected .obj or .ply)"
+            "x.stl: unsupported mesh format (expected .obj, .ply, .off, .gltf or .glb)"
         );
         assert_eq!(
             MeshError::Empty { path: PathBuf::from("empty.obj") }.to_string(),

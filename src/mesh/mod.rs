@@ -1,27 +1,34 @@
-//! Meshes in and out: OBJ and PLY files, and the enclosed volume of a closed mesh.
+//! Meshes in and out: OBJ, PLY, OFF and glTF files, and the enclosed volume of a closed mesh.
 //!
 //! Data flow: rig → sweep → sweep coefficients → bind → deform → normals → **output**.
 //!
 //! A [`Mesh`] keeps what deformation needs (positions in file order, polygon faces, named face
 //! groups) and, privately, what it needs to write the file back faithfully: a deformed file
-//! differs from its input only in the positions of the vertices that moved.
+//! differs from its input only in the positions of the vertices that moved (and, for glTF,
+//! the normals around them).
 //!
-//! - [`Mesh::load`] reads `.obj` (our own scanner, f64, vertex order kept; see `obj`) or
-//!   `.ply` (through `ply-rs-bw`; see `ply`); [`Mesh::from_parts`] builds a mesh in code.
-//! - [`Mesh::save`] writes faithfully over the loaded file when the format is the same,
-//!   generically otherwise, always atomically (temporary file + rename, [`write_atomically`],
-//!   which other file writers of the crate share).
+//! - [`Mesh::load`] reads, by extension, `.obj` (our own scanner, f64, vertex order kept; see
+//!   `obj`), `.ply` (through `ply-rs-bw`; see `ply`), `.off` (ASCII OFF with the `C`, `N` and
+//!   `ST` variants, our own reader; see `off`) or `.gltf` / `.glb` (through the `gltf` crate:
+//!   every triangle primitive of the default scene, node transforms applied, one group per
+//!   mesh; see `gltf`); [`Mesh::from_parts`] builds a mesh in code.
+//! - [`Mesh::save`] writes faithfully over the loaded file when the format is the same (for
+//!   glTF: `.gltf` or `.glb` from either), generically otherwise, always atomically (temporary
+//!   file + rename, [`write_atomically`], which other file writers of the crate share).
 //! - [`Mesh::enclosed_volume`], [`Mesh::bounds`], [`Mesh::group_vertices`] measure it.
-//! - [`MeshError`] names the file (and the OBJ line) at fault; malformed input never panics.
+//! - [`MeshError`] names the file (and the OBJ or OFF line) at fault; malformed input never
+//!   panics.
 
 mod atomic;
 mod bounds;
 mod error;
 mod faces;
 mod format;
+mod gltf;
 mod groups;
 mod load;
 mod obj;
+mod off;
 mod parts;
 mod ply;
 mod save;
@@ -33,6 +40,8 @@ use glam::DVec3;
 pub use atomic::write_atomically;
 pub use error::{MeshDataError, MeshError, ObjLineError};
 pub use format::Format;
+pub use gltf::GltfDataError;
+pub use off::OffLineError;
 
 use source::Source;
 
@@ -46,7 +55,7 @@ pub struct Faces {
     pub indices: Vec<u32>,
 }
 
-/// A named set of faces: an OBJ group (`g`) or object (`o`).
+/// A named set of faces: an OBJ group (`g`) or object (`o`), or a glTF mesh.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct FaceGroup {
     /// The group's name as written in the file.

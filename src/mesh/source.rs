@@ -7,6 +7,8 @@ use std::sync::Arc;
 use glam::DVec3;
 use ply_rs_bw::ply::{DefaultElement, Ply};
 
+use super::gltf::GltfFile;
+use super::off::OffFile;
 use super::{FaceGroup, Faces, Mesh};
 
 /// Where a mesh came from. Cloning a mesh shares its source.
@@ -19,6 +21,10 @@ pub(crate) enum Source {
     Obj(Arc<Original<Vec<u8>>>),
     /// Read from a PLY file: its header and every element, as parsed.
     Ply(Arc<Original<Ply<DefaultElement>>>),
+    /// Read from an OFF file: its bytes and where each vertex's coordinates lie.
+    Off(Arc<Original<OffFile>>),
+    /// Read from a glTF or GLB file: its JSON, its buffers and where each vertex came from.
+    Gltf(Arc<Original<GltfFile>>),
 }
 
 /// A file as read, with the mesh data it gave.
@@ -57,6 +63,8 @@ impl fmt::Debug for Source {
             Source::Code => f.write_str("Code"),
             Source::Obj(o) => write!(f, "Obj({} bytes)", o.file.len()),
             Source::Ply(p) => write!(f, "Ply({:?})", p.file.header.encoding),
+            Source::Off(o) => write!(f, "Off({} bytes)", o.file.bytes.len()),
+            Source::Gltf(g) => write!(f, "Gltf({} buffers)", g.file.buffers.len()),
         }
     }
 }
