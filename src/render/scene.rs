@@ -13,7 +13,7 @@ pub const CLAY: [f32; 4] = [0.80, 0.50, 0.33, 1.0];
 /// Translucent blue, the colour of control sweep surfaces (linear RGBA).
 pub const SWEEP_SURFACE: [f32; 4] = [0.15, 0.35, 0.90, 0.28];
 /// Dark blue-grey, the colour of key cross-section rings (linear RGBA).
-pub const RING: [f32; 4] = [0.03, 0.05, 0.12, 1.0];
+pub const RING: [f32; 4] = [0.015, 0.025, 0.06, 1.0];
 
 /// One vertex as the render shader reads it (`shaders/render/shade.wgsl`, `VertexIn`):
 /// position, normal (any length; zero lights as facing the eye) and linear RGBA colour.

@@ -4,7 +4,8 @@
 //!
 //! A sweep fitted to a mesh lies on the mesh's surface, where a surface drawn exactly would
 //! fight it for depth; both are therefore drawn a small distance `offset` outside the sweep,
-//! the point at binding parameters (θ, t, d = offset, h = 0) of Eq. 2.
+//! the point at binding parameters (θ, t, d = offset, h = 0) of Eq. 2; the ring tubes run at
+//! d = offset + ring radius, so they sit on the translucent surface instead of inside it.
 
 use std::f64::consts::TAU;
 
@@ -28,9 +29,9 @@ pub struct SweepStyle {
 
 impl SweepStyle {
     /// The style for a scene whose bounding-box diagonal is `diagonal`: offset 0.4% and ring
-    /// tubes 0.35% of it, 72 samples around, 12 per knot interval.
+    /// tubes 0.5% of it, 72 samples around, 12 per knot interval.
     pub fn for_diagonal(diagonal: f64) -> SweepStyle {
-        SweepStyle { offset: 0.004 * diagonal, ring_radius: 0.0035 * diagonal, around: 72, per_interval: 12 }
+        SweepStyle { offset: 0.004 * diagonal, ring_radius: 0.005 * diagonal, around: 72, per_interval: 12 }
     }
 }
 
@@ -92,11 +93,13 @@ fn add_surface(scene: &mut Scene, sweep: &Sweep, style: &SweepStyle) {
 /// Sides of the tube drawn around a ring.
 const TUBE_SIDES: usize = 8;
 
-/// A thin tube around the closed ring S(θ, u) + offset: at each ring point a circle in the
-/// plane spanned by the cross-section normal N(u) and the ring's outward side.
+/// A thin tube around the closed ring at d = offset + ring radius in the cross-section at u: at
+/// each ring point a circle in the plane spanned by the cross-section normal N(u) and the
+/// ring's outward side.
 fn add_ring(scene: &mut Scene, sweep: &Sweep, u: f64, style: &SweepStyle) {
     let around = style.around.max(3);
-    let ring: Vec<DVec3> = thetas(around).map(|theta| sweep.point(theta, u, style.offset, 0.0)).collect();
+    let d = style.offset + style.ring_radius;
+    let ring: Vec<DVec3> = thetas(around).map(|theta| sweep.point(theta, u, d, 0.0)).collect();
     let axis = sweep.normal(u);
     let mut positions = Vec::with_capacity(around * TUBE_SIDES);
     let mut normals = Vec::with_capacity(around * TUBE_SIDES);
@@ -141,9 +144,14 @@ mod tests {
             let n = Vec3::from_array(v.normal);
             assert!(n.z.abs() < 1e-4 && (n.length() - 1.0).abs() < 1e-4, "normal {n} at {p}");
         }
-        // Three keys, each a tube of 16 × TUBE_SIDES vertices around z = 0, 1, 2.
+        // Three keys, each a tube of 16 × TUBE_SIDES vertices around z = 0, 1, 2, just outside
+        // the surface.
         assert_eq!(scene.opaque.vertices.len(), 3 * 16 * TUBE_SIDES);
         let (lo, hi) = scene.opaque.bounds().unwrap();
         assert!((lo.z + 0.005).abs() < 1e-5 && (hi.z - 2.005).abs() < 1e-5, "{lo} {hi}");
+        for v in &scene.opaque.vertices {
+            let radial = Vec3::from_array(v.position).truncate().length();
+            assert!(radial > 0.51 - 1e-5 && radial < 0.525 + 1e-5, "ring vertex at radius {radial}");
+        }
     }
 }
