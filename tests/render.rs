@@ -94,8 +94,9 @@ fn show_sweeps_draws_dark_rings_and_changes_pixels() {
     let base = ["--mesh", "tube.obj", "--rig", "rig.json", "--size", "160x120", "--view", "90,20"];
     let plain = render_ok(dir.path(), &base, "plain.png");
     let with_sweeps = render_ok(dir.path(), &[&base[..], &["--show-sweeps"]].concat(), "sweeps.png");
-    let dark = |p: &RgbaImage| p.pixels().filter(|p| p.0[..3].iter().all(|&c| c < 100)).count();
-    assert_eq!(dark(&plain), 0, "the clay mesh alone has no dark pixels");
+    // Ring pixels: dark and bluish (clay is always redder than it is blue, even in shadow).
+    let dark = |p: &RgbaImage| p.pixels().filter(|p| p.0[..3].iter().all(|&c| c < 100) && p.0[2] > p.0[0]).count();
+    assert_eq!(dark(&plain), 0, "the clay mesh alone has no dark blue pixels");
     assert!(dark(&with_sweeps) > 50, "only {} dark ring pixels", dark(&with_sweeps));
     assert!(differing(&plain, &with_sweeps) > 500);
 }

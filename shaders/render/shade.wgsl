@@ -40,9 +40,9 @@ fn vs_main(v: VertexIn) -> VertexOut {
     return out;
 }
 
-const AMBIENT: f32 = 0.22;
-const KEY: f32 = 0.6;
-const HEAD: f32 = 0.3;
+const AMBIENT: f32 = 0.12;
+const KEY: f32 = 0.75;
+const HEAD: f32 = 0.28;
 
 @fragment
 fn fs_main(f: VertexOut) -> @location(0) vec4<f32> {

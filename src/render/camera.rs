@@ -65,17 +65,16 @@ pub struct Camera {
 }
 
 impl Camera {
-    /// The camera looking from `angles` at the box (`min`, `max`), at the distance where the
-    /// box's bounding sphere fits the picture of width/height `aspect` with a 5% margin. A box
-    /// of zero size is framed as a sphere of radius 1. At elevation ±90° the picture's up is
-    /// the horizontal direction the azimuth points away from.
+    /// The camera looking from `angles` at the center of the box (`min`, `max`), at the
+    /// smallest distance where all eight corners of the box lie inside the picture of
+    /// width/height `aspect` with a 5% margin on each side. A box of zero size is framed as a
+    /// cube of side 1. At elevation ±90° the picture's up is the horizontal direction the
+    /// azimuth points away from.
     pub fn framing(min: Vec3, max: Vec3, angles: ViewAngles, aspect: f32) -> Camera {
         let target = 0.5 * (min + max);
-        let radius = 0.5 * (max - min).length();
-        let radius = if radius > 0.0 && radius.is_finite() { radius } else { 1.0 };
-        let half_y = 0.5 * FIELD_OF_VIEW_DEGREES.to_radians();
-        let half_x = (half_y.tan() * aspect.max(1e-3)).atan();
-        let distance = 1.05 * radius / half_y.min(half_x).sin();
+        let size = (max - min).length();
+        let half = if size > 0.0 && size.is_finite() { 0.5 * (max - min) } else { Vec3::splat(0.5) };
+        let radius = half.length();
         let direction = angles.direction();
         let up = if angles.elevation.abs() > 89.9 {
             let (a, sign) = (angles.azimuth.to_radians(), angles.elevation.signum());
@@ -83,6 +82,21 @@ impl Camera {
         } else {
             Vec3::Y
         };
+        // Camera axes: `back` from the target to the eye, `right` and `true_up` across.
+        let right = up.cross(direction).normalize_or(Vec3::X);
+        let true_up = direction.cross(right);
+        let tan_y = 0.9 * (0.5 * FIELD_OF_VIEW_DEGREES.to_radians()).tan();
+        let tan_x = tan_y * aspect.max(1e-3);
+        // A corner at c (relative to the target) is inside when the eye is at least
+        // c·back + |c·right| / tan_x and c·back + |c·up| / tan_y away from the target.
+        let distance = (0..8)
+            .map(|i| {
+                let sign = |bit: usize| if i & bit == 0 { -1.0 } else { 1.0 };
+                let c = Vec3::new(sign(1) * half.x, sign(2) * half.y, sign(4) * half.z);
+                let along = c.dot(direction);
+                (along + c.dot(right).abs() / tan_x).max(along + c.dot(true_up).abs() / tan_y)
+            })
+            .fold(1.2 * radius, f32::max);
         Camera {
             eye: target + distance * direction,
             target,

@@ -9,9 +9,9 @@ use crate::mesh::Mesh;
 use crate::normals::{NormalAdjacency, vertex_normals};
 
 /// Warm clay, the colour of meshes (linear RGBA).
-pub const CLAY: [f32; 4] = [0.80, 0.50, 0.33, 1.0];
+pub const CLAY: [f32; 4] = [0.70, 0.36, 0.20, 1.0];
 /// Translucent blue, the colour of control sweep surfaces (linear RGBA).
-pub const SWEEP_SURFACE: [f32; 4] = [0.15, 0.35, 0.90, 0.28];
+pub const SWEEP_SURFACE: [f32; 4] = [0.10, 0.30, 0.95, 0.30];
 /// Dark blue-grey, the colour of key cross-section rings (linear RGBA).
 pub const RING: [f32; 4] = [0.015, 0.025, 0.06, 1.0];
 
