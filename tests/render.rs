@@ -237,3 +237,16 @@ fn missing_adapter_is_a_clear_error_and_writes_nothing() {
     assert!(stderr.starts_with("error: render needs a GPU adapter (none found: "), "{stderr}");
     assert!(!dir.path().join("x.png").exists());
 }
+
+#[test]
+fn help_lists_render_and_its_options() {
+    let dir = tempfile::tempdir().unwrap();
+    let output = common::sweepffd(dir.path()).args(["render", "--help"]).output().unwrap();
+    assert!(output.status.success());
+    let help = String::from_utf8_lossy(&output.stdout);
+    for option in ["--mesh", "--rig", "--pose", "--show-sweeps", "--size", "--view", "--compare", "--out"] {
+        assert!(help.contains(option), "`render --help` does not mention {option}:\n{help}");
+    }
+    let output = common::sweepffd(dir.path()).arg("--help").output().unwrap();
+    assert!(String::from_utf8_lossy(&output.stdout).contains("render"));
+}
