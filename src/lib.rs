@@ -15,6 +15,7 @@
 //! - [`coeffs`]: sweeps as compact f32 coefficient arrays, the GPU buffer layouts.
 //! - [`cpu`]: f32 twins of the WGSL kernels in `shaders/`.
 //! - [`synthetic`]: procedural meshes, rigs and poses.
+//! - [`render`]: headless pictures of meshes and their control sweeps (PNG).
 //!
 //! ```no_run
 //! use glam::DVec3;
@@ -43,6 +44,7 @@ pub mod fit;
 pub mod gpu;
 pub mod mesh;
 pub mod normals;
+pub mod render;
 pub mod rig;
 pub mod sweep;
 pub mod synthetic;

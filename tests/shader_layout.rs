@@ -107,3 +107,31 @@ fn shared_constants_have_the_rust_values() {
         assert_eq!(u32_constant(&normals, "FAN_INDEX"), Some(FAN_INDEX));
     }
 }
+
+#[test]
+fn render_view_uniform_has_the_rust_layout() {
+    use std::mem::{offset_of, size_of};
+    use sweepffd::render::{RenderVertex, SHADE_WGSL, ViewUniform};
+    let module = parse("render/shade", SHADE_WGSL);
+    let mut layouter = naga::proc::Layouter::default();
+    layouter.update(module.to_ctx()).unwrap();
+    let (handle, ty) = module.types.iter().find(|(_, ty)| ty.name.as_deref() == Some("View")).unwrap();
+    let naga::TypeInner::Struct { members, .. } = &ty.inner else {
+        panic!("View is not a struct");
+    };
+    assert_eq!(layouter[handle].size as usize, size_of::<ViewUniform>());
+    let wgsl: Vec<(&str, usize)> =
+        members.iter().map(|m| (m.name.as_deref().unwrap_or("?"), m.offset as usize)).collect();
+    let rust = [
+        ("view_proj", offset_of!(ViewUniform, view_proj)),
+        ("eye", offset_of!(ViewUniform, eye)),
+        ("light", offset_of!(ViewUniform, light)),
+    ];
+    assert_eq!(wgsl, rust);
+    // The vertex buffer layout packs position, normal and colour back to back (Float32x3,
+    // Float32x3, Float32x4), which is RenderVertex's field order.
+    assert_eq!(
+        [offset_of!(RenderVertex, position), offset_of!(RenderVertex, normal), offset_of!(RenderVertex, colour)],
+        [0, 12, 24]
+    );
+}

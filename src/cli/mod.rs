@@ -10,6 +10,7 @@ mod fit;
 mod info;
 mod pose;
 mod progress;
+mod render;
 mod volume;
 
 use std::path::PathBuf;
@@ -181,6 +182,34 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Draw a PNG of a mesh (rest or posed), optionally with its control sweeps.
+    Render {
+        /// The mesh (.obj or .ply).
+        #[arg(long)]
+        mesh: PathBuf,
+        /// The rest rig (JSON); needed by --pose and --show-sweeps.
+        #[arg(long)]
+        rig: Option<PathBuf>,
+        /// Draw the mesh deformed by this pose of the rig (bound and deformed on the CPU).
+        #[arg(long)]
+        pose: Option<PathBuf>,
+        /// Draw the control sweeps as translucent surfaces with a dark ring at each key.
+        #[arg(long)]
+        show_sweeps: bool,
+        /// Picture size WIDTHxHEIGHT in pixels (each panel's with --compare).
+        #[arg(long, default_value = "800x600", value_parser = render::parse_size)]
+        size: (u32, u32),
+        /// Camera AZIMUTH,ELEVATION in degrees: azimuth around +Y from +Z towards +X, elevation
+        /// above the XZ plane (Y is up).
+        #[arg(long, default_value = "30,20", value_parser = render::parse_view, allow_hyphen_values = true)]
+        view: sweepffd::render::ViewAngles,
+        /// Draw rest (left) and pose (right) side by side, one camera, picture width 2×WIDTH.
+        #[arg(long)]
+        compare: bool,
+        /// Where to write the picture (.png).
+        #[arg(long)]
+        out: PathBuf,
+    },
     /// Build a tube and its rig, bend, twist and taper it, and write the meshes.
     Demo {
         /// Folder for the demo's files.
@@ -227,6 +256,9 @@ pub fn run() -> ExitCode {
         Command::Info => info::run(),
         Command::Bench { vertices, mesh, rig, backend, runs, json } => {
             bench::run(&bench::Args { vertices, mesh, rig, backend, runs, json }, quiet)
+        }
+        Command::Render { mesh, rig, pose, show_sweeps, size, view, compare, out } => {
+            render::run(&render::Args { mesh, rig, pose, show_sweeps, size, view, compare, out }, quiet)
         }
         Command::Demo { out } => demo::run(&out, quiet),
     };
