@@ -75,7 +75,12 @@ fn select(mesh: &Mesh, args: &Args) -> Result<(VertexSelection, Vec<u32>), Box<d
             let indices = read_indices(path)?;
             if let Some(&bad) = indices.iter().find(|&&i| i as usize >= mesh.positions.len()) {
                 let count = mesh.positions.len();
-                return Err(format!("{}: vertex {bad} is out of range: {} has {count} vertices", path.display(), args.mesh.display()).into());
+                return Err(format!(
+                    "{}: vertex {bad} is out of range: {} has {count} vertices",
+                    path.display(),
+                    args.mesh.display()
+                )
+                .into());
             }
             Ok((VertexSelection::Indices(indices.clone()), indices))
         }
@@ -104,9 +109,7 @@ fn read_indices(path: &Path) -> Result<Vec<u32>, String> {
     } else {
         text.split(|c: char| c.is_whitespace() || c == ',')
             .filter(|token| !token.is_empty())
-            .map(|token| {
-                token.parse().map_err(|_| format!("{}: {token:?} is not a vertex index", path.display()))
-            })
+            .map(|token| token.parse().map_err(|_| format!("{}: {token:?} is not a vertex index", path.display())))
             .collect::<Result<_, _>>()?
     };
     if indices.is_empty() {
@@ -124,7 +127,10 @@ fn parse_axis(text: &str) -> Result<Vec<DVec3>, String> {
         .filter(|p| !p.trim().is_empty())
         .enumerate()
         .map(|(i, point)| {
-            let coordinates: Vec<f64> = point.split(',').map(|c| c.trim().parse::<f64>()).collect::<Result<_, _>>()
+            let coordinates: Vec<f64> = point
+                .split(',')
+                .map(|c| c.trim().parse::<f64>())
+                .collect::<Result<_, _>>()
                 .map_err(|_| format!("--axis: point {i} ({point:?}) is not three numbers x,y,z"))?;
             match coordinates[..] {
                 [x, y, z] if x.is_finite() && y.is_finite() && z.is_finite() => Ok(DVec3::new(x, y, z)),
@@ -177,7 +183,11 @@ fn print_report(name: &str, fitted: &Fit, options: &FitOptions, seconds: f64) {
                 section.several_crossings, options.radii
             );
         }
-        if section.missed > 0 {
+        if section.borrowed {
+            println!(
+                "  key {k}: partial section (its plane leaves the part through the part's open rim); center extrapolated from the neighbouring keys, rays that miss take the nearest complete key's radii"
+            );
+        } else if section.missed > 0 {
             println!(
                 "  key {k}: {} of {} rays meet no boundary (open section); their radii are interpolated",
                 section.missed, options.radii

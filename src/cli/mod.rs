@@ -126,7 +126,7 @@ enum Command {
         #[arg(long, default_value_t = 6)]
         keys: usize,
         /// Radii M sampled per key.
-        #[arg(long, default_value_t = 16)]
+        #[arg(long, default_value_t = 32)]
         radii: usize,
         /// The most keys insertion may reach.
         #[arg(long, default_value_t = 24)]

@@ -11,11 +11,8 @@ pub fn transported_frames(normals: &[DVec3]) -> Vec<DQuat> {
     let mut rotations: Vec<DQuat> = Vec::with_capacity(normals.len());
     let mut x_axis = DVec3::ZERO;
     for (i, &normal) in normals.iter().enumerate() {
-        x_axis = if i == 0 {
-            least_aligned_axis(normal)
-        } else {
-            DQuat::from_rotation_arc(normals[i - 1], normal) * x_axis
-        };
+        x_axis =
+            if i == 0 { least_aligned_axis(normal) } else { DQuat::from_rotation_arc(normals[i - 1], normal) * x_axis };
         x_axis = (x_axis - normal * x_axis.dot(normal)).normalize();
         let mut rotation = DQuat::from_mat3(&DMat3::from_cols(x_axis, normal.cross(x_axis), normal)).normalize();
         if rotations.last().is_some_and(|previous| previous.dot(rotation) < 0.0) {

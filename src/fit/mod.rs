@@ -36,6 +36,7 @@ pub mod quality;
 pub mod radii;
 mod refine;
 pub mod section;
+pub mod select;
 pub mod star;
 
 use glam::DVec3;
@@ -43,6 +44,7 @@ use glam::DVec3;
 pub use error::FitError;
 pub use part::Part;
 pub use quality::FitQuality;
+pub use select::largest_connected;
 
 use crate::mesh::Mesh;
 use crate::sweep::Key;
@@ -65,7 +67,7 @@ pub struct FitOptions {
 
 impl Default for FitOptions {
     fn default() -> FitOptions {
-        FitOptions { axis: None, keys: 6, radii: 16, max_keys: 24, tolerance: 0.05 }
+        FitOptions { axis: None, keys: 6, radii: 32, max_keys: 24, tolerance: 0.05 }
     }
 }
 
@@ -108,7 +110,8 @@ pub struct SectionReport {
 
 impl SectionReport {
     /// A plane that missed the part.
-    pub const MISSED: SectionReport = SectionReport { cut: false, open: false, several_crossings: 0, missed: 0, borrowed: false };
+    pub const MISSED: SectionReport =
+        SectionReport { cut: false, open: false, several_crossings: 0, missed: 0, borrowed: false };
 }
 
 /// One stage of the fit, for showing the steps of Fig. 3.

@@ -41,13 +41,20 @@ pub fn sample(contours: &[&Contour], center: DVec2, count: usize) -> Option<Samp
 /// How many times the ray from `center` at `angle` crosses the contours, and the distance to
 /// its outermost crossing.
 pub fn ray_crossings(contours: &[&Contour], center: DVec2, angle: f64) -> (usize, Option<f64>) {
+    let hits = ray_hits(contours, center, angle);
+    (hits.len(), hits.last().copied())
+}
+
+/// The distances along the ray from `center` at `angle` to each crossing of the contours,
+/// increasing.
+pub fn ray_hits(contours: &[&Contour], center: DVec2, angle: f64) -> Vec<f64> {
     let direction = DVec2::new(angle.cos(), angle.sin());
     let mut hits: Vec<f64> =
         contours.iter().flat_map(|c| c.segments()).filter_map(|(a, b)| ray_hit(center, direction, a, b)).collect();
     hits.sort_by(f64::total_cmp);
     // A ray through a shared point of two segments meets both: count it once.
     hits.dedup_by(|b, a| *b - *a <= 1e-9 * a.abs().max(f64::MIN_POSITIVE));
-    (hits.len(), hits.last().copied())
+    hits
 }
 
 /// The distance along the ray from `origin` in unit `direction` to the segment `a`–`b`, if

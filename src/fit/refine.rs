@@ -2,14 +2,16 @@
 //! planes along the axis, re-centering of the keys on their sections, and key insertion where
 //! the fit is loose, with the end keys kept just past the part.
 
+use std::f64::consts::TAU;
+
 use glam::{DQuat, DVec2, DVec3};
 
 use super::axis::{Polyline, principal_axis};
 use super::frames::transported_frames;
 use super::part::Part;
 use super::quality::{Measured, measure};
-use super::radii::sample;
-use super::section::{Plane, around, center, cut};
+use super::radii::{ray_crossings, sample};
+use super::section::{Contour, Plane, around, center, cut};
 use super::star::star_center;
 use super::{FitError, FitOptions, FitStep, SectionReport};
 use crate::sweep::{Key, Sweep};
@@ -19,6 +21,8 @@ const END_MARGIN: f64 = 0.01;
 /// An end key takes its radii from the first section found this far inside the end plane
 /// (fractions of the part's length), since its own plane lies just past the part.
 const END_INSETS: [f64; 8] = [0.02, 0.04, 0.07, 0.1, 0.14, 0.19, 0.25, 0.32];
+/// Tilts (radians) tried around each inner key's normal for the least-area section.
+const TILTS: [f64; 5] = [-0.3, -0.15, 0.0, 0.15, 0.3];
 /// Re-centering passes after the first cut and after each key insertion.
 const RECENTER_PASSES: usize = 3;
 
@@ -35,6 +39,9 @@ struct Cut {
     center: DVec3,
     radii: Vec<f64>,
     report: SectionReport,
+    /// The plane the section lies in and its contours, for sampling from another center.
+    plane: Plane,
+    contours: Vec<Contour>,
 }
 
 impl Cut {
@@ -51,6 +58,15 @@ fn inner_neighbours(complete: &[usize], i: usize, last: usize) -> Vec<usize> {
     let before: Vec<usize> = complete.iter().rev().copied().filter(|&k| k < i).take(2).collect();
     let (inner, outer) = if 2 * i <= last { (after, before) } else { (before, after) };
     if inner.is_empty() { outer } else { inner }
+}
+
+/// The radii of a partial section seen from `center` (in its plane): where a ray meets the
+/// section's boundary, its outermost crossing; elsewhere the neighbour's radius.
+fn partial_radii(cut: &Cut, center: DVec3, neighbour: &[f64]) -> Vec<f64> {
+    let contours: Vec<&Contour> = cut.contours.iter().collect();
+    let q = cut.plane.to_plane(center);
+    let m = neighbour.len();
+    (0..m).map(|j| ray_crossings(&contours, q, TAU * j as f64 / m as f64).1.unwrap_or(neighbour[j])).collect()
 }
 
 /// Where the line through the centers `a` (nearer) and `b` meets the station's plane; `None`
@@ -86,7 +102,7 @@ pub fn run(part: &Part, options: &FitOptions) -> Result<(Fitted, Vec<FitStep>), 
     let along: Vec<f64> = part.positions.iter().map(|&p| axis.project(p)).collect();
     let (lo, hi) = along.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &s| (lo.min(s), hi.max(s)));
     let length = hi - lo;
-    if !(length > 0.0) {
+    if length.is_nan() || length <= 0.0 {
         return Err(FitError::Flat);
     }
     let fitter = Fitter { part, options, length };
@@ -177,8 +193,13 @@ impl Fitter<'_> {
                         Some((Some(a), Some(b))) => extrapolate(a.center, b.center, station),
                         _ => None,
                     };
-                    centers.push(center.unwrap_or_else(|| cut.as_ref().map_or(station.center, |c| c.center)));
-                    radii.push(cuts[inner[0]].as_ref().map(|c| c.radii.clone()));
+                    let center = center.unwrap_or_else(|| cut.as_ref().map_or(station.center, |c| c.center));
+                    let neighbour = cuts[inner[0]].as_ref().map(|c| c.radii.clone());
+                    radii.push(match (cut, neighbour) {
+                        (Some(cut), Some(neighbour)) => Some(partial_radii(cut, center, &neighbour)),
+                        (_, neighbour) => neighbour,
+                    });
+                    centers.push(center);
                     report.borrowed = true;
                 }
                 _ => {
@@ -250,7 +271,8 @@ impl Fitter<'_> {
             missed: sampled.missed,
             borrowed: false,
         };
-        Some(Cut { center: plane.from_plane(middle), radii: sampled.radii, report })
+        let contours = chosen.into_iter().cloned().collect();
+        Some(Cut { center: plane.from_plane(middle), radii: sampled.radii, report, plane, contours })
     }
 
     /// Further re-centering passes, keeping the tightest fit (smallest RMS |d|) seen.
@@ -265,18 +287,59 @@ impl Fitter<'_> {
         Ok(fitted)
     }
 
-    /// The stations of fitted keys, with normals along the tangent C′(u_i) of their sweep.
+    /// The stations of fitted keys, with normals along the tangent C′(u_i) of their sweep,
+    /// each inner one then tilted to the plane of least section area nearby. An end key
+    /// takes the normal of its inner neighbour: the tangent at the very end of a natural
+    /// spline swings with every move of the end key, the one inside does not.
     fn stations_of(&self, fitted: &Fitted) -> Vec<Station> {
         let knots = fitted.sweep.knots();
-        fitted
-            .keys
-            .iter()
-            .zip(knots)
-            .map(|(key, &u)| Station {
-                center: key.center,
-                normal: fitted.sweep.center_derivative(u).try_normalize().unwrap_or(key.rotation * DVec3::Z),
+        let last = fitted.keys.len() - 1;
+        let tangent = |i: usize| {
+            let key = &fitted.keys[i];
+            fitted.sweep.center_derivative(knots[i]).try_normalize().unwrap_or(key.rotation * DVec3::Z)
+        };
+        let mut stations: Vec<Station> = (0..=last)
+            .map(|i| {
+                let station = Station { center: fitted.keys[i].center, normal: tangent(i) };
+                if i == 0 || i == last { station } else { self.least_area(station) }
             })
-            .collect()
+            .collect();
+        if last >= 2 {
+            stations[0].normal = stations[1].normal;
+            stations[last].normal = stations[last - 1].normal;
+        }
+        stations
+    }
+
+    /// The station's plane tilted (by up to [`TILTS`] in two directions) to the one whose
+    /// closed section around the center has the least area: the plane most nearly
+    /// perpendicular to the part there.
+    fn least_area(&self, station: Station) -> Station {
+        let side = station.normal.any_orthonormal_vector();
+        let up = station.normal.cross(side);
+        let area = |normal: DVec3| -> f64 {
+            let x = normal.any_orthonormal_vector();
+            let plane = Plane { origin: station.center, x, y: normal.cross(x), normal };
+            let contours = cut(self.part, &plane);
+            match around(&contours, DVec2::ZERO) {
+                Some(chosen) if chosen.iter().all(|c| c.closed) => chosen.iter().map(|c| c.signed_area().abs()).sum(),
+                _ => f64::INFINITY,
+            }
+        };
+        let mut best = (area(station.normal), station.normal);
+        if !best.0.is_finite() {
+            return station;
+        }
+        for a in TILTS {
+            for b in TILTS {
+                let normal = (station.normal + side * a.tan() + up * b.tan()).normalize();
+                let candidate = area(normal);
+                if candidate < best.0 {
+                    best = (candidate, normal);
+                }
+            }
+        }
+        Station { center: station.center, normal: best.1 }
     }
 
     /// Moves the end stations along their normals so that every vertex lies strictly between
@@ -285,7 +348,8 @@ impl Fitter<'_> {
     fn with_ends_past_the_part(&self, mut stations: Vec<Station>) -> Vec<Station> {
         let margin = END_MARGIN * self.length;
         let first = stations[0];
-        let nearest = self.part.positions.iter().map(|&v| (v - first.center).dot(first.normal)).fold(f64::INFINITY, f64::min);
+        let nearest =
+            self.part.positions.iter().map(|&v| (v - first.center).dot(first.normal)).fold(f64::INFINITY, f64::min);
         stations[0].center += first.normal * (nearest - margin);
         let last_index = stations.len() - 1;
         let last = stations[last_index];

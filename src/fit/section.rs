@@ -163,8 +163,7 @@ pub fn around(contours: &[Contour], q: DVec2) -> Option<Vec<&Contour>> {
         .iter()
         .filter(|c| c.encloses(q))
         .min_by(|a, b| a.signed_area().abs().total_cmp(&b.signed_area().abs()));
-    let primary =
-        enclosing.or_else(|| contours.iter().min_by(|a, b| a.distance_to(q).total_cmp(&b.distance_to(q))))?;
+    let primary = enclosing.or_else(|| contours.iter().min_by(|a, b| a.distance_to(q).total_cmp(&b.distance_to(q))))?;
     let reach = primary.points.iter().map(|p| p.distance(q)).fold(0.0, f64::max);
     Some(contours.iter().filter(|c| std::ptr::eq(*c, primary) || c.distance_to(q) <= reach).collect())
 }
@@ -195,7 +194,11 @@ pub fn center(contours: &[&Contour]) -> DVec2 {
         length += l;
         sum += (p + q) * 0.5 * l;
     }
-    if length > 0.0 { sum / length } else { contours.iter().flat_map(|c| c.points.first()).copied().next().unwrap_or_default() }
+    if length > 0.0 {
+        sum / length
+    } else {
+        contours.iter().flat_map(|c| c.points.first()).copied().next().unwrap_or_default()
+    }
 }
 
 #[cfg(test)]

@@ -4,14 +4,16 @@
 //! The area centroid serves when every ray from it crosses the boundary once. Otherwise (a
 //! crescent, such as the cupped section of a bunny's ear, whose centroid may even lie outside
 //! it), points inside the section are tried on a grid and then a finer grid around the best
-//! one, scoring each by the rays that cross more than once or not at all; the best point wins,
-//! ties going to the point nearest the centroid.
+//! one. Each is scored by how much boundary its rays cannot see: for each probe ray, the
+//! depth between its first and its outermost crossing (the |d| a vertex on a hidden wall
+//! gets), relative to the mean outermost distance, with a ray that meets nothing counting
+//! as fully hidden. The best point wins, ties going to the point nearest the centroid.
 
 use std::f64::consts::TAU;
 
 use glam::DVec2;
 
-use super::radii::ray_crossings;
+use super::radii::ray_hits;
 use super::section::Contour;
 
 /// Probe rays per candidate center.
@@ -24,20 +26,20 @@ pub fn star_center(contours: &[&Contour], centroid: DVec2) -> DVec2 {
     if contours.iter().any(|c| !c.closed) {
         return centroid;
     }
-    let mut best = (blind_rays(contours, centroid), 0.0, centroid);
-    if best.0 == 0 {
+    let mut best = (hidden_depth(contours, centroid), 0.0, centroid);
+    if best.0 == 0.0 {
         return centroid;
     }
     let (lo, hi) = bounds(contours);
     let mut step = (hi - lo) / (GRID - 1) as f64;
-    let search = |origin: DVec2, step: DVec2, best: &mut (usize, f64, DVec2)| {
+    let search = |origin: DVec2, step: DVec2, best: &mut (f64, f64, DVec2)| {
         for i in 0..GRID {
             for j in 0..GRID {
                 let q = origin + DVec2::new(i as f64 * step.x, j as f64 * step.y);
                 if !contours.iter().any(|c| c.encloses(q)) {
                     continue;
                 }
-                let candidate = (blind_rays(contours, q), q.distance(centroid), q);
+                let candidate = (hidden_depth(contours, q), q.distance(centroid), q);
                 if (candidate.0, candidate.1) < (best.0, best.1) {
                     *best = candidate;
                 }
@@ -51,9 +53,24 @@ pub fn star_center(contours: &[&Contour], centroid: DVec2) -> DVec2 {
     best.2
 }
 
-/// Probe rays from `q` that cross the boundary more than once or not at all.
-fn blind_rays(contours: &[&Contour], q: DVec2) -> usize {
-    (0..PROBES).filter(|&j| ray_crossings(contours, q, TAU * j as f64 / PROBES as f64).0 != 1).count()
+/// How much of the boundary the rays from `q` cannot see (see the module docs); 0 when the
+/// section is star-shaped around `q`.
+fn hidden_depth(contours: &[&Contour], q: DVec2) -> f64 {
+    let (mut hidden, mut reach, mut missed) = (0.0, 0.0, 0usize);
+    for j in 0..PROBES {
+        let hits = ray_hits(contours, q, TAU * j as f64 / PROBES as f64);
+        match (hits.first(), hits.last()) {
+            (Some(first), Some(last)) => {
+                hidden += last - first;
+                reach += last;
+            }
+            _ => missed += 1,
+        }
+    }
+    if reach == 0.0 {
+        return f64::INFINITY;
+    }
+    hidden / reach + missed as f64 / PROBES as f64
 }
 
 fn bounds(contours: &[&Contour]) -> (DVec2, DVec2) {
@@ -83,7 +100,7 @@ mod tests {
         let contours = [&c];
         let centroid = crate::fit::section::center(&contours);
         let chosen = star_center(&contours, centroid);
-        assert!(blind_rays(&contours, chosen) < blind_rays(&contours, centroid));
+        assert!(hidden_depth(&contours, chosen) < hidden_depth(&contours, centroid));
         assert!(c.encloses(chosen));
     }
 

@@ -42,7 +42,11 @@ fn even_radii(key: usize, samples: usize) -> Vec<f64> {
 #[test]
 fn fitting_a_known_straight_sweep_recovers_its_radii_within_one_percent() {
     let keys: Vec<Key> = (0..5)
-        .map(|i| Key { center: DVec3::new(0.0, 0.0, 1.5 * i as f64), rotation: DQuat::IDENTITY, radii: even_radii(i, 8) })
+        .map(|i| Key {
+            center: DVec3::new(0.0, 0.0, 1.5 * i as f64),
+            rotation: DQuat::IDENTITY,
+            radii: even_radii(i, 8),
+        })
         .collect();
     let truth = Sweep::try_new(&keys, None).unwrap();
     let mesh = surface_mesh(&truth, 128, 100);
@@ -61,7 +65,8 @@ fn fitting_a_known_straight_sweep_recovers_its_radii_within_one_percent() {
         assert!(key.center.truncate().length() < 1e-3, "key {k} center {} is off the axis", key.center);
         let m = key.radii.len();
         for (j, &rho) in key.radii.iter().enumerate() {
-            let direction = key.rotation * DVec3::new((TAU * j as f64 / m as f64).cos(), (TAU * j as f64 / m as f64).sin(), 0.0);
+            let direction =
+                key.rotation * DVec3::new((TAU * j as f64 / m as f64).cos(), (TAU * j as f64 / m as f64).sin(), 0.0);
             let phi = direction.y.atan2(direction.x).rem_euclid(TAU);
             let expected = truth.radius(phi, t);
             let error = (rho - expected).abs() / expected;
@@ -85,11 +90,11 @@ fn fitting_a_known_bent_sweep_puts_its_surface_on_the_true_one() {
         DVec3::new(2.9, 0.5, 3.5),
         DVec3::new(4.3, 0.4, 3.6),
     ];
-    let normals: Vec<DVec3> = (0..5)
-        .map(|i| (centers[(i + 1).min(4)] - centers[i.saturating_sub(1)]).normalize())
-        .collect();
+    let normals: Vec<DVec3> =
+        (0..5).map(|i| (centers[(i + 1).min(4)] - centers[i.saturating_sub(1)]).normalize()).collect();
     let frames = super::frames::transported_frames(&normals);
-    let keys: Vec<Key> = (0..5).map(|i| Key { center: centers[i], rotation: frames[i], radii: even_radii(i, 8) }).collect();
+    let keys: Vec<Key> =
+        (0..5).map(|i| Key { center: centers[i], rotation: frames[i], radii: even_radii(i, 8) }).collect();
     let truth = Sweep::try_new(&keys, None).unwrap();
     let mesh = surface_mesh(&truth, 128, 160);
     let all: Vec<u32> = (0..mesh.positions.len() as u32).collect();
@@ -117,7 +122,11 @@ fn fitting_a_known_bent_sweep_puts_its_surface_on_the_true_one() {
         }
     }
     assert!(worst <= 0.01, "worst |d|/r of a fitted boundary point: {worst:.3e}");
-    eprintln!("bent sweep: {} keys, RMS |d| {:.2e}, worst boundary point {worst:.2e}", fitted.keys.len(), fitted.quality.rms_d);
+    eprintln!(
+        "bent sweep: {} keys, RMS |d| {:.2e}, worst boundary point {worst:.2e}",
+        fitted.keys.len(),
+        fitted.quality.rms_d
+    );
 }
 
 #[test]
