@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Regenerates the pictures the README shows, from the demo and the examples.
+# Run from the repository root: bash docs/make-pictures.sh (the examples need ../shared).
+set -euo pipefail
+work=target/docs-pictures
+rm -rf "$work" && mkdir -p "$work"
+cargo build --release --examples --bin sweepffd
+./target/release/sweepffd demo --out "$work/demo" --quiet
+./target/release/sweepffd render --mesh "$work/demo/rest.obj" --rig "$work/demo/rig.json" \
+  --pose "$work/demo/pose.json" --compare --show-sweeps --size 480x360 --view 90,15 --out docs/demo.png
+for example in teapot bunny armadillo_leg chair; do
+  ./target/release/examples/$example "$work/$example" > /dev/null
+done
+cp "$work/teapot/handle-edit.png" docs/teapot-handle.png
+cp "$work/teapot/body-edit-no-hierarchy.png" docs/teapot-no-hierarchy.png
+cp "$work/bunny/ears-bent.png" docs/bunny-ears.png
+cp "$work/armadillo_leg/step0.png" docs/armadillo-rough.png
+cp "$work/armadillo_leg/step4.png" docs/armadillo-fitted.png 2>/dev/null || cp "$work/armadillo_leg/step3.png" docs/armadillo-fitted.png
+cp "$work/chair/chair.png" docs/chair.png
+ls -l docs/*.png
