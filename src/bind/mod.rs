@@ -77,28 +77,48 @@ impl<'a> SweepBinder<'a> {
     /// The cross-section that v binds to: the root nearest to v, or the nearer end when there
     /// is no root.
     pub fn cross_section(&self, v: DVec3) -> AxisPoint {
+        self.nearest_root(v).unwrap_or_else(|| self.nearer_end(v))
+    }
+
+    /// The root of ⟨v − C(t), N(t)⟩ on [0, 1] nearest to v, if there is one.
+    pub fn nearest_root(&self, v: DVec3) -> Option<AxisPoint> {
         let segments = self.sweep.segments();
-        let distance = |at: &AxisPoint| segments[at.segment].curve.value(at.s).distance_squared(v);
         let mut best: Option<(AxisPoint, f64)> = None;
         for (segment, quintic) in self.quintics.iter().enumerate() {
             quintic::for_each_root(&quintic.for_vertex(v), &mut |s| {
-                let at = AxisPoint { segment, s };
-                let d2 = distance(&at);
+                let d2 = segments[segment].curve.value(s).distance_squared(v);
                 if best.is_none_or(|(_, best_d2)| d2 < best_d2) {
-                    best = Some((at, d2));
+                    best = Some((AxisPoint { segment, s }, d2));
                 }
             });
         }
-        best.map(|(at, _)| at).unwrap_or_else(|| {
-            let start = AxisPoint { segment: 0, s: 0.0 };
-            let end = AxisPoint { segment: segments.len() - 1, s: 1.0 };
-            if distance(&end) < distance(&start) { end } else { start }
-        })
+        best.map(|(at, _)| at)
+    }
+
+    /// The end of the sweep (t = 0 or 1) nearer to v.
+    fn nearer_end(&self, v: DVec3) -> AxisPoint {
+        let segments = self.sweep.segments();
+        let distance = |at: &AxisPoint| segments[at.segment].curve.value(at.s).distance_squared(v);
+        let start = AxisPoint { segment: 0, s: 0.0 };
+        let end = AxisPoint { segment: segments.len() - 1, s: 1.0 };
+        if distance(&end) < distance(&start) { end } else { start }
+    }
+
+    /// The binding of v, and whether it binds with a root (rather than by end clamping).
+    pub fn bind_reporting_root(&self, v: DVec3) -> (VertexBinding, bool) {
+        match self.nearest_root(v) {
+            Some(at) => (self.bind_at(v, at), true),
+            None => (self.bind_at(v, self.nearer_end(v)), false),
+        }
     }
 
     /// The binding parameters (θ, t, d, h) of vertex v.
     pub fn bind(&self, v: DVec3) -> VertexBinding {
-        let at = self.cross_section(v);
+        self.bind_at(v, self.cross_section(v))
+    }
+
+    /// The binding parameters of v on the cross-section at `at`.
+    fn bind_at(&self, v: DVec3, at: AxisPoint) -> VertexBinding {
         let segment = &self.sweep.segments()[at.segment];
         let local = segment.orientation.value(at.s).inverse() * (v - segment.curve.value(at.s));
         // On the axis θ is arbitrary: every path (f64, f32 twin, GPU) pins it to 0.

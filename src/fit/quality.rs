@@ -41,10 +41,9 @@ pub fn measure(sweep: &Sweep, positions: &[DVec3]) -> Measured {
     let bindings: Vec<VertexBinding> = positions
         .iter()
         .map(|&v| {
-            if binder.roots(v).is_empty() {
-                without_root += 1;
-            }
-            binder.bind(v)
+            let (binding, rooted) = binder.bind_reporting_root(v);
+            without_root += usize::from(!rooted);
+            binding
         })
         .collect();
     let radius_sum: f64 = bindings.iter().map(|b| sweep.radius(b.theta, b.t)).sum();

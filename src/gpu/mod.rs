@@ -24,4 +24,4 @@ pub use context::GpuContext;
 pub use deformer::{BindingSource, GpuDeformer};
 pub use error::GpuError;
 pub use kernels::DeformVariant;
-pub use readback::{read_bytes, wait};
+pub use readback::{read_bytes, read_staging, wait};

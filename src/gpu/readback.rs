@@ -18,6 +18,12 @@ pub fn read_bytes(context: &GpuContext, buffer: &wgpu::Buffer, offset: u64, size
         device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd readback") });
     encoder.copy_buffer_to_buffer(buffer, offset, &staging, 0, size);
     context.queue.submit([encoder.finish()]);
+    read_staging(context, &staging)
+}
+
+/// Every byte of `staging` (a `MAP_READ` buffer whose filling commands are submitted): maps it,
+/// waits for the GPU, copies the bytes out and unmaps it.
+pub fn read_staging(context: &GpuContext, staging: &wgpu::Buffer) -> Result<Vec<u8>, GpuError> {
     let slice = staging.slice(..);
     let (sender, receiver) = mpsc::channel();
     slice.map_async(wgpu::MapMode::Read, move |result| {

@@ -1,13 +1,11 @@
 //! The offscreen target of one picture (multisampled colour and depth, a resolved colour
 //! texture) and its readback into an [`image::RgbaImage`] through rows padded to 256 bytes.
 
-use std::sync::mpsc;
-
 use image::RgbaImage;
 
 use super::RenderError;
 use super::pipeline::{COLOUR_FORMAT, DEPTH_FORMAT, SAMPLES};
-use crate::gpu::{GpuContext, GpuError, wait};
+use crate::gpu::{GpuContext, GpuError, read_staging};
 
 /// The textures a picture of `width` × `height` is drawn into.
 #[derive(Debug)]
@@ -77,21 +75,9 @@ impl Target {
             wgpu::Extent3d { width: self.width, height: self.height, depth_or_array_layers: 1 },
         );
         context.queue.submit([encoder.finish()]);
-        let slice = staging.slice(..);
-        let (sender, receiver) = mpsc::channel();
-        slice.map_async(wgpu::MapMode::Read, move |result| {
-            let _ = sender.send(result);
-        });
-        wait(context)?;
-        receiver
-            .recv()
-            .map_err(|_| GpuError::DeviceLost("the picture readback was never completed".to_string()))?
-            .map_err(|e| GpuError::Validation(format!("mapping the picture readback buffer failed: {e}")))?;
-        let mapped = slice.get_mapped_range().map_err(|e| GpuError::Validation(e.to_string()))?;
+        let padded_rows = read_staging(context, &staging)?;
         let row = 4 * self.width as usize;
-        let pixels: Vec<u8> = mapped.chunks_exact(padded as usize).flat_map(|r| &r[..row]).copied().collect();
-        drop(mapped);
-        staging.unmap();
+        let pixels: Vec<u8> = padded_rows.chunks_exact(padded as usize).flat_map(|r| &r[..row]).copied().collect();
         RgbaImage::from_raw(self.width, self.height, pixels)
             .ok_or_else(|| GpuError::Validation("the picture readback has the wrong size".to_string()).into())
     }
