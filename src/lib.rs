@@ -48,3 +48,5 @@ pub mod render;
 pub mod rig;
 pub mod sweep;
 pub mod synthetic;
+#[cfg(feature = "viewer")]
+pub mod view;

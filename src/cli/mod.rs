@@ -11,6 +11,8 @@ mod info;
 mod pose;
 mod progress;
 mod render;
+#[cfg(feature = "viewer")]
+mod view;
 mod volume;
 
 use std::path::PathBuf;
@@ -210,6 +212,38 @@ enum Command {
         #[arg(long)]
         out: PathBuf,
     },
+    /// Open a window to edit a mesh through its sweeps in real time (see the README's controls).
+    #[cfg(feature = "viewer")]
+    View {
+        /// The mesh (.obj, .ply, .off, .gltf or .glb).
+        #[arg(long)]
+        mesh: PathBuf,
+        /// The rest rig (JSON); without it, fit sweeps to parts picked in the window.
+        #[arg(long)]
+        rig: Option<PathBuf>,
+        /// Start from this pose of the rig.
+        #[arg(long)]
+        pose: Option<PathBuf>,
+        /// Levels of midpoint subdivision of the mesh (each about quadruples the vertices; the
+        /// rig's vertex indices are carried along).
+        #[arg(long, default_value_t = 0)]
+        subdivide: usize,
+        /// The volume rule to start with.
+        #[arg(long, value_enum, default_value_t = VolumeRule::None)]
+        volume: VolumeRule,
+        /// Window size WIDTHxHEIGHT in pixels.
+        #[arg(long, default_value = "1280x800", value_parser = render::parse_size)]
+        size: (u32, u32),
+        /// Where Ctrl+S saves the pose (the panel can change it).
+        #[arg(long, default_value = "pose.json")]
+        save_pose: PathBuf,
+        /// Replay this script of input events and screenshots, print a JSON report, and exit.
+        #[arg(long)]
+        script: Option<PathBuf>,
+        /// Also write the script's report to this file.
+        #[arg(long, requires = "script")]
+        report: Option<PathBuf>,
+    },
     /// Build a tube and its rig, bend, twist and taper it, and write the meshes.
     Demo {
         /// Folder for the demo's files.
@@ -259,6 +293,12 @@ pub fn run() -> ExitCode {
         }
         Command::Render { mesh, rig, pose, show_sweeps, size, view, compare, out } => {
             render::run(&render::Args { mesh, rig, pose, show_sweeps, size, view, compare, out }, quiet)
+        }
+        #[cfg(feature = "viewer")]
+        Command::View { mesh, rig, pose, subdivide, volume, size, save_pose, script, report } => {
+            let options =
+                sweepffd::view::ViewOptions { mesh, rig, pose, subdivide, volume, script, size, pose_out: save_pose };
+            view::run_view(view::Args { options, report })
         }
         Command::Demo { out } => demo::run(&out, quiet),
     };

@@ -28,12 +28,13 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
         (None, VolumeRule::Mesh) => return Err("--volume mesh needs --mesh".into()),
         (None, _) => None,
     };
+    let bindings;
     let mut posing = Posing::new(&rig);
     posing.volume = args.volume;
     if let Some((mesh, path)) = &mesh {
         let owners = rig.owners(mesh, &path.display().to_string())?;
-        let bindings = bind_vertices(rig.rest(), &owners, &mesh.positions, &|_| {});
-        posing = posing.with_mesh(BoundMesh { mesh, bindings });
+        bindings = bind_vertices(rig.rest(), &owners, &mesh.positions, &|_| {});
+        posing = posing.with_mesh(BoundMesh { mesh, bindings: &bindings });
     }
     for (i, edit) in edits.iter().enumerate() {
         posing.apply(edit).map_err(|e| {

@@ -37,6 +37,26 @@ impl<'a> Posing<'a> {
         Posing { rig, keys, hierarchy: true, volume: VolumeRule::None, controls: Controls::default(), mesh: None }
     }
 
+    /// Continues from `keys`, a pose of the rig (e.g. loaded from a pose file, or saved before
+    /// an edit to undo it): `Err(Invalid)` unless there is one key list per sweep, each as long
+    /// as the sweep's rest keys.
+    pub fn with_keys(mut self, keys: Vec<Vec<Key>>) -> Result<Posing<'a>, EditError> {
+        let rest = self.rig.sweeps();
+        if keys.len() != rest.len() {
+            return Err(EditError::Invalid(format!("{} key lists for a rig of {} sweeps", keys.len(), rest.len())));
+        }
+        if let Some((sweep, keys)) = rest.iter().zip(&keys).find(|(sweep, keys)| sweep.keys.len() != keys.len()) {
+            return Err(EditError::Invalid(format!(
+                "sweep {:?} has {} keys at rest, the pose gives {}",
+                sweep.name,
+                sweep.keys.len(),
+                keys.len()
+            )));
+        }
+        self.keys = keys;
+        Ok(self)
+    }
+
     /// Binds a closed mesh for [`VolumeRule::Mesh`].
     pub fn with_mesh(mut self, mesh: BoundMesh<'a>) -> Posing<'a> {
         self.mesh = Some(mesh);

@@ -49,7 +49,7 @@ pub struct BoundMesh<'a> {
     /// The mesh at rest.
     pub mesh: &'a Mesh,
     /// Its vertices' bindings to the rig.
-    pub bindings: Vec<Binding>,
+    pub bindings: &'a [Binding],
 }
 
 impl BoundMesh<'_> {
@@ -57,7 +57,7 @@ impl BoundMesh<'_> {
     pub fn volume(&self, rig: &Rig, keys: &[Vec<Key>]) -> Result<f64, EditError> {
         let posed = rig.pose(keys).map_err(|e| EditError::Invalid(e.to_string()))?;
         let mut positions = vec![DVec3::ZERO; self.mesh.positions.len()];
-        deform_vertices(&posed, &self.bindings, &self.mesh.positions, &mut positions);
+        deform_vertices(&posed, self.bindings, &self.mesh.positions, &mut positions);
         Ok(self.mesh.enclosed_volume(&positions))
     }
 }

@@ -33,6 +33,7 @@ mod parts;
 mod ply;
 mod save;
 mod source;
+mod subdivide;
 mod volume;
 
 use glam::DVec3;
@@ -42,6 +43,7 @@ pub use error::{MeshDataError, MeshError, ObjLineError};
 pub use format::Format;
 pub use gltf::GltfDataError;
 pub use off::OffLineError;
+pub use subdivide::Subdivision;
 
 use source::Source;
 

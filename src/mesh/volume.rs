@@ -43,6 +43,21 @@ impl Mesh {
         six_v / 6.0
     }
 
+    /// Whether every edge of the faces is shared by exactly two faces, so that
+    /// [`Mesh::enclosed_volume`] is a volume.
+    pub fn is_closed(&self) -> bool {
+        let mut edges: Vec<(u32, u32)> = self
+            .faces
+            .iter()
+            .flat_map(|face| {
+                let next = face.iter().cycle().skip(1);
+                face.iter().zip(next).map(|(&a, &b)| (a.min(b), a.max(b)))
+            })
+            .collect();
+        edges.sort_unstable();
+        !edges.is_empty() && edges.chunk_by(|a, b| a == b).all(|run| run.len() == 2)
+    }
+
     /// [`Mesh::enclosed_volume`], or [`MeshError::PositionCount`] if `positions` does not have
     /// one entry per vertex.
     pub fn try_enclosed_volume(&self, positions: &[DVec3]) -> Result<f64, MeshError> {
@@ -108,5 +123,17 @@ mod tests {
         let err = cube.try_enclosed_volume(&cube.positions[..7]).unwrap_err();
         assert_eq!(err.to_string(), "positions has 7 entries but the mesh has 8 vertices");
         assert!((cube.try_enclosed_volume(&cube.positions).unwrap() - 1.0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn cube_is_closed_until_a_face_is_removed() {
+        let cube = cube();
+        assert!(cube.is_closed());
+        let mut faces = crate::mesh::Faces::new();
+        for face in cube.faces.iter().skip(1) {
+            faces.push(face);
+        }
+        let open = Mesh::from_parts(cube.positions.clone(), faces, Vec::new()).unwrap();
+        assert!(!open.is_closed());
     }
 }

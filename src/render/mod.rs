@@ -39,13 +39,12 @@ use wgpu::util::DeviceExt;
 
 pub use camera::{Camera, FIELD_OF_VIEW_DEGREES, ViewAngles};
 pub use error::RenderError;
-pub use pipeline::{COLOUR_FORMAT, DEPTH_FORMAT, SAMPLES, SHADE_WGSL, ViewUniform};
+pub use pipeline::{COLOUR_FORMAT, DEPTH_FORMAT, Pipelines, SAMPLES, SHADE_WGSL, ViewUniform};
 pub use scene::{CLAY, Layer, RING, RenderVertex, SWEEP_SURFACE, Scene, union_bounds};
-pub use sweeps::{SweepStyle, add_sweeps};
+pub use sweeps::{SweepStyle, add_key_ring, add_sweep_surface, add_sweeps};
 
 use crate::gpu::GpuContext;
 use crate::mesh::write_atomically;
-use pipeline::Pipelines;
 use target::Target;
 
 /// The background colour of every picture (8-bit RGBA, as stored in the PNG).

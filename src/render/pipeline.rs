@@ -1,7 +1,9 @@
-//! The two render pipelines of a picture, both from `shaders/render/shade.wgsl`: the opaque one
-//! (depth test and write, back faces kept for two-sided shading) and the translucent one (depth
-//! test without write, alpha blending over what is drawn). Both render 4× multisampled into an
-//! 8-bit RGBA target with a 32-bit float depth buffer.
+//! The render pipelines, all from `shaders/render/shade.wgsl`: the opaque one (depth test and
+//! write, back faces kept for two-sided shading), the translucent one (depth test without write,
+//! alpha blending over what is drawn), and the deformed-mesh one, which reads positions and
+//! normals from two separate buffers (a [`GpuDeformer`](crate::gpu::GpuDeformer)'s outputs) and
+//! one colour per instance. All render 4× multisampled with a 32-bit float depth buffer, into an
+//! 8-bit RGBA picture or an application's window.
 
 use std::borrow::Cow;
 
@@ -40,13 +42,24 @@ pub struct Pipelines {
     pub opaque: wgpu::RenderPipeline,
     /// Sweep surfaces.
     pub translucent: wgpu::RenderPipeline,
+    /// A deformed mesh: buffer 0 positions, buffer 1 normals (tightly packed f32 xyz each, as a
+    /// [`GpuDeformer`](crate::gpu::GpuDeformer) writes them), buffer 2 one linear RGBA colour
+    /// per instance; opaque.
+    pub mesh: wgpu::RenderPipeline,
     /// Group 0: the [`ViewUniform`].
     pub view_layout: wgpu::BindGroupLayout,
 }
 
 impl Pipelines {
-    /// Compiles the shader and builds both pipelines.
+    /// Compiles the shader and builds the pipelines for pictures ([`COLOUR_FORMAT`]).
     pub fn new(device: &wgpu::Device) -> Pipelines {
+        Pipelines::for_target(device, COLOUR_FORMAT)
+    }
+
+    /// Compiles the shader and builds the pipelines for a colour target of `format` (e.g. a
+    /// window surface's). The shader gamma-encodes its output itself, so `format` should not be
+    /// an sRGB one.
+    pub fn for_target(device: &wgpu::Device, format: wgpu::TextureFormat) -> Pipelines {
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("sweepffd render"),
             source: wgpu::ShaderSource::Wgsl(Cow::Borrowed(SHADE_WGSL)),
@@ -69,10 +82,12 @@ impl Pipelines {
             bind_group_layouts: &[Some(&view_layout)],
             immediate_size: 0,
         });
-        let opaque = pipeline(device, &layout, &module, "sweepffd opaque", true, None);
+        let shade = Shade { device, layout: &layout, module: &module, format };
+        let opaque = shade.pipeline("sweepffd opaque", &INTERLEAVED, true, None);
         let translucent =
-            pipeline(device, &layout, &module, "sweepffd translucent", false, Some(wgpu::BlendState::ALPHA_BLENDING));
-        Pipelines { opaque, translucent, view_layout }
+            shade.pipeline("sweepffd translucent", &INTERLEAVED, false, Some(wgpu::BlendState::ALPHA_BLENDING));
+        let mesh = shade.pipeline("sweepffd deformed mesh", &SPLIT, true, None);
+        Pipelines { opaque, translucent, mesh, view_layout }
     }
 }
 
@@ -80,53 +95,84 @@ impl Pipelines {
 const VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 3] =
     wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x4];
 
-/// One pipeline of `shade.wgsl`: depth-tested, writing depth if `depth_write`, blending with
-/// `blend` (replacing without).
-fn pipeline(
-    device: &wgpu::Device,
-    layout: &wgpu::PipelineLayout,
-    module: &wgpu::ShaderModule,
-    label: &str,
-    depth_write: bool,
-    blend: Option<wgpu::BlendState>,
-) -> wgpu::RenderPipeline {
-    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some(label),
-        layout: Some(layout),
-        vertex: wgpu::VertexState {
-            module,
-            entry_point: Some("vs_main"),
-            compilation_options: wgpu::PipelineCompilationOptions::default(),
-            buffers: &[Some(wgpu::VertexBufferLayout {
-                array_stride: std::mem::size_of::<RenderVertex>() as u64,
-                step_mode: wgpu::VertexStepMode::Vertex,
-                attributes: &VERTEX_ATTRIBUTES,
-            })],
-        },
-        primitive: wgpu::PrimitiveState {
-            topology: wgpu::PrimitiveTopology::TriangleList,
-            cull_mode: None,
-            ..Default::default()
-        },
-        depth_stencil: Some(wgpu::DepthStencilState {
-            format: DEPTH_FORMAT,
-            depth_write_enabled: Some(depth_write),
-            depth_compare: Some(wgpu::CompareFunction::LessEqual),
-            stencil: wgpu::StencilState::default(),
-            bias: wgpu::DepthBiasState::default(),
-        }),
-        multisample: wgpu::MultisampleState { count: SAMPLES, mask: !0, alpha_to_coverage_enabled: false },
-        fragment: Some(wgpu::FragmentState {
-            module,
-            entry_point: Some("fs_main"),
-            compilation_options: wgpu::PipelineCompilationOptions::default(),
-            targets: &[Some(wgpu::ColorTargetState {
-                format: COLOUR_FORMAT,
-                blend,
-                write_mask: wgpu::ColorWrites::ALL,
-            })],
-        }),
-        multiview_mask: None,
-        cache: None,
-    })
+/// One interleaved [`RenderVertex`] buffer.
+const INTERLEAVED: [Option<wgpu::VertexBufferLayout<'static>>; 1] = [Some(wgpu::VertexBufferLayout {
+    array_stride: std::mem::size_of::<RenderVertex>() as u64,
+    step_mode: wgpu::VertexStepMode::Vertex,
+    attributes: &VERTEX_ATTRIBUTES,
+})];
+
+/// Positions and normals in buffers of their own (12 bytes a vertex), the colour per instance.
+const SPLIT: [Option<wgpu::VertexBufferLayout<'static>>; 3] = [
+    Some(wgpu::VertexBufferLayout {
+        array_stride: 12,
+        step_mode: wgpu::VertexStepMode::Vertex,
+        attributes: &wgpu::vertex_attr_array![0 => Float32x3],
+    }),
+    Some(wgpu::VertexBufferLayout {
+        array_stride: 12,
+        step_mode: wgpu::VertexStepMode::Vertex,
+        attributes: &wgpu::vertex_attr_array![1 => Float32x3],
+    }),
+    Some(wgpu::VertexBufferLayout {
+        array_stride: 16,
+        step_mode: wgpu::VertexStepMode::Instance,
+        attributes: &wgpu::vertex_attr_array![2 => Float32x4],
+    }),
+];
+
+/// What every pipeline of `shade.wgsl` shares.
+struct Shade<'a> {
+    device: &'a wgpu::Device,
+    layout: &'a wgpu::PipelineLayout,
+    module: &'a wgpu::ShaderModule,
+    format: wgpu::TextureFormat,
+}
+
+impl Shade<'_> {
+    /// One pipeline reading `buffers`: depth-tested, writing depth if `depth_write`, blending
+    /// with `blend` (replacing without).
+    fn pipeline(
+        &self,
+        label: &str,
+        buffers: &[Option<wgpu::VertexBufferLayout>],
+        depth_write: bool,
+        blend: Option<wgpu::BlendState>,
+    ) -> wgpu::RenderPipeline {
+        self.device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(label),
+            layout: Some(self.layout),
+            vertex: wgpu::VertexState {
+                module: self.module,
+                entry_point: Some("vs_main"),
+                compilation_options: wgpu::PipelineCompilationOptions::default(),
+                buffers,
+            },
+            primitive: wgpu::PrimitiveState {
+                topology: wgpu::PrimitiveTopology::TriangleList,
+                cull_mode: None,
+                ..Default::default()
+            },
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH_FORMAT,
+                depth_write_enabled: Some(depth_write),
+                depth_compare: Some(wgpu::CompareFunction::LessEqual),
+                stencil: wgpu::StencilState::default(),
+                bias: wgpu::DepthBiasState::default(),
+            }),
+            multisample: wgpu::MultisampleState { count: SAMPLES, mask: !0, alpha_to_coverage_enabled: false },
+            fragment: Some(wgpu::FragmentState {
+                module: self.module,
+                entry_point: Some("fs_main"),
+                compilation_options: wgpu::PipelineCompilationOptions::default(),
+                targets: &[Some(wgpu::ColorTargetState {
+                    format: self.format,
+                    blend,
+                    write_mask: wgpu::ColorWrites::ALL,
+                })],
+            }),
+            multiview_mask: None,
+            cache: None,
+        })
+    }
 }

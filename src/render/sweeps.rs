@@ -38,9 +38,9 @@ impl SweepStyle {
 /// Adds every sweep's surface and key rings to `scene`.
 pub fn add_sweeps(scene: &mut Scene, sweeps: &[Sweep], style: &SweepStyle) {
     for sweep in sweeps {
-        add_surface(scene, sweep, style);
+        add_sweep_surface(scene, sweep, style);
         for &u in sweep.knots() {
-            add_ring(scene, sweep, u, style);
+            add_key_ring(scene, sweep, u, style, RING);
         }
     }
 }
@@ -61,8 +61,9 @@ fn ts(sweep: &Sweep, per_interval: usize) -> Vec<f64> {
     ts
 }
 
-/// The sweep surface over the θ × t grid (closed in θ), normals by central differences.
-fn add_surface(scene: &mut Scene, sweep: &Sweep, style: &SweepStyle) {
+/// Adds the sweep surface over the θ × t grid (closed in θ), normals by central differences, to
+/// the translucent layer.
+pub fn add_sweep_surface(scene: &mut Scene, sweep: &Sweep, style: &SweepStyle) {
     let around = style.around.max(3);
     let ts = ts(sweep, style.per_interval.max(1));
     let grid: Vec<DVec3> =
@@ -93,10 +94,10 @@ fn add_surface(scene: &mut Scene, sweep: &Sweep, style: &SweepStyle) {
 /// Sides of the tube drawn around a ring.
 const TUBE_SIDES: usize = 8;
 
-/// A thin tube around the closed ring at d = offset + ring radius in the cross-section at u: at
-/// each ring point a circle in the plane spanned by the cross-section normal N(u) and the
-/// ring's outward side.
-fn add_ring(scene: &mut Scene, sweep: &Sweep, u: f64, style: &SweepStyle) {
+/// Adds a thin tube in `colour` around the closed ring at d = offset + ring radius in the
+/// cross-section at u (a key's ring at its knot) to the opaque layer: at each ring point a
+/// circle in the plane spanned by the cross-section normal N(u) and the ring's outward side.
+pub fn add_key_ring(scene: &mut Scene, sweep: &Sweep, u: f64, style: &SweepStyle, colour: [f32; 4]) {
     let around = style.around.max(3);
     let d = style.offset + style.ring_radius;
     let ring: Vec<DVec3> = thetas(around).map(|theta| sweep.point(theta, u, d, 0.0)).collect();
@@ -122,7 +123,7 @@ fn add_ring(scene: &mut Scene, sweep: &Sweep, u: f64, style: &SweepStyle) {
             triangles.push([a, c, d]);
         }
     }
-    scene.opaque.push(&positions, &normals, &triangles, RING);
+    scene.opaque.push(&positions, &normals, &triangles, colour);
 }
 
 #[cfg(test)]

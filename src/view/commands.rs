@@ -1,0 +1,221 @@
+//! Keyboard and panel commands: settings, undo and redo, saving and loading, fitting a sweep to
+//! the selected part, and the volumes the panel shows.
+
+use std::io::Write;
+use std::path::Path;
+
+use super::ViewError;
+use super::app::App;
+use super::draw::MeshDraw;
+use super::gesture::KeyTool;
+use super::input::Command;
+use crate::edit::{DragMode, KeyMode, VolumeRule};
+use crate::fit::{FitOptions, fit};
+use crate::mesh::write_atomically;
+use crate::rig::{KeyDocument, SweepDocument};
+
+impl App {
+    pub(super) fn command(&mut self, command: Command) {
+        let settings = &mut self.model.settings;
+        match command {
+            Command::Undo | Command::Redo => {
+                self.gesture = None;
+                let Some(session) = &mut self.model.session else { return };
+                let changed = if command == Command::Undo { session.undo() } else { session.redo() };
+                if changed {
+                    self.pose_changed = true;
+                    self.refresh_mesh_volume();
+                }
+            }
+            Command::SavePose => self.save_pose(Path::new(&self.panel.pose_path.clone())),
+            Command::LoadPose => self.load_pose(Path::new(&self.panel.pose_path.clone())),
+            Command::SaveEdits => self.save_edits(Path::new(&self.panel.edits_path.clone())),
+            Command::CycleSweeps => {
+                self.panel.sweeps = self.panel.sweeps.next();
+                self.pose_changed = true;
+            }
+            Command::CycleDragMode => {
+                settings.drag_mode = match settings.drag_mode {
+                    DragMode::Both => DragMode::Translate,
+                    DragMode::Translate => DragMode::Rotate,
+                    DragMode::Rotate => DragMode::Both,
+                }
+            }
+            Command::ToggleKeyMode => {
+                settings.key_mode = match settings.key_mode {
+                    KeyMode::Local => KeyMode::Independent,
+                    KeyMode::Independent => KeyMode::Local,
+                }
+            }
+            Command::ToggleHierarchy => settings.hierarchy = !settings.hierarchy,
+            Command::CycleVolume => {
+                settings.volume = match settings.volume {
+                    VolumeRule::None => VolumeRule::Total,
+                    VolumeRule::Total => VolumeRule::Ratio,
+                    VolumeRule::Ratio => VolumeRule::Mesh,
+                    VolumeRule::Mesh => VolumeRule::None,
+                }
+            }
+            Command::MoveTool => self.panel.tool = KeyTool::Move,
+            Command::RotateTool => self.panel.tool = KeyTool::Rotate,
+            Command::ScaleTool => self.panel.tool = KeyTool::Scale,
+            Command::Fit => self.fit_part(),
+            Command::ResetCamera => {
+                let (min, max) = self.model.mesh.bounds();
+                let size = self.size();
+                self.camera = super::orbit::Orbit::framing(min.as_vec3(), max.as_vec3(), size.x / size.y);
+            }
+            Command::Cancel => {
+                if let Some(session) = &mut self.model.session
+                    && session.in_gesture()
+                {
+                    session.cancel();
+                    self.pose_changed = true;
+                }
+                self.gesture = None;
+                self.selected_key = None;
+                self.part = None;
+                self.show_part();
+                self.pose_changed = true;
+            }
+        }
+    }
+
+    /// Reports `outcome` in the panel (and in a script's report when it failed).
+    pub(super) fn report(&mut self, outcome: Result<String, String>) {
+        match outcome {
+            Ok(message) => self.panel.status = message,
+            Err(error) => {
+                self.panel.status = error.clone();
+                self.errors.push(error);
+            }
+        }
+    }
+
+    pub(super) fn save_pose(&mut self, path: &Path) {
+        let outcome = match (&self.model.rig, &self.model.session) {
+            (Some(rig), Some(session)) => {
+                let text = rig.pose_document(session.committed()).to_json();
+                write_text(path, &text).map(|()| format!("pose saved to {}", path.display()))
+            }
+            _ => Err("there is no rig, so no pose to save".to_string()),
+        };
+        self.report(outcome);
+    }
+
+    pub(super) fn save_edits(&mut self, path: &Path) {
+        let outcome = match &self.model.session {
+            Some(session) => {
+                let edits = session.edits();
+                let text = serde_json::to_string_pretty(&edits).expect("edits serialize");
+                write_text(path, &format!("{text}\n"))
+                    .map(|()| format!("{} edits saved to {}", edits.len(), path.display()))
+            }
+            None => Err("there is no rig, so no edits to save".to_string()),
+        };
+        self.report(outcome);
+    }
+
+    pub(super) fn load_pose(&mut self, path: &Path) {
+        let outcome = self.model.load_pose(path).map(|()| format!("pose loaded from {}", path.display()));
+        if outcome.is_ok() {
+            self.pose_changed = true;
+            self.refresh_mesh_volume();
+        }
+        self.report(outcome.map_err(|e| e.to_string()));
+    }
+
+    pub(super) fn save_rig(&mut self, path: &Path) {
+        let outcome = if self.model.document.sweeps.is_empty() {
+            Err("there is no rig to save".to_string())
+        } else {
+            write_text(path, &self.model.document.to_json()).map(|()| format!("rig saved to {}", path.display()))
+        };
+        self.report(outcome);
+    }
+
+    /// Fits a sweep to the selected part (§3) and adds it to the rig; the mesh is bound anew.
+    fn fit_part(&mut self) {
+        let Some(part) = self.part.clone() else {
+            self.report(Err("select a part first: click the mesh where no sweep owns it".into()));
+            return;
+        };
+        let outcome = self.try_fit(&part);
+        if outcome.is_ok() {
+            self.part = None;
+            self.show_part();
+        }
+        self.report(outcome.map_err(|e| e.to_string()));
+    }
+
+    fn try_fit(&mut self, part: &super::part::Part) -> Result<String, ViewError> {
+        let fitted = fit(&self.model.mesh, &part.vertices, &FitOptions::default())
+            .map_err(|e| ViewError::Input(format!("fitting {:?}: {e}", part.name)))?;
+        let mut document = self.model.document.clone();
+        let mut name = part.name.clone();
+        while document.sweeps.iter().any(|s| s.name == name) {
+            name.push('\'');
+        }
+        document.sweeps.push(SweepDocument {
+            name: name.clone(),
+            vertices: Some(part.selection.clone()),
+            keys: fitted.keys.iter().map(KeyDocument::from).collect(),
+            knots: None,
+            parent: None,
+        });
+        self.model.set_rig(document, None)?;
+        if let Some(running) = &mut self.running {
+            let owners = self.model.owners.clone();
+            let rig = self.model.rig.as_ref().map(|r| (r, &owners[..]));
+            running.mesh = MeshDraw::new(&running.gpu.context, &self.model.mesh, rig)?;
+        }
+        self.selected_key = None;
+        self.pose_changed = true;
+        self.measure_rest_volumes();
+        let q = &fitted.quality;
+        Ok(format!(
+            "fitted {name:?}: {} vertices, {} keys, RMS |d| {:.1}% of the mean radius",
+            q.vertices,
+            fitted.keys.len(),
+            100.0 * q.rms_d
+        ))
+    }
+
+    /// The rest volumes of the sweeps (Eq. 1) and of the mesh.
+    pub(super) fn measure_rest_volumes(&mut self) {
+        self.rest_volumes =
+            self.model.rig.as_ref().map_or(Vec::new(), |rig| rig.rest().iter().map(|s| s.volume()).collect());
+        let mesh = &self.model.mesh;
+        self.rest_mesh_volume = if self.model.closed { mesh.enclosed_volume(&mesh.positions) } else { 0.0 };
+        self.mesh_volume = self.rest_mesh_volume;
+    }
+
+    /// The deformed mesh's enclosed volume, read back from the GPU after a committed change
+    /// (never per frame).
+    pub(super) fn refresh_mesh_volume(&mut self) {
+        self.picked_positions = None;
+        if !self.model.closed {
+            return;
+        }
+        let Some(running) = &mut self.running else { return };
+        // The deformer must hold the committed pose before it is read.
+        if let (Some(Ok(posed)), Some(deformer)) = (self.model.posed(), running.mesh.deformer())
+            && deformer.deform(&posed).is_ok()
+        {
+            match running.mesh.current_positions(&self.model.mesh) {
+                Ok(positions) => {
+                    let exact: Vec<glam::DVec3> = positions.iter().map(|p| p.as_dvec3()).collect();
+                    self.mesh_volume = self.model.mesh.enclosed_volume(&exact);
+                    self.picked_positions = Some(positions);
+                }
+                Err(error) => self.panel.status = error.to_string(),
+            }
+        }
+    }
+}
+
+/// Writes `text` to `path` atomically; the error names the file.
+fn write_text(path: &Path, text: &str) -> Result<(), String> {
+    write_atomically(path, |out| out.write_all(text.as_bytes()))
+        .map_err(|e| format!("cannot write {}: {e}", path.display()))
+}

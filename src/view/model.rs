@@ -1,0 +1,154 @@
+//! What the viewer edits, apart from the window: the mesh, the rig (from a file, or fitted
+//! in the viewer), the session of edits and its settings. Loading errors name the file.
+
+use std::path::{Path, PathBuf};
+
+use crate::bind::{Binding, bind_vertices};
+use crate::edit::{BoundMesh, Edit, EditError, VolumeRule};
+use crate::mesh::{Mesh, Subdivision};
+use crate::rig::{FORMAT, Rig, RigDocument, VERSION, VertexSelection};
+use crate::sweep::{Key, Sweep};
+
+use super::ViewError;
+use super::session::{Session, Settings};
+
+/// The mesh, its rig and the edits.
+pub struct Model {
+    /// The mesh at rest.
+    pub mesh: Mesh,
+    /// How errors name the mesh.
+    pub mesh_name: String,
+    /// Its triangles (fan-triangulated faces).
+    pub triangles: Vec<[u32; 3]>,
+    /// Whether the mesh is closed, so its enclosed volume means something.
+    pub closed: bool,
+    /// The rig as a document (no sweeps until one is loaded or fitted).
+    pub document: RigDocument,
+    /// The rig, when it has sweeps.
+    pub rig: Option<Rig>,
+    /// The sweep owning each vertex, or `UNOWNED`.
+    pub owners: Vec<u32>,
+    /// The edits, when there is a rig.
+    pub session: Option<Session>,
+    /// How edits are made.
+    pub settings: Settings,
+    /// Every vertex's binding, made when the mesh volume rule first needs it.
+    bindings: Option<Vec<Binding>>,
+}
+
+impl Model {
+    /// Loads the mesh (subdivided `levels` times), the rig and a pose.
+    pub fn load(mesh_path: &Path, rig: Option<&Path>, pose: Option<&Path>, levels: usize) -> Result<Model, ViewError> {
+        let mesh = Mesh::load(mesh_path).map_err(|e| ViewError::Input(e.to_string()))?;
+        let (mesh, steps) = mesh.subdivided_times(levels).map_err(|e| ViewError::Input(e.to_string()))?;
+        let mesh_name = mesh_path.display().to_string();
+        let document = match rig {
+            Some(path) => {
+                carry_selections(RigDocument::load(path).map_err(|e| ViewError::Input(e.to_string()))?, &steps)
+            }
+            None => RigDocument { format: FORMAT.to_string(), version: VERSION, sweeps: Vec::new() },
+        };
+        let triangles = mesh.faces.triangles().collect();
+        let closed = mesh.is_closed();
+        let mut model = Model {
+            mesh,
+            mesh_name,
+            triangles,
+            closed,
+            document: RigDocument { format: FORMAT.to_string(), version: VERSION, sweeps: Vec::new() },
+            rig: None,
+            owners: Vec::new(),
+            session: None,
+            settings: Settings::default(),
+            bindings: None,
+        };
+        model.set_rig(document, rig.map(Path::to_path_buf))?;
+        if let Some(path) = pose {
+            model.load_pose(path)?;
+        }
+        Ok(model)
+    }
+
+    /// Replaces the rig (checking that it owns the mesh's vertices without conflict) and starts
+    /// a new session from its rest keys.
+    pub fn set_rig(&mut self, document: RigDocument, file: Option<PathBuf>) -> Result<(), ViewError> {
+        if document.sweeps.is_empty() {
+            self.rig = None;
+            self.owners = vec![crate::bind::UNOWNED; self.mesh.positions.len()];
+            self.session = None;
+        } else {
+            let rig = Rig::from_document(&document, file).map_err(|e| ViewError::Input(e.to_string()))?;
+            self.owners = rig.owners(&self.mesh, &self.mesh_name).map_err(|e| ViewError::Input(e.to_string()))?;
+            self.session = Some(Session::new(rig.sweeps().iter().map(|s| s.keys.clone()).collect()));
+            self.rig = Some(rig);
+        }
+        self.document = document;
+        self.bindings = None;
+        Ok(())
+    }
+
+    /// Starts a new session from the pose in `path`.
+    pub fn load_pose(&mut self, path: &Path) -> Result<(), ViewError> {
+        let Some(rig) = &self.rig else {
+            return Err(ViewError::Input(format!("{}: there is no rig to pose", path.display())));
+        };
+        // Checked against the rig first, so errors name the file, sweep and key at fault.
+        rig.load_pose(path).map_err(|e| ViewError::Input(e.to_string()))?;
+        let document = RigDocument::load(path).map_err(|e| ViewError::Input(e.to_string()))?;
+        let keys: Vec<Vec<Key>> = rig
+            .sweeps()
+            .iter()
+            .map(|sweep| {
+                let posed = document.sweeps.iter().find(|s| s.name == sweep.name).expect("checked by load_pose");
+                posed.keys.iter().map(Key::from).collect()
+            })
+            .collect();
+        self.session = Some(Session::new(keys));
+        Ok(())
+    }
+
+    /// The posed sweeps of the current keys.
+    pub fn posed(&self) -> Option<Result<Vec<Sweep>, ViewError>> {
+        let (rig, session) = (self.rig.as_ref()?, self.session.as_ref()?);
+        Some(rig.pose(session.keys()).map_err(|e| ViewError::Input(e.to_string())))
+    }
+
+    /// Applies `edit` as the gesture in progress ([`Session::preview`]) with the settings'
+    /// hierarchy and volume rule; the mesh volume rule binds every vertex the first time.
+    pub fn preview(&mut self, edit: Edit) -> Result<usize, EditError> {
+        let Model { rig, session, mesh, owners, bindings, settings, .. } = self;
+        let (Some(rig), Some(session)) = (rig.as_ref(), session.as_mut()) else {
+            return Err(EditError::Invalid("there is no rig to edit".into()));
+        };
+        let bound = match settings.volume {
+            VolumeRule::Mesh => {
+                let bindings =
+                    bindings.get_or_insert_with(|| bind_vertices(rig.rest(), owners, &mesh.positions, &|_| {}));
+                Some(BoundMesh { mesh, bindings })
+            }
+            _ => None,
+        };
+        session.preview(rig, edit, settings, bound)
+    }
+
+    /// Which vertices a sweep owns.
+    pub fn taken(&self) -> Vec<bool> {
+        self.owners.iter().map(|&o| o != crate::bind::UNOWNED).collect()
+    }
+}
+
+/// A rig's index selections carried through the subdivision `steps` (group and "all"
+/// selections need no change).
+fn carry_selections(mut document: RigDocument, steps: &[Subdivision]) -> RigDocument {
+    for sweep in &mut document.sweeps {
+        if let Some(VertexSelection::Indices(indices)) = &mut sweep.vertices {
+            indices.sort_unstable();
+            indices.dedup();
+            for step in steps {
+                *indices = step.carry(indices);
+                indices.sort_unstable();
+            }
+        }
+    }
+    document
+}

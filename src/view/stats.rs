@@ -1,0 +1,112 @@
+//! Frame timings: the panel shows recent medians; a scripted session reports medians over the
+//! frames of its drags as JSON.
+
+use serde::Serialize;
+
+/// Milliseconds one frame spent in each stage.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct FrameTimes {
+    /// From the start of the previous frame to the start of this one.
+    pub frame: f64,
+    /// CPU work on the rig: the edit with its hierarchy and volume rule, the sweep overlay,
+    /// the coefficient upload.
+    pub edit: f64,
+    /// GPU deform and normals passes, waited for (0 when the pose did not change).
+    pub deform: f64,
+    /// Drawing the mesh, the sweeps and the panel, and presenting, waited for.
+    pub render: f64,
+}
+
+/// Timings kept over a session.
+#[derive(Clone, Debug, Default)]
+pub struct Stats {
+    recent: Vec<FrameTimes>,
+    /// Frames in which a scripted drag moved the pose.
+    pub dragging: Vec<FrameTimes>,
+    /// Every frame.
+    pub frames: usize,
+}
+
+/// Frames the panel's medians are taken over.
+const RECENT: usize = 60;
+
+impl Stats {
+    /// Records a frame; `dragging` marks frames of a scripted drag that deformed the mesh.
+    pub fn record(&mut self, times: FrameTimes, dragging: bool) {
+        if self.recent.len() == RECENT {
+            self.recent.remove(0);
+        }
+        self.recent.push(times);
+        self.frames += 1;
+        if dragging {
+            self.dragging.push(times);
+        }
+    }
+
+    /// Medians of the last frames.
+    pub fn recent_medians(&self) -> FrameTimes {
+        medians(&self.recent)
+    }
+}
+
+/// Each stage's median over `frames` (zeros when there is none).
+pub fn medians(frames: &[FrameTimes]) -> FrameTimes {
+    let median = |pick: fn(&FrameTimes) -> f64| {
+        let mut values: Vec<f64> = frames.iter().map(pick).collect();
+        values.sort_by(f64::total_cmp);
+        match values.len() {
+            0 => 0.0,
+            n if n % 2 == 1 => values[n / 2],
+            n => 0.5 * (values[n / 2 - 1] + values[n / 2]),
+        }
+    };
+    FrameTimes {
+        frame: median(|t| t.frame),
+        edit: median(|t| t.edit),
+        deform: median(|t| t.deform),
+        render: median(|t| t.render),
+    }
+}
+
+/// What a scripted session reports.
+#[derive(Clone, Debug, Serialize)]
+pub struct Report {
+    /// The GPU adapter and its backend.
+    pub adapter: String,
+    /// Mesh vertices and triangles.
+    pub vertices: usize,
+    /// See `vertices`.
+    pub triangles: usize,
+    /// Window size in pixels.
+    pub window: [u32; 2],
+    /// Frames drawn in all.
+    pub frames: usize,
+    /// Frames of scripted drags that deformed the mesh.
+    pub drag_frames: usize,
+    /// Medians over those frames, milliseconds.
+    pub drag_median_ms: FrameTimes,
+    /// Screenshots written.
+    pub screenshots: Vec<String>,
+    /// Errors met while playing (failed saves, edits that did not converge).
+    pub errors: Vec<String>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn medians_of_odd_and_even_counts() {
+        let times = |v: f64| FrameTimes { frame: v, edit: 2.0 * v, deform: 0.0, render: v };
+        assert_eq!(medians(&[times(3.0), times(1.0), times(2.0)]).edit, 4.0);
+        assert_eq!(medians(&[times(4.0), times(1.0), times(2.0), times(3.0)]).frame, 2.5);
+        assert_eq!(medians(&[]).render, 0.0);
+        let mut stats = Stats::default();
+        for i in 0..100 {
+            stats.record(times(i as f64), i % 2 == 0);
+        }
+        assert_eq!(stats.frames, 100);
+        assert_eq!(stats.dragging.len(), 50);
+        assert_eq!(stats.recent_medians().frame, 69.5, "median of the last 60 frames, 40..=99");
+    }
+}

@@ -1,0 +1,199 @@
+//! The window's GPU: a device created for the window's surface (and handed to the deformer, as
+//! a host application hands its own), the surface configuration, the 4× multisampled colour
+//! and depth targets, and screenshots read back from the presented texture.
+
+use std::sync::Arc;
+
+use image::RgbaImage;
+use winit::window::Window;
+
+use super::ViewError;
+use crate::gpu::{GpuContext, read_staging};
+use crate::render::{DEPTH_FORMAT, SAMPLES};
+
+/// The surface and the targets drawn into before it.
+pub struct WindowGpu {
+    /// The device, shared with the deformer.
+    pub context: GpuContext,
+    surface: wgpu::Surface<'static>,
+    config: wgpu::SurfaceConfiguration,
+    /// The format pipelines render in: the surface's without sRGB encoding (the shaders encode).
+    pub format: wgpu::TextureFormat,
+    /// Multisampled colour target, resolved into the surface texture.
+    pub colour: wgpu::TextureView,
+    /// Multisampled depth target.
+    pub depth: wgpu::TextureView,
+    /// Whether the surface texture can be copied out (screenshots).
+    pub readable: bool,
+}
+
+impl WindowGpu {
+    /// Creates the device for `window` on `instance`; `vsync` off presents as fast as possible
+    /// (scripted sessions measure frame times that way).
+    pub fn new(instance: &wgpu::Instance, window: Arc<Window>, vsync: bool) -> Result<WindowGpu, ViewError> {
+        let size = window.inner_size();
+        let surface = instance.create_surface(window).map_err(|e| ViewError::Gpu(format!("no window surface: {e}")))?;
+        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+            power_preference: wgpu::PowerPreference::HighPerformance,
+            compatible_surface: Some(&surface),
+            force_fallback_adapter: false,
+            apply_limit_buckets: false,
+        }))
+        .map_err(|e| ViewError::Gpu(format!("no GPU adapter can draw into the window: {e}")))?;
+        let info = adapter.get_info();
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("sweepffd viewer"),
+            required_features: wgpu::Features::empty(),
+            required_limits: adapter.limits(),
+            experimental_features: wgpu::ExperimentalFeatures::disabled(),
+            memory_hints: wgpu::MemoryHints::Performance,
+            trace: wgpu::Trace::Off,
+        }))
+        .map_err(|e| ViewError::Gpu(format!("{}: cannot create a device: {e}", info.name)))?;
+        let capabilities = surface.get_capabilities(&adapter);
+        let surface_format = capabilities
+            .formats
+            .iter()
+            .copied()
+            .find(|f| matches!(f, wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Rgba8Unorm))
+            .or_else(|| capabilities.formats.first().copied())
+            .ok_or_else(|| ViewError::Gpu(format!("{}: the window surface offers no format", info.name)))?;
+        let format = surface_format.remove_srgb_suffix();
+        let readable = capabilities.usages.contains(wgpu::TextureUsages::COPY_SRC);
+        let mut usage = wgpu::TextureUsages::RENDER_ATTACHMENT;
+        if readable {
+            usage |= wgpu::TextureUsages::COPY_SRC;
+        }
+        let present_mode = if vsync { wgpu::PresentMode::AutoVsync } else { wgpu::PresentMode::AutoNoVsync };
+        let config = wgpu::SurfaceConfiguration {
+            usage,
+            format: surface_format,
+            width: size.width.max(1),
+            height: size.height.max(1),
+            present_mode,
+            desired_maximum_frame_latency: 2,
+            alpha_mode: capabilities.alpha_modes.first().copied().unwrap_or(wgpu::CompositeAlphaMode::Auto),
+            view_formats: if format == surface_format { vec![] } else { vec![format] },
+            color_space: wgpu::SurfaceColorSpace::Auto,
+        };
+        surface.configure(&device, &config);
+        let (colour, depth) = targets(&device, format, config.width, config.height);
+        let context = GpuContext::from_device(device, queue, info);
+        Ok(WindowGpu { context, surface, config, format, colour, depth, readable })
+    }
+
+    /// The surface size in pixels.
+    pub fn size(&self) -> (u32, u32) {
+        (self.config.width, self.config.height)
+    }
+
+    /// Reconfigures for a new window size (ignored while minimised).
+    pub fn resize(&mut self, width: u32, height: u32) {
+        if width == 0 || height == 0 || (width, height) == self.size() {
+            return;
+        }
+        self.config.width = width;
+        self.config.height = height;
+        self.surface.configure(&self.context.device, &self.config);
+        (self.colour, self.depth) = targets(&self.context.device, self.format, width, height);
+    }
+
+    /// The next surface texture, or `None` when this frame cannot be drawn (the surface is
+    /// reconfigured where that helps).
+    pub fn acquire(&mut self) -> Option<wgpu::SurfaceTexture> {
+        match self.surface.get_current_texture() {
+            wgpu::CurrentSurfaceTexture::Success(texture) => Some(texture),
+            wgpu::CurrentSurfaceTexture::Suboptimal(texture) => {
+                self.surface.configure(&self.context.device, &self.config);
+                Some(texture)
+            }
+            wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
+                self.surface.configure(&self.context.device, &self.config);
+                None
+            }
+            _ => None,
+        }
+    }
+
+    /// The view pipelines draw into on `texture`.
+    pub fn view_of(&self, texture: &wgpu::SurfaceTexture) -> wgpu::TextureView {
+        texture.texture.create_view(&wgpu::TextureViewDescriptor { format: Some(self.format), ..Default::default() })
+    }
+}
+
+/// The multisampled colour and depth targets of a `width` × `height` window.
+fn targets(
+    device: &wgpu::Device,
+    format: wgpu::TextureFormat,
+    width: u32,
+    height: u32,
+) -> (wgpu::TextureView, wgpu::TextureView) {
+    let target = |label: &str, format| {
+        device
+            .create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
+                mip_level_count: 1,
+                sample_count: SAMPLES,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+                view_formats: &[],
+            })
+            .create_view(&wgpu::TextureViewDescriptor::default())
+    };
+    (target("sweepffd window colour", format), target("sweepffd window depth", DEPTH_FORMAT))
+}
+
+/// A screenshot being copied out of a surface texture.
+pub struct Capture {
+    staging: wgpu::Buffer,
+    width: u32,
+    height: u32,
+    padded_row: u32,
+    bgra: bool,
+}
+
+impl Capture {
+    /// Records the copy of `texture` (before it is presented) into `encoder`.
+    pub fn record(encoder: &mut wgpu::CommandEncoder, device: &wgpu::Device, texture: &wgpu::Texture) -> Capture {
+        let (width, height) = (texture.width(), texture.height());
+        let padded_row = (4 * width).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let staging = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("sweepffd screenshot"),
+            size: u64::from(padded_row) * u64::from(height),
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        encoder.copy_texture_to_buffer(
+            texture.as_image_copy(),
+            wgpu::TexelCopyBufferInfo {
+                buffer: &staging,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(padded_row),
+                    rows_per_image: Some(height),
+                },
+            },
+            wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
+        );
+        let bgra = matches!(texture.format().remove_srgb_suffix(), wgpu::TextureFormat::Bgra8Unorm);
+        Capture { staging, width, height, padded_row, bgra }
+    }
+
+    /// The picture, once the copy has been submitted (blocks until the GPU is done).
+    pub fn finish(self, context: &GpuContext) -> Result<RgbaImage, ViewError> {
+        let rows = read_staging(context, &self.staging).map_err(|e| ViewError::Gpu(e.to_string()))?;
+        let row = 4 * self.width as usize;
+        let mut pixels: Vec<u8> =
+            rows.chunks_exact(self.padded_row as usize).flat_map(|r| &r[..row]).copied().collect();
+        for pixel in pixels.chunks_exact_mut(4) {
+            if self.bgra {
+                pixel.swap(0, 2);
+            }
+            pixel[3] = 255;
+        }
+        RgbaImage::from_raw(self.width, self.height, pixels)
+            .ok_or_else(|| ViewError::Gpu("the screenshot has the wrong size".into()))
+    }
+}

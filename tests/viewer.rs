@@ -1,0 +1,213 @@
+//! The viewer, driven by scripts in a virtual X display (Xvfb) on the GPU adapter (lavapipe in
+//! CI): a scripted drag of the mesh changes the picture where the mesh moved, its saved pose is
+//! exactly what `sweepffd pose` makes of the same drag_point edit, undo and redo walk back and
+//! forth, and a mesh without a rig gets a sweep fitted to a clicked part.
+//!
+//! Without Xvfb (and no DISPLAY) or without an adapter the tests print why and skip; under
+//! `CI=true` a missing Xvfb fails them, and under `SWEEPFFD_REQUIRE_GPU=1` a missing adapter.
+#![cfg(feature = "viewer")]
+
+mod common;
+
+use std::io::{BufRead, BufReader};
+use std::path::Path;
+use std::process::{Child, Command, Stdio};
+
+use common::{REQUIRE_GPU, sweepffd};
+use image::RgbaImage;
+use serde_json::Value;
+
+/// Window size of the scripted sessions, and the scene's part of it (left of the 290-point
+/// panel; Xvfb has one pixel per point).
+const WINDOW: (u32, u32) = (1000, 800);
+const SCENE_WIDTH: u32 = 1000 - 290;
+
+/// An X display for the viewer's window: a private Xvfb, killed on drop, or the session's own.
+struct Display {
+    name: String,
+    server: Option<Child>,
+}
+
+impl Drop for Display {
+    fn drop(&mut self) {
+        if let Some(server) = &mut self.server {
+            let _ = server.kill();
+            let _ = server.wait();
+        }
+    }
+}
+
+fn flag(name: &str) -> bool {
+    std::env::var(name).is_ok_and(|v| v == "1" || v == "true")
+}
+
+/// Starts Xvfb on a free display (it reports which through `-displayfd`), or falls back on
+/// `DISPLAY`; `None` with a notice when neither exists (a failure under `CI=true`).
+fn display() -> Option<Display> {
+    let started = Command::new("Xvfb")
+        .args(["-displayfd", "1", "-screen", "0", "1280x1024x24", "-nolisten", "tcp"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn();
+    match started {
+        Ok(mut server) => {
+            let mut line = String::new();
+            BufReader::new(server.stdout.take().expect("piped"))
+                .read_line(&mut line)
+                .expect("Xvfb reports its display");
+            assert!(!line.trim().is_empty(), "Xvfb did not start");
+            Some(Display { name: format!(":{}", line.trim()), server: Some(server) })
+        }
+        Err(error) => {
+            if let Ok(name) = std::env::var("DISPLAY") {
+                return Some(Display { name, server: None });
+            }
+            assert!(!flag("CI"), "CI=true but Xvfb cannot be started ({error}); install Debian's xvfb");
+            eprintln!("skipping viewer test: no Xvfb ({error}) and no DISPLAY");
+            None
+        }
+    }
+}
+
+/// Runs `sweepffd view` with `args` in `dir` on `display`; the parsed report, or `None` with a
+/// notice when no adapter can draw into a window (a failure under `SWEEPFFD_REQUIRE_GPU=1`).
+fn view(display: &Display, dir: &Path, args: &[&str]) -> Option<Value> {
+    let size = format!("{}x{}", WINDOW.0, WINDOW.1);
+    let output = sweepffd(dir)
+        .arg("view")
+        .args(args)
+        .args(["--size", &size])
+        .env("DISPLAY", &display.name)
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .expect("sweepffd runs");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    if !output.status.success() && stderr.contains("no GPU adapter") && !flag(REQUIRE_GPU) {
+        eprintln!("skipping viewer test: {stderr}");
+        return None;
+    }
+    assert!(output.status.success(), "sweepffd view failed: {stderr}");
+    Some(serde_json::from_slice(&output.stdout).expect("the report is JSON"))
+}
+
+fn write(path: &Path, text: &str) {
+    std::fs::write(path, text).unwrap();
+}
+
+fn picture(path: &Path) -> RgbaImage {
+    image::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display())).to_rgba8()
+}
+
+/// Whether any pixel within 3 of (x, y) differs from the background.
+fn covered(picture: &RgbaImage, x: u32, y: u32) -> bool {
+    let background = image::Rgba(sweepffd::render::BACKGROUND);
+    (x - 3..=x + 3).any(|x| (y - 3..=y + 3).any(|y| *picture.get_pixel(x, y) != background))
+}
+
+/// The demo's tube (along z, one sweep) in `dir/demo`.
+fn demo_tube(dir: &Path) {
+    let status = sweepffd(dir).args(["--quiet", "demo", "--out", "demo"]).status().unwrap();
+    assert!(status.success());
+}
+
+#[test]
+fn scripted_drag_moves_the_mesh_and_saves_the_pose_that_sweepffd_pose_makes() {
+    let Some(display) = display() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    demo_tube(dir.path());
+    // The camera frames the tube with its middle at the scene's center; the drag takes the
+    // point there up and left, into what was background.
+    let (from, to) = ([SCENE_WIDTH / 2, WINDOW.1 / 2], [SCENE_WIDTH / 2 - 60, 140]);
+    write(
+        &dir.path().join("drag.json"),
+        &format!(
+            r#"[{{"wait": 0.2}}, {{"screenshot": "before"}},
+                {{"drag": {{"from": {from:?}, "to": {to:?}, "seconds": 0.5}}}},
+                {{"screenshot": "after"}}, {{"save_pose": "pose.json"}}, {{"save_edits": "edits.json"}},
+                {{"key": "ctrl+z"}}, {{"save_pose": "undone.json"}},
+                {{"key": "ctrl+shift+z"}}, {{"save_pose": "redone.json"}}]"#
+        ),
+    );
+    let Some(report) =
+        view(&display, dir.path(), &["--mesh", "demo/rest.obj", "--rig", "demo/rig.json", "--script", "drag.json"])
+    else {
+        return;
+    };
+    assert_eq!(report["errors"], Value::Array(vec![]), "{report}");
+    assert_eq!(report["screenshots"].as_array().unwrap().len(), 2, "{report}");
+    assert!(report["drag_frames"].as_u64().unwrap() >= 1, "{report}");
+
+    // The picture changed where the mesh moved: the drag's end was background before, and the
+    // dragged point is drawn there after.
+    let before = picture(&dir.path().join("before.png"));
+    let after = picture(&dir.path().join("after.png"));
+    assert_eq!(before.dimensions(), WINDOW);
+    assert!(covered(&before, from[0], from[1]), "the drag starts on the tube");
+    assert!(!covered(&before, to[0], to[1]), "the drag ends on background");
+    assert!(covered(&after, to[0], to[1]), "the dragged point is drawn under the pointer");
+    let scene_changes = (0..SCENE_WIDTH)
+        .flat_map(|x| (0..WINDOW.1).map(move |y| (x, y)))
+        .filter(|&(x, y)| before.get_pixel(x, y) != after.get_pixel(x, y))
+        .count();
+    assert!(scene_changes > 5_000, "only {scene_changes} pixels of the scene changed");
+
+    // One drag is one drag_point edit on the tube's sweep; `sweepffd pose` applies it to the
+    // same pose, to the byte.
+    let edits: Value = serde_json::from_str(&std::fs::read_to_string(dir.path().join("edits.json")).unwrap()).unwrap();
+    let edits = edits.as_array().unwrap();
+    assert_eq!(edits.len(), 1, "{edits:?}");
+    assert_eq!(edits[0]["op"], "drag_point");
+    assert_eq!(edits[0]["sweep"], "tube");
+    let status = sweepffd(dir.path())
+        .args(["--quiet", "pose", "--rig", "demo/rig.json", "--edits", "edits.json", "--out", "cli-pose.json"])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let read = |name: &str| std::fs::read_to_string(dir.path().join(name)).unwrap();
+    assert_eq!(read("pose.json"), read("cli-pose.json"));
+
+    // Undo goes back to the rest keys; redo to the dragged pose.
+    let rig = sweepffd::rig::Rig::load(&dir.path().join("demo/rig.json")).unwrap();
+    let rest: Vec<Vec<_>> = rig.sweeps().iter().map(|s| s.keys.clone()).collect();
+    assert_eq!(read("undone.json"), rig.pose_document(&rest).to_json());
+    assert_eq!(read("redone.json"), read("pose.json"));
+}
+
+#[test]
+fn mesh_without_a_rig_gets_a_sweep_fitted_to_a_clicked_part() {
+    let Some(display) = display() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    demo_tube(dir.path());
+    let center = [SCENE_WIDTH / 2, WINDOW.1 / 2];
+    write(
+        &dir.path().join("fit.json"),
+        &format!(
+            r#"[{{"click": {{"at": {center:?}}}}}, {{"wait": 0.1}}, {{"key": "f"}}, {{"wait": 0.1}},
+                {{"save_rig": "fitted-rig.json"}}, {{"screenshot": "fitted"}}]"#
+        ),
+    );
+    let Some(report) = view(&display, dir.path(), &["--mesh", "demo/rest.obj", "--script", "fit.json"]) else { return };
+    assert_eq!(report["errors"], Value::Array(vec![]), "{report}");
+    let rig = sweepffd::rig::Rig::load(&dir.path().join("fitted-rig.json")).unwrap();
+    assert_eq!(rig.sweeps().len(), 1);
+    assert!(rig.sweeps()[0].keys.len() >= 2);
+    // The fitted rig owns vertices of the mesh it was fitted to.
+    let mesh = sweepffd::mesh::Mesh::load(&dir.path().join("demo/rest.obj")).unwrap();
+    let owners = rig.owners(&mesh, "rest.obj").unwrap();
+    assert!(owners.iter().filter(|&&o| o == 0).count() > mesh.positions.len() / 2);
+}
+
+#[test]
+fn bad_script_is_an_error_naming_the_file_before_any_window_opens() {
+    let dir = tempfile::tempdir().unwrap();
+    demo_tube(dir.path());
+    write(&dir.path().join("bad.json"), r#"[{"key": "ctrl+q"}]"#);
+    let output = sweepffd(dir.path())
+        .args(["view", "--mesh", "demo/rest.obj", "--script", "bad.json"])
+        .env("DISPLAY", ":nowhere")
+        .output()
+        .unwrap();
+    assert!(!output.status.success());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("bad.json") && stderr.contains("ctrl+q"), "{stderr}");
+}
