@@ -17,4 +17,10 @@ cp "$work/bunny/ears-bent.png" docs/bunny-ears.png
 cp "$work/armadillo_leg/step0.png" docs/armadillo-rough.png
 cp "$work/armadillo_leg/step4.png" docs/armadillo-fitted.png 2>/dev/null || cp "$work/armadillo_leg/step3.png" docs/armadillo-fitted.png
 cp "$work/chair/chair.png" docs/chair.png
+# The viewer, scripted in a virtual display (Debian's xvfb): the bunny's ear dragged (§4).
+cp docs/viewer-session.json "$work/bunny/"
+xvfb-run -a -s "-screen 0 1600x1000x24" ./target/release/sweepffd view \
+  --mesh ../shared/meshes/bunny_stanford_zipper.obj --rig "$work/bunny/ears-rig.json" \
+  --script "$work/bunny/viewer-session.json" --size 1280x800 > /dev/null
+cp "$work/bunny/viewer.png" docs/viewer.png
 ls -l docs/*.png

@@ -14,14 +14,14 @@ use std::path::PathBuf;
 
 use sweepffd::edit::VolumeRule;
 use sweepffd::synthetic::{Tube, tube_rig};
-use sweepffd::view::{ViewOptions, run};
+use sweepffd::view::{Subdivide, ViewOptions, run};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1).map(PathBuf::from);
     let (mesh, rig) = match args.next() {
         Some(mesh) => (mesh, args.next()),
         None => {
-            // No files: the demo's tube, written next to the target folder.
+            // No files: a tube and its rig, written to the temporary folder.
             let folder = std::env::temp_dir().join("sweepffd-viewer-example");
             std::fs::create_dir_all(&folder)?;
             let tube = Tube { rings: 60, around: 48, length: 4.0, radius: 0.5 };
@@ -36,7 +36,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         mesh,
         rig,
         pose: args.next(),
-        subdivide: 0,
+        subdivide: Subdivide::No,
         volume: VolumeRule::None,
         script: None,
         size: (1280, 800),

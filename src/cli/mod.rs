@@ -226,8 +226,11 @@ enum Command {
         pose: Option<PathBuf>,
         /// Levels of midpoint subdivision of the mesh (each about quadruples the vertices; the
         /// rig's vertex indices are carried along).
-        #[arg(long, default_value_t = 0)]
-        subdivide: usize,
+        #[arg(long, conflicts_with = "subdivide_to")]
+        subdivide: Option<usize>,
+        /// Subdivide the mesh to exactly this many vertices (midpoint levels, then centroid splits).
+        #[arg(long)]
+        subdivide_to: Option<usize>,
         /// The volume rule to start with.
         #[arg(long, value_enum, default_value_t = VolumeRule::None)]
         volume: VolumeRule,
@@ -295,7 +298,12 @@ pub fn run() -> ExitCode {
             render::run(&render::Args { mesh, rig, pose, show_sweeps, size, view, compare, out }, quiet)
         }
         #[cfg(feature = "viewer")]
-        Command::View { mesh, rig, pose, subdivide, volume, size, save_pose, script, report } => {
+        Command::View { mesh, rig, pose, subdivide, subdivide_to, volume, size, save_pose, script, report } => {
+            let subdivide = match (subdivide, subdivide_to) {
+                (Some(levels), _) => sweepffd::view::Subdivide::Levels(levels),
+                (None, Some(vertices)) => sweepffd::view::Subdivide::Vertices(vertices),
+                (None, None) => sweepffd::view::Subdivide::No,
+            };
             let options =
                 sweepffd::view::ViewOptions { mesh, rig, pose, subdivide, volume, script, size, pose_out: save_pose };
             view::run_view(view::Args { options, report })

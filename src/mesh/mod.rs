@@ -43,7 +43,7 @@ pub use error::{MeshDataError, MeshError, ObjLineError};
 pub use format::Format;
 pub use gltf::GltfDataError;
 pub use off::OffLineError;
-pub use subdivide::Subdivision;
+pub use subdivide::{Parents, Subdivision};
 
 use source::Source;
 

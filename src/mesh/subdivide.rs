@@ -1,21 +1,41 @@
-//! Midpoint subdivision, to make large meshes of real shapes for throughput measurements (a
-//! 35k-vertex bunny becomes 140k, 560k, 2.2M vertices): every face is fan-triangulated and each
-//! triangle split into four at its edge midpoints. The shape does not change; only the vertex
-//! count grows. Old vertices keep their indices; each new vertex is the midpoint of an edge,
-//! appended in order of first use, so a rig's vertex selection carries over
-//! ([`Subdivision::carry`]).
+//! Subdivision that keeps the shape, to make large meshes of real shapes for throughput
+//! measurements: midpoint subdivision (every face fan-triangulated and each triangle split into
+//! four at its edge midpoints: a 35k-vertex bunny becomes 140k, 557k, 2.2M vertices) and, to
+//! reach an exact vertex count in between, centroid splits of faces spread evenly over the
+//! mesh (each adds one vertex and leaves the edges alone, so no crack opens). Old vertices keep
+//! their indices; new ones are appended, each the mean of its parents, so a rig's vertex
+//! selection carries over ([`Subdivision::carry`]).
 
 use std::collections::HashMap;
+use std::ops::Range;
 
 use super::{FaceGroup, Faces, Mesh, MeshError};
+
+/// The old vertices a new vertex is the mean of.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Parents {
+    /// The midpoint of an edge.
+    Edge([u32; 2]),
+    /// The centroid of a triangle.
+    Triangle([u32; 3]),
+}
+
+impl Parents {
+    fn all(&self) -> &[u32] {
+        match self {
+            Parents::Edge(ends) => ends,
+            Parents::Triangle(corners) => corners,
+        }
+    }
+}
 
 /// A subdivided mesh and where its new vertices come from.
 #[derive(Clone, Debug)]
 pub struct Subdivision {
-    /// The subdivided mesh: the old vertices first, then one per edge.
+    /// The subdivided mesh: the old vertices first, then the new ones.
     pub mesh: Mesh,
-    /// The edge each new vertex halves: vertex `old_count + k` is the midpoint of `parents[k]`.
-    pub parents: Vec<[u32; 2]>,
+    /// Vertex `old_count + k` is the mean of `parents[k]`.
+    pub parents: Vec<Parents>,
 }
 
 impl Mesh {
@@ -23,19 +43,19 @@ impl Mesh {
     pub fn subdivided(&self) -> Result<Subdivision, MeshError> {
         let old_count = self.positions.len() as u32;
         let mut positions = self.positions.clone();
-        let mut parents: Vec<[u32; 2]> = Vec::new();
+        let mut parents: Vec<Parents> = Vec::new();
         let mut midpoints: HashMap<(u32, u32), u32> = HashMap::new();
         let mut midpoint = |a: u32, b: u32| -> u32 {
             let edge = (a.min(b), a.max(b));
             *midpoints.entry(edge).or_insert_with(|| {
                 positions.push(0.5 * (positions[a as usize] + positions[b as usize]));
-                parents.push([edge.0, edge.1]);
+                parents.push(Parents::Edge([edge.0, edge.1]));
                 old_count + parents.len() as u32 - 1
             })
         };
         let mut faces = Faces::new();
         // The children of each old face, for the groups.
-        let mut children: Vec<std::ops::Range<u32>> = Vec::with_capacity(self.faces.len());
+        let mut children: Vec<Range<u32>> = Vec::with_capacity(self.faces.len());
         for face in self.faces.iter() {
             let first = faces.len() as u32;
             let corner = face.first().copied().unwrap_or(0);
@@ -48,16 +68,75 @@ impl Mesh {
             }
             children.push(first..faces.len() as u32);
         }
-        let groups = self
-            .groups
+        let mesh = Mesh::from_parts(positions, faces, self.groups_of_children(&children))?;
+        Ok(Subdivision { mesh, parents })
+    }
+
+    /// Splits `count` triangles (of the fan triangulation), spread evenly over the mesh, at
+    /// their centroids into three; the other triangles stay.
+    pub fn split_at_centroids(&self, count: usize) -> Result<Subdivision, MeshError> {
+        let old_count = self.positions.len() as u32;
+        let total = self.faces.triangles().count().max(1);
+        let mut positions = self.positions.clone();
+        let mut parents = Vec::new();
+        let mut faces = Faces::new();
+        let mut children: Vec<Range<u32>> = Vec::with_capacity(self.faces.len());
+        let mut triangle = 0;
+        for face in self.faces.iter() {
+            let first = faces.len() as u32;
+            let corner = face.first().copied().unwrap_or(0);
+            for pair in face.windows(2).skip(1) {
+                let [a, b, c] = [corner, pair[0], pair[1]];
+                // Bresenham: triangle i is split when ⌊(i + 1)·count / total⌋ steps up.
+                let split = (triangle + 1) * count / total > triangle * count / total;
+                triangle += 1;
+                if split {
+                    let centre = old_count + parents.len() as u32;
+                    positions.push((positions[a as usize] + positions[b as usize] + positions[c as usize]) / 3.0);
+                    parents.push(Parents::Triangle([a, b, c]));
+                    for t in [[a, b, centre], [b, c, centre], [c, a, centre]] {
+                        faces.push(&t);
+                    }
+                } else {
+                    faces.push(&[a, b, c]);
+                }
+            }
+            children.push(first..faces.len() as u32);
+        }
+        let mesh = Mesh::from_parts(positions, faces, self.groups_of_children(&children))?;
+        Ok(Subdivision { mesh, parents })
+    }
+
+    /// Midpoint subdivisions while the count stays at most `vertices`, then centroid splits
+    /// up to exactly `vertices` (or as near as one round of splits gets): the final mesh and
+    /// each step.
+    pub fn subdivided_to(&self, vertices: usize) -> Result<(Mesh, Vec<Subdivision>), MeshError> {
+        let mut mesh = self.clone();
+        let mut steps = Vec::new();
+        while mesh.positions.len() < vertices {
+            let mut step = mesh.subdivided()?;
+            if step.mesh.positions.len() > vertices {
+                let missing = vertices - mesh.positions.len();
+                step = mesh.split_at_centroids(missing.min(mesh.faces.triangles().count()))?;
+            }
+            if step.parents.is_empty() {
+                break;
+            }
+            mesh = step.mesh.clone();
+            steps.push(step);
+        }
+        Ok((mesh, steps))
+    }
+
+    /// The groups after each face `f` became the faces `children[f]`.
+    fn groups_of_children(&self, children: &[Range<u32>]) -> Vec<FaceGroup> {
+        self.groups
             .iter()
             .map(|group| FaceGroup {
                 name: group.name.clone(),
                 faces: group.faces.iter().flat_map(|&f| children[f as usize].clone()).collect(),
             })
-            .collect();
-        let mesh = Mesh::from_parts(positions, faces, groups)?;
-        Ok(Subdivision { mesh, parents })
+            .collect()
     }
 
     /// `levels` levels of [`Mesh::subdivided`]: the final mesh and each level's step (to
@@ -76,16 +155,16 @@ impl Mesh {
 
 impl Subdivision {
     /// A sorted vertex selection of the mesh before subdivision carried to the mesh after: the
-    /// old vertices, and each new vertex whose edge has both ends selected.
+    /// old vertices, and each new vertex whose parents are all selected.
     pub fn carry(&self, indices: &[u32]) -> Vec<u32> {
         let old_count = (self.mesh.positions.len() - self.parents.len()) as u32;
-        let selected = |v: u32| indices.binary_search(&v).is_ok();
+        let selected = |v: &u32| indices.binary_search(v).is_ok();
         let mut carried = indices.to_vec();
         carried.extend(
             self.parents
                 .iter()
                 .enumerate()
-                .filter(|(_, [a, b])| selected(*a) && selected(*b))
+                .filter(|(_, parents)| parents.all().iter().all(selected))
                 .map(|(k, _)| old_count + k as u32),
         );
         carried
@@ -113,7 +192,8 @@ mod tests {
         assert_eq!(step.mesh.positions.len(), mesh.positions.len() + edges.len());
         assert_eq!(step.mesh.faces.len(), 4 * triangles);
         assert_eq!(&step.mesh.positions[..mesh.positions.len()], &mesh.positions[..]);
-        for (k, [a, b]) in step.parents.iter().enumerate() {
+        for (k, parents) in step.parents.iter().enumerate() {
+            let Parents::Edge([a, b]) = parents else { panic!("midpoints only") };
             let expected = 0.5 * (mesh.positions[*a as usize] + mesh.positions[*b as usize]);
             assert_eq!(step.mesh.positions[mesh.positions.len() + k], expected);
         }
@@ -135,8 +215,24 @@ mod tests {
         assert_eq!(step.mesh.groups[0].faces, vec![4, 5, 6, 7]);
         let carried = step.carry(&[1, 2, 3]);
         // Edges 1–3, 3–2 and 1–2 are inside the selection; 0–1 and 2–0 are not.
-        let inside: Vec<[u32; 2]> = carried[3..].iter().map(|&v| step.parents[v as usize - 4]).collect();
+        let inside: Vec<Parents> = carried[3..].iter().map(|&v| step.parents[v as usize - 4]).collect();
         assert_eq!(inside.len(), 3);
-        assert!(inside.iter().all(|&[a, b]| a != 0 && b != 0), "{inside:?}");
+        assert!(inside.iter().all(|p| !p.all().contains(&0)), "{inside:?}");
+    }
+
+    #[test]
+    fn exact_vertex_count_by_midpoints_then_centroids() {
+        let mesh = Tube { rings: 5, around: 12, length: 2.0, radius: 0.5 }.mesh();
+        let (big, steps) = mesh.subdivided_to(1000).unwrap();
+        assert_eq!(big.positions.len(), 1000);
+        assert!(matches!(steps.last().unwrap().parents[0], Parents::Triangle(_)));
+        // Still closed, same volume: centroids lie on the faces they split.
+        assert!(big.is_closed());
+        let (before, after) = (mesh.enclosed_volume(&mesh.positions), big.enclosed_volume(&big.positions));
+        assert!((before - after).abs() < 1e-12 * before.abs(), "{before} vs {after}");
+        // The whole mesh selected stays the whole mesh.
+        let all: Vec<u32> = (0..mesh.positions.len() as u32).collect();
+        let carried = steps.iter().fold(all, |indices, step| step.carry(&indices));
+        assert_eq!(carried.len(), 1000);
     }
 }

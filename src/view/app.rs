@@ -89,7 +89,7 @@ impl App {
             radius: 0.15,
             pose_path: options.pose_out.display().to_string(),
             edits_path: format!("{stem}-edits.json"),
-            rig_path: options.rig.as_ref().map_or(format!("{stem}-rig.json"), |p| p.display().to_string()),
+            rig_path: format!("{stem}-rig.json"),
             status: String::new(),
         };
         let mut settings = model.settings;

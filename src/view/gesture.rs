@@ -7,7 +7,7 @@ use glam::{DQuat, Vec2, Vec3};
 use super::orbit::Orbit;
 use super::session::Settings;
 use crate::bind::VertexBinding;
-use crate::edit::Edit;
+use crate::edit::{DragMode, Edit, KeyMode};
 
 /// What dragging a key ring does.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -36,6 +36,10 @@ pub enum Gesture {
         binding: VertexBinding,
         /// Where the point was when grabbed.
         anchor: Vec3,
+        /// The key below the point, and its center, which a rotate drag turns the point about.
+        below: usize,
+        /// See `below`.
+        pivot: Vec3,
     },
     /// Dragging a key ring.
     Key {
@@ -60,7 +64,26 @@ impl Gesture {
     pub fn edit(&self, pointer: Vec2, camera: &Orbit, size: Vec2, settings: &Settings) -> Option<Edit> {
         match self {
             Gesture::Orbit { .. } | Gesture::Pan { .. } => None,
-            Gesture::Point { sweep, binding, anchor } => {
+            Gesture::Point { sweep, binding, anchor, below, pivot } => {
+                if settings.drag_mode == DragMode::Rotate {
+                    // The angular part alone (Fig. 14d): the key below the point turns about its
+                    // center (the keys after it following) so that the point heads for the point
+                    // of its sphere under the pointer. Turning one key is exact, where iterating
+                    // a drag_point to a target on the sphere is not (the spline through the
+                    // fixed keys bends too).
+                    let to = on_sphere(camera.ray(pointer, size), *pivot, anchor.distance(*pivot));
+                    let turn = DQuat::from_rotation_arc(
+                        (*anchor - *pivot).as_dvec3().normalize_or_zero(),
+                        (to - *pivot).as_dvec3().normalize_or_zero(),
+                    );
+                    return Some(Edit::MoveKey {
+                        sweep: sweep.clone(),
+                        key: *below,
+                        translate: [0.0; 3],
+                        rotate: turn.to_array(),
+                        mode: KeyMode::Local,
+                    });
+                }
                 let to = camera.on_view_plane(pointer, size, *anchor).as_dvec3();
                 Some(Edit::DragPoint {
                     sweep: sweep.clone(),
@@ -102,6 +125,18 @@ impl Gesture {
     }
 }
 
+/// The point of the sphere (`center`, `radius`) where the ray (origin, unit direction) first
+/// meets it, or the point of the sphere nearest to the ray if it misses.
+fn on_sphere((origin, direction): (Vec3, Vec3), center: Vec3, radius: f32) -> Vec3 {
+    let along = (center - origin).dot(direction);
+    let nearest = origin + along * direction;
+    let miss = nearest.distance(center);
+    if miss < radius {
+        return nearest - (radius * radius - miss * miss).sqrt() * direction;
+    }
+    center + radius * (nearest - center).normalize_or(-direction)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -118,6 +153,8 @@ mod tests {
             sweep: "arm".into(),
             binding: VertexBinding { t: 0.5, theta: 1.0, d: 0.1, h: 0.0 },
             anchor,
+            below: 0,
+            pivot: Vec3::ZERO,
         };
         let pointer = Vec2::new(520.0, 280.0);
         let Some(Edit::DragPoint { to, theta, d, .. }) = gesture.edit(pointer, &camera, size, &Settings::default())
@@ -128,6 +165,31 @@ mod tests {
         let to = glam::DVec3::from_array(to).as_vec3();
         assert!(camera.project(to, size).unwrap().distance(pointer) < 0.05);
         assert!((to - anchor).dot(camera.forward()).abs() < 1e-4);
+    }
+
+    #[test]
+    fn rotate_drag_targets_the_sphere_about_the_pivot() {
+        let (camera, size) = setup();
+        let (anchor, pivot) = (Vec3::new(0.5, 0.0, 0.0), Vec3::ZERO);
+        let gesture =
+            Gesture::Point { sweep: "arm".into(), binding: VertexBinding::default(), anchor, below: 2, pivot };
+        let settings = Settings { drag_mode: DragMode::Rotate, drag_keys: 3, ..Settings::default() };
+        // The pointer over the pivot turns the point to the sphere's near side.
+        let center = camera.project(pivot, size).unwrap();
+        let Some(Edit::MoveKey { key, rotate, translate, mode, .. }) = gesture.edit(center, &camera, size, &settings)
+        else {
+            panic!("a rotate drag turns the key below the point");
+        };
+        assert_eq!((key, translate, mode), (2, [0.0; 3], KeyMode::Local));
+        let turned = (DQuat::from_array(rotate) * anchor.as_dvec3()).as_vec3();
+        assert!((turned.length() - 0.5).abs() < 1e-5);
+        assert!(turned.normalize().dot(-camera.forward()) > 0.999, "{turned}");
+        // A pointer off the sphere gets the sphere's point nearest its ray.
+        let (origin, direction) = camera.ray(Vec2::new(790.0, 10.0), size);
+        let far = on_sphere((origin, direction), pivot, 0.5);
+        assert!((far.length() - 0.5).abs() < 1e-5);
+        let nearest = origin + (pivot - origin).dot(direction) * direction;
+        assert!((far - pivot).normalize().dot((nearest - pivot).normalize()) > 0.9999);
     }
 
     #[test]

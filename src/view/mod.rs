@@ -44,8 +44,8 @@ pub struct ViewOptions {
     pub rig: Option<PathBuf>,
     /// A pose of the rig to start from.
     pub pose: Option<PathBuf>,
-    /// Levels of midpoint subdivision of the mesh (rig index selections carried along).
-    pub subdivide: usize,
+    /// Subdivision of the mesh before use (rig index selections carried along).
+    pub subdivide: Subdivide,
     /// The volume rule to start with.
     pub volume: VolumeRule,
     /// Replay this script, then exit.
@@ -54,6 +54,18 @@ pub struct ViewOptions {
     pub size: (u32, u32),
     /// Where Ctrl+S saves the pose (the panel can change it).
     pub pose_out: PathBuf,
+}
+
+/// How the viewer subdivides the mesh, to try it at higher vertex counts.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Subdivide {
+    /// Not at all.
+    #[default]
+    No,
+    /// This many levels of midpoint subdivision ([`Mesh::subdivided`](crate::mesh::Mesh::subdivided)).
+    Levels(usize),
+    /// To this many vertices ([`Mesh::subdivided_to`](crate::mesh::Mesh::subdivided_to)).
+    Vertices(usize),
 }
 
 /// Why the viewer could not run.

@@ -9,8 +9,8 @@ use crate::mesh::{Mesh, Subdivision};
 use crate::rig::{FORMAT, Rig, RigDocument, VERSION, VertexSelection};
 use crate::sweep::{Key, Sweep};
 
-use super::ViewError;
 use super::session::{Session, Settings};
+use super::{Subdivide, ViewError};
 
 /// The mesh, its rig and the edits.
 pub struct Model {
@@ -38,9 +38,19 @@ pub struct Model {
 
 impl Model {
     /// Loads the mesh (subdivided `levels` times), the rig and a pose.
-    pub fn load(mesh_path: &Path, rig: Option<&Path>, pose: Option<&Path>, levels: usize) -> Result<Model, ViewError> {
+    pub fn load(
+        mesh_path: &Path,
+        rig: Option<&Path>,
+        pose: Option<&Path>,
+        subdivide: Subdivide,
+    ) -> Result<Model, ViewError> {
         let mesh = Mesh::load(mesh_path).map_err(|e| ViewError::Input(e.to_string()))?;
-        let (mesh, steps) = mesh.subdivided_times(levels).map_err(|e| ViewError::Input(e.to_string()))?;
+        let (mesh, steps) = match subdivide {
+            Subdivide::No => Ok((mesh, Vec::new())),
+            Subdivide::Levels(levels) => mesh.subdivided_times(levels),
+            Subdivide::Vertices(vertices) => mesh.subdivided_to(vertices),
+        }
+        .map_err(|e| ViewError::Input(format!("{}: subdividing: {e}", mesh_path.display())))?;
         let mesh_name = mesh_path.display().to_string();
         let document = match rig {
             Some(path) => {

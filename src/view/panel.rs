@@ -99,7 +99,7 @@ pub fn panel(
     settings: &mut Settings,
 ) -> Vec<PanelAction> {
     let mut actions = Vec::new();
-    egui::Panel::right("sweepffd panel").exact_size(PANEL_WIDTH).show(ui, |ui| {
+    egui::Panel::right("sweepffd panel").exact_size(PANEL_WIDTH).resizable(false).show(ui, |ui| {
         egui::ScrollArea::vertical().show(ui, |ui| {
             ui.heading("sweepffd");
             let t = &facts.times;
@@ -114,7 +114,7 @@ pub fn panel(
             ui.separator();
             if facts.has_rig {
                 edit_settings(ui, state, settings);
-                ui.horizontal(|ui| {
+                ui.horizontal_wrapped(|ui| {
                     let (done, undone) = facts.history;
                     if ui.add_enabled(done > 0, egui::Button::new(format!("Undo ({done})"))).clicked() {
                         actions.push(PanelAction::Command(Command::Undo));
@@ -159,11 +159,11 @@ pub fn panel(
 fn volumes(ui: &mut egui::Ui, facts: &PanelFacts) {
     ui.label("volumes (Eq. 1), now / rest");
     for (name, now, rest) in &facts.sweep_volumes {
-        ui.label(format!("  {name}: {now:.5} / {rest:.5} ({:+.2}%)", 100.0 * (now / rest - 1.0)));
+        ui.label(format!("  {name}: {now:.5e} / {rest:.5e} ({:+.2}%)", 100.0 * (now / rest - 1.0)));
     }
     match facts.mesh_volume {
         Some((now, rest)) => {
-            ui.label(format!("  mesh: {now:.5} / {rest:.5} ({:+.2}%)", 100.0 * (now / rest - 1.0)));
+            ui.label(format!("  mesh: {now:.5e} / {rest:.5e} ({:+.2}%)", 100.0 * (now / rest - 1.0)));
         }
         None => {
             ui.label("  mesh: open, encloses no volume");
@@ -172,26 +172,26 @@ fn volumes(ui: &mut egui::Ui, facts: &PanelFacts) {
 }
 
 fn edit_settings(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings) {
-    ui.horizontal(|ui| {
+    ui.horizontal_wrapped(|ui| {
         ui.label("point drag (D)");
         ui.selectable_value(&mut settings.drag_mode, DragMode::Both, "both");
         ui.selectable_value(&mut settings.drag_mode, DragMode::Translate, "translate");
         ui.selectable_value(&mut settings.drag_mode, DragMode::Rotate, "rotate");
     });
     ui.add(egui::Slider::new(&mut settings.drag_keys, 1..=6).text("keys a drag edits"));
-    ui.horizontal(|ui| {
+    ui.horizontal_wrapped(|ui| {
         ui.label("key ring");
         ui.selectable_value(&mut state.tool, KeyTool::Move, "move (G)");
         ui.selectable_value(&mut state.tool, KeyTool::Rotate, "turn (R)");
         ui.selectable_value(&mut state.tool, KeyTool::Scale, "scale (S)");
     });
-    ui.horizontal(|ui| {
+    ui.horizontal_wrapped(|ui| {
         ui.label("key moves (L)");
         ui.selectable_value(&mut settings.key_mode, KeyMode::Local, "local");
         ui.selectable_value(&mut settings.key_mode, KeyMode::Independent, "independent");
     });
     ui.checkbox(&mut settings.hierarchy, "hierarchy propagation (H)");
-    ui.horizontal(|ui| {
+    ui.horizontal_wrapped(|ui| {
         ui.label("volume rule (V)");
         for (rule, name) in [
             (VolumeRule::None, "none"),
@@ -202,7 +202,7 @@ fn edit_settings(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Setti
             ui.selectable_value(&mut settings.volume, rule, name);
         }
     });
-    ui.horizontal(|ui| {
+    ui.horizontal_wrapped(|ui| {
         ui.label("sweeps (W)");
         ui.selectable_value(&mut state.sweeps, SweepDisplay::RingsAndSurface, "rings + surface");
         ui.selectable_value(&mut state.sweeps, SweepDisplay::Rings, "rings");
@@ -217,7 +217,7 @@ fn file_row(
     actions: &mut Vec<PanelAction>,
     buttons: &[(&str, Command)],
 ) {
-    ui.horizontal(|ui| {
+    ui.horizontal_wrapped(|ui| {
         ui.label(label);
         ui.add(egui::TextEdit::singleline(path).desired_width(130.0));
         for (text, command) in buttons {
@@ -251,7 +251,7 @@ fn fitting(ui: &mut egui::Ui, facts: &PanelFacts, state: &mut PanelState, action
             ui.label("nothing selected");
         }
     }
-    ui.horizontal(|ui| {
+    ui.horizontal_wrapped(|ui| {
         ui.label("rig");
         ui.add(egui::TextEdit::singleline(&mut state.rig_path).desired_width(130.0));
         if ui.add_enabled(facts.has_rig, egui::Button::new("Save")).clicked() {

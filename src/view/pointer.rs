@@ -56,7 +56,9 @@ impl App {
             let sweep = owner as usize;
             let binding = SweepBinder::new(&rig.rest()[sweep]).bind(self.model.mesh.positions[vertex as usize]);
             let anchor = posed[sweep].point(binding.theta, binding.t, binding.d, binding.h).as_vec3();
-            return Gesture::Point { sweep: rig.sweeps()[sweep].name.clone(), binding, anchor };
+            let below = posed[sweep].locate(binding.t).segment;
+            let pivot = self.model.session.as_ref().map_or(anchor, |s| s.keys()[sweep][below].center.as_vec3());
+            return Gesture::Point { sweep: rig.sweeps()[sweep].name.clone(), binding, anchor, below, pivot };
         }
         self.select_part(vertex, hit.triangle);
         Gesture::Orbit { last: at }

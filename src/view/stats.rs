@@ -43,9 +43,11 @@ impl Stats {
         }
     }
 
-    /// Medians of the last frames.
+    /// Medians of the last frames; edit and deform over those of them that changed the pose.
     pub fn recent_medians(&self) -> FrameTimes {
-        medians(&self.recent)
+        let changed: Vec<FrameTimes> = self.recent.iter().filter(|t| t.deform > 0.0).copied().collect();
+        let (all, changed) = (medians(&self.recent), medians(&changed));
+        FrameTimes { edit: changed.edit, deform: changed.deform, ..all }
     }
 }
 
@@ -97,7 +99,7 @@ mod tests {
 
     #[test]
     fn medians_of_odd_and_even_counts() {
-        let times = |v: f64| FrameTimes { frame: v, edit: 2.0 * v, deform: 0.0, render: v };
+        let times = |v: f64| FrameTimes { frame: v, edit: 2.0 * v, deform: v % 2.0, render: v };
         assert_eq!(medians(&[times(3.0), times(1.0), times(2.0)]).edit, 4.0);
         assert_eq!(medians(&[times(4.0), times(1.0), times(2.0), times(3.0)]).frame, 2.5);
         assert_eq!(medians(&[]).render, 0.0);
@@ -107,6 +109,8 @@ mod tests {
         }
         assert_eq!(stats.frames, 100);
         assert_eq!(stats.dragging.len(), 50);
-        assert_eq!(stats.recent_medians().frame, 69.5, "median of the last 60 frames, 40..=99");
+        let recent = stats.recent_medians();
+        assert_eq!(recent.frame, 69.5, "median of the last 60 frames, 40..=99");
+        assert_eq!(recent.edit, 140.0, "median over the odd frames (deform > 0) of 40..=99");
     }
 }
