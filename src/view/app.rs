@@ -68,6 +68,10 @@ pub(super) struct App {
     pub mesh_volume: f64,
     pub screenshots: Vec<String>,
     pub errors: Vec<String>,
+    /// Pointer moves whose edit failed (the previous one stayed).
+    pub edits_not_applied: usize,
+    /// Each sweep's name, volume now and at rest, measured when the pose changes.
+    pub sweep_volumes: Vec<(String, f64, f64)>,
     pub fatal: Option<ViewError>,
 }
 
@@ -92,8 +96,6 @@ impl App {
             rig_path: format!("{stem}-rig.json"),
             status: String::new(),
         };
-        let mut settings = model.settings;
-        settings.volume = options.volume;
         let mut app = App {
             options,
             instance,
@@ -117,9 +119,10 @@ impl App {
             mesh_volume: 0.0,
             screenshots: Vec::new(),
             errors: Vec::new(),
+            edits_not_applied: 0,
+            sweep_volumes: Vec::new(),
             fatal: None,
         };
-        app.model.settings = settings;
         app.measure_rest_volumes();
         app
     }
@@ -143,6 +146,7 @@ impl App {
             drag_median_ms: medians(&self.stats.dragging),
             screenshots: self.screenshots,
             errors: self.errors,
+            edits_not_applied: self.edits_not_applied,
         }))
     }
 
@@ -237,14 +241,26 @@ impl ApplicationHandler for App {
             running.window.request_redraw();
         }
         match event {
-            WindowEvent::CloseRequested => event_loop.exit(),
+            WindowEvent::CloseRequested => return event_loop.exit(),
             WindowEvent::Resized(size) => {
                 running.gpu.resize(size.width, size.height);
-                running.window.request_redraw();
+                return running.window.request_redraw();
             }
-            WindowEvent::RedrawRequested => self.redraw(event_loop),
-            WindowEvent::ModifiersChanged(modifiers) => self.modifiers = modifiers.state(),
-            _ if consumed.consumed || self.player.is_some() => {}
+            WindowEvent::RedrawRequested => return self.redraw(event_loop),
+            WindowEvent::ModifiersChanged(modifiers) => {
+                self.modifiers = modifiers.state();
+                return;
+            }
+            // A script plays alone: the hand's input goes to the panel only.
+            _ if self.player.is_some() => return,
+            // A drag that began in the scene follows the pointer over the panel and ends
+            // wherever the button is released.
+            WindowEvent::CursorMoved { .. } | WindowEvent::MouseInput { state: ElementState::Released, .. }
+                if self.gesture.is_some() => {}
+            _ if consumed.consumed => return,
+            _ => {}
+        }
+        match event {
             WindowEvent::CursorMoved { position, .. } => {
                 self.input(Input::Pointer(Vec2::new(position.x as f32, position.y as f32)));
                 self.request_redraw();

@@ -52,8 +52,9 @@ impl App {
                 settings.volume = match settings.volume {
                     VolumeRule::None => VolumeRule::Total,
                     VolumeRule::Total => VolumeRule::Ratio,
-                    VolumeRule::Ratio => VolumeRule::Mesh,
-                    VolumeRule::Mesh => VolumeRule::None,
+                    // The mesh rule keeps an enclosed volume, which only a closed mesh has.
+                    VolumeRule::Ratio if self.model.closed => VolumeRule::Mesh,
+                    VolumeRule::Ratio | VolumeRule::Mesh => VolumeRule::None,
                 }
             }
             Command::MoveTool => self.panel.tool = KeyTool::Move,

@@ -88,6 +88,16 @@ impl App {
         }
         running.overlay.upload(&running.gpu.context, &scene);
         self.picked_positions = None;
+        self.sweep_volumes = match &self.model.rig {
+            Some(rig) => rig
+                .sweeps()
+                .iter()
+                .zip(&posed)
+                .zip(&self.rest_volumes)
+                .map(|((s, sweep), &rest)| (s.name.clone(), sweep.volume(), rest))
+                .collect(),
+            None => Vec::new(),
+        };
         Ok(())
     }
 
@@ -208,23 +218,12 @@ impl App {
     /// What the panel shows this frame.
     fn panel_facts(&self) -> PanelFacts {
         let rig = self.model.rig.as_ref();
-        let posed = self.model.posed().and_then(Result::ok).unwrap_or_default();
-        let sweep_volumes = rig
-            .map(|rig| {
-                rig.sweeps()
-                    .iter()
-                    .zip(&posed)
-                    .zip(&self.rest_volumes)
-                    .map(|((s, sweep), &rest)| (s.name.clone(), sweep.volume(), rest))
-                    .collect()
-            })
-            .unwrap_or_default();
         PanelFacts {
             adapter: self.adapter(),
             vertices: self.model.mesh.positions.len(),
             triangles: self.model.triangles.len(),
             times: self.stats.recent_medians(),
-            sweep_volumes,
+            sweep_volumes: self.sweep_volumes.clone(),
             mesh_volume: self.model.closed.then_some((self.mesh_volume, self.rest_mesh_volume)),
             history: self.model.session.as_ref().map_or((0, 0), |s| s.history()),
             has_rig: rig.is_some(),

@@ -89,7 +89,8 @@ pub enum ViewError {
 /// returns its report.
 pub fn run(options: ViewOptions) -> Result<Option<Report>, ViewError> {
     // The files first, so that bad input fails before any window opens.
-    let model = model::Model::load(&options.mesh, options.rig.as_deref(), options.pose.as_deref(), options.subdivide)?;
+    let (mesh, rig, pose) = (&options.mesh, options.rig.as_deref(), options.pose.as_deref());
+    let model = model::Model::load(mesh, rig, pose, options.subdivide, options.volume)?;
     let player = match &options.script {
         Some(path) => {
             let steps = script::load(path).map_err(ViewError::Script)?;

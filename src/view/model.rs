@@ -37,12 +37,13 @@ pub struct Model {
 }
 
 impl Model {
-    /// Loads the mesh (subdivided `levels` times), the rig and a pose.
+    /// Loads the mesh (subdivided), the rig and a pose, with the volume rule to start with.
     pub fn load(
         mesh_path: &Path,
         rig: Option<&Path>,
         pose: Option<&Path>,
         subdivide: Subdivide,
+        volume: VolumeRule,
     ) -> Result<Model, ViewError> {
         let mesh = Mesh::load(mesh_path).map_err(|e| ViewError::Input(e.to_string()))?;
         let (mesh, steps) = match subdivide {
@@ -73,6 +74,13 @@ impl Model {
             bindings: None,
         };
         model.set_rig(document, rig.map(Path::to_path_buf))?;
+        if volume == VolumeRule::Mesh && !model.closed {
+            let file = mesh_path.display();
+            return Err(ViewError::Input(format!(
+                "{file}: the mesh volume rule needs a closed mesh, and {file} is open"
+            )));
+        }
+        model.settings.volume = volume;
         if let Some(path) = pose {
             model.load_pose(path)?;
         }

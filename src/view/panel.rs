@@ -113,7 +113,7 @@ pub fn panel(
             volumes(ui, facts);
             ui.separator();
             if facts.has_rig {
-                edit_settings(ui, state, settings);
+                edit_settings(ui, state, settings, facts.mesh_volume.is_some());
                 ui.horizontal_wrapped(|ui| {
                     let (done, undone) = facts.history;
                     if ui.add_enabled(done > 0, egui::Button::new(format!("Undo ({done})"))).clicked() {
@@ -171,7 +171,7 @@ fn volumes(ui: &mut egui::Ui, facts: &PanelFacts) {
     }
 }
 
-fn edit_settings(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings) {
+fn edit_settings(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Settings, closed: bool) {
     ui.horizontal_wrapped(|ui| {
         ui.label("point drag (D)");
         ui.selectable_value(&mut settings.drag_mode, DragMode::Both, "both");
@@ -193,14 +193,11 @@ fn edit_settings(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Setti
     ui.checkbox(&mut settings.hierarchy, "hierarchy propagation (H)");
     ui.horizontal_wrapped(|ui| {
         ui.label("volume rule (V)");
-        for (rule, name) in [
-            (VolumeRule::None, "none"),
-            (VolumeRule::Total, "total"),
-            (VolumeRule::Ratio, "ratio"),
-            (VolumeRule::Mesh, "mesh"),
-        ] {
+        for (rule, name) in [(VolumeRule::None, "none"), (VolumeRule::Total, "total"), (VolumeRule::Ratio, "ratio")] {
             ui.selectable_value(&mut settings.volume, rule, name);
         }
+        // The mesh rule keeps the enclosed volume, which only a closed mesh has.
+        ui.add_enabled_ui(closed, |ui| ui.selectable_value(&mut settings.volume, VolumeRule::Mesh, "mesh"));
     });
     ui.horizontal_wrapped(|ui| {
         ui.label("sweeps (W)");

@@ -89,7 +89,10 @@ impl App {
                         self.pose_changed = true;
                         self.panel.status.clear();
                     }
-                    Err(error) => self.panel.status = format!("edit not applied: {error}"),
+                    Err(error) => {
+                        self.panel.status = format!("edit not applied: {error}");
+                        self.edits_not_applied += 1;
+                    }
                 }
                 self.pending_edit_ms += started.elapsed().as_secs_f64() * 1e3;
             }

@@ -89,8 +89,10 @@ pub struct Report {
     pub drag_median_ms: FrameTimes,
     /// Screenshots written.
     pub screenshots: Vec<String>,
-    /// Errors met while playing (failed saves, edits that did not converge).
+    /// Errors met while playing (failed saves and loads, failed fits).
     pub errors: Vec<String>,
+    /// Pointer moves whose edit failed (e.g. did not converge), keeping the previous one.
+    pub edits_not_applied: usize,
 }
 
 #[cfg(test)]
