@@ -241,7 +241,7 @@ impl ApplicationHandler for App {
             running.window.request_redraw();
         }
         match event {
-            WindowEvent::CloseRequested => return event_loop.exit(),
+            WindowEvent::CloseRequested | WindowEvent::Destroyed => return event_loop.exit(),
             WindowEvent::Resized(size) => {
                 running.gpu.resize(size.width, size.height);
                 return running.window.request_redraw();

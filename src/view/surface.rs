@@ -25,6 +25,9 @@ pub struct WindowGpu {
     pub depth: wgpu::TextureView,
     /// Whether the surface texture can be copied out (screenshots).
     pub readable: bool,
+    /// The last configuration failed (the window system can refuse one for a moment, e.g.
+    /// while a window moves); retried before the next frame.
+    unconfigured: bool,
 }
 
 impl WindowGpu {
@@ -79,7 +82,7 @@ impl WindowGpu {
         surface.configure(&device, &config);
         let (colour, depth) = targets(&device, format, config.width, config.height);
         let context = GpuContext::from_device(device, queue, info);
-        Ok(WindowGpu { context, surface, config, format, colour, depth, readable })
+        Ok(WindowGpu { context, surface, config, format, colour, depth, readable, unconfigured: false })
     }
 
     /// The surface size in pixels.
@@ -94,21 +97,38 @@ impl WindowGpu {
         }
         self.config.width = width;
         self.config.height = height;
-        self.surface.configure(&self.context.device, &self.config);
+        self.configure();
         (self.colour, self.depth) = targets(&self.context.device, self.format, width, height);
+    }
+
+    /// Applies the configuration; a refusal is remembered (not a panic) and retried.
+    fn configure(&mut self) {
+        let scope = self.context.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        self.surface.configure(&self.context.device, &self.config);
+        self.unconfigured = pollster::block_on(scope.pop()).is_some();
     }
 
     /// The next surface texture, or `None` when this frame cannot be drawn (the surface is
     /// reconfigured where that helps).
     pub fn acquire(&mut self) -> Option<wgpu::SurfaceTexture> {
-        match self.surface.get_current_texture() {
-            wgpu::CurrentSurfaceTexture::Success(texture) => Some(texture),
-            wgpu::CurrentSurfaceTexture::Suboptimal(texture) => {
-                self.surface.configure(&self.context.device, &self.config);
+        if self.unconfigured {
+            self.configure();
+            if self.unconfigured {
+                return None;
+            }
+        }
+        let scope = self.context.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let acquired = self.surface.get_current_texture();
+        let refused = pollster::block_on(scope.pop()).is_some();
+        match acquired {
+            wgpu::CurrentSurfaceTexture::Success(texture) if !refused => Some(texture),
+            // Drawn now, reconfigured for the next frame.
+            wgpu::CurrentSurfaceTexture::Suboptimal(texture) if !refused => {
+                self.unconfigured = true;
                 Some(texture)
             }
             wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
-                self.surface.configure(&self.context.device, &self.config);
+                self.configure();
                 None
             }
             _ => None,
