@@ -9,6 +9,8 @@
 //!
 //! - [`rig`]: rig and pose files, validation, which sweep owns which vertex.
 //! - [`sweep`]: the f64 sweep surface model, C(t), R(t), r(θ, t), and its volume (Eq. 1).
+//! - [`fit`]: control sweeps fitted to mesh parts (§3).
+//! - [`edit`]: posing by edits: key moves, point drags, hierarchies, volume rules (§4–5).
 //! - [`bind`]: binding parameters of each vertex by root-finding (§3).
 //! - [`deform`]: vertex positions of a posed rig through Eq. 2.
 //! - [`mesh`]: mesh files in and out, enclosed volume.
@@ -16,6 +18,8 @@
 //! - [`cpu`]: f32 twins of the WGSL kernels in `shaders/`.
 //! - [`synthetic`]: procedural meshes, rigs and poses.
 //! - [`render`]: headless pictures of meshes and their control sweeps (PNG).
+//! - `view` (feature `viewer`, on by default): the interactive viewer, a winit window drawing
+//!   the GPU deformer's buffers, with direct manipulation (§4–5), undo and scripted sessions.
 //!
 //! ```no_run
 //! use glam::DVec3;

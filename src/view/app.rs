@@ -1,6 +1,7 @@
 //! The window's life: created on `resumed`, fed window events, redrawn on request (every frame
 //! while a script plays), closed on request or at the script's end.
 
+use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -66,6 +67,8 @@ pub(super) struct App {
     pub rest_volumes: Vec<f64>,
     pub rest_mesh_volume: f64,
     pub mesh_volume: f64,
+    /// A screenshot the script asked for, taken with the next frame drawn.
+    pub pending_screenshot: Option<PathBuf>,
     pub screenshots: Vec<String>,
     pub errors: Vec<String>,
     /// Pointer moves whose edit failed (the previous one stayed).
@@ -117,6 +120,7 @@ impl App {
             rest_volumes: Vec::new(),
             rest_mesh_volume: 0.0,
             mesh_volume: 0.0,
+            pending_screenshot: None,
             screenshots: Vec::new(),
             errors: Vec::new(),
             edits_not_applied: 0,

@@ -21,15 +21,15 @@ impl App {
         let started = Instant::now();
         let frame_ms = started.duration_since(self.last_frame).as_secs_f64() * 1e3;
         self.last_frame = started;
-        let mut screenshot = None;
         let mut dragging = false;
-        if let Some(player) = &mut self.player {
+        // A screenshot waits for a frame that is drawn before the script goes on.
+        if let Some(player) = self.player.as_mut().filter(|_| self.pending_screenshot.is_none()) {
             let actions = player.frame(started);
             dragging = player.dragging();
             for action in actions {
                 match action {
                     Action::Input(input) => self.input(input),
-                    Action::Screenshot(path) => screenshot = Some(path),
+                    Action::Screenshot(path) => self.pending_screenshot = Some(path),
                     Action::SavePose(path) => self.save_pose(&path),
                     Action::SaveEdits(path) => self.save_edits(&path),
                     Action::LoadPose(path) => self.load_pose(&path),
@@ -49,13 +49,13 @@ impl App {
             Ok(ms) => ms,
             Err(error) => return self.fail(event_loop, error),
         };
-        let render_ms = match self.render(screenshot.as_deref()) {
+        let render_ms = match self.render() {
             Ok(ms) => ms,
             Err(error) => return self.fail(event_loop, error),
         };
         let times = FrameTimes { frame: frame_ms, edit: edit_ms, deform: deform_ms, render: render_ms };
         self.stats.record(times, dragging && deform);
-        if self.player.as_ref().is_some_and(|p| p.finished()) {
+        if self.player.as_ref().is_some_and(|p| p.finished()) && self.pending_screenshot.is_none() {
             event_loop.exit();
         }
     }
@@ -121,13 +121,14 @@ impl App {
 
     /// Draws the scene and the panel, captures a screenshot if asked, presents and waits;
     /// returns the milliseconds.
-    fn render(&mut self, screenshot: Option<&std::path::Path>) -> Result<f64, ViewError> {
+    fn render(&mut self) -> Result<f64, ViewError> {
         let started = Instant::now();
         let facts = self.panel_facts();
         let size = self.size();
         let uniform = view_uniform(&self.camera.camera(), size.x / size.y);
         let Some(running) = &mut self.running else { return Ok(0.0) };
         let Some(texture) = running.gpu.acquire() else { return Ok(0.0) };
+        let screenshot = self.pending_screenshot.take();
         let target = running.gpu.view_of(&texture);
         let context = running.gpu.context.clone();
         let mut encoder =
@@ -178,7 +179,7 @@ impl App {
         for id in &output.textures_delta.free {
             egui.renderer.free_texture(id);
         }
-        let capture = match screenshot {
+        let capture = match &screenshot {
             Some(_) if running.gpu.readable => Some(Capture::record(&mut encoder, &context.device, &texture.texture)),
             _ => None,
         };
@@ -190,7 +191,7 @@ impl App {
         if output.viewport_output.values().any(|v| v.repaint_delay.is_zero()) {
             running.window.request_redraw();
         }
-        if let Some(path) = screenshot {
+        if let Some(path) = &screenshot {
             let outcome = match capture {
                 Some(capture) => capture
                     .finish(&context)

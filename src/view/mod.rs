@@ -4,8 +4,8 @@
 //! It is also the integration example for real-time applications: the window's wgpu device is
 //! handed to a [`GpuDeformer`](crate::gpu::GpuDeformer) ([`GpuContext::from_device`]), each
 //! edit uploads a few KB of sweep coefficients, and the mesh is drawn straight from the
-//! deformer's position and normal buffers ([`draw`]), with no readback and no allocation per
-//! frame.
+//! deformer's position and normal buffers ([`draw`]), with no readback and no buffer, pipeline
+//! or bind group created per frame.
 //!
 //! Data flow: input ([`input`], or a [`script`]) → gesture ([`gesture`]) → edit → session
 //! ([`session`]: hierarchy, volume rule, undo) → posed sweeps → coefficients → GPU deform and

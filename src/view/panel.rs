@@ -103,10 +103,8 @@ pub fn panel(
         egui::ScrollArea::vertical().show(ui, |ui| {
             ui.heading("sweepffd");
             let t = &facts.times;
-            ui.label(format!(
-                "frame {:.1} ms  (deform {:.1}, render {:.1}, edit {:.1})",
-                t.frame, t.deform, t.render, t.edit
-            ));
+            ui.label(format!("render {:.1} ms, deform {:.1} ms, edit {:.1} ms", t.render, t.deform, t.edit));
+            ui.label(format!("{:.1} ms between frames", t.frame));
             ui.label(format!("{} vertices, {} triangles", facts.vertices, facts.triangles));
             ui.label(&facts.adapter);
             ui.separator();
