@@ -226,20 +226,14 @@ impl Player {
                 actions.push(Action::Input(Input::Command(command)));
                 true
             }
-            Step::SavePose(path) => {
-                actions.push(Action::SavePose(self.folder.join(path)));
-                true
-            }
-            Step::SaveEdits(path) => {
-                actions.push(Action::SaveEdits(self.folder.join(path)));
-                true
-            }
-            Step::LoadPose(path) => {
-                actions.push(Action::LoadPose(self.folder.join(path)));
-                true
-            }
-            Step::SaveRig(path) => {
-                actions.push(Action::SaveRig(self.folder.join(path)));
+            Step::SavePose(path) | Step::SaveEdits(path) | Step::LoadPose(path) | Step::SaveRig(path) => {
+                let path = self.folder.join(path);
+                actions.push(match step {
+                    Step::SavePose(_) => Action::SavePose(path),
+                    Step::SaveEdits(_) => Action::SaveEdits(path),
+                    Step::LoadPose(_) => Action::LoadPose(path),
+                    _ => Action::SaveRig(path),
+                });
                 true
             }
         }

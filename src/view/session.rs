@@ -108,25 +108,13 @@ impl Session {
     /// Undoes the last committed edit; returns whether there was one.
     pub fn undo(&mut self) -> bool {
         self.preview = None;
-        match self.done.pop() {
-            Some(step) => {
-                self.undone.push(step);
-                true
-            }
-            None => false,
-        }
+        move_last(&mut self.done, &mut self.undone)
     }
 
     /// Redoes the last undone edit; returns whether there was one.
     pub fn redo(&mut self) -> bool {
         self.preview = None;
-        match self.undone.pop() {
-            Some(step) => {
-                self.done.push(step);
-                true
-            }
-            None => false,
-        }
+        move_last(&mut self.undone, &mut self.done)
     }
 
     /// Number of committed edits and of undone ones that can be redone.
@@ -139,6 +127,11 @@ impl Session {
     pub fn edits(&self) -> Vec<Edit> {
         self.done.iter().map(|step| step.edit.clone()).collect()
     }
+}
+
+/// Moves the last step of `from` onto `to`; returns whether there was one.
+fn move_last(from: &mut Vec<Step>, to: &mut Vec<Step>) -> bool {
+    from.pop().map(|step| to.push(step)).is_some()
 }
 
 #[cfg(test)]
