@@ -56,8 +56,10 @@ pub(super) struct App {
     pub gesture: Option<Gesture>,
     pub selected_key: Option<(usize, usize)>,
     pub part: Option<Part>,
-    /// The pose changed: set it on the deformer and rebuild the sweeps' overlay.
+    /// The pose changed: set it on the deformer, deform, and rebuild the sweeps' overlay.
     pub pose_changed: bool,
+    /// Only the overlay changed (a key selected, the sweeps' display switched).
+    pub overlay_changed: bool,
     /// Positions read back for picking, until the pose changes.
     pub picked_positions: Option<Vec<Vec3>>,
     /// Milliseconds of rig edits since the last frame.
@@ -114,6 +116,7 @@ impl App {
             selected_key: None,
             part: None,
             pose_changed: true,
+            overlay_changed: true,
             picked_positions: None,
             pending_edit_ms: 0.0,
             last_frame: Instant::now(),

@@ -32,7 +32,7 @@ impl App {
             Command::SaveEdits => self.save_edits(Path::new(&self.panel.edits_path.clone())),
             Command::CycleSweeps => {
                 self.panel.sweeps = self.panel.sweeps.next();
-                self.pose_changed = true;
+                self.overlay_changed = true;
             }
             Command::CycleDragMode => {
                 settings.drag_mode = match settings.drag_mode {
@@ -77,7 +77,7 @@ impl App {
                 self.selected_key = None;
                 self.part = None;
                 self.show_part();
-                self.pose_changed = true;
+                self.overlay_changed = true;
             }
         }
     }

@@ -62,7 +62,7 @@ impl App {
 
     /// Sets a changed pose on the deformer and rebuilds the sweeps' overlay.
     fn update_pose(&mut self) -> Result<(), ViewError> {
-        if !self.pose_changed {
+        if !(self.pose_changed || std::mem::take(&mut self.overlay_changed)) {
             return Ok(());
         }
         let Some(running) = &mut self.running else { return Ok(()) };
@@ -70,7 +70,7 @@ impl App {
             Some(posed) => posed?,
             None => Vec::new(),
         };
-        if let Some(deformer) = running.mesh.deformer() {
+        if let Some(deformer) = running.mesh.deformer().filter(|_| self.pose_changed) {
             deformer.set_pose(&posed).map_err(|e| ViewError::Gpu(e.to_string()))?;
         }
         let mut scene = Scene::new();
@@ -87,7 +87,9 @@ impl App {
             }
         }
         running.overlay.upload(&running.gpu.context, &scene);
-        self.picked_positions = None;
+        if self.pose_changed {
+            self.picked_positions = None;
+        }
         self.sweep_volumes = match &self.model.rig {
             Some(rig) => rig
                 .sweeps()

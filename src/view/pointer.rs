@@ -34,7 +34,7 @@ impl App {
     fn grab(&mut self, at: Vec2) -> Gesture {
         if let Some((sweep, key)) = self.ring_under(at) {
             self.selected_key = Some((sweep, key));
-            self.pose_changed = true; // redraw the ring in the selection colour
+            self.overlay_changed = true; // the ring in the selection colour
             if let (Some(rig), Some(session)) = (&self.model.rig, &self.model.session) {
                 let center = session.keys()[sweep][key].center.as_vec3();
                 let center_pixel = self.camera.project(center, self.size()).unwrap_or(at);
