@@ -195,7 +195,10 @@ fn edit_settings(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Setti
             ui.selectable_value(&mut settings.volume, rule, name);
         }
         // The mesh rule keeps the enclosed volume, which only a closed mesh has.
-        ui.add_enabled_ui(closed, |ui| ui.selectable_value(&mut settings.volume, VolumeRule::Mesh, "mesh"));
+        let mesh = egui::Button::selectable(settings.volume == VolumeRule::Mesh, "mesh");
+        if ui.add_enabled(closed, mesh).clicked() {
+            settings.volume = VolumeRule::Mesh;
+        }
     });
     ui.horizontal_wrapped(|ui| {
         ui.label("sweeps (W)");
