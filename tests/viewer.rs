@@ -198,6 +198,30 @@ fn mesh_without_a_rig_gets_a_sweep_fitted_to_a_clicked_part() {
 }
 
 #[test]
+fn a_pose_given_or_loaded_is_the_pose_saved() {
+    let Some(display) = display() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    demo_tube(dir.path());
+    // Started from the demo's pose, saved; then the rest loaded over it, saved.
+    let rig = sweepffd::rig::Rig::load(&dir.path().join("demo/rig.json")).unwrap();
+    let rest: Vec<Vec<_>> = rig.sweeps().iter().map(|s| s.keys.clone()).collect();
+    write(&dir.path().join("rest-pose.json"), &rig.pose_document(&rest).to_json());
+    write(
+        &dir.path().join("poses.json"),
+        r#"[{"save_pose": "given.json"}, {"load_pose": "rest-pose.json"}, {"save_pose": "loaded.json"}]"#,
+    );
+    let args =
+        ["--mesh", "demo/rest.obj", "--rig", "demo/rig.json", "--pose", "demo/pose.json", "--script", "poses.json"];
+    let Some(report) = view(&display, dir.path(), &args) else { return };
+    assert_eq!(report["errors"], Value::Array(vec![]), "{report}");
+    let json = |name: &str| -> Value {
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join(name)).unwrap()).unwrap()
+    };
+    assert_eq!(json("given.json")["sweeps"], json("demo/pose.json")["sweeps"]);
+    assert_eq!(json("loaded.json"), json("rest-pose.json"));
+}
+
+#[test]
 fn bad_script_is_an_error_naming_the_file_before_any_window_opens() {
     let dir = tempfile::tempdir().unwrap();
     demo_tube(dir.path());
