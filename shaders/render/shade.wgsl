@@ -1,6 +1,8 @@
-// The shading of `sweepffd render` pictures. Its pipelines are built in src/render/pipeline.rs
-// (vertex layout `RenderVertex`, uniform `ViewUniform` in src/render/scene.rs and
-// src/render/pipeline.rs); the same entry points draw the opaque and the translucent layers.
+// The shading of `sweepffd render` pictures and of the viewer's window. Its pipelines are built
+// in src/render/pipeline.rs (vertex layout `RenderVertex`, uniform `ViewUniform` in
+// src/render/scene.rs and src/render/pipeline.rs); the same entry points draw the opaque and the
+// translucent layers, and the deformed mesh from the deformer's separate position and normal
+// buffers with its colour per instance.
 //
 // Two-sided Lambert: the normal is flipped towards the eye, so faces wound either way and open
 // surfaces light the same from both sides. Light = ambient + a key light + a headlight; colours
