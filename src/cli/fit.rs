@@ -9,9 +9,7 @@ use glam::DVec3;
 use super::CliResult;
 use sweepffd::fit::{Fit, FitOptions, fit};
 use sweepffd::mesh::{Mesh, write_atomically};
-use sweepffd::rig::{
-    FORMAT, KeyDocument, LinkKind, ParentLink, Rig, RigDocument, SweepDocument, VERSION, VertexSelection,
-};
+use sweepffd::rig::{FORMAT, LinkKind, ParentLink, Rig, RigDocument, VERSION, VertexSelection};
 
 pub struct Args {
     pub mesh: PathBuf,
@@ -47,13 +45,8 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
         let file = args.append_to.as_deref().unwrap_or(&args.out).display();
         return Err(format!("{file}: the rig already has a sweep named {name:?}; choose another with --name").into());
     }
-    document.sweeps.push(SweepDocument {
-        name: name.clone(),
-        vertices: Some(selection),
-        keys: fitted.keys.iter().map(KeyDocument::from).collect(),
-        knots: None,
-        parent: args.parent.clone().map(|sweep| ParentLink { sweep, kind: args.kind }),
-    });
+    let parent = args.parent.clone().map(|sweep| ParentLink { sweep, kind: args.kind });
+    document.sweeps.push(fitted.sweep_document(name.clone(), selection, parent));
     // The written rig must load and own the mesh's vertices without conflict.
     let rig = Rig::from_document(&document, args.append_to.clone())?;
     rig.owners(&mesh, &args.mesh.display().to_string())?;

@@ -44,9 +44,10 @@ use glam::DVec3;
 pub use error::FitError;
 pub use part::Part;
 pub use quality::FitQuality;
-pub use select::largest_connected;
+pub use select::{connected_to, largest_connected};
 
 use crate::mesh::Mesh;
+use crate::rig::{KeyDocument, ParentLink, SweepDocument, VertexSelection};
 use crate::sweep::Key;
 
 /// How to fit a sweep.
@@ -136,6 +137,25 @@ pub struct Fit {
     pub sections: Vec<SectionReport>,
     /// Every stage, from the rough sweep to the final one.
     pub steps: Vec<FitStep>,
+}
+
+impl Fit {
+    /// The fitted sweep as a rig file writes it: named `name`, owning `selection`, hanging
+    /// from `parent` if given, knots by chord length.
+    pub fn sweep_document(
+        &self,
+        name: String,
+        selection: VertexSelection,
+        parent: Option<ParentLink>,
+    ) -> SweepDocument {
+        SweepDocument {
+            name,
+            vertices: Some(selection),
+            keys: self.keys.iter().map(KeyDocument::from).collect(),
+            knots: None,
+            parent,
+        }
+    }
 }
 
 /// Fits a control sweep to the part of `mesh` made of `vertices` (see the module docs).

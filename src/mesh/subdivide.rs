@@ -29,18 +29,19 @@ impl Parents {
     }
 }
 
-/// A subdivided mesh and where its new vertices come from.
+/// Where the new vertices of a subdivided mesh come from: its old vertices come first, then
+/// the new ones.
 #[derive(Clone, Debug)]
 pub struct Subdivision {
-    /// The subdivided mesh: the old vertices first, then the new ones.
-    pub mesh: Mesh,
+    /// Vertices before the subdivision.
+    pub old_count: u32,
     /// Vertex `old_count + k` is the mean of `parents[k]`.
     pub parents: Vec<Parents>,
 }
 
 impl Mesh {
     /// One level of midpoint subdivision; face groups keep their faces' four children each.
-    pub fn subdivided(&self) -> Result<Subdivision, MeshError> {
+    pub fn subdivided(&self) -> Result<(Mesh, Subdivision), MeshError> {
         let old_count = self.positions.len() as u32;
         let mut positions = self.positions.clone();
         let mut parents: Vec<Parents> = Vec::new();
@@ -69,12 +70,12 @@ impl Mesh {
             children.push(first..faces.len() as u32);
         }
         let mesh = Mesh::from_parts(positions, faces, self.groups_of_children(&children))?;
-        Ok(Subdivision { mesh, parents })
+        Ok((mesh, Subdivision { old_count, parents }))
     }
 
     /// Splits `count` triangles (of the fan triangulation), spread evenly over the mesh, at
     /// their centroids into three; the other triangles stay.
-    pub fn split_at_centroids(&self, count: usize) -> Result<Subdivision, MeshError> {
+    pub fn split_at_centroids(&self, count: usize) -> Result<(Mesh, Subdivision), MeshError> {
         let old_count = self.positions.len() as u32;
         let total = self.faces.triangles().count().max(1);
         let mut positions = self.positions.clone();
@@ -104,7 +105,7 @@ impl Mesh {
             children.push(first..faces.len() as u32);
         }
         let mesh = Mesh::from_parts(positions, faces, self.groups_of_children(&children))?;
-        Ok(Subdivision { mesh, parents })
+        Ok((mesh, Subdivision { old_count, parents }))
     }
 
     /// Midpoint subdivisions while the count stays at most `vertices`, then centroid splits
@@ -114,18 +115,33 @@ impl Mesh {
         let mut mesh = self.clone();
         let mut steps = Vec::new();
         while mesh.positions.len() < vertices {
-            let mut step = mesh.subdivided()?;
-            if step.mesh.positions.len() > vertices {
+            // A midpoint level adds a vertex per edge of the triangles.
+            let (next, step) = if mesh.positions.len() + mesh.triangle_edge_count() <= vertices {
+                mesh.subdivided()?
+            } else {
                 let missing = vertices - mesh.positions.len();
-                step = mesh.split_at_centroids(missing.min(mesh.faces.triangles().count()))?;
-            }
+                mesh.split_at_centroids(missing.min(mesh.faces.triangles().count()))?
+            };
             if step.parents.is_empty() {
                 break;
             }
-            mesh = step.mesh.clone();
+            mesh = next;
             steps.push(step);
         }
         Ok((mesh, steps))
+    }
+
+    /// The number of distinct edges of the fan triangles.
+    fn triangle_edge_count(&self) -> usize {
+        let mut edges: Vec<(u32, u32)> = self
+            .faces
+            .triangles()
+            .flat_map(|[a, b, c]| [(a, b), (b, c), (c, a)])
+            .map(|(p, q)| (p.min(q), p.max(q)))
+            .collect();
+        edges.sort_unstable();
+        edges.dedup();
+        edges.len()
     }
 
     /// The groups after each face `f` became the faces `children[f]`.
@@ -145,8 +161,8 @@ impl Mesh {
         let mut mesh = self.clone();
         let mut steps = Vec::with_capacity(levels);
         for _ in 0..levels {
-            let step = mesh.subdivided()?;
-            mesh = step.mesh.clone();
+            let (next, step) = mesh.subdivided()?;
+            mesh = next;
             steps.push(step);
         }
         Ok((mesh, steps))
@@ -157,7 +173,7 @@ impl Subdivision {
     /// A sorted vertex selection of the mesh before subdivision carried to the mesh after: the
     /// old vertices, and each new vertex whose parents are all selected.
     pub fn carry(&self, indices: &[u32]) -> Vec<u32> {
-        let old_count = (self.mesh.positions.len() - self.parents.len()) as u32;
+        let old_count = self.old_count;
         let selected = |v: &u32| indices.binary_search(v).is_ok();
         let mut carried = indices.to_vec();
         carried.extend(
@@ -188,19 +204,19 @@ mod tests {
                 edges.insert((p.min(q), p.max(q)));
             }
         }
-        let step = mesh.subdivided().unwrap();
-        assert_eq!(step.mesh.positions.len(), mesh.positions.len() + edges.len());
-        assert_eq!(step.mesh.faces.len(), 4 * triangles);
-        assert_eq!(&step.mesh.positions[..mesh.positions.len()], &mesh.positions[..]);
+        let (fine, step) = mesh.subdivided().unwrap();
+        assert_eq!(fine.positions.len(), mesh.positions.len() + edges.len());
+        assert_eq!(fine.faces.len(), 4 * triangles);
+        assert_eq!(&fine.positions[..mesh.positions.len()], &mesh.positions[..]);
         for (k, parents) in step.parents.iter().enumerate() {
             let Parents::Edge([a, b]) = parents else { panic!("midpoints only") };
             let expected = 0.5 * (mesh.positions[*a as usize] + mesh.positions[*b as usize]);
-            assert_eq!(step.mesh.positions[mesh.positions.len() + k], expected);
+            assert_eq!(fine.positions[mesh.positions.len() + k], expected);
         }
         // A closed tube stays closed, with the same enclosed volume (midpoints lie on the
         // original flat faces).
         let before = mesh.enclosed_volume(&mesh.positions);
-        let after = step.mesh.enclosed_volume(&step.mesh.positions);
+        let after = fine.enclosed_volume(&fine.positions);
         assert!((before - after).abs() < 1e-12 * before.abs(), "{before} vs {after}");
     }
 
@@ -211,8 +227,8 @@ mod tests {
         faces.push(&[0, 1, 2]);
         faces.push(&[1, 3, 2]);
         let groups = vec![FaceGroup { name: "second".into(), faces: vec![1] }];
-        let step = Mesh::from_parts(positions, faces, groups).unwrap().subdivided().unwrap();
-        assert_eq!(step.mesh.groups[0].faces, vec![4, 5, 6, 7]);
+        let (fine, step) = Mesh::from_parts(positions, faces, groups).unwrap().subdivided().unwrap();
+        assert_eq!(fine.groups[0].faces, vec![4, 5, 6, 7]);
         let carried = step.carry(&[1, 2, 3]);
         // Edges 1–3, 3–2 and 1–2 are inside the selection; 0–1 and 2–0 are not.
         let inside: Vec<Parents> = carried[3..].iter().map(|&v| step.parents[v as usize - 4]).collect();

@@ -46,6 +46,7 @@ pub use sweeps::{SweepStyle, add_key_ring, add_sweep_surface, add_sweeps};
 use crate::gpu::GpuContext;
 use crate::mesh::write_atomically;
 use target::Target;
+pub use target::TextureReadback;
 
 /// The background colour of every picture (8-bit RGBA, as stored in the PNG).
 pub const BACKGROUND: [u8; 4] = [245, 245, 247, 255];
@@ -127,11 +128,7 @@ impl Renderer {
     fn draw(&self, scene: &Scene, camera: &Camera, target: &Target) {
         let device = &self.context.device;
         let aspect = target.width as f32 / target.height as f32;
-        let uniform = ViewUniform {
-            view_proj: camera.view_projection(aspect).to_cols_array_2d(),
-            eye: camera.eye.extend(1.0).to_array(),
-            light: camera.key_light().extend(0.0).to_array(),
-        };
+        let uniform = ViewUniform::of(camera, aspect);
         let uniform_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("sweepffd view"),
             contents: bytemuck::bytes_of(&uniform),

@@ -9,6 +9,7 @@ use std::borrow::Cow;
 
 use bytemuck::{Pod, Zeroable};
 
+use super::camera::Camera;
 use super::scene::RenderVertex;
 
 /// The composed render shader, validated with naga at build time (`build.rs`).
@@ -34,6 +35,17 @@ pub struct ViewUniform {
 }
 
 const _: () = assert!(std::mem::size_of::<ViewUniform>() == 96);
+
+impl ViewUniform {
+    /// The uniform of `camera` for a picture of width/height `aspect`.
+    pub fn of(camera: &Camera, aspect: f32) -> ViewUniform {
+        ViewUniform {
+            view_proj: camera.view_projection(aspect).to_cols_array_2d(),
+            eye: camera.eye.extend(1.0).to_array(),
+            light: camera.key_light().extend(0.0).to_array(),
+        }
+    }
+}
 
 /// The pipelines and the layout of their view bind group, created once per renderer.
 #[derive(Debug)]

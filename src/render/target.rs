@@ -47,38 +47,68 @@ impl Target {
         Target { width, height, colour: view(&colour), depth: view(&depth), resolved_view: view(&resolved), resolved }
     }
 
-    /// Bytes per row of the readback buffer: 4·width rounded up to wgpu's 256-byte alignment.
-    pub fn padded_row(&self) -> u32 {
-        (4 * self.width).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT
-    }
-
     /// Copies the resolved texture to the CPU (after all submitted work) as an RGBA image.
     pub fn read(&self, context: &GpuContext) -> Result<RgbaImage, RenderError> {
-        let (device, padded) = (&context.device, self.padded_row());
+        let device = &context.device;
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("readback") });
+        let readback = TextureReadback::record(&mut encoder, device, &self.resolved);
+        context.queue.submit([encoder.finish()]);
+        let pixels = readback.finish(context)?;
+        RgbaImage::from_raw(self.width, self.height, pixels)
+            .ok_or_else(|| GpuError::Validation("the picture readback has the wrong size".to_string()).into())
+    }
+}
+
+/// A copy of a 4-byte-per-texel texture into a mappable buffer, through rows padded to wgpu's
+/// 256-byte alignment: pictures and window screenshots.
+#[derive(Debug)]
+pub struct TextureReadback {
+    staging: wgpu::Buffer,
+    width: u32,
+    height: u32,
+    padded_row: u32,
+}
+
+impl TextureReadback {
+    /// Records the copy of `texture` into `encoder`.
+    pub fn record(
+        encoder: &mut wgpu::CommandEncoder,
+        device: &wgpu::Device,
+        texture: &wgpu::Texture,
+    ) -> TextureReadback {
+        let (width, height) = (texture.width(), texture.height());
+        let padded_row = (4 * width).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
         let staging = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("sweepffd picture readback"),
-            size: u64::from(padded) * u64::from(self.height),
+            label: Some("sweepffd texture readback"),
+            size: u64::from(padded_row) * u64::from(height),
             usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("readback") });
         encoder.copy_texture_to_buffer(
-            self.resolved.as_image_copy(),
+            texture.as_image_copy(),
             wgpu::TexelCopyBufferInfo {
                 buffer: &staging,
                 layout: wgpu::TexelCopyBufferLayout {
                     offset: 0,
-                    bytes_per_row: Some(padded),
-                    rows_per_image: Some(self.height),
+                    bytes_per_row: Some(padded_row),
+                    rows_per_image: Some(height),
                 },
             },
-            wgpu::Extent3d { width: self.width, height: self.height, depth_or_array_layers: 1 },
+            wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
         );
-        context.queue.submit([encoder.finish()]);
-        let padded_rows = read_staging(context, &staging)?;
+        TextureReadback { staging, width, height, padded_row }
+    }
+
+    /// The texels row after row without padding, once the copy has been submitted (blocks
+    /// until the GPU is done).
+    pub fn finish(self, context: &GpuContext) -> Result<Vec<u8>, GpuError> {
+        let padded_rows = read_staging(context, &self.staging)?;
         let row = 4 * self.width as usize;
-        let pixels: Vec<u8> = padded_rows.chunks_exact(padded as usize).flat_map(|r| &r[..row]).copied().collect();
-        RgbaImage::from_raw(self.width, self.height, pixels)
-            .ok_or_else(|| GpuError::Validation("the picture readback has the wrong size".to_string()).into())
+        Ok(padded_rows
+            .chunks_exact(self.padded_row as usize)
+            .take(self.height as usize)
+            .flat_map(|r| &r[..row])
+            .copied()
+            .collect())
     }
 }

@@ -69,6 +69,8 @@ pub(super) struct App {
     pub rest_volumes: Vec<f64>,
     pub rest_mesh_volume: f64,
     pub mesh_volume: f64,
+    /// A committed change awaits its mesh volume (measured after the frame's deform).
+    pub mesh_volume_stale: bool,
     /// A screenshot the script asked for, taken with the next frame drawn.
     pub pending_screenshot: Option<PathBuf>,
     pub screenshots: Vec<String>,
@@ -123,6 +125,7 @@ impl App {
             rest_volumes: Vec::new(),
             rest_mesh_volume: 0.0,
             mesh_volume: 0.0,
+            mesh_volume_stale: false,
             pending_screenshot: None,
             screenshots: Vec::new(),
             errors: Vec::new(),

@@ -12,7 +12,6 @@ use super::input::Command;
 use crate::edit::{DragMode, KeyMode, VolumeRule};
 use crate::fit::{FitOptions, fit};
 use crate::mesh::write_atomically;
-use crate::rig::{KeyDocument, SweepDocument};
 
 impl App {
     pub(super) fn command(&mut self, command: Command) {
@@ -24,7 +23,7 @@ impl App {
                 let changed = if command == Command::Undo { session.undo() } else { session.redo() };
                 if changed {
                     self.pose_changed = true;
-                    self.refresh_mesh_volume();
+                    self.mesh_volume_stale = true;
                 }
             }
             Command::SavePose => self.save_pose(Path::new(&self.panel.pose_path.clone())),
@@ -121,7 +120,7 @@ impl App {
         let outcome = self.model.load_pose(path).map(|()| format!("pose loaded from {}", path.display()));
         if outcome.is_ok() {
             self.pose_changed = true;
-            self.refresh_mesh_volume();
+            self.mesh_volume_stale = true;
         }
         self.report(outcome.map_err(|e| e.to_string()));
     }
@@ -157,13 +156,7 @@ impl App {
         while document.sweeps.iter().any(|s| s.name == name) {
             name.push('\'');
         }
-        document.sweeps.push(SweepDocument {
-            name: name.clone(),
-            vertices: Some(part.selection.clone()),
-            keys: fitted.keys.iter().map(KeyDocument::from).collect(),
-            knots: None,
-            parent: None,
-        });
+        document.sweeps.push(fitted.sweep_document(name.clone(), part.selection.clone(), None));
         self.model.set_rig(document, None)?;
         if let Some(running) = &mut self.running {
             let owners = self.model.owners.clone();
@@ -191,26 +184,20 @@ impl App {
         self.mesh_volume = self.rest_mesh_volume;
     }
 
-    /// The deformed mesh's enclosed volume, read back from the GPU after a committed change
-    /// (never per frame).
-    pub(super) fn refresh_mesh_volume(&mut self) {
-        self.picked_positions = None;
-        if !self.model.closed {
+    /// The deformed mesh's enclosed volume, read back from the GPU once a committed change has
+    /// been deformed (never per frame); the positions read serve picking too.
+    pub(super) fn measure_mesh_volume(&mut self) {
+        if !std::mem::take(&mut self.mesh_volume_stale) || !self.model.closed {
             return;
         }
-        let Some(running) = &mut self.running else { return };
-        // The deformer must hold the committed pose before it is read.
-        if let (Some(Ok(posed)), Some(deformer)) = (self.model.posed(), running.mesh.deformer())
-            && deformer.deform(&posed).is_ok()
-        {
-            match running.mesh.current_positions(&self.model.mesh) {
-                Ok(positions) => {
-                    let exact: Vec<glam::DVec3> = positions.iter().map(|p| p.as_dvec3()).collect();
-                    self.mesh_volume = self.model.mesh.enclosed_volume(&exact);
-                    self.picked_positions = Some(positions);
-                }
-                Err(error) => self.panel.status = error.to_string(),
+        let Some(running) = &self.running else { return };
+        match running.mesh.current_positions(&self.model.mesh) {
+            Ok(positions) => {
+                let exact: Vec<glam::DVec3> = positions.iter().map(|p| p.as_dvec3()).collect();
+                self.mesh_volume = self.model.mesh.enclosed_volume(&exact);
+                self.picked_positions = Some(positions);
             }
+            Err(error) => self.panel.status = error.to_string(),
         }
     }
 }

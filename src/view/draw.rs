@@ -275,12 +275,3 @@ impl Drawing {
         }
     }
 }
-
-/// The view uniform of a camera for a window of `aspect`.
-pub fn view_uniform(camera: &crate::render::Camera, aspect: f32) -> ViewUniform {
-    ViewUniform {
-        view_proj: camera.view_projection(aspect).to_cols_array_2d(),
-        eye: camera.eye.extend(1.0).to_array(),
-        light: camera.key_light().extend(0.0).to_array(),
-    }
-}

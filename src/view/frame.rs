@@ -8,13 +8,13 @@ use winit::event_loop::ActiveEventLoop;
 
 use super::ViewError;
 use super::app::App;
-use super::draw::{SELECTED_RING, view_uniform};
+use super::draw::SELECTED_RING;
 use super::panel::{PanelAction, PanelFacts, SweepDisplay, panel};
 use super::script::Action;
 use super::stats::FrameTimes;
 use super::surface::Capture;
 use crate::gpu::wait;
-use crate::render::{RING, Scene, SweepStyle, add_key_ring, add_sweep_surface};
+use crate::render::{RING, Scene, SweepStyle, ViewUniform, add_key_ring, add_sweep_surface};
 
 impl App {
     pub(super) fn redraw(&mut self, event_loop: &ActiveEventLoop) {
@@ -49,6 +49,7 @@ impl App {
             Ok(ms) => ms,
             Err(error) => return self.fail(event_loop, error),
         };
+        self.measure_mesh_volume();
         let render_ms = match self.render() {
             Ok(ms) => ms,
             Err(error) => return self.fail(event_loop, error),
@@ -127,7 +128,7 @@ impl App {
         let started = Instant::now();
         let facts = self.panel_facts();
         let size = self.size();
-        let uniform = view_uniform(&self.camera.camera(), size.x / size.y);
+        let uniform = ViewUniform::of(&self.camera.camera(), size.x / size.y);
         let Some(running) = &mut self.running else { return Ok(0.0) };
         let Some(texture) = running.gpu.acquire() else { return Ok(0.0) };
         let screenshot = self.pending_screenshot.take();

@@ -110,14 +110,14 @@ impl Model {
         let Some(rig) = &self.rig else {
             return Err(ViewError::Input(format!("{}: there is no rig to pose", path.display())));
         };
-        // Checked against the rig first, so errors name the file, sweep and key at fault.
-        rig.load_pose(path).map_err(|e| ViewError::Input(e.to_string()))?;
         let document = RigDocument::load(path).map_err(|e| ViewError::Input(e.to_string()))?;
+        // Checked against the rig, so errors name the file, sweep and key at fault.
+        rig.pose_from_document(&document, Some(path.to_path_buf())).map_err(|e| ViewError::Input(e.to_string()))?;
         let keys: Vec<Vec<Key>> = rig
             .sweeps()
             .iter()
             .map(|sweep| {
-                let posed = document.sweeps.iter().find(|s| s.name == sweep.name).expect("checked by load_pose");
+                let posed = document.sweeps.iter().find(|s| s.name == sweep.name).expect("checked against the rig");
                 posed.keys.iter().map(Key::from).collect()
             })
             .collect();

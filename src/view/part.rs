@@ -1,8 +1,7 @@
 //! Choosing a part of the mesh to fit a sweep to (§3) with one click: the face group under the
 //! pointer, or the connected region of the surface within a radius of the point clicked.
 
-use std::collections::VecDeque;
-
+use crate::fit::connected_to;
 use crate::mesh::Mesh;
 use crate::rig::VertexSelection;
 
@@ -12,7 +11,7 @@ pub enum PartRule {
     /// The face group of the face clicked.
     Group,
     /// Vertices within this fraction of the mesh's bounding-box diagonal of the vertex clicked,
-    /// connected to it through such vertices.
+    /// edge-connected to it through such vertices.
     Radius(f64),
 }
 
@@ -34,8 +33,9 @@ pub fn select_part(mesh: &Mesh, seed: u32, face: usize, rule: PartRule, taken: &
     let part = match rule {
         PartRule::Group => {
             let group = mesh.groups.iter().find(|g| g.faces.binary_search(&(face as u32)).is_ok())?;
-            let vertices: Vec<u32> = mesh.group_vertices(&group.name)?.into_iter().filter(free).collect();
-            let selection = if vertices.len() == mesh.group_vertices(&group.name)?.len() {
+            let members = mesh.group_vertices(&group.name)?;
+            let vertices: Vec<u32> = members.iter().copied().filter(free).collect();
+            let selection = if vertices.len() == members.len() {
                 VertexSelection::Groups(vec![group.name.clone()])
             } else {
                 VertexSelection::Indices(vertices.clone())
@@ -43,42 +43,13 @@ pub fn select_part(mesh: &Mesh, seed: u32, face: usize, rule: PartRule, taken: &
             Part { name: group.name.clone(), selection, vertices }
         }
         PartRule::Radius(fraction) => {
-            let vertices: Vec<u32> = region(mesh, seed, fraction * mesh.diagonal()).into_iter().filter(free).collect();
+            let (centre, radius) = (mesh.positions[seed as usize], fraction * mesh.diagonal());
+            let region = connected_to(mesh, seed, |p| p.distance(centre) <= radius);
+            let vertices: Vec<u32> = region.into_iter().filter(free).collect();
             Part { name: format!("part-{seed}"), selection: VertexSelection::Indices(vertices.clone()), vertices }
         }
     };
     (!part.vertices.is_empty()).then_some(part)
-}
-
-/// Vertices within `radius` of `seed` reachable from it along edges between such vertices,
-/// increasing.
-fn region(mesh: &Mesh, seed: u32, radius: f64) -> Vec<u32> {
-    let centre = mesh.positions[seed as usize];
-    let inside = |v: u32| mesh.positions[v as usize].distance(centre) <= radius;
-    // Faces around each vertex (only those with a vertex inside matter).
-    let mut faces_of: std::collections::HashMap<u32, Vec<usize>> = std::collections::HashMap::new();
-    for (f, face) in mesh.faces.iter().enumerate() {
-        for &v in face.iter().filter(|&&v| inside(v)) {
-            faces_of.entry(v).or_default().push(f);
-        }
-    }
-    let mut seen = vec![false; mesh.positions.len()];
-    let mut queue = VecDeque::from([seed]);
-    seen[seed as usize] = true;
-    let mut found = Vec::new();
-    while let Some(v) = queue.pop_front() {
-        found.push(v);
-        for &f in faces_of.get(&v).map(Vec::as_slice).unwrap_or(&[]) {
-            for &w in mesh.faces.face(f) {
-                if !seen[w as usize] && inside(w) {
-                    seen[w as usize] = true;
-                    queue.push_back(w);
-                }
-            }
-        }
-    }
-    found.sort_unstable();
-    found
 }
 
 #[cfg(test)]

@@ -104,7 +104,7 @@ impl App {
         if let Some(session) = &mut self.model.session
             && session.commit()
         {
-            self.refresh_mesh_volume();
+            self.mesh_volume_stale = true;
         }
     }
 

@@ -55,12 +55,7 @@ impl Stats {
 pub fn medians(frames: &[FrameTimes]) -> FrameTimes {
     let median = |pick: fn(&FrameTimes) -> f64| {
         let mut values: Vec<f64> = frames.iter().map(pick).collect();
-        values.sort_by(f64::total_cmp);
-        match values.len() {
-            0 => 0.0,
-            n if n % 2 == 1 => values[n / 2],
-            n => 0.5 * (values[n / 2 - 1] + values[n / 2]),
-        }
+        if values.is_empty() { 0.0 } else { crate::bench::median(&mut values) }
     };
     FrameTimes {
         frame: median(|t| t.frame),

@@ -8,8 +8,8 @@ use image::RgbaImage;
 use winit::window::Window;
 
 use super::ViewError;
-use crate::gpu::{GpuContext, read_staging};
-use crate::render::{DEPTH_FORMAT, SAMPLES};
+use crate::gpu::GpuContext;
+use crate::render::{DEPTH_FORMAT, SAMPLES, TextureReadback};
 
 /// The surface and the targets drawn into before it.
 pub struct WindowGpu {
@@ -167,46 +167,23 @@ fn targets(
 
 /// A screenshot being copied out of a surface texture.
 pub struct Capture {
-    staging: wgpu::Buffer,
+    readback: TextureReadback,
     width: u32,
     height: u32,
-    padded_row: u32,
     bgra: bool,
 }
 
 impl Capture {
     /// Records the copy of `texture` (before it is presented) into `encoder`.
     pub fn record(encoder: &mut wgpu::CommandEncoder, device: &wgpu::Device, texture: &wgpu::Texture) -> Capture {
-        let (width, height) = (texture.width(), texture.height());
-        let padded_row = (4 * width).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
-        let staging = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("sweepffd screenshot"),
-            size: u64::from(padded_row) * u64::from(height),
-            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        encoder.copy_texture_to_buffer(
-            texture.as_image_copy(),
-            wgpu::TexelCopyBufferInfo {
-                buffer: &staging,
-                layout: wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(padded_row),
-                    rows_per_image: Some(height),
-                },
-            },
-            wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
-        );
         let bgra = matches!(texture.format().remove_srgb_suffix(), wgpu::TextureFormat::Bgra8Unorm);
-        Capture { staging, width, height, padded_row, bgra }
+        let readback = TextureReadback::record(encoder, device, texture);
+        Capture { readback, width: texture.width(), height: texture.height(), bgra }
     }
 
     /// The picture, once the copy has been submitted (blocks until the GPU is done).
     pub fn finish(self, context: &GpuContext) -> Result<RgbaImage, ViewError> {
-        let rows = read_staging(context, &self.staging).map_err(|e| ViewError::Gpu(e.to_string()))?;
-        let row = 4 * self.width as usize;
-        let mut pixels: Vec<u8> =
-            rows.chunks_exact(self.padded_row as usize).flat_map(|r| &r[..row]).copied().collect();
+        let mut pixels = self.readback.finish(context).map_err(|e| ViewError::Gpu(e.to_string()))?;
         for pixel in pixels.chunks_exact_mut(4) {
             if self.bgra {
                 pixel.swap(0, 2);
