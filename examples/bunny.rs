@@ -44,6 +44,7 @@ fn main() {
             keys: fitted.keys,
             knots: None,
             parent: None,
+            falloff: 0.0,
         });
     }
     let rig = Rig::new(sweeps).unwrap_or_else(|e| panic!("{e}"));

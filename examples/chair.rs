@@ -78,6 +78,7 @@ fn main() {
         keys,
         knots: None,
         parent: parent.map(|p| ParentLink { sweep: p.into(), kind: LinkKind::Branch }),
+        falloff: 0.0,
     };
     let [a, b, c, d] = legs.try_into().unwrap_or_else(|_| unreachable!("four legs"));
     let rig = Rig::new(vec![

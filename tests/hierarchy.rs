@@ -187,6 +187,7 @@ fn chair() -> Rig {
         keys,
         knots: None,
         parent: parent.map(|p| ParentLink { sweep: p.into(), kind: LinkKind::Branch }),
+        falloff: 0.0,
     };
     Rig::new(vec![
         sweep("leg_a", true, leg(0.0, 0.0, false), None),

@@ -33,6 +33,7 @@ fn arm(parent: Option<(&str, LinkKind)>) -> RigSweep {
         keys: (0..3).map(|i| Key::circle(DVec3::new(0.2 + 0.5 * i as f64, 0.0, 1.5), rotation, 0.1, 8)).collect(),
         knots: None,
         parent: parent.map(|(sweep, kind)| ParentLink { sweep: sweep.into(), kind }),
+        falloff: 0.0,
     }
 }
 
@@ -185,6 +186,7 @@ fn rig_fails(others: Vec<RigSweep>, expected: &str) {
             keys: s.keys.iter().map(Into::into).collect(),
             knots: s.knots.clone(),
             parent: s.parent.clone(),
+            falloff: (s.falloff > 0.0).then_some(s.falloff),
         })
         .collect();
     fs::write(dir.path().join("bad.json"), document.to_json()).unwrap();

@@ -154,6 +154,7 @@ impl Fit {
             keys: self.keys.iter().map(KeyDocument::from).collect(),
             knots: None,
             parent,
+            falloff: None,
         }
     }
 }

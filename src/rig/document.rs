@@ -48,6 +48,9 @@ pub struct SweepDocument {
     /// The sweep this one hangs from in the hierarchy (§5); absent: a root.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub parent: Option<ParentLink>,
+    /// Falloff width W in mesh units (≥ 0); absent or 0: a hard boundary.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub falloff: Option<f64>,
 }
 
 /// `"parent": {"sweep": "body", "kind": "branch"}`: a sweep's place in the hierarchy (§5).

@@ -76,6 +76,14 @@ pub enum RigErrorKind {
         "sweep {sweep:?}: key {key} cannot be bound to its parent {parent:?}: its center lies beyond the parent's ends"
     )]
     LinkUnbound { sweep: String, key: usize, parent: String },
+    #[error("sweep {sweep:?}: falloff {falloff} must be a finite width of at least 0 (mesh units)")]
+    BadFalloff { sweep: String, falloff: f64 },
+    #[error("sweep {sweep:?}: a virtual sweep (one that owns no vertices) cannot have a falloff")]
+    VirtualFalloff { sweep: String },
+    #[error(
+        "sweep {sweep:?}: falloff {falloff} is larger than the mesh {mesh} (its bounding box diagonal is {diagonal})"
+    )]
+    FalloffTooLarge { sweep: String, falloff: f64, mesh: String, diagonal: f64 },
     #[error("vertex index {vertex} (zero-based) is claimed by both sweep {first:?} and sweep {second:?}")]
     VertexClaimedTwice { vertex: u32, first: String, second: String },
 }

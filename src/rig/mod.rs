@@ -33,6 +33,10 @@ pub struct RigSweep {
     pub knots: Option<Vec<f64>>,
     /// Its parent in the hierarchy, or `None` for a root.
     pub parent: Option<ParentLink>,
+    /// Width W of the band, in mesh units measured along the surface from the part's boundary,
+    /// over which the sweep's deformation fades into its neighbour's (or the rest position);
+    /// 0: a hard boundary (see [`crate::bind::falloff`]).
+    pub falloff: f64,
 }
 
 /// A validated rest rig: its sweeps and their rest sweep surfaces.
@@ -69,6 +73,7 @@ impl Rig {
                 keys: sweep.keys.iter().map(Key::from).collect(),
                 knots: sweep.knots.clone(),
                 parent: sweep.parent.clone(),
+                falloff: sweep.falloff.unwrap_or(0.0),
             })
             .collect();
         Rig::build(sweeps, file)
@@ -83,6 +88,7 @@ impl Rig {
             if sweeps[..i].iter().any(|other| other.name == sweep.name) {
                 return Err(fail(RigErrorKind::DuplicateName { name: sweep.name.clone() }));
             }
+            check_falloff(sweep).map_err(fail)?;
         }
         let rest = sweeps
             .iter()
@@ -145,9 +151,15 @@ impl Rig {
                     keys: keys(i).iter().map(KeyDocument::from).collect(),
                     knots: sweep.knots.clone(),
                     parent: sweep.parent.clone(),
+                    falloff: (sweep.falloff > 0.0).then_some(sweep.falloff),
                 })
                 .collect(),
         }
+    }
+
+    /// Each sweep's falloff width W ([`RigSweep::falloff`]), in the order of [`Rig::sweeps`].
+    pub fn falloffs(&self) -> Vec<f64> {
+        self.sweeps.iter().map(|sweep| sweep.falloff).collect()
     }
 
     /// The posed sweep surfaces for `keys[i]` on sweep i (rest knots), checked against the rest
@@ -221,6 +233,18 @@ fn read_document(path: &Path) -> Result<RigDocument, RigError> {
     let file = Some(path.to_path_buf());
     let text = std::fs::read_to_string(path).map_err(|e| RigError::new(file.clone(), RigErrorKind::Io(e)))?;
     RigDocument::parse(&text).map_err(|e| RigError::new(file, RigErrorKind::Json(e)))
+}
+
+/// A falloff must be finite and not negative, and only a sweep that owns vertices can have one.
+fn check_falloff(sweep: &RigSweep) -> Result<(), RigErrorKind> {
+    let falloff = sweep.falloff;
+    if !falloff.is_finite() || falloff < 0.0 {
+        return Err(RigErrorKind::BadFalloff { sweep: sweep.name.clone(), falloff });
+    }
+    if falloff > 0.0 && sweep.vertices.is_none() {
+        return Err(RigErrorKind::VirtualFalloff { sweep: sweep.name.clone() });
+    }
+    Ok(())
 }
 
 fn check_header(document: &RigDocument, file: &Option<PathBuf>) -> Result<(), RigError> {

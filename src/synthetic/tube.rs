@@ -86,7 +86,7 @@ pub fn tube_rig(tube: &Tube, keys: usize, samples: usize) -> Rig {
         })
         .collect();
     let sweep =
-        RigSweep { name: "tube".to_string(), vertices: Some(VertexSelection::All), keys, knots: None, parent: None };
+        RigSweep { name: "tube".to_string(), vertices: Some(VertexSelection::All), keys, knots: None, parent: None, falloff: 0.0 };
     Rig::new(vec![sweep]).expect("a straight rig with distinct keys is valid")
 }
 

@@ -110,6 +110,7 @@ pub fn axis_rig(mesh: &Mesh, keys: usize, samples: usize) -> Rig {
         keys: rig_keys,
         knots: None,
         parent: None,
+        falloff: 0.0,
     };
     Rig::new(vec![sweep]).expect("the axis rig is valid")
 }
