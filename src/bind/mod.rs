@@ -9,6 +9,7 @@
 //! θ = atan2(v̂_y, v̂_x) ∈ [0, 2π), d = |(v̂_x, v̂_y)| − r(θ, t) and h = v̂_z. For a root h is zero
 //! up to round-off; beyond an end it is the axial offset, so caps follow their sweep.
 
+pub mod falloff;
 pub mod file;
 pub mod quintic;
 
