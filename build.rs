@@ -8,9 +8,34 @@ use std::path::Path;
 
 /// Each kernel and the files it is composed of, shared files first, its entry point last.
 const KERNELS: &[(&str, &[&str])] = &[
-    ("bind", &["layout.wgsl", "cells_storage.wgsl", "sweep_eval.wgsl", "bind.wgsl"]),
+    ("bind", &["layout.wgsl", "cells_storage.wgsl", "sweep_eval.wgsl", "angle.wgsl", "bind.wgsl"]),
     ("deform_uniform", &["layout.wgsl", "cells_uniform.wgsl", "sweep_eval.wgsl", "deform.wgsl"]),
     ("deform_storage", &["layout.wgsl", "cells_storage.wgsl", "sweep_eval.wgsl", "deform.wgsl"]),
+    (
+        "band_uniform",
+        &[
+            "layout.wgsl",
+            "cells_uniform.wgsl",
+            "rest_cells_uniform.wgsl",
+            "sweep_eval.wgsl",
+            "angle.wgsl",
+            "blend.wgsl",
+            "band.wgsl",
+        ],
+    ),
+    (
+        "band_storage",
+        &[
+            "layout.wgsl",
+            "cells_storage.wgsl",
+            "rest_cells_storage.wgsl",
+            "sweep_eval.wgsl",
+            "angle.wgsl",
+            "blend.wgsl",
+            "band.wgsl",
+        ],
+    ),
+    ("band_pack", &["layout.wgsl", "band_pack.wgsl"]),
     ("normals_one_window", &["layout.wgsl", "normals.wgsl", "positions_one_window.wgsl"]),
     ("normals_two_windows", &["layout.wgsl", "normals.wgsl", "positions_two_windows.wgsl"]),
     ("copy", &["layout.wgsl", "copy.wgsl"]),

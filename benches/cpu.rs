@@ -5,7 +5,7 @@
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use glam::DVec3;
-use sweepffd::bind::{Binding, bind_vertices};
+use sweepffd::bind::bind_vertices;
 use sweepffd::coeffs::{SweepCoefficients, bind_segments};
 use sweepffd::cpu;
 use sweepffd::deform::deform_vertices;
@@ -58,10 +58,10 @@ fn deform(c: &mut Criterion) {
         let scene = scene(n);
         let count = scene.mesh.positions.len();
         group.throughput(Throughput::Elements(count as u64));
-        let bindings: Vec<Binding> = bind_vertices(scene.rig.rest(), &scene.owners, &scene.mesh.positions, &|_| {});
+        let bindings = scene.rig.bind_mesh(&scene.mesh, &scene.owners, &|_| {});
         let mut out = vec![DVec3::ZERO; count];
         group.bench_function(BenchmarkId::new("f64", n), |b| {
-            b.iter(|| deform_vertices(&scene.posed, &bindings, &scene.mesh.positions, &mut out))
+            b.iter(|| deform_vertices(scene.rig.rest(), &scene.posed, &bindings, &scene.mesh.positions, &mut out))
         });
         let mut coefficients = SweepCoefficients::new(scene.rig.rest());
         let positions = cpu::packed(&scene.mesh.positions);

@@ -1,8 +1,10 @@
 // Binding (paper section 3) of every owned vertex: the root t of <v - C(t), N(t)> nearest to v
 // (every root found: Bernstein sign variations certify each interval), or the nearer end when
 // there is none; then theta, d = |v^_xy| - r(theta, t) and h = v^_z with v^ = R(t)^T (v - C(t)).
-// Composed after layout.wgsl, cells_storage.wgsl (binding 1: the rest rig's cell records) and
-// sweep_eval.wgsl. Twin: src/cpu/bind.rs.
+// Composed after layout.wgsl, cells_storage.wgsl (binding 1: the rest rig's cell records),
+// sweep_eval.wgsl and angle.wgsl. Twin: src/cpu/bind.rs.
+// A vertex in a falloff band has BAND_FLAG set in its owner; its binding keeps the flag in its
+// cell, so that the deform kernel leaves it to the band kernel.
 
 @group(0) @binding(0) var<uniform> params: DispatchParams;
 @group(0) @binding(2) var<storage, read> bind_segments: array<BindSegment>;
@@ -14,7 +16,6 @@
 @group(0) @binding(6) var<storage, read_write> bindings: array<GpuBinding>;
 
 const TAU: f32 = 6.283185307179586;
-const PI: f32 = 3.141592653589793;
 // Dyadic subdivision depth: intervals of width 2^-12 that still show several sign variations
 // hold a (near-)double root and report their midpoint.
 const MAX_LEVEL: u32 = 12u;
@@ -29,34 +30,6 @@ struct Nearest {
     s: f32,
     distance2: f32,
     found: bool,
-}
-
-// The angle of (x, y) in [-pi, pi], for (x, y) != 0, to about 2e-7 rad on every device (WGSL's
-// atan2 may be far less accurate): octant reduction to atan(a), a in [0, 1]; above tan(pi / 8),
-// atan(a) = pi / 4 + atan((a - 1) / (a + 1)); then the odd series to z^15 (|z| <= tan(pi / 8)).
-fn angle_of(x: f32, y: f32) -> f32 {
-    let ax = abs(x);
-    let ay = abs(y);
-    var a = min(ax, ay) / max(ax, ay);
-    var base = 0.0;
-    if (a > 0.41421356) {
-        a = (a - 1.0) / (a + 1.0);
-        base = 0.25 * PI;
-    }
-    let z2 = a * a;
-    let series = a * (1.0 - z2 * (1.0 / 3.0 - z2 * (1.0 / 5.0 - z2 * (1.0 / 7.0 - z2 * (1.0 / 9.0
-        - z2 * (1.0 / 11.0 - z2 * (1.0 / 13.0 - z2 * (1.0 / 15.0))))))));
-    var angle = base + series;
-    if (ay > ax) {
-        angle = 0.5 * PI - angle;
-    }
-    if (x < 0.0) {
-        angle = PI - angle;
-    }
-    if (y < 0.0) {
-        angle = -angle;
-    }
-    return angle;
 }
 
 // Power coefficients of g(s) = <v - C(s), n(s)> on a knot interval.
@@ -213,11 +186,13 @@ fn bind_main(
     if (i >= params.vertex_count) {
         return;
     }
-    let owner = owners[i];
-    if (owner == UNBOUND) {
+    let flagged_owner = owners[i];
+    if (flagged_owner == UNBOUND) {
         bindings[i] = GpuBinding(UNBOUND, 0.0, 0.0, 0.0, 0.0);
         return;
     }
+    let band = flagged_owner & BAND_FLAG;
+    let owner = flagged_owner & ~BAND_FLAG;
     let v = vec3<f32>(positions[3u * i], positions[3u * i + 1u], positions[3u * i + 2u]);
     let sweep = sweeps[owner];
     var nearest = Nearest(sweep.first_cell, 0.0, 0.0, false);
@@ -252,5 +227,5 @@ fn bind_main(
     let phi = clamp(x - f32(j), 0.0, 1.0);
     let cell = nearest.cell + j;
     let r = radius_at(cells[cell], nearest.s, phi);
-    bindings[i] = GpuBinding(cell, nearest.s, phi, length(local.xy) - r, local.z);
+    bindings[i] = GpuBinding(cell | band, nearest.s, phi, length(local.xy) - r, local.z);
 }

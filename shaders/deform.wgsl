@@ -19,7 +19,9 @@ fn deform_main(
         return;
     }
     let binding = bindings[i];
-    if (binding.cell == UNBOUND) {
+    // Unbound vertices keep their rest position; vertices in falloff bands (BAND_FLAG, which
+    // UNBOUND also has) are moved by the band kernel.
+    if (binding.cell >= BAND_FLAG) {
         return;
     }
     let cell = cells[binding.cell];

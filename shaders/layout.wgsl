@@ -3,6 +3,8 @@
 
 const WORKGROUP_SIZE: u32 = 128u;
 const UNBOUND: u32 = 0xffffffffu;
+// Set in a binding's cell (and a bind kernel owner) for a vertex in a falloff band.
+const BAND_FLAG: u32 = 0x80000000u;
 
 // Most cells a rig may have for the deform kernel to read them from a uniform buffer (64 KiB).
 const UNIFORM_CELL_CAPACITY: u32 = 409u;
@@ -45,6 +47,16 @@ struct GpuBinding {
     phi: f32,
     d: f32,
     h: f32,
+}
+
+// A vertex in a falloff band: its vertex (relative to the dispatch's first), weight w, and second
+// influence: UNBOUND (the rest position) or a neighbouring sweep's cell with (s, phi) as two
+// unorm16 (s low).
+struct BandRecord {
+    vertex: u32,
+    weight: f32,
+    cell: u32,
+    s_phi: u32,
 }
 
 // One dispatch covers one chunk of vertices: its count, the global index of its first vertex,

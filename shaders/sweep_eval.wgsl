@@ -37,7 +37,11 @@ fn radius_at(cell: CellCoeffs, s: f32, phi: f32) -> f32 {
 // |delta| <= pi / 3: near-minimax polynomials (sin to delta^7, cos to delta^8, fitted on [-pi/3, pi/3])
 // accurate to 2e-8 before f32 rounding, so that no transcendental function runs per vertex per frame.
 fn direction_at(cell: CellCoeffs, phi: f32) -> vec2<f32> {
-    let delta = (2.0 * phi - 1.0) * cell.curve[0].w;
+    return cos_sin_small((2.0 * phi - 1.0) * cell.curve[0].w);
+}
+
+// (cos delta, sin delta) for |delta| <= pi / 3, by the polynomials of direction_at.
+fn cos_sin_small(delta: f32) -> vec2<f32> {
     let d2 = delta * delta;
     let sin_d = delta * (0.9999998635311992 + d2 * (-0.16666500356755126 + d2 * (0.008327856912345286 + d2 * -0.0001917176645069119)));
     let cos_d = 0.9999999991674327 + d2 * (-0.4999999619760431 + d2 * (0.04166638875586918 + d2 * (-0.0013881774166947518 + d2 * 2.4056512057197938e-05)));

@@ -9,7 +9,7 @@ use rayon::prelude::*;
 use sweepffd::bind::{Binding, bind_vertices};
 use sweepffd::coeffs::SweepCoefficients;
 use sweepffd::cpu;
-use sweepffd::deform::deform_vertices;
+use sweepffd::deform::deform_hard;
 use sweepffd::mesh::Mesh;
 use sweepffd::rig::Rig;
 use sweepffd::sweep::{Key, Sweep};
@@ -136,7 +136,7 @@ fn rigid_motion_of_the_pose_moves_every_vertex_rigidly() {
             .collect();
         let posed = case.rig.pose(&keys).unwrap();
         let mut moved = vec![DVec3::ZERO; case.mesh.positions.len()];
-        deform_vertices(&posed, &case.bindings, &case.mesh.positions, &mut moved);
+        deform_hard(&posed, &case.bindings, &case.mesh.positions, &mut moved);
         let (error, at) = moved
             .iter()
             .zip(&case.mesh.positions)
@@ -192,7 +192,7 @@ fn f32_twin_deforms_like_the_f64_reference_under_a_pose() {
         let posed = rig.pose(&pose.keys(&rig)).unwrap();
         let bindings = bind_vertices(rig.rest(), &owners, &mesh.positions, &|_| {});
         let mut reference = vec![DVec3::ZERO; mesh.positions.len()];
-        deform_vertices(&posed, &bindings, &mesh.positions, &mut reference);
+        deform_hard(&posed, &bindings, &mesh.positions, &mut reference);
 
         let mut coefficients = SweepCoefficients::new(rig.rest());
         let rest = cpu::packed(&mesh.positions);

@@ -314,15 +314,15 @@ fn bind_file_round_trips_through_the_library() {
 
     let path = dir.path().join("tube.sffd");
     let file = BindingsFile::load(&path).unwrap();
-    assert_eq!(file.bindings.len(), count);
+    assert_eq!(file.bindings.vertices.len(), count);
     assert_eq!(file.sweep_count, 1);
-    assert!(file.bindings.iter().all(|b| b.sweep == 0));
+    assert!(file.bindings.vertices.iter().all(|b| b.sweep == 0));
     let mesh = Mesh::load(&dir.path().join("tube.obj")).unwrap();
     let rig = Rig::load(&dir.path().join("rig.json")).unwrap();
     file.check_matches(&rig, &mesh.positions, &path).unwrap();
     let owners = rig.owners(&mesh, "tube.obj").unwrap();
     let expected = bind_vertices(rig.rest(), &owners, &mesh.positions, &|_| {});
-    assert_eq!(file.bindings, expected);
+    assert_eq!(file.bindings.vertices, expected);
 }
 
 #[test]
@@ -348,8 +348,13 @@ fn gpu_backend_binds_and_deforms_like_the_cpu() {
         BindingsFile::load(&dir.path().join("gpu.sffd")).unwrap(),
         BindingsFile::load(&dir.path().join("cpu.sffd")).unwrap(),
     );
-    let worst_t =
-        gpu.bindings.iter().zip(&cpu.bindings).map(|(g, c)| (g.params.t - c.params.t).abs()).fold(0.0, f64::max);
+    let worst_t = gpu
+        .bindings
+        .vertices
+        .iter()
+        .zip(&cpu.bindings.vertices)
+        .map(|(g, c)| (g.params.t - c.params.t).abs())
+        .fold(0.0, f64::max);
     assert!(worst_t <= 1e-5, "GPU bindings differ from the CPU's by |Δt| = {worst_t:e}");
 
     let runs = [

@@ -113,7 +113,7 @@ fn move_section_reaches_position_and_orientation() {
 #[test]
 fn dragging_a_bound_vertex_puts_the_deformed_vertex_on_target() {
     use sweepffd::bind::bind_vertices;
-    use sweepffd::deform::deform_vertices;
+    use sweepffd::deform::deform_hard;
     use sweepffd::edit::{Edit, Posing};
     use sweepffd::synthetic::{Tube, tube_rig};
 
@@ -135,7 +135,7 @@ fn dragging_a_bound_vertex_puts_the_deformed_vertex_on_target() {
     posing.apply(&edit).unwrap();
     let posed = posing.sweeps().unwrap();
     let mut deformed = vec![DVec3::ZERO; mesh.positions.len()];
-    deform_vertices(&posed, &bindings, &mesh.positions, &mut deformed);
+    deform_hard(&posed, &bindings, &mesh.positions, &mut deformed);
     let miss = deformed[vertex].distance(target);
     println!("bound vertex {vertex}: {:.2e} × length from its target", miss / 3.0);
     assert!(miss <= 1e-4 * 3.0, "{} vs {target}", deformed[vertex]);

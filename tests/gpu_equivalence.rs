@@ -30,9 +30,14 @@ fn check(name: &str, mesh: &Mesh, rig: &Rig) {
     let rest = rig.rest();
 
     // Binding: GPU vs twin.
-    let mut deformer =
-        GpuDeformer::new(context, rest, &mesh.positions, BindingSource::Bind { owners: &owners }, Some(&mesh.faces))
-            .unwrap();
+    let mut deformer = GpuDeformer::new(
+        context,
+        rest,
+        &mesh.positions,
+        BindingSource::Bind { owners: &owners, bands: &[] },
+        Some(&mesh.faces),
+    )
+    .unwrap();
     let gpu_bindings = deformer.read_bindings().unwrap();
     let mut coefficients = SweepCoefficients::new(rest);
     let rest_f32 = cpu::packed(&mesh.positions);
@@ -150,7 +155,7 @@ fn sixteen_million_vertices_on_the_gpu_match_the_twin() {
     if let Some(context) = common::gpu() {
         // Past the 128 MiB storage binding of lavapipe, the deformer splits its dispatches.
         let owners = rig.owners(&mesh, "tube").unwrap();
-        let source = BindingSource::Bind { owners: &owners };
+        let source = BindingSource::Bind { owners: &owners, bands: &[] };
         let deformer = GpuDeformer::new(context, rig.rest(), &mesh.positions, source, None).unwrap();
         let bytes = mesh.positions.len() as u64 * sweepffd::gpu::BINDING_STRIDE;
         if bytes > context.device.limits().max_storage_buffer_binding_size {

@@ -227,7 +227,12 @@ fn mesh_rule_keeps_the_enclosed_volume_of_the_closed_bunny() {
     let mesh = Mesh::load(&path).unwrap();
     let rig = common::axis_rig(&mesh, 7, 16);
     let owners = rig.owners(&mesh, "bunny").unwrap();
-    let bindings = sweepffd::bind::bind_vertices(rig.rest(), &owners, &mesh.positions, &|_| {});
+    let bindings = sweepffd::bind::MeshBindings::hard(sweepffd::bind::bind_vertices(
+        rig.rest(),
+        &owners,
+        &mesh.positions,
+        &|_| {},
+    ));
     let bound = sweepffd::edit::BoundMesh { mesh: &mesh, bindings: &bindings };
     let rest_volume = mesh.enclosed_volume(&mesh.positions);
     let edits: Vec<Edit> =

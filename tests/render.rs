@@ -14,7 +14,7 @@ use std::process::Output;
 use glam::{DVec3, Vec3};
 use image::RgbaImage;
 use sweepffd::bind::bind_vertices;
-use sweepffd::deform::deform_vertices;
+use sweepffd::deform::deform_hard;
 use sweepffd::render::{BACKGROUND, CLAY, Camera, Renderer, Scene, ViewAngles, union_bounds};
 use sweepffd::synthetic::{BendTwistTaper, Tube, tube_rig};
 
@@ -121,7 +121,7 @@ fn pose_changes_pixels_only_where_vertices_moved() {
     let owners = rig.owners(&mesh, "tube").unwrap();
     let bindings = bind_vertices(rig.rest(), &owners, &mesh.positions, &|_| {});
     let mut deformed = vec![DVec3::ZERO; mesh.positions.len()];
-    deform_vertices(&posed, &bindings, &mesh.positions, &mut deformed);
+    deform_hard(&posed, &bindings, &mesh.positions, &mut deformed);
 
     let (width, height) = (200, 150);
     let scenes: Vec<Scene> = [&mesh.positions, &deformed]

@@ -9,7 +9,7 @@ use glam::DVec3;
 use sweepffd::bind::{Binding, UNOWNED, bind_vertices};
 use sweepffd::coeffs::SweepCoefficients;
 use sweepffd::cpu;
-use sweepffd::deform::deform_vertices;
+use sweepffd::deform::deform_hard;
 use sweepffd::mesh::Mesh;
 use sweepffd::rig::Rig;
 
@@ -45,7 +45,7 @@ fn f64_round_trip(case: &Case) -> Vec<Binding> {
     let bindings = bind_vertices(case.rig.rest(), &case.owners, &case.mesh.positions, &|_| {});
     assert!(bindings.iter().all(|b| b.sweep != UNOWNED));
     let mut back = vec![DVec3::ZERO; case.mesh.positions.len()];
-    deform_vertices(case.rig.rest(), &bindings, &case.mesh.positions, &mut back);
+    deform_hard(case.rig.rest(), &bindings, &case.mesh.positions, &mut back);
     let (error, at) = worst(&back, &case.mesh.positions);
     println!("f64 round trip: worst {:.3e} × diagonal at vertex {at}", error / case.diagonal);
     assert!(error <= F64_TOLERANCE * case.diagonal, "vertex {at} moved by {error:e} (diagonal {})", case.diagonal);

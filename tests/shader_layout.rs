@@ -5,8 +5,8 @@
 use std::mem::{offset_of, size_of};
 
 use sweepffd::coeffs::{
-    BindSegment, CellCoeffs, DispatchParams, GpuBinding, Joint, SkinInfluence, SweepInfo, UNBOUND,
-    UNIFORM_CELL_CAPACITY, WORKGROUP_SIZE,
+    BAND_FLAG, BandRecord, BindSegment, CellCoeffs, DispatchParams, GpuBinding, Joint, SkinInfluence, SweepInfo,
+    UNBOUND, UNIFORM_CELL_CAPACITY, WORKGROUP_SIZE,
 };
 use sweepffd::gpu::shaders;
 use sweepffd::normals::{FAN_INDEX, FAN_START};
@@ -26,6 +26,7 @@ fn rust_layouts() -> Vec<RustLayout> {
         layout!(SweepInfo { first_segment, segment_count, first_cell, samples }),
         layout!(BindSegment { origin, normal, e_low, e5, t0, t1, _pad }),
         layout!(GpuBinding { cell, s, phi, d, h }),
+        layout!(BandRecord { vertex, weight, cell, s_phi }),
         layout!(DispatchParams { vertex_count, first_vertex, window_split, _pad }),
         layout!(SkinInfluence { joints, weights }),
         layout!(Joint { rows }),
@@ -100,6 +101,7 @@ fn shared_constants_have_the_rust_values() {
         let module = parse(name, source);
         assert_eq!(u32_constant(&module, "UNIFORM_CELL_CAPACITY"), Some(UNIFORM_CELL_CAPACITY), "{name}");
         assert_eq!(u32_constant(&module, "UNBOUND"), Some(UNBOUND), "{name}");
+        assert_eq!(u32_constant(&module, "BAND_FLAG"), Some(BAND_FLAG), "{name}");
     }
     for source in [shaders::NORMALS_ONE_WINDOW, shaders::NORMALS_TWO_WINDOWS] {
         let normals = parse("normals", source);

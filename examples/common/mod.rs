@@ -6,7 +6,6 @@
 use std::path::{Path, PathBuf};
 
 use glam::DVec3;
-use sweepffd::bind::bind_vertices;
 use sweepffd::deform::deform_vertices;
 use sweepffd::mesh::Mesh;
 use sweepffd::render::{CLAY, Renderer, Scene, SweepStyle, ViewAngles, add_sweeps, save_png, union_bounds};
@@ -92,9 +91,9 @@ pub fn shared_mesh(name: &str) -> Option<PathBuf> {
 /// The mesh's positions deformed from `rest` bindings to the `posed` sweeps (Eq. 2).
 pub fn deform(rig: &Rig, mesh: &Mesh, posed: &[Sweep]) -> Vec<DVec3> {
     let owners = rig.owners(mesh, "mesh").unwrap_or_else(|e| panic!("{e}"));
-    let bindings = bind_vertices(rig.rest(), &owners, &mesh.positions, &|_| {});
+    let bindings = rig.bind_mesh(mesh, &owners, &|_| {});
     let mut out = vec![DVec3::ZERO; mesh.positions.len()];
-    deform_vertices(posed, &bindings, &mesh.positions, &mut out);
+    deform_vertices(rig.rest(), posed, &bindings, &mesh.positions, &mut out);
     out
 }
 

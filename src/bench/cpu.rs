@@ -7,7 +7,7 @@ use super::skinning::{skinning_influences, skinning_joints};
 use std::time::Instant;
 
 use super::{BenchReport, BenchScene, Round, median, median_seconds};
-use crate::bind::{Binding, bind_vertices};
+use crate::bind::MeshBindings;
 use crate::coeffs::GpuBinding;
 use crate::cpu;
 use crate::deform::deform_vertices;
@@ -17,7 +17,7 @@ const WARMUP: usize = 1;
 /// The CPU path on one scene.
 pub struct CpuBench {
     scene: BenchScene,
-    bindings: Vec<Binding>,
+    bindings: MeshBindings,
     twin_bindings: Vec<GpuBinding>,
     rest_f32: Vec<f32>,
 }
@@ -25,7 +25,7 @@ pub struct CpuBench {
 impl CpuBench {
     /// Binds the scene once (for the deform and copy timings).
     pub fn new(scene: BenchScene) -> CpuBench {
-        let bindings = bind_vertices(scene.rig.rest(), &scene.owners, &scene.mesh.positions, &|_| {});
+        let bindings = scene.rig.bind_mesh(&scene.mesh, &scene.owners, &|_| {});
         let rest = scene.rig.rest();
         let rest_f32 = cpu::packed(&scene.mesh.positions);
         let twin_bindings = cpu::bind::bind_to(rest, &scene.owners, &rest_f32);
@@ -39,7 +39,7 @@ impl CpuBench {
         let mut out = vec![DVec3::ZERO; n];
         let mut out_f32 = vec![0.0f32; 3 * n];
         let bind = median_seconds(WARMUP, runs, || {
-            bind_vertices(scene.rig.rest(), &scene.owners, &scene.mesh.positions, &|_| {});
+            scene.rig.bind_mesh(&scene.mesh, &scene.owners, &|_| {});
         });
         let (joints, influences) = (skinning_joints(), skinning_influences(n));
         let time = |work: &mut dyn FnMut()| {
@@ -50,12 +50,14 @@ impl CpuBench {
         let mut rounds = Vec::with_capacity(runs);
         for round in 0..WARMUP + runs {
             let times = Round {
-                deform: time(&mut || deform_vertices(&scene.posed, &self.bindings, &scene.mesh.positions, &mut out)),
+                deform: time(&mut || {
+                    deform_vertices(scene.rig.rest(), &scene.posed, &self.bindings, &scene.mesh.positions, &mut out)
+                }),
                 copy: time(&mut || cpu::copy::copy(&self.twin_bindings, &mut out_f32)),
                 lbs: time(&mut || cpu::skinning::skinning(&joints, &self.rest_f32, &influences, &mut out_f32)),
                 frame: time(&mut || {
                     let posed = scene.rig.pose(&scene.keys).expect("the bench pose fits its rig");
-                    deform_vertices(&posed, &self.bindings, &scene.mesh.positions, &mut out);
+                    deform_vertices(scene.rig.rest(), &posed, &self.bindings, &scene.mesh.positions, &mut out);
                 }),
                 normals: 0.0,
             };

@@ -44,7 +44,7 @@ impl GpuBench {
             context,
             rest,
             &scene.mesh.positions,
-            BindingSource::Bind { owners: &scene.owners },
+            BindingSource::Bind { owners: &scene.owners, bands: &scene.rig.band_weights(&scene.mesh, &scene.owners) },
             Some(&scene.mesh.faces),
         )?;
         let binder = Binder::new(context, rest, &SweepCoefficients::new(rest), deformer.cells());

@@ -5,12 +5,14 @@
 //! | offset | size | content |
 //! |---|---|---|
 //! | 0 | 8 | magic `SFFDBIND` |
-//! | 8 | 4 | format version, 1 |
+//! | 8 | 4 | format version, 2 (version 1 files, which have no bands, still load) |
 //! | 12 | 4 | number of sweeps in the rig |
 //! | 16 | 8 | number of vertices N |
 //! | 24 | 8 | rig fingerprint (FNV-1a 64 of the rest rig's JSON) |
 //! | 32 | 8 | mesh fingerprint (FNV-1a 64 of the vertex positions' f64 bits) |
 //! | 40 | 40·N | per vertex: u32 sweep (0xFFFFFFFF: unowned), u32 zero, f64 t, θ, d, h |
+//! | 40 + 40·N | 8 | number of falloff band vertices B (version 2) |
+//! | 48 + 40·N | 48·B | per band vertex, by increasing vertex: u32 vertex, u32 second sweep (0xFFFFFFFF: the rest position), f64 weight w, and the second binding's f64 t, θ, d, h |
 //!
 //! The fingerprints let `deform` refuse bindings made for another rig or mesh.
 
@@ -20,13 +22,14 @@ use std::path::{Path, PathBuf};
 use glam::DVec3;
 use thiserror::Error;
 
-use super::{Binding, UNOWNED, VertexBinding};
+use super::{BandBinding, Binding, MeshBindings, UNOWNED, VertexBinding};
 use crate::rig::Rig;
 
 const MAGIC: &[u8; 8] = b"SFFDBIND";
-const VERSION: u32 = 1;
+const VERSION: u32 = 2;
 const HEADER_BYTES: usize = 40;
 const RECORD_BYTES: usize = 40;
+const BAND_RECORD_BYTES: usize = 48;
 
 /// Bindings of every vertex of a mesh to a rig, with fingerprints of both.
 #[derive(Clone, Debug, PartialEq)]
@@ -37,8 +40,8 @@ pub struct BindingsFile {
     pub rig_fingerprint: u64,
     /// Fingerprint of the mesh positions ([`mesh_fingerprint`]).
     pub mesh_fingerprint: u64,
-    /// One binding per vertex, in mesh order.
-    pub bindings: Vec<Binding>,
+    /// One binding per vertex, in mesh order, and the falloff bands.
+    pub bindings: MeshBindings,
 }
 
 /// Why a bindings file cannot be read or used.
@@ -71,7 +74,7 @@ fn fnv1a(bytes: &[u8]) -> u64 {
 
 impl BindingsFile {
     /// The file for `bindings` of `positions` to `rig`.
-    pub fn new(rig: &Rig, positions: &[DVec3], bindings: Vec<Binding>) -> BindingsFile {
+    pub fn new(rig: &Rig, positions: &[DVec3], bindings: MeshBindings) -> BindingsFile {
         BindingsFile {
             sweep_count: rig.sweeps().len() as u32,
             rig_fingerprint: rig_fingerprint(rig),
@@ -82,19 +85,31 @@ impl BindingsFile {
 
     /// The file's bytes.
     pub fn to_bytes(&self) -> Vec<u8> {
-        let mut bytes = Vec::with_capacity(HEADER_BYTES + RECORD_BYTES * self.bindings.len());
+        let MeshBindings { vertices, bands } = &self.bindings;
+        let mut bytes =
+            Vec::with_capacity(HEADER_BYTES + RECORD_BYTES * vertices.len() + 8 + BAND_RECORD_BYTES * bands.len());
         bytes.extend_from_slice(MAGIC);
         bytes.extend_from_slice(&VERSION.to_le_bytes());
         bytes.extend_from_slice(&self.sweep_count.to_le_bytes());
-        bytes.extend_from_slice(&(self.bindings.len() as u64).to_le_bytes());
+        bytes.extend_from_slice(&(vertices.len() as u64).to_le_bytes());
         bytes.extend_from_slice(&self.rig_fingerprint.to_le_bytes());
         bytes.extend_from_slice(&self.mesh_fingerprint.to_le_bytes());
-        for Binding { sweep, params } in &self.bindings {
-            bytes.extend_from_slice(&sweep.to_le_bytes());
-            bytes.extend_from_slice(&0u32.to_le_bytes());
+        let params_bytes = |bytes: &mut Vec<u8>, params: &VertexBinding| {
             for value in [params.t, params.theta, params.d, params.h] {
                 bytes.extend_from_slice(&value.to_le_bytes());
             }
+        };
+        for Binding { sweep, params } in vertices {
+            bytes.extend_from_slice(&sweep.to_le_bytes());
+            bytes.extend_from_slice(&0u32.to_le_bytes());
+            params_bytes(&mut bytes, params);
+        }
+        bytes.extend_from_slice(&(bands.len() as u64).to_le_bytes());
+        for band in bands {
+            bytes.extend_from_slice(&band.vertex.to_le_bytes());
+            bytes.extend_from_slice(&band.second.sweep.to_le_bytes());
+            bytes.extend_from_slice(&band.weight.to_le_bytes());
+            params_bytes(&mut bytes, &band.second.params);
         }
         bytes
     }
@@ -108,30 +123,61 @@ impl BindingsFile {
         let u32_at = |at: usize| u32::from_le_bytes(bytes[at..at + 4].try_into().expect("4 bytes"));
         let u64_at = |at: usize| u64::from_le_bytes(bytes[at..at + 8].try_into().expect("8 bytes"));
         let f64_at = |at: usize| f64::from_bits(u64_at(at));
-        if u32_at(8) != VERSION {
-            return Err(malformed(format!("version {} is not 1", u32_at(8))));
+        let params_at =
+            |at: usize| VertexBinding { t: f64_at(at), theta: f64_at(at + 8), d: f64_at(at + 16), h: f64_at(at + 24) };
+        let version = u32_at(8);
+        if version != 1 && version != VERSION {
+            return Err(malformed(format!("version {version} is neither 1 nor {VERSION}")));
         }
         let sweep_count = u32_at(12);
         let count = u64_at(16);
-        let expected = (count as u128) * RECORD_BYTES as u128 + HEADER_BYTES as u128;
-        if bytes.len() as u128 != expected {
-            return Err(malformed(format!("{} bytes for {count} vertices, expected {expected}", bytes.len())));
-        }
-        let mut bindings = Vec::with_capacity(count as usize);
-        for i in 0..count as usize {
-            let at = HEADER_BYTES + i * RECORD_BYTES;
-            let sweep = u32_at(at);
-            let params =
-                VertexBinding { t: f64_at(at + 8), theta: f64_at(at + 16), d: f64_at(at + 24), h: f64_at(at + 32) };
-            let valid = sweep == UNOWNED
+        let vertices_end = (count as u128) * RECORD_BYTES as u128 + HEADER_BYTES as u128;
+        let band_count = if version == 1 {
+            if bytes.len() as u128 != vertices_end {
+                return Err(malformed(format!("{} bytes for {count} vertices, expected {vertices_end}", bytes.len())));
+            }
+            0
+        } else {
+            if (bytes.len() as u128) < vertices_end + 8 {
+                return Err(malformed(format!("{} bytes for {count} vertices and a band count", bytes.len())));
+            }
+            let band_count = u64_at(vertices_end as usize);
+            let expected = vertices_end + 8 + band_count as u128 * BAND_RECORD_BYTES as u128;
+            if bytes.len() as u128 != expected {
+                let found = bytes.len();
+                return Err(malformed(format!(
+                    "{found} bytes for {count} vertices and {band_count} band vertices, expected {expected}"
+                )));
+            }
+            band_count
+        };
+        let valid = |sweep: u32, params: &VertexBinding| {
+            sweep == UNOWNED
                 || (sweep < sweep_count
                     && [params.t, params.theta, params.d, params.h].iter().all(|v| v.is_finite())
-                    && (0.0..=1.0).contains(&params.t));
-            if !valid {
+                    && (0.0..=1.0).contains(&params.t))
+        };
+        let mut vertices = Vec::with_capacity(count as usize);
+        for i in 0..count as usize {
+            let at = HEADER_BYTES + i * RECORD_BYTES;
+            let (sweep, params) = (u32_at(at), params_at(at + 8));
+            if !valid(sweep, &params) {
                 return Err(malformed(format!("vertex {i} has an invalid binding")));
             }
-            bindings.push(Binding { sweep, params });
+            vertices.push(Binding { sweep, params });
         }
+        let mut bands = Vec::with_capacity(band_count as usize);
+        for i in 0..band_count as usize {
+            let at = vertices_end as usize + 8 + i * BAND_RECORD_BYTES;
+            let (vertex, sweep, weight, params) = (u32_at(at), u32_at(at + 4), f64_at(at + 8), params_at(at + 16));
+            let own = vertices.get(vertex as usize).map_or(UNOWNED, |b| b.sweep);
+            let ordered = bands.last().is_none_or(|last: &BandBinding| last.vertex < vertex);
+            if own == UNOWNED || !ordered || !(0.0..1.0).contains(&weight) || sweep == own || !valid(sweep, &params) {
+                return Err(malformed(format!("band vertex {i} (vertex {vertex}) has an invalid binding")));
+            }
+            bands.push(BandBinding { vertex, weight, second: Binding { sweep, params } });
+        }
+        let bindings = MeshBindings { vertices, bands };
         Ok(BindingsFile { sweep_count, rig_fingerprint: u64_at(24), mesh_fingerprint: u64_at(32), bindings })
     }
 
@@ -155,8 +201,9 @@ impl BindingsFile {
     pub fn check_matches(&self, rig: &Rig, positions: &[DVec3], path: &Path) -> Result<(), BindingsFileError> {
         let mismatch =
             |what: &str| Err(BindingsFileError::Mismatch { path: path.to_path_buf(), what: what.to_string() });
-        if self.bindings.len() != positions.len() {
-            return mismatch(&format!("{} vertices, the mesh has {}", self.bindings.len(), positions.len()));
+        if self.bindings.vertices.len() != positions.len() {
+            let count = self.bindings.vertices.len();
+            return mismatch(&format!("{count} vertices, the mesh has {}", positions.len()));
         }
         if self.sweep_count as usize != rig.sweeps().len() || self.rig_fingerprint != rig_fingerprint(rig) {
             return mismatch("another rig (run `sweepffd bind` again)");

@@ -9,6 +9,7 @@
 //! θ = atan2(v̂_y, v̂_x) ∈ [0, 2π), d = |(v̂_x, v̂_y)| − r(θ, t) and h = v̂_z. For a root h is zero
 //! up to round-off; beyond an end it is the axial offset, so caps follow their sweep.
 
+pub mod band;
 pub mod falloff;
 pub mod file;
 pub mod quintic;
@@ -20,6 +21,8 @@ use rayon::prelude::*;
 
 use crate::sweep::plane_quintic::PlaneQuintic;
 use crate::sweep::{AxisPoint, Sweep};
+
+pub use band::{BandBinding, MeshBindings};
 
 /// Marks a vertex that no sweep owns; it stays where it is.
 pub const UNOWNED: u32 = u32::MAX;

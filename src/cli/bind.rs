@@ -6,8 +6,9 @@ use std::time::Instant;
 use super::CliResult;
 use super::backend::{Backend, resolve};
 use super::progress::vertex_bar;
+use sweepffd::bind::MeshBindings;
+use sweepffd::bind::band::bind_bands;
 use sweepffd::bind::file::BindingsFile;
-use sweepffd::bind::{Binding, bind_vertices};
 use sweepffd::coeffs::SweepCoefficients;
 use sweepffd::gpu::{BindingSource, GpuContext, GpuDeformer, GpuError};
 use sweepffd::mesh::Mesh;
@@ -28,19 +29,22 @@ pub fn load_inputs(mesh_path: &Path, rig_path: &Path) -> Result<Inputs, Box<dyn 
     Ok(Inputs { mesh, rig, owners })
 }
 
-/// Binds on the GPU, read back in the reference form.
-pub fn bind_on_gpu(context: &GpuContext, inputs: &Inputs) -> Result<Vec<Binding>, GpuError> {
+/// Binds on the GPU, read back in the reference form; the falloff bands' second bindings are
+/// made on the CPU (f64), as the file stores them.
+pub fn bind_on_gpu(context: &GpuContext, inputs: &Inputs) -> Result<MeshBindings, GpuError> {
     let rest = inputs.rig.rest();
-    let source = BindingSource::Bind { owners: &inputs.owners };
+    let weights = inputs.rig.band_weights(&inputs.mesh, &inputs.owners);
+    let source = BindingSource::Bind { owners: &inputs.owners, bands: &weights };
     let deformer = GpuDeformer::new(context, rest, &inputs.mesh.positions, source, None)?;
     let coefficients = SweepCoefficients::new(rest);
-    Ok(deformer.read_bindings()?.iter().map(|b| coefficients.reference_binding(rest, b)).collect())
+    let vertices = deformer.read_bindings()?.iter().map(|b| coefficients.reference_binding(rest, b)).collect();
+    Ok(MeshBindings { vertices, bands: bind_bands(rest, &inputs.mesh.positions, &weights) })
 }
 
-/// Binds with a progress bar (f64 reference path, all cores).
-pub fn bind_with_progress(inputs: &Inputs, quiet: bool) -> Vec<Binding> {
+/// Binds with a progress bar (f64 reference path, all cores), with the falloff bands.
+pub fn bind_with_progress(inputs: &Inputs, quiet: bool) -> MeshBindings {
     let bar = vertex_bar(inputs.mesh.positions.len(), "binding", quiet);
-    let bindings = bind_vertices(inputs.rig.rest(), &inputs.owners, &inputs.mesh.positions, &|done| {
+    let bindings = inputs.rig.bind_mesh(&inputs.mesh, &inputs.owners, &|done| {
         bar.inc(done as u64);
     });
     bar.finish_and_clear();

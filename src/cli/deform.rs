@@ -9,8 +9,8 @@ use super::CliResult;
 use super::backend::{Backend, resolve};
 use super::bind::{Inputs, bind_with_progress, load_inputs};
 use sweepffd::bind::file::BindingsFile;
-use sweepffd::bind::{Binding, UNOWNED};
-use sweepffd::coeffs::{GpuBinding, SweepCoefficients};
+use sweepffd::bind::{MeshBindings, UNOWNED};
+use sweepffd::coeffs::SweepCoefficients;
 use sweepffd::deform::deform_vertices;
 use sweepffd::gpu::{BindingSource, GpuContext, GpuDeformer, GpuError};
 use sweepffd::mesh::Format;
@@ -41,12 +41,12 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     let context = resolve(args.backend, quiet)?;
     let start = Instant::now();
     let (positions, owners) = match &context {
-        Some(context) => deform_on_gpu(context, &inputs, &posed, saved.as_deref())?,
+        Some(context) => deform_on_gpu(context, &inputs, &posed, saved.as_ref())?,
         None => {
             let bindings = saved.clone().unwrap_or_else(|| bind_with_progress(&inputs, quiet));
             let mut positions = vec![DVec3::ZERO; inputs.mesh.positions.len()];
-            deform_vertices(&posed, &bindings, &inputs.mesh.positions, &mut positions);
-            (positions, bindings.iter().map(|b| b.sweep).collect())
+            deform_vertices(inputs.rig.rest(), &posed, &bindings, &inputs.mesh.positions, &mut positions);
+            (positions, bindings.vertices.iter().map(|b| b.sweep).collect())
         }
     };
     let seconds = start.elapsed().as_secs_f64();
@@ -73,33 +73,46 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
 }
 
 /// Binds (or uploads `saved` bindings), deforms on the GPU and reads the positions back; the
-/// vertices no sweep owns keep their exact rest positions. Returns the positions and owners.
+/// vertices no sweep moves (unowned, or at weight 0 against the rest position) keep their exact
+/// rest positions. Returns the positions and owners.
 fn deform_on_gpu(
     context: &GpuContext,
     inputs: &Inputs,
     posed: &[Sweep],
-    saved: Option<&[Binding]>,
+    saved: Option<&MeshBindings>,
 ) -> Result<(Vec<DVec3>, Vec<u32>), GpuError> {
     let rest = inputs.rig.rest();
     let coefficients = SweepCoefficients::new(rest);
-    let converted: Option<Vec<GpuBinding>> =
-        saved.map(|saved| saved.iter().map(|b| coefficients.gpu_binding(rest, b)).collect());
+    let converted = saved.map(|saved| coefficients.gpu_mesh_bindings(rest, saved));
+    let weights = match saved {
+        Some(_) => Vec::new(),
+        None => inputs.rig.band_weights(&inputs.mesh, &inputs.owners),
+    };
     let source = match &converted {
-        Some(bindings) => BindingSource::Precomputed(bindings),
-        None => BindingSource::Bind { owners: &inputs.owners },
+        Some((bindings, bands)) => BindingSource::Precomputed { bindings, bands },
+        None => BindingSource::Bind { owners: &inputs.owners, bands: &weights },
     };
     let mut deformer = GpuDeformer::new(context, rest, &inputs.mesh.positions, source, None)?;
     deformer.deform(posed)?;
     let deformed = deformer.read_positions()?;
     let owners: Vec<u32> = match saved {
-        Some(saved) => saved.iter().map(|b| b.sweep).collect(),
+        Some(saved) => saved.vertices.iter().map(|b| b.sweep).collect(),
         None => inputs.owners.clone(),
     };
+    let mut keeps_rest: Vec<bool> = owners.iter().map(|&o| o == UNOWNED).collect();
+    match saved {
+        Some(saved) => keeps_rest = saved.keeps_rest(),
+        None => {
+            for band in weights.iter().filter(|b| b.weight == 0.0 && b.fades_to_rest()) {
+                keeps_rest[band.vertex as usize] = true;
+            }
+        }
+    }
     let positions = deformed
         .chunks_exact(3)
         .zip(&inputs.mesh.positions)
-        .zip(&owners)
-        .map(|((p, rest), &owner)| if owner == UNOWNED { *rest } else { Vec3::from_slice(p).as_dvec3() })
+        .zip(&keeps_rest)
+        .map(|((p, rest), &keeps)| if keeps { *rest } else { Vec3::from_slice(p).as_dvec3() })
         .collect();
     Ok((positions, owners))
 }

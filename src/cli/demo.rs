@@ -9,7 +9,6 @@ use std::io::Write;
 use glam::DVec3;
 
 use super::CliResult;
-use sweepffd::bind::bind_vertices;
 use sweepffd::deform::deform_vertices;
 use sweepffd::mesh::write_atomically;
 use sweepffd::synthetic::{BendTwistTaper, Tube, tube_rig};
@@ -25,11 +24,11 @@ pub fn run(out: &Path, quiet: bool) -> CliResult {
 
     let owners = rig.owners(&mesh, "tube")?;
     let start = Instant::now();
-    let bindings = bind_vertices(rig.rest(), &owners, &mesh.positions, &|_| {});
+    let bindings = rig.bind_mesh(&mesh, &owners, &|_| {});
     let bind_seconds = start.elapsed().as_secs_f64();
     let start = Instant::now();
     let mut deformed = vec![DVec3::ZERO; mesh.positions.len()];
-    deform_vertices(&posed, &bindings, &mesh.positions, &mut deformed);
+    deform_vertices(rig.rest(), &posed, &bindings, &mesh.positions, &mut deformed);
     let deform_seconds = start.elapsed().as_secs_f64();
 
     let [rest_path, deformed_path, rig_path, pose_path] =

@@ -5,7 +5,6 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use super::CliResult;
-use sweepffd::bind::bind_vertices;
 use sweepffd::edit::{BoundMesh, Posing, VolumeRule, parse_edits};
 use sweepffd::mesh::{Mesh, write_atomically};
 use sweepffd::rig::Rig;
@@ -33,7 +32,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     posing.volume = args.volume;
     if let Some((mesh, path)) = &mesh {
         let owners = rig.owners(mesh, &path.display().to_string())?;
-        bindings = bind_vertices(rig.rest(), &owners, &mesh.positions, &|_| {});
+        bindings = rig.bind_mesh(mesh, &owners, &|_| {});
         posing = posing.with_mesh(BoundMesh { mesh, bindings: &bindings });
     }
     for (i, edit) in edits.iter().enumerate() {

@@ -8,7 +8,6 @@ use glam::DVec3;
 
 use super::CliResult;
 use super::bind::load_inputs;
-use sweepffd::bind::bind_vertices;
 use sweepffd::deform::deform_vertices;
 use sweepffd::mesh::Mesh;
 use sweepffd::render::{CLAY, Renderer, Scene, SweepStyle, ViewAngles, add_sweeps, save_png, union_bounds};
@@ -97,9 +96,9 @@ fn build_scenes(args: &Args) -> Result<Vec<Scene>, Box<dyn std::error::Error>> {
         return Ok(scenes);
     };
     let posed = inputs.rig.load_pose(pose_path)?;
-    let bindings = bind_vertices(rest, &inputs.owners, &mesh.positions, &|_| {});
+    let bindings = inputs.rig.bind_mesh(mesh, &inputs.owners, &|_| {});
     let mut deformed = vec![DVec3::ZERO; mesh.positions.len()];
-    deform_vertices(&posed, &bindings, &mesh.positions, &mut deformed);
+    deform_vertices(rest, &posed, &bindings, &mesh.positions, &mut deformed);
     if let Some(i) = deformed.iter().position(|p| !p.is_finite()) {
         return Err(format!("{}: vertex index {i} deforms to a non-finite position", pose_path.display()).into());
     }

@@ -3,8 +3,9 @@
 
 use std::f64::consts::TAU;
 
-use super::{GpuBinding, SweepCoefficients, UNBOUND};
-use crate::bind::{Binding, UNOWNED, VertexBinding};
+use super::{BAND_FLAG, BandRecord, GpuBinding, SweepCoefficients, UNBOUND};
+use crate::bind::{BandBinding, Binding, MeshBindings, UNOWNED, VertexBinding};
+use crate::cpu::band_pack::band_pack_vertex;
 use crate::sweep::Sweep;
 use crate::sweep::radius::angular_cell;
 
@@ -12,6 +13,8 @@ impl SweepCoefficients {
     /// The reference form of a GPU binding: t = u_k + s·(u_{k+1} − u_k), θ = (j + φ)·2π/M, in
     /// f64. `rest` are the sweeps these coefficients were built from.
     pub fn reference_binding(&self, rest: &[Sweep], binding: &GpuBinding) -> Binding {
+        let binding =
+            &GpuBinding { cell: if binding.cell == UNBOUND { UNBOUND } else { binding.cell & !BAND_FLAG }, ..*binding };
         let Some((sweep, info)) = (binding.cell != UNBOUND)
             .then(|| {
                 self.sweeps.iter().enumerate().find(|(_, info)| {
@@ -35,6 +38,29 @@ impl SweepCoefficients {
                 h: binding.h as f64,
             },
         }
+    }
+
+    /// The GPU forms of a mesh's bindings: one binding per vertex ([`BAND_FLAG`] set on band
+    /// vertices) and the band records, vertices global.
+    pub fn gpu_mesh_bindings(&self, rest: &[Sweep], bindings: &MeshBindings) -> (Vec<GpuBinding>, Vec<BandRecord>) {
+        let mut vertices: Vec<GpuBinding> = bindings.vertices.iter().map(|b| self.gpu_binding(rest, b)).collect();
+        let records = bindings
+            .bands
+            .iter()
+            .map(|band| {
+                vertices[band.vertex as usize].cell |= BAND_FLAG;
+                self.band_record(rest, band)
+            })
+            .collect();
+        (vertices, records)
+    }
+
+    /// The GPU band record of a band vertex, its vertex global.
+    pub fn band_record(&self, rest: &[Sweep], band: &BandBinding) -> BandRecord {
+        let second = self.gpu_binding(rest, &band.second);
+        let mut record = BandRecord { vertex: band.vertex, weight: band.weight as f32, cell: 0, s_phi: 0 };
+        band_pack_vertex(&second, &mut record);
+        record
     }
 
     /// The GPU form of a reference binding, in f32.

@@ -13,6 +13,11 @@ pub const WORKGROUP_SIZE: u32 = 128;
 /// `GpuBinding::cell` of a vertex that no sweep owns; the deform kernel leaves it in place.
 pub const UNBOUND: u32 = u32::MAX;
 
+/// Set in `GpuBinding::cell` (and in the owner given to the bind kernel) for a vertex in a
+/// falloff band: the deform kernel leaves it to the band kernel, which reads its cell as
+/// `cell & !BAND_FLAG`. Rigs have fewer than 2³¹ cells.
+pub const BAND_FLAG: u32 = 1 << 31;
+
 /// Most cells a rig may have for the deform kernel to read them from a uniform buffer (64 KiB,
 /// the portable limit); larger rigs use the storage-buffer variant of the kernel.
 pub const UNIFORM_CELL_CAPACITY: u32 = 409;
@@ -87,7 +92,7 @@ pub struct BindSegment {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuBinding {
-    /// Global cell index, or [`UNBOUND`].
+    /// Global cell index, or [`UNBOUND`]; with [`BAND_FLAG`] set for a vertex in a falloff band.
     pub cell: u32,
     /// Local axis parameter s ∈ [0, 1] in the cell's knot interval.
     pub s: f32,
@@ -97,6 +102,28 @@ pub struct GpuBinding {
     pub d: f32,
     /// Axial offset h.
     pub h: f32,
+}
+
+/// A vertex in a falloff band, for the band kernel: its weight and its second influence. 16
+/// bytes, only for vertices with w < 1.
+///
+/// The second influence is the rest position (`cell` = [`UNBOUND`]) or a neighbouring sweep's
+/// frame at the vertex: the cell and local (s, φ) of the vertex's binding to that sweep, as
+/// unorm16 (s in the low half). The band kernel rebuilds the vertex's rest position from its own
+/// binding and takes its offset in that frame, so d and h of the second binding need no storage;
+/// the 16-bit (s, φ) only choose the frame (within 1.5e-5 of the cell) and moving it is exact at
+/// rest and under rigid motion.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct BandRecord {
+    /// The vertex, relative to the first vertex of its dispatch.
+    pub vertex: u32,
+    /// w ∈ [0, 1): the share of its own sweep's deformation it follows.
+    pub weight: f32,
+    /// The second influence's global cell, or [`UNBOUND`] for the rest position.
+    pub cell: u32,
+    /// The second influence's (s, φ) packed as two unorm16, s in bits 0..16.
+    pub s_phi: u32,
 }
 
 /// Per-dispatch constants of every kernel: one dispatch covers one chunk of vertices. 16 bytes.
@@ -140,5 +167,6 @@ const _: () = assert!(size_of::<SweepInfo>() == 16);
 const _: () = assert!(size_of::<BindSegment>() == 96);
 const _: () = assert!(size_of::<GpuBinding>() == 20);
 const _: () = assert!(size_of::<DispatchParams>() == 16);
+const _: () = assert!(size_of::<BandRecord>() == 16);
 const _: () = assert!(size_of::<SkinInfluence>() == 8);
 const _: () = assert!(size_of::<Joint>() == 48);

@@ -3,14 +3,17 @@
 //! nearer end when there is none; then θ, d = |v̂_xy| − r(θ, t) and h = v̂_z with
 //! v̂ = R(t)ᵀ·(v − C(t)).
 
-use std::f32::consts::{PI, TAU};
+use std::f32::consts::TAU;
 
 use glam::{Vec3, Vec4, Vec4Swizzles};
 use rayon::prelude::*;
 
+use super::angle::angle_of;
 use super::position;
 use super::sweep_eval::{curve_at, quat_at, radius_at, rotate_inverse};
-use crate::coeffs::{BindSegment, CellCoeffs, GpuBinding, SweepCoefficients, SweepInfo, UNBOUND, bind_segments};
+use crate::coeffs::{
+    BAND_FLAG, BindSegment, CellCoeffs, GpuBinding, SweepCoefficients, SweepInfo, UNBOUND, bind_segments,
+};
 use crate::sweep::Sweep;
 
 /// Dyadic subdivision depth: intervals of width 2⁻¹² that still show several sign variations
@@ -39,38 +42,6 @@ struct Nearest {
     s: f32,
     distance2: f32,
     found: bool,
-}
-
-/// The angle of (x, y) in [−π, π], for (x, y) ≠ 0, to about 2e-7 rad on every device (WGSL's
-/// atan2 may be far less accurate): octant reduction to atan(a), a ∈ [0, 1]; above tan(π/8),
-/// atan(a) = π/4 + atan((a − 1)/(a + 1)); then the odd series to z¹⁵ (|z| ≤ tan(π/8)).
-pub fn angle_of(x: f32, y: f32) -> f32 {
-    let ax = x.abs();
-    let ay = y.abs();
-    let mut a = ax.min(ay) / ax.max(ay);
-    let mut base = 0.0;
-    if a > 0.41421356 {
-        a = (a - 1.0) / (a + 1.0);
-        base = 0.25 * PI;
-    }
-    let z2 = a * a;
-    let series = a
-        * (1.0
-            - z2 * (1.0 / 3.0
-                - z2 * (1.0 / 5.0
-                    - z2 * (1.0 / 7.0
-                        - z2 * (1.0 / 9.0 - z2 * (1.0 / 11.0 - z2 * (1.0 / 13.0 - z2 * (1.0 / 15.0))))))));
-    let mut angle = base + series;
-    if ay > ax {
-        angle = 0.5 * PI - angle;
-    }
-    if x < 0.0 {
-        angle = PI - angle;
-    }
-    if y < 0.0 {
-        angle = -angle;
-    }
-    angle
 }
 
 /// Power coefficients of g(s) = ⟨v − C(s), n(s)⟩ on a knot interval.
@@ -212,12 +183,14 @@ fn roots_on_segment(inputs: &BindInputs, k: u32, cell: u32, v: Vec3, nearest: &m
     }
 }
 
-/// One invocation of the kernel: the binding of vertex `v` owned by sweep `owner` (or
-/// [`UNBOUND`]).
-pub fn bind_vertex(inputs: &BindInputs, owner: u32, v: Vec3) -> GpuBinding {
-    if owner == UNBOUND {
+/// One invocation of the kernel: the binding of vertex `v` owned by sweep `flagged_owner` (or
+/// [`UNBOUND`]); a [`BAND_FLAG`] on the owner (a vertex in a falloff band) is kept in the cell.
+pub fn bind_vertex(inputs: &BindInputs, flagged_owner: u32, v: Vec3) -> GpuBinding {
+    if flagged_owner == UNBOUND {
         return GpuBinding { cell: UNBOUND, s: 0.0, phi: 0.0, d: 0.0, h: 0.0 };
     }
+    let band = flagged_owner & BAND_FLAG;
+    let owner = flagged_owner & !BAND_FLAG;
     let sweep = inputs.sweeps[owner as usize];
     let mut nearest = Nearest { cell: sweep.first_cell, s: 0.0, distance2: 0.0, found: false };
     for k in 0..sweep.segment_count {
@@ -251,7 +224,7 @@ pub fn bind_vertex(inputs: &BindInputs, owner: u32, v: Vec3) -> GpuBinding {
     let phi = (x - j as f32).clamp(0.0, 1.0);
     let cell = nearest.cell + j;
     let r = radius_at(&inputs.cells[cell as usize], nearest.s, phi);
-    GpuBinding { cell, s: nearest.s, phi, d: local.truncate().length() - r, h: local.z }
+    GpuBinding { cell: cell | band, s: nearest.s, phi, d: local.truncate().length() - r, h: local.z }
 }
 
 /// The bindings of `positions` (tightly packed xyz) owned by `owners[i]` to the rest sweeps
@@ -267,24 +240,4 @@ pub fn bind_to(rest: &[Sweep], owners: &[u32], positions: &[f32]) -> Vec<GpuBind
 /// xyz) owned by `owners[i]`, in parallel.
 pub fn bind(inputs: &BindInputs, owners: &[u32], positions: &[f32]) -> Vec<GpuBinding> {
     (0..owners.len()).into_par_iter().map(|i| bind_vertex(inputs, owners[i], position(positions, i))).collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn angle_of_matches_atan2_all_around_the_circle() {
-        let mut worst = 0.0f64;
-        for i in 0..100_000 {
-            let t = i as f64 / 100_000.0 * std::f64::consts::TAU - std::f64::consts::PI;
-            let (x, y) = ((3.0 * t.cos()) as f32, (3.0 * t.sin()) as f32);
-            let exact = (y as f64).atan2(x as f64);
-            worst = worst.max((angle_of(x, y) as f64 - exact).abs());
-        }
-        assert!(worst < 3e-7, "worst error {worst:e} rad");
-        assert_eq!(angle_of(1.0, 0.0), 0.0);
-        assert_eq!(angle_of(-1.0, 0.0), PI);
-        assert_eq!(angle_of(0.0, 2.0), 0.5 * PI);
-    }
 }

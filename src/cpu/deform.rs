@@ -5,12 +5,14 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::sweep_eval::{curve_at, direction_at, quat_at, radius_at, rotate};
-use crate::coeffs::{CellCoeffs, GpuBinding, UNBOUND};
+use crate::coeffs::{BAND_FLAG, CellCoeffs, GpuBinding};
 
-/// One invocation of the kernel: the new position of a vertex, or `None` if it is unbound and
-/// keeps its rest position.
+/// One invocation of the kernel: the new position of a vertex, or `None` if it is unbound (and
+/// keeps its rest position) or in a falloff band (and is moved by [`super::band`]).
 pub fn deform_vertex(cells: &[CellCoeffs], binding: &GpuBinding) -> Option<Vec3> {
-    if binding.cell == UNBOUND {
+    // Unbound vertices keep their rest position; vertices in falloff bands (BAND_FLAG, which
+    // UNBOUND also has) are moved by the band kernel.
+    if binding.cell >= BAND_FLAG {
         return None;
     }
     let cell = &cells[binding.cell as usize];

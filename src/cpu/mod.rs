@@ -1,7 +1,9 @@
 //! CPU twins of the WGSL kernels: f32 code that mirrors `shaders/*.wgsl` statement by
 //! statement, file for file (`shaders/bind.wgsl` ↔ [`bind`], `shaders/deform.wgsl` ↔
-//! [`deform`], `shaders/normals.wgsl` ↔ [`normals`], `shaders/sweep_eval.wgsl` ↔
-//! [`sweep_eval`], and the benchmark baselines `shaders/copy.wgsl` ↔ [`copy`],
+//! [`deform`], `shaders/band.wgsl` ↔ [`band`], `shaders/band_pack.wgsl` ↔ [`band_pack`],
+//! `shaders/normals.wgsl` ↔ [`normals`], and the shared `shaders/sweep_eval.wgsl` ↔
+//! [`sweep_eval`], `shaders/angle.wgsl` ↔ [`angle`], `shaders/blend.wgsl` ↔ [`blend`]; the
+//! benchmark baselines `shaders/copy.wgsl` ↔ [`copy`],
 //! `shaders/skinning.wgsl` ↔ [`skinning`]).
 //!
 //! They are the executable specification of the GPU path: tests check them against the f64
@@ -9,7 +11,11 @@
 //! tolerances, so a divergence can be bisected stage by stage. Each runs every invocation of
 //! its kernel, in parallel over the vertices.
 
+pub mod angle;
+pub mod band;
+pub mod band_pack;
 pub mod bind;
+pub mod blend;
 pub mod copy;
 pub mod deform;
 pub mod normals;

@@ -39,9 +39,13 @@ pub fn radius_at(cell: &CellCoeffs, s: f32, phi: f32) -> f32 {
 /// (cos δ, sin δ) for the vertex's angle θ_mid + δ in its cell, δ = (2φ − 1)·π/M, |δ| ≤ π/3:
 /// near-minimax polynomials (sin to δ⁷, cos to δ⁸, fitted on [−π/3, π/3]) accurate to 2e-8 before
 /// f32 rounding, so no transcendental runs per vertex per frame.
-#[expect(clippy::excessive_precision, reason = "the WGSL twin spells the same literals")]
 pub fn direction_at(cell: &CellCoeffs, phi: f32) -> Vec2 {
-    let delta = (2.0 * phi - 1.0) * cell.curve[0][3];
+    cos_sin_small((2.0 * phi - 1.0) * cell.curve[0][3])
+}
+
+/// (cos δ, sin δ) for |δ| ≤ π/3, by the polynomials of [`direction_at`].
+#[expect(clippy::excessive_precision, reason = "the WGSL twin spells the same literals")]
+pub fn cos_sin_small(delta: f32) -> Vec2 {
     let d2 = delta * delta;
     let sin_d = delta
         * (0.9999998635311992

@@ -1,5 +1,6 @@
 //! Deformation (Eq. 2, extended by h) on the f64 reference path: every bound vertex follows its
-//! posed sweep. The f32 twin of the GPU kernel is [`crate::cpu::deform`].
+//! posed sweep, and a vertex in a falloff band follows it part of the way ([`blend`]). The f32
+//! twins of the GPU kernels are [`crate::cpu::deform`] and [`crate::cpu::band`].
 //!
 //! Data flow: rig → sweep → sweep coefficients → bind → **deform** → normals → output.
 //!
@@ -9,10 +10,12 @@
 //!
 //! with C, R and r of the posed sweep and (θ, t, d, h) from binding against the rest sweep.
 
+pub mod blend;
+
 use glam::DVec3;
 use rayon::prelude::*;
 
-use crate::bind::{Binding, UNOWNED, VertexBinding};
+use crate::bind::{BandBinding, Binding, MeshBindings, UNOWNED, VertexBinding};
 use crate::sweep::Sweep;
 
 /// The position of a vertex bound by `binding` on the (posed) `sweep`, Eq. 2.
@@ -21,18 +24,50 @@ pub fn deform_vertex(sweep: &Sweep, binding: &VertexBinding) -> DVec3 {
 }
 
 /// Writes the deformed position of every vertex into `out`: bound vertices follow their posed
-/// sweep (`posed[binding.sweep]`), unowned vertices keep their `rest` position. In parallel.
-pub fn deform_vertices(posed: &[Sweep], bindings: &[Binding], rest: &[DVec3], out: &mut [DVec3]) {
+/// sweep (`posed[binding.sweep]`), unowned vertices keep their `rest` position, and band
+/// vertices blend their two influences ([`blend::band_position`]; `rest_sweeps` are the rig's
+/// rest sweeps). In parallel, without allocating.
+pub fn deform_vertices(
+    rest_sweeps: &[Sweep],
+    posed: &[Sweep],
+    bindings: &MeshBindings,
+    rest: &[DVec3],
+    out: &mut [DVec3],
+) {
+    deform_chunks(rest_sweeps, posed, &bindings.vertices, &bindings.bands, rest, out);
+}
+
+/// [`deform_vertices`] for bindings without falloff bands ([`crate::bind::bind_vertices`]):
+/// every bound vertex follows its posed sweep fully.
+pub fn deform_hard(posed: &[Sweep], bindings: &[Binding], rest: &[DVec3], out: &mut [DVec3]) {
+    deform_chunks(posed, posed, bindings, &[], rest, out);
+}
+
+fn deform_chunks(
+    rest_sweeps: &[Sweep],
+    posed: &[Sweep],
+    vertices: &[Binding],
+    bands: &[BandBinding],
+    rest: &[DVec3],
+    out: &mut [DVec3],
+) {
     const CHUNK: usize = 4096;
-    out.par_chunks_mut(CHUNK).zip(bindings.par_chunks(CHUNK).zip(rest.par_chunks(CHUNK))).for_each(
-        |(out, (bindings, rest))| {
-            for ((v, binding), &rest) in out.iter_mut().zip(bindings).zip(rest) {
-                *v = if binding.sweep == UNOWNED {
-                    rest
-                } else {
-                    deform_vertex(&posed[binding.sweep as usize], &binding.params)
-                };
-            }
-        },
-    );
+    out.par_chunks_mut(CHUNK).enumerate().for_each(|(chunk, out)| {
+        let first = chunk * CHUNK;
+        let range = first..first + out.len();
+        for ((v, binding), &rest) in out.iter_mut().zip(&vertices[range.clone()]).zip(&rest[range.clone()]) {
+            *v = if binding.sweep == UNOWNED {
+                rest
+            } else {
+                deform_vertex(&posed[binding.sweep as usize], &binding.params)
+            };
+        }
+        let start = bands.partition_point(|band| (band.vertex as usize) < range.start);
+        let end = bands.partition_point(|band| (band.vertex as usize) < range.end);
+        for band in &bands[start..end] {
+            let vertex = band.vertex as usize;
+            out[vertex - first] =
+                blend::band_position(rest_sweeps, posed, &vertices[vertex], band.weight, &band.second, rest[vertex]);
+        }
+    });
 }

@@ -11,7 +11,7 @@ use serde::{Deserialize, Serialize};
 
 use super::EditError;
 use super::hierarchy::propagate_down;
-use crate::bind::Binding;
+use crate::bind::MeshBindings;
 use crate::deform::deform_vertices;
 use crate::mesh::Mesh;
 use crate::rig::Rig;
@@ -49,7 +49,7 @@ pub struct BoundMesh<'a> {
     /// The mesh at rest.
     pub mesh: &'a Mesh,
     /// Its vertices' bindings to the rig.
-    pub bindings: &'a [Binding],
+    pub bindings: &'a MeshBindings,
 }
 
 impl BoundMesh<'_> {
@@ -57,7 +57,7 @@ impl BoundMesh<'_> {
     pub fn volume(&self, rig: &Rig, keys: &[Vec<Key>]) -> Result<f64, EditError> {
         let posed = rig.pose(keys).map_err(|e| EditError::Invalid(e.to_string()))?;
         let mut positions = vec![DVec3::ZERO; self.mesh.positions.len()];
-        deform_vertices(&posed, self.bindings, &self.mesh.positions, &mut positions);
+        deform_vertices(rig.rest(), &posed, self.bindings, &self.mesh.positions, &mut positions);
         Ok(self.mesh.enclosed_volume(&positions))
     }
 }

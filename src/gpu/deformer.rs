@@ -5,6 +5,7 @@ use std::ops::Range;
 
 use glam::DVec3;
 
+use super::bands::{BandPlan, BandSource, BandStage};
 use super::binder::Binder;
 use super::buffers::{
     BINDING_STRIDE, POSITION_STRIDE, binding_buffer_with, cells_buffer, check_fits, empty_binding_buffer,
@@ -15,7 +16,8 @@ use super::kernels::{self, DeformVariant, Kernel};
 use super::normals_pass::NormalsStage;
 use super::readback::{read_bytes, wait};
 use super::{GpuContext, GpuError};
-use crate::coeffs::{DispatchParams, GpuBinding, SweepCoefficients, UNBOUND};
+use crate::bind::falloff::BandWeight;
+use crate::coeffs::{BAND_FLAG, BandRecord, DispatchParams, GpuBinding, SweepCoefficients, UNBOUND};
 use crate::mesh::Faces;
 use crate::sweep::Sweep;
 
@@ -26,10 +28,14 @@ const STORAGE_BUFFERS_NEEDED: u32 = 6;
 #[derive(Clone, Copy, Debug)]
 pub enum BindingSource<'a> {
     /// Bind on the GPU: `owners[i]` is the index of the sweep owning vertex i, or
-    /// [`UNBOUND`](crate::coeffs::UNBOUND).
-    Bind { owners: &'a [u32] },
-    /// Bindings computed before (by the CPU twin, or read back from another deformer).
-    Precomputed(&'a [GpuBinding]),
+    /// [`UNBOUND`](crate::coeffs::UNBOUND); `bands` are the falloff weights
+    /// ([`crate::bind::falloff::band_weights`], empty without falloff), sorted by vertex. Band
+    /// vertices that fade into a neighbouring sweep are bound to it on the GPU too.
+    Bind { owners: &'a [u32], bands: &'a [BandWeight] },
+    /// Bindings computed before (by the CPU twin, read back from another deformer, or converted
+    /// by [`SweepCoefficients::gpu_mesh_bindings`]), with the band records, vertices global and
+    /// sorted. The deformer sets [`BAND_FLAG`] on the bindings of band vertices.
+    Precomputed { bindings: &'a [GpuBinding], bands: &'a [BandRecord] },
 }
 
 /// Deforms one mesh on the GPU by poses of one rig.
@@ -75,6 +81,7 @@ pub struct GpuDeformer {
     cells: wgpu::Buffer,
     coefficients: SweepCoefficients,
     chunks: Vec<DeformChunk>,
+    bands: Option<BandStage>,
     normals: Option<NormalsStage>,
 }
 
@@ -149,26 +156,57 @@ impl GpuDeformer {
             device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd bind") });
         let binder = match bindings {
             BindingSource::Bind { .. } => Some(Binder::new(context, rest, &coefficients, &cells)),
-            BindingSource::Precomputed(_) => None,
+            BindingSource::Precomputed { .. } => None,
         };
-        let chunks = uniform_chunks(vertex_count, BINDING_STRIDE, &limits)
+        let band_vertices: Vec<u32> = match bindings {
+            BindingSource::Bind { bands, .. } => bands.iter().map(|b| b.vertex).collect(),
+            BindingSource::Precomputed { bands, .. } => bands.iter().map(|b| b.vertex).collect(),
+        };
+        let chunks: Vec<DeformChunk> = uniform_chunks(vertex_count, BINDING_STRIDE, &limits)
             .into_iter()
             .map(|range| {
+                let (start, end) = (range.start as usize, range.end as usize);
+                let first_band = band_vertices.partition_point(|&v| (v as usize) < start);
+                let last_band = band_vertices.partition_point(|&v| (v as usize) < end);
+                let in_band = &band_vertices[first_band..last_band];
                 let bindings_buffer = match bindings {
-                    BindingSource::Bind { owners } => {
+                    BindingSource::Bind { owners, .. } => {
                         let buffer = empty_binding_buffer(device, range.len());
-                        let owners = &owners[range.start as usize..range.end as usize];
+                        let mut owners = owners[start..end].to_vec();
+                        for &v in in_band {
+                            owners[v as usize - start] |= BAND_FLAG;
+                        }
                         let binder = binder.as_ref().expect("made for BindingSource::Bind");
-                        binder.encode(&mut encoder, &range, owners, &positions_buffer, &buffer, &limits, None);
+                        binder.encode(&mut encoder, &range, &owners, &positions_buffer, &buffer, &limits, None);
                         buffer
                     }
-                    BindingSource::Precomputed(all) => {
-                        binding_buffer_with(device, &all[range.start as usize..range.end as usize])
+                    BindingSource::Precomputed { bindings: all, .. } => {
+                        let mut chunk = all[start..end].to_vec();
+                        for &v in in_band {
+                            chunk[v as usize - start].cell |= BAND_FLAG;
+                        }
+                        binding_buffer_with(device, &chunk)
                     }
                 };
                 DeformChunk::new(device, &kernel, range, bindings_buffer, &cells, &positions_buffer, &limits)
             })
             .collect();
+        let bands = (!band_vertices.is_empty()).then(|| {
+            let source = match bindings {
+                BindingSource::Bind { bands, .. } => BandSource::Bind { weights: bands, positions },
+                BindingSource::Precomputed { bands, .. } => BandSource::Records(bands),
+            };
+            let plan = BandPlan {
+                variant,
+                rest_cells: cells_buffer(device, &coefficients, variant),
+                cells: &cells,
+                positions: &positions_buffer,
+                limits: &limits,
+            };
+            let windows: Vec<(Range<u32>, &wgpu::Buffer)> =
+                chunks.iter().map(|chunk| (chunk.range.clone(), &chunk.bindings)).collect();
+            BandStage::new(device, plan, &windows, source, binder.as_ref(), &mut encoder)
+        });
         let normals = match faces {
             Some(faces) => Some(NormalsStage::new(device, faces, &positions_buffer, vertex_count, &limits)?),
             None => None,
@@ -182,6 +220,7 @@ impl GpuDeformer {
             cells,
             coefficients,
             chunks,
+            bands,
             normals,
         };
         // Normals of the rest mesh, so the buffer is meaningful before the first pose.
@@ -233,7 +272,8 @@ impl GpuDeformer {
         self.encode_normals_pass(encoder, None);
     }
 
-    /// Records the deform pass alone, optionally writing timestamps around it.
+    /// Records the deform pass alone (the deform kernel, then the band kernel for the vertices in
+    /// falloff bands), optionally writing timestamps around it.
     pub fn encode_deform_pass(
         &self,
         encoder: &mut wgpu::CommandEncoder,
@@ -247,6 +287,9 @@ impl GpuDeformer {
         for chunk in &self.chunks {
             pass.set_bind_group(0, &chunk.group, &[]);
             pass.dispatch_workgroups(chunk.grid.0, chunk.grid.1, 1);
+        }
+        if let Some(bands) = &self.bands {
+            bands.encode(&mut pass);
         }
     }
 
@@ -295,7 +338,25 @@ impl GpuDeformer {
         Ok(Some(bytemuck::pod_collect_to_vec(&bytes)))
     }
 
-    /// Copies the bindings back to the CPU (blocking), one per vertex.
+    /// Copies the band records back to the CPU (blocking), vertices global; empty without
+    /// falloff bands.
+    pub fn read_band_records(&self) -> Result<Vec<BandRecord>, GpuError> {
+        self.bands.as_ref().map_or(Ok(Vec::new()), |bands| bands.read_records(&self.context))
+    }
+
+    /// Number of vertices in falloff bands (moved by the band kernel).
+    pub fn band_vertex_count(&self) -> usize {
+        self.bands.as_ref().map_or(0, BandStage::len)
+    }
+
+    /// Device memory for bindings, positions and the falloff bands, bytes (normals excluded).
+    pub fn device_bytes(&self) -> u64 {
+        let per_vertex = self.vertex_count as u64 * (BINDING_STRIDE + POSITION_STRIDE);
+        per_vertex + self.bands.as_ref().map_or(0, BandStage::device_bytes)
+    }
+
+    /// Copies the bindings back to the CPU (blocking), one per vertex; band vertices carry
+    /// [`BAND_FLAG`] in their cell.
     pub fn read_bindings(&self) -> Result<Vec<GpuBinding>, GpuError> {
         let mut bindings = Vec::with_capacity(self.vertex_count as usize);
         for chunk in &self.chunks {
@@ -337,7 +398,7 @@ fn check_input(rest: &[Sweep], positions: &[DVec3], bindings: &BindingSource) ->
         return Err(GpuError::Input(format!("vertex {i} has a non-finite position")));
     }
     match bindings {
-        BindingSource::Bind { owners } => {
+        BindingSource::Bind { owners, bands } => {
             if owners.len() != positions.len() {
                 return Err(GpuError::Input(format!("{} owners for {} vertices", owners.len(), positions.len())));
             }
@@ -348,17 +409,40 @@ fn check_input(rest: &[Sweep], positions: &[DVec3], bindings: &BindingSource) ->
                     rest.len()
                 )));
             }
+            let ordered = bands.windows(2).all(|pair| pair[0].vertex < pair[1].vertex);
+            let valid = |b: &BandWeight| {
+                (b.vertex as usize) < owners.len()
+                    && owners[b.vertex as usize] != UNBOUND
+                    && b.weight.is_finite()
+                    && (0.0..1.0).contains(&b.weight)
+                    && (b.neighbour == UNBOUND || (b.neighbour as usize) < rest.len())
+            };
+            if !ordered || !bands.iter().all(valid) {
+                return Err(GpuError::Input("the falloff bands are not sorted, owned and in range".into()));
+            }
         }
-        BindingSource::Precomputed(bindings) => {
+        BindingSource::Precomputed { bindings, bands } => {
             if bindings.len() != positions.len() {
                 return Err(GpuError::Input(format!("{} bindings for {} vertices", bindings.len(), positions.len())));
             }
             let cells: usize = rest.iter().map(|s| s.segments().len() * s.radius_samples()).sum();
-            if let Some(i) = bindings.iter().position(|b| b.cell != UNBOUND && b.cell as usize >= cells) {
+            if let Some(i) = bindings.iter().position(|b| b.cell != UNBOUND && (b.cell & !BAND_FLAG) as usize >= cells)
+            {
                 return Err(GpuError::Input(format!(
                     "binding {i} refers to radius cell {} of {cells}",
                     bindings[i].cell
                 )));
+            }
+            let ordered = bands.windows(2).all(|pair| pair[0].vertex < pair[1].vertex);
+            let valid = |b: &BandRecord| {
+                (b.vertex as usize) < bindings.len()
+                    && bindings[b.vertex as usize].cell != UNBOUND
+                    && b.weight.is_finite()
+                    && (0.0..1.0).contains(&b.weight)
+                    && (b.cell == UNBOUND || (b.cell as usize) < cells)
+            };
+            if !ordered || !bands.iter().all(valid) {
+                return Err(GpuError::Input("the band records are not sorted, bound and in range".into()));
             }
         }
     }

@@ -129,6 +129,21 @@ pub fn deform(device: &wgpu::Device, variant: DeformVariant) -> Kernel {
     Kernel::new(device, "sweepffd deform", source, "deform_main", &[Uniform, cells, Read, ReadWrite])
 }
 
+/// `shaders/band.wgsl`: params, cells (uniform or storage), bindings (read), positions
+/// (written), rest cells (uniform or storage), band records (read).
+pub fn band(device: &wgpu::Device, variant: DeformVariant) -> Kernel {
+    let (source, cells) = match variant {
+        DeformVariant::Uniform => (shaders::BAND_UNIFORM, Uniform),
+        DeformVariant::Storage => (shaders::BAND_STORAGE, Read),
+    };
+    Kernel::new(device, "sweepffd band", source, "band_main", &[Uniform, cells, Read, ReadWrite, cells, Read])
+}
+
+/// `shaders/band_pack.wgsl`: params, second bindings (read); band records (written).
+pub fn band_pack(device: &wgpu::Device) -> Kernel {
+    Kernel::new(device, "sweepffd band pack", shaders::BAND_PACK, "band_pack_main", &[Uniform, Read, ReadWrite])
+}
+
 /// `shaders/normals.wgsl`: params, positions (two windows), offsets, fans (read); normals
 /// (written). `two_windows` when the positions do not fit one storage binding.
 pub fn normals(device: &wgpu::Device, two_windows: bool) -> Kernel {

@@ -7,6 +7,7 @@
 //! The kernels in `shaders/` have CPU twins in [`crate::cpu`]; tests prove the GPU agrees with
 //! them (and with the f64 reference) on lavapipe.
 
+mod bands;
 pub(crate) mod binder;
 pub(crate) mod buffers;
 mod chunks;
@@ -18,6 +19,7 @@ mod normals_pass;
 mod readback;
 pub mod shaders;
 
+pub use bands::BAND_STRIDE;
 pub use buffers::{BINDING_STRIDE, POSITION_STRIDE};
 pub use chunks::{ChunkLimits, dispatch_grid, normal_chunks, uniform_chunks};
 pub use context::GpuContext;

@@ -10,6 +10,16 @@ pub const DEFORM_UNIFORM: &str = include_str!(concat!(env!("OUT_DIR"), "/deform_
 /// Eq. 2 for every bound vertex, cell records in a storage buffer: `shaders/deform.wgsl` after
 /// `shaders/cells_storage.wgsl`, entry point `deform_main`.
 pub const DEFORM_STORAGE: &str = include_str!(concat!(env!("OUT_DIR"), "/deform_storage.wgsl"));
+/// Falloff bands, cell records in uniform buffers: `shaders/band.wgsl` after
+/// `shaders/cells_uniform.wgsl`, `shaders/rest_cells_uniform.wgsl` and `shaders/blend.wgsl`, entry
+/// point `band_main`.
+pub const BAND_UNIFORM: &str = include_str!(concat!(env!("OUT_DIR"), "/band_uniform.wgsl"));
+/// Falloff bands, cell records in storage buffers: `shaders/band.wgsl` after
+/// `shaders/cells_storage.wgsl`, `shaders/rest_cells_storage.wgsl` and `shaders/blend.wgsl`, entry
+/// point `band_main`.
+pub const BAND_STORAGE: &str = include_str!(concat!(env!("OUT_DIR"), "/band_storage.wgsl"));
+/// The band records' second influences from bindings: `shaders/band_pack.wgsl`, `band_pack_main`.
+pub const BAND_PACK: &str = include_str!(concat!(env!("OUT_DIR"), "/band_pack.wgsl"));
 /// Area-weighted vertex normals when the positions fit one storage binding:
 /// `shaders/normals.wgsl` with `shaders/positions_one_window.wgsl`, entry point `normals_main`.
 pub const NORMALS_ONE_WINDOW: &str = include_str!(concat!(env!("OUT_DIR"), "/normals_one_window.wgsl"));
@@ -23,10 +33,13 @@ pub const COPY: &str = include_str!(concat!(env!("OUT_DIR"), "/copy.wgsl"));
 pub const SKINNING: &str = include_str!(concat!(env!("OUT_DIR"), "/skinning.wgsl"));
 
 /// Every kernel as (name, composed source, entry point).
-pub const ALL: [(&str, &str, &str); 7] = [
+pub const ALL: [(&str, &str, &str); 10] = [
     ("bind", BIND, "bind_main"),
     ("deform_uniform", DEFORM_UNIFORM, "deform_main"),
     ("deform_storage", DEFORM_STORAGE, "deform_main"),
+    ("band_uniform", BAND_UNIFORM, "band_main"),
+    ("band_storage", BAND_STORAGE, "band_main"),
+    ("band_pack", BAND_PACK, "band_pack_main"),
     ("normals_one_window", NORMALS_ONE_WINDOW, "normals_main"),
     ("normals_two_windows", NORMALS_TWO_WINDOWS, "normals_main"),
     ("copy", COPY, "copy_main"),

@@ -7,6 +7,7 @@
 //! and radius counts); posed sweeps reuse the rest knots, so a vertex bound between keys i and
 //! i+1 stays between them.
 
+mod binding;
 mod document;
 mod error;
 mod links;

@@ -7,8 +7,9 @@ use crate::mesh::Mesh;
 impl Rig {
     /// The owning sweep of every vertex of `mesh` (an index into [`Rig::sweeps`], or
     /// [`UNOWNED`]). `mesh_name` names the mesh in errors: an unknown group, an index out of
-    /// range, or a vertex claimed by two sweeps.
+    /// range, a vertex claimed by two sweeps, or a falloff wider than the mesh.
     pub fn owners(&self, mesh: &Mesh, mesh_name: &str) -> Result<Vec<u32>, RigError> {
+        self.check_falloffs_fit(mesh, mesh_name)?;
         let fail = |kind| RigError::new(self.file.clone(), kind);
         let count = mesh.positions.len();
         let mut owners = vec![UNOWNED; count];

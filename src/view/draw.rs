@@ -44,7 +44,8 @@ impl MeshDraw {
         let device = &context.device;
         let source = match rig {
             Some((rig, owners)) => {
-                let bindings = BindingSource::Bind { owners };
+                let bands = rig.band_weights(mesh, owners);
+                let bindings = BindingSource::Bind { owners, bands: &bands };
                 let deformer = GpuDeformer::new(context, rig.rest(), &mesh.positions, bindings, Some(&mesh.faces))
                     .map_err(|e| ViewError::Gpu(e.to_string()))?;
                 MeshSource::Deformed(Box::new(deformer))

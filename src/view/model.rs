@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::bind::{Binding, bind_vertices};
+use crate::bind::MeshBindings;
 use crate::edit::{BoundMesh, Edit, EditError, VolumeRule};
 use crate::mesh::{Mesh, Subdivision};
 use crate::rig::{FORMAT, Rig, RigDocument, VERSION, VertexSelection};
@@ -33,7 +33,7 @@ pub struct Model {
     /// How edits are made.
     pub settings: Settings,
     /// Every vertex's binding, made when the mesh volume rule first needs it.
-    bindings: Option<Vec<Binding>>,
+    bindings: Option<MeshBindings>,
 }
 
 impl Model {
@@ -140,8 +140,7 @@ impl Model {
         };
         let bound = match settings.volume {
             VolumeRule::Mesh => {
-                let bindings =
-                    bindings.get_or_insert_with(|| bind_vertices(rig.rest(), owners, &mesh.positions, &|_| {}));
+                let bindings = bindings.get_or_insert_with(|| rig.bind_mesh(mesh, owners, &|_| {}));
                 Some(BoundMesh { mesh, bindings })
             }
             _ => None,

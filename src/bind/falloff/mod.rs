@@ -23,3 +23,65 @@ impl BandWeight {
         self.neighbour == UNOWNED
     }
 }
+
+// PLACEHOLDER until the geodesic version lands: Dijkstra over edges, rest labels only.
+pub fn band_weights(
+    faces: &crate::mesh::Faces,
+    positions: &[glam::DVec3],
+    owners: &[u32],
+    falloff: &[f64],
+) -> Vec<BandWeight> {
+    use std::collections::BinaryHeap;
+    let n = positions.len();
+    let mut adj: Vec<Vec<u32>> = vec![Vec::new(); n];
+    for [a, b, c] in faces.triangles() {
+        for (x, y) in [(a, b), (b, c), (c, a)] {
+            adj[x as usize].push(y);
+            adj[y as usize].push(x);
+        }
+    }
+    let mut dist = vec![f64::INFINITY; n];
+    let mut label = vec![UNOWNED; n];
+    let mut heap = BinaryHeap::new();
+    for v in 0..n {
+        let o = owners[v];
+        if o == UNOWNED || falloff[o as usize] <= 0.0 {
+            continue;
+        }
+        if let Some(&u) = adj[v].iter().find(|&&u| owners[u as usize] != o) {
+            dist[v] = 0.0;
+            label[v] = owners[u as usize];
+            heap.push((std::cmp::Reverse(0u64), v));
+        }
+    }
+    while let Some((std::cmp::Reverse(dbits), v)) = heap.pop() {
+        let d = f64::from_bits(dbits);
+        if d > dist[v] {
+            continue;
+        }
+        let o = owners[v];
+        for &u in &adj[v] {
+            let u = u as usize;
+            if owners[u] != o {
+                continue;
+            }
+            let nd = d + positions[v].distance(positions[u]);
+            if nd < dist[u] && nd < falloff[o as usize] {
+                dist[u] = nd;
+                label[u] = label[v];
+                heap.push((std::cmp::Reverse(nd.to_bits()), u));
+            }
+        }
+    }
+    (0..n)
+        .filter(|&v| dist[v].is_finite())
+        .map(|v| {
+            let x = dist[v] / falloff[owners[v] as usize];
+            let s = x * x * (3.0 - 2.0 * x);
+            let neighbour = label[v];
+            let seam = neighbour != UNOWNED && falloff[neighbour as usize] > 0.0;
+            BandWeight { vertex: v as u32, weight: if seam { 0.5 + 0.5 * s } else { s }, neighbour }
+        })
+        .filter(|b| b.weight < 1.0)
+        .collect()
+}
