@@ -34,18 +34,20 @@ fn band_main(
     let binding = bindings[band.vertex];
     let cell = binding.cell & ~BAND_FLAG;
     let rest = rest_cells[cell];
-    let local = vec3<f32>((radius_at(rest, binding.s, binding.phi) + binding.d) * direction_at(rest, binding.phi), binding.h);
+    let frame = rest_frame(rest, binding.s, binding.phi);
+    let local = (frame.radius + binding.d) * frame.direction + vec3<f32>(0.0, 0.0, binding.h);
     let rest_center = curve_at(rest, binding.s);
-    let rest_offset = rotate(quat_at(rest, binding.s), local);
-    let own = sweep_influence(cells[cell], rest, binding.s, binding.phi, rest_offset);
+    let rest_offset = rotate(frame.turn, local);
+    let own = sweep_influence(cells[cell], frame, binding.s, binding.phi, rest_offset);
     var second = Influence(rest_center, vec4<f32>(0.0, 0.0, 0.0, 1.0), rest_offset);
-    if (band.cell != UNBOUND) {
+    let second_is_rest = band.cell == UNBOUND;
+    if (!second_is_rest) {
         let at = unpack_s_phi(band.s_phi);
         let other = rest_cells[band.cell];
         let offset = rest_center + rest_offset - curve_at(other, at.x);
-        second = sweep_influence(cells[band.cell], other, at.x, at.y, offset);
+        second = sweep_influence(cells[band.cell], rest_frame(other, at.x, at.y), at.x, at.y, offset);
     }
-    let p = blend(second, own, band.weight);
+    let p = blend(second, own, band.weight, second_is_rest);
     positions[3u * band.vertex] = p.x;
     positions[3u * band.vertex + 1u] = p.y;
     positions[3u * band.vertex + 2u] = p.z;

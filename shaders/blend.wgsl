@@ -39,23 +39,42 @@ fn quat_power(q_in: vec4<f32>, w: f32) -> vec4<f32> {
     return vec4<f32>(q.xyz * (sin_wb / len), cos_wb);
 }
 
-// A sweep's influence on a vertex at local (s, phi) of a cell, whose offset from the rest center
-// C(s) is `offset`: the posed center, the turn R'(t) R(t)^-1 and the offset grown by the change of
-// radius along the vertex's ray, so that the influence alone gives Eq. 2 (+h).
-fn sweep_influence(posed: CellCoeffs, rest: CellCoeffs, s: f32, phi: f32, offset: vec3<f32>) -> Influence {
-    let rest_turn = normalize(quat_at(rest, s));
-    let radial = rotate(rest_turn, vec3<f32>(direction_at(rest, phi), 0.0));
-    let growth = radius_at(posed, s, phi) - radius_at(rest, s, phi);
-    let turn = quat_mul(normalize(quat_at(posed, s)), quat_conjugate(rest_turn));
+// Where a vertex sits in a rest cell: the cell's unnormalized rest quaternion at s, the vertex's
+// ray direction (cos, sin, 0) in the cell's middle frame, and the rest radius r(theta, t).
+struct RestFrame {
+    turn: vec4<f32>,
+    direction: vec3<f32>,
+    radius: f32,
+}
+
+fn rest_frame(rest: CellCoeffs, s: f32, phi: f32) -> RestFrame {
+    return RestFrame(quat_at(rest, s), vec3<f32>(direction_at(rest, phi), 0.0), radius_at(rest, s, phi));
+}
+
+// A sweep's influence on a vertex at local (s, phi) of a cell (its rest frame `frame`), whose
+// offset from the rest center C(s) is `offset`: the posed center, the unit turn R'(t) R(t)^-1 and
+// the offset grown by the change of radius along the vertex's ray, so that the influence alone
+// gives Eq. 2 (+h).
+fn sweep_influence(posed: CellCoeffs, frame: RestFrame, s: f32, phi: f32, offset: vec3<f32>) -> Influence {
+    let radial = rotate(frame.turn, frame.direction);
+    let growth = radius_at(posed, s, phi) - frame.radius;
+    let posed_turn = quat_at(posed, s);
+    let scale = inverseSqrt(dot(posed_turn, posed_turn) * dot(frame.turn, frame.turn));
+    let turn = quat_mul(posed_turn, quat_conjugate(frame.turn)) * scale;
     return Influence(curve_at(posed, s), turn, offset + growth * radial);
 }
 
 // The blended position with weight w on `own` and 1 - w on `second`: centers and offsets mixed
-// linearly, turns by slerp along the shorter arc.
-fn blend(second: Influence, own: Influence, w: f32) -> vec3<f32> {
+// linearly, turns by slerp along the shorter arc. `second_is_rest`: the second turn is the
+// identity, and slerp(1, Q, w) = Q^w.
+fn blend(second: Influence, own: Influence, w: f32, second_is_rest: bool) -> vec3<f32> {
     let center = second.center * (1.0 - w) + own.center * w;
     let offset = second.offset * (1.0 - w) + own.offset * w;
-    let relative = quat_mul(quat_conjugate(second.turn), own.turn);
-    let turn = quat_mul(second.turn, quat_power(relative, w));
+    var turn: vec4<f32>;
+    if (second_is_rest) {
+        turn = quat_power(own.turn, w);
+    } else {
+        turn = quat_mul(second.turn, quat_power(quat_mul(quat_conjugate(second.turn), own.turn), w));
+    }
     return center + rotate(turn, offset);
 }

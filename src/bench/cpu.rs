@@ -18,6 +18,7 @@ const WARMUP: usize = 1;
 pub struct CpuBench {
     scene: BenchScene,
     bindings: MeshBindings,
+    falloff_bindings: Option<MeshBindings>,
     twin_bindings: Vec<GpuBinding>,
     rest_f32: Vec<f32>,
 }
@@ -29,7 +30,8 @@ impl CpuBench {
         let rest = scene.rig.rest();
         let rest_f32 = cpu::packed(&scene.mesh.positions);
         let twin_bindings = cpu::bind::bind_to(rest, &scene.owners, &rest_f32);
-        CpuBench { scene, bindings, twin_bindings, rest_f32 }
+        let falloff_bindings = scene.with_falloff.as_ref().map(|s| s.rig.bind_mesh(&s.mesh, &s.owners, &|_| {}));
+        CpuBench { scene, bindings, falloff_bindings, twin_bindings, rest_f32 }
     }
 
     /// Every figure of the report, each the median of `runs` runs after warm-up.
@@ -53,6 +55,12 @@ impl CpuBench {
                 deform: time(&mut || {
                     deform_vertices(scene.rig.rest(), &scene.posed, &self.bindings, &scene.mesh.positions, &mut out)
                 }),
+                falloff: match (&scene.with_falloff, &self.falloff_bindings) {
+                    (Some(split), Some(bindings)) => time(&mut || {
+                        deform_vertices(split.rig.rest(), &split.posed, bindings, &split.mesh.positions, &mut out)
+                    }),
+                    _ => 0.0,
+                },
                 copy: time(&mut || cpu::copy::copy(&self.twin_bindings, &mut out_f32)),
                 lbs: time(&mut || cpu::skinning::skinning(&joints, &self.rest_f32, &influences, &mut out_f32)),
                 frame: time(&mut || {
@@ -83,6 +91,10 @@ impl CpuBench {
             normals_ms: 0.0,
             readback_ms: None,
             device_bytes_per_vertex: None,
+            falloff_band_fraction: self.falloff_bindings.as_ref().map(|b| b.bands.len() as f64 / n_f),
+            falloff_deform_verts_per_s: self.falloff_bindings.as_ref().map(|_| n_f / column(|r| r.falloff)),
+            falloff_over_plain: self.falloff_bindings.as_ref().map(|_| column(|r| r.falloff / r.deform)),
+            falloff_device_bytes_per_vertex: None,
             runs,
             timestamps: false,
         }

@@ -7,12 +7,11 @@ use wgpu::util::DeviceExt;
 
 use super::skinning::{skinning_influences, skinning_joints};
 use super::{BenchReport, BenchScene, GpuTimer, Round, best_of, median, median_of};
-use crate::coeffs::{DispatchParams, SweepCoefficients};
+use crate::coeffs::{BAND_FLAG, DispatchParams, SweepCoefficients};
 use crate::gpu::binder::Binder;
 use crate::gpu::buffers::{params_buffer, window};
 use crate::gpu::{
-    BINDING_STRIDE, BindingSource, GpuContext, GpuDeformer, GpuError, POSITION_STRIDE, dispatch_grid, kernels,
-    uniform_chunks, wait,
+    BindingSource, GpuContext, GpuDeformer, GpuError, POSITION_STRIDE, dispatch_grid, kernels, uniform_chunks, wait,
 };
 
 /// Runs before the timed ones.
@@ -29,6 +28,10 @@ pub struct GpuBench {
     context: GpuContext,
     scene: BenchScene,
     deformer: GpuDeformer,
+    /// The owners as the bind kernel takes them, with BAND_FLAG on band vertices.
+    flagged_owners: Vec<u32>,
+    /// The falloff comparison's deformer, posed once.
+    falloff: Option<GpuDeformer>,
     binder: Binder,
     copy: Dispatches,
     skinning: Dispatches,
@@ -40,13 +43,23 @@ impl GpuBench {
     pub fn new(context: &GpuContext, scene: BenchScene) -> Result<GpuBench, GpuError> {
         let device = &context.device;
         let rest = scene.rig.rest();
-        let deformer = GpuDeformer::new(
-            context,
-            rest,
-            &scene.mesh.positions,
-            BindingSource::Bind { owners: &scene.owners, bands: &scene.rig.band_weights(&scene.mesh, &scene.owners) },
-            Some(&scene.mesh.faces),
-        )?;
+        let bands = scene.rig.band_weights(&scene.mesh, &scene.owners);
+        let source = BindingSource::Bind { owners: &scene.owners, bands: &bands };
+        let deformer = GpuDeformer::new(context, rest, &scene.mesh.positions, source, Some(&scene.mesh.faces))?;
+        let mut flagged_owners = scene.owners.clone();
+        for band in &bands {
+            flagged_owners[band.vertex as usize] |= BAND_FLAG;
+        }
+        let falloff = match &scene.with_falloff {
+            Some(split) => {
+                let bands = split.rig.band_weights(&split.mesh, &split.owners);
+                let source = BindingSource::Bind { owners: &split.owners, bands: &bands };
+                let mut deformer = GpuDeformer::new(context, split.rig.rest(), &split.mesh.positions, source, None)?;
+                deformer.set_pose(&split.posed)?;
+                Some(deformer)
+            }
+            None => None,
+        };
         let binder = Binder::new(context, rest, &SweepCoefficients::new(rest), deformer.cells());
         let n = deformer.vertex_count();
         let scratch = device.create_buffer(&wgpu::BufferDescriptor {
@@ -114,6 +127,8 @@ impl GpuBench {
             context: context.clone(),
             scene,
             deformer,
+            flagged_owners,
+            falloff,
             binder,
             copy: (copy_kernel, copy_dispatches),
             skinning: (skinning_kernel, skinning_dispatches),
@@ -135,7 +150,7 @@ impl GpuBench {
         self.time(|encoder, timer| {
             let last = chunks.len() - 1;
             for (c, (range, bindings)) in chunks.iter().enumerate() {
-                let owners = &self.scene.owners[range.start as usize..range.end as usize];
+                let owners = &self.flagged_owners[range.start as usize..range.end as usize];
                 let writes = timer.and_then(|t| t.writes(c == 0, c == last));
                 self.binder.encode(encoder, range, owners, self.deformer.positions(), bindings, &limits, writes);
             }
@@ -146,6 +161,12 @@ impl GpuBench {
     pub fn time_deform(&mut self) -> Result<f64, GpuError> {
         self.deformer.set_pose(&self.scene.posed)?;
         self.time(|encoder, timer| self.deformer.encode_deform_pass(encoder, timer.and_then(|t| t.writes(true, true))))
+    }
+
+    /// Seconds of the deform pass of the falloff comparison (zero without one).
+    pub fn time_falloff_deform(&self) -> Result<f64, GpuError> {
+        let Some(deformer) = &self.falloff else { return Ok(0.0) };
+        self.time(|encoder, timer| deformer.encode_deform_pass(encoder, timer.and_then(|t| t.writes(true, true))))
     }
 
     /// Seconds of the copy baseline.
@@ -196,6 +217,7 @@ impl GpuBench {
         for round in 0..WARMUP + runs {
             let times = Round {
                 deform: best_of(BEST_OF, || self.time_deform())?,
+                falloff: best_of(BEST_OF, || self.time_falloff_deform())?,
                 copy: best_of(BEST_OF, || self.time_copy())?,
                 lbs: best_of(BEST_OF, || self.time_skinning())?,
                 frame: best_of(BEST_OF, || self.time_frame())?,
@@ -206,10 +228,9 @@ impl GpuBench {
             }
         }
         let readback = median_of(1, runs, || self.time_readback())?;
-        let binding_bytes: u64 =
-            self.deformer.binding_chunks().map(|(range, _)| range.len() as u64 * BINDING_STRIDE).sum();
-        let device_bytes = binding_bytes + self.deformer.positions().size();
+        let device_bytes = self.deformer.device_bytes();
         let column = |f: fn(&Round) -> f64| median(&mut rounds.iter().map(f).collect::<Vec<_>>());
+        let falloff = self.falloff.as_ref();
         Ok(BenchReport {
             backend: "gpu",
             adapter: format!("{} ({:?})", self.context.info.name, self.context.info.backend),
@@ -224,6 +245,10 @@ impl GpuBench {
             normals_ms: column(|r| r.normals) * 1e3,
             readback_ms: Some(readback * 1e3),
             device_bytes_per_vertex: Some(device_bytes as f64 / n),
+            falloff_band_fraction: falloff.map(|d| d.band_vertex_count() as f64 / d.vertex_count() as f64),
+            falloff_deform_verts_per_s: falloff.map(|_| n / column(|r| r.falloff)),
+            falloff_over_plain: falloff.map(|_| column(|r| r.falloff / r.deform)),
+            falloff_device_bytes_per_vertex: falloff.map(|d| d.device_bytes() as f64 / d.vertex_count() as f64),
             runs,
             timestamps: self.timer.is_some(),
         })

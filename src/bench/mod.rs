@@ -16,7 +16,7 @@ use serde::Serialize;
 
 pub use cpu::CpuBench;
 pub use gpu::GpuBench;
-pub use scene::BenchScene;
+pub use scene::{BAND_FRACTION, BenchScene};
 pub use skinning::{skinning_influences, skinning_joints};
 pub use timer::GpuTimer;
 
@@ -51,6 +51,15 @@ pub struct BenchReport {
     pub readback_ms: Option<f64>,
     /// Device memory for bindings and positions, bytes per vertex (`null` on the CPU).
     pub device_bytes_per_vertex: Option<f64>,
+    /// Share of the vertices in falloff bands in the falloff comparison (`null` without one:
+    /// a mesh and rig of the user's).
+    pub falloff_band_fraction: Option<f64>,
+    /// Vertices per second of the deform pass (deform and band kernels) with those bands.
+    pub falloff_deform_verts_per_s: Option<f64>,
+    /// Deform time with the bands over deform time without, same round.
+    pub falloff_over_plain: Option<f64>,
+    /// Device memory for bindings, positions and bands, bytes per vertex, with the bands.
+    pub falloff_device_bytes_per_vertex: Option<f64>,
     /// Runs each median is taken over.
     pub runs: usize,
     /// Whether GPU times come from timestamp queries.
@@ -61,6 +70,7 @@ pub struct BenchReport {
 #[derive(Clone, Copy, Debug)]
 struct Round {
     deform: f64,
+    falloff: f64,
     copy: f64,
     lbs: f64,
     frame: f64,

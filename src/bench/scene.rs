@@ -3,7 +3,7 @@
 use crate::mesh::Mesh;
 use crate::rig::Rig;
 use crate::sweep::{Key, Sweep};
-use crate::synthetic::{BendTwistTaper, Tube, tube_rig};
+use crate::synthetic::{BendTwistTaper, Tube, split_tube_rig, tube_rig};
 
 /// The pose every bench applies: a bend, a twist and a taper of every sweep.
 pub const BENCH_POSE: BendTwistTaper = BendTwistTaper { bend: 1.2, twist: 1.7, taper: 0.6 };
@@ -21,13 +21,27 @@ pub struct BenchScene {
     pub keys: Vec<Vec<Key>>,
     /// The posed sweeps of those keys.
     pub posed: Vec<Sweep>,
+    /// The same mesh with falloff bands over [`BAND_FRACTION`] of it, deformed in the same run
+    /// for the cost of the bands; only for the synthetic tube.
+    pub with_falloff: Option<Box<BenchScene>>,
 }
+
+/// The share of the tube's vertices in falloff bands in the falloff comparison.
+pub const BAND_FRACTION: f64 = 0.25;
 
 impl BenchScene {
     /// A closed tube of about `vertices` vertices bound to one straight 8-key sweep.
     pub fn tube(vertices: usize) -> BenchScene {
         let tube = Tube::with_vertex_count(vertices, 4.0, 0.5);
-        BenchScene::new(tube.mesh(), tube_rig(&tube, 8, 16), "tube").expect("the tube rig owns the tube")
+        let mut scene =
+            BenchScene::new(tube.mesh(), tube_rig(&tube, 8, 16), "tube").expect("the tube rig owns the tube");
+        // Two sweeps meeting at the middle, each blending into the other over a band of
+        // BAND_FRACTION / 2 of the length on its side: the costlier kind of band.
+        let falloff = 0.5 * BAND_FRACTION * tube.length;
+        let split = BenchScene::new(tube.mesh(), split_tube_rig(&tube, 4, 16, falloff), "tube")
+            .expect("the split rig owns the tube");
+        scene.with_falloff = Some(Box::new(split));
+        scene
     }
 
     /// `mesh` bound to `rig`; fails if the rig's vertex selection does not fit the mesh.
@@ -35,7 +49,7 @@ impl BenchScene {
         let owners = rig.owners(&mesh, mesh_name)?;
         let keys = BENCH_POSE.keys(&rig);
         let posed = rig.pose(&keys)?;
-        Ok(BenchScene { mesh, rig, owners, keys, posed })
+        Ok(BenchScene { mesh, rig, owners, keys, posed, with_falloff: None })
     }
 
     /// Number of vertices.

@@ -63,4 +63,16 @@ fn print_table(r: &BenchReport) {
     if let Some(bytes) = r.device_bytes_per_vertex {
         println!("  device memory for bindings + positions: {bytes:.1} bytes per vertex");
     }
+    if let (Some(fraction), Some(rate_with), Some(ratio)) =
+        (r.falloff_band_fraction, r.falloff_deform_verts_per_s, r.falloff_over_plain)
+    {
+        println!(
+            "  falloff   {}   ({:.0}% of the vertices in bands: {ratio:.2} × the deform time without)",
+            rate(rate_with),
+            100.0 * fraction
+        );
+        if let Some(bytes) = r.falloff_device_bytes_per_vertex {
+            println!("  device memory with the bands: {bytes:.1} bytes per vertex");
+        }
+    }
 }

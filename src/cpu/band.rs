@@ -4,8 +4,8 @@
 
 use glam::{Vec2, Vec3, Vec4};
 
-use super::blend::{Influence, blend, sweep_influence};
-use super::sweep_eval::{curve_at, direction_at, quat_at, radius_at, rotate};
+use super::blend::{Influence, blend, rest_frame, sweep_influence};
+use super::sweep_eval::{curve_at, rotate};
 use crate::coeffs::{BAND_FLAG, BandRecord, CellCoeffs, GpuBinding, UNBOUND};
 
 /// (s, φ) of a band record's second influence, from two unorm16.
@@ -28,19 +28,20 @@ pub fn band_vertex(
     let binding = &bindings[band.vertex as usize];
     let cell = (binding.cell & !BAND_FLAG) as usize;
     let rest = &rest_cells[cell];
-    let local =
-        ((radius_at(rest, binding.s, binding.phi) + binding.d) * direction_at(rest, binding.phi)).extend(binding.h);
+    let frame = rest_frame(rest, binding.s, binding.phi);
+    let local = (frame.radius + binding.d) * frame.direction + Vec3::new(0.0, 0.0, binding.h);
     let rest_center = curve_at(rest, binding.s);
-    let rest_offset = rotate(quat_at(rest, binding.s), local);
-    let own = sweep_influence(&cells[cell], rest, binding.s, binding.phi, rest_offset);
+    let rest_offset = rotate(frame.turn, local);
+    let own = sweep_influence(&cells[cell], &frame, binding.s, binding.phi, rest_offset);
     let mut second = Influence { center: rest_center, turn: Vec4::new(0.0, 0.0, 0.0, 1.0), offset: rest_offset };
-    if band.cell != UNBOUND {
+    let second_is_rest = band.cell == UNBOUND;
+    if !second_is_rest {
         let at = unpack_s_phi(band.s_phi);
         let other = &rest_cells[band.cell as usize];
         let offset = rest_center + rest_offset - curve_at(other, at.x);
-        second = sweep_influence(&cells[band.cell as usize], other, at.x, at.y, offset);
+        second = sweep_influence(&cells[band.cell as usize], &rest_frame(other, at.x, at.y), at.x, at.y, offset);
     }
-    Some(blend(&second, &own, band.weight))
+    Some(blend(&second, &own, band.weight, second_is_rest))
 }
 
 /// Every invocation of the kernel over one dispatch: overwrites the band vertices of `positions`

@@ -49,24 +49,51 @@ pub fn quat_power(q_in: Vec4, w: f32) -> Vec4 {
     (q.xyz() * (sin_wb / len)).extend(cos_wb)
 }
 
-/// A sweep's influence on a vertex at local (s, φ) of a cell whose offset from the rest center
-/// C(s) is `offset`: the posed center, the turn R′(t)·R(t)⁻¹ and the offset grown by the change of
-/// radius along the vertex's ray, so that the influence alone gives Eq. 2 (+h).
-pub fn sweep_influence(posed: &CellCoeffs, rest: &CellCoeffs, s: f32, phi: f32, offset: Vec3) -> Influence {
-    let rest_turn = quat_at(rest, s).normalize();
-    let radial = rotate(rest_turn, direction_at(rest, phi).extend(0.0));
-    let growth = radius_at(posed, s, phi) - radius_at(rest, s, phi);
-    let turn = quat_mul(quat_at(posed, s).normalize(), quat_conjugate(rest_turn));
+/// Where a vertex sits in a rest cell: the cell's unnormalized rest quaternion at s, the
+/// vertex's ray direction (cos, sin, 0) in the cell's middle frame, and the rest radius r(θ, t).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RestFrame {
+    /// The rest quaternion q0 + s·dq, unnormalized.
+    pub turn: Vec4,
+    /// (cos δ, sin δ, 0).
+    pub direction: Vec3,
+    /// r(θ, t) at rest.
+    pub radius: f32,
+}
+
+/// The rest frame of a vertex at local (s, φ) of `rest`.
+pub fn rest_frame(rest: &CellCoeffs, s: f32, phi: f32) -> RestFrame {
+    RestFrame {
+        turn: quat_at(rest, s),
+        direction: direction_at(rest, phi).extend(0.0),
+        radius: radius_at(rest, s, phi),
+    }
+}
+
+/// A sweep's influence on a vertex at local (s, φ) of a cell (its rest frame `frame`) whose
+/// offset from the rest center C(s) is `offset`: the posed center, the unit turn R′(t)·R(t)⁻¹ and
+/// the offset grown by the change of radius along the vertex's ray, so that the influence alone
+/// gives Eq. 2 (+h).
+pub fn sweep_influence(posed: &CellCoeffs, frame: &RestFrame, s: f32, phi: f32, offset: Vec3) -> Influence {
+    let radial = rotate(frame.turn, frame.direction);
+    let growth = radius_at(posed, s, phi) - frame.radius;
+    let posed_turn = quat_at(posed, s);
+    let scale = 1.0 / (posed_turn.dot(posed_turn) * frame.turn.dot(frame.turn)).sqrt();
+    let turn = quat_mul(posed_turn, quat_conjugate(frame.turn)) * scale;
     Influence { center: curve_at(posed, s), turn, offset: offset + growth * radial }
 }
 
 /// The blended position with weight w on `own` and 1 − w on `second`: centers and offsets mixed
-/// linearly, turns by slerp along the shorter arc.
-pub fn blend(second: &Influence, own: &Influence, w: f32) -> Vec3 {
+/// linearly, turns by slerp along the shorter arc. `second_is_rest`: the second turn is the
+/// identity, and slerp(1, Q, w) = Q^w.
+pub fn blend(second: &Influence, own: &Influence, w: f32, second_is_rest: bool) -> Vec3 {
     let center = second.center * (1.0 - w) + own.center * w;
     let offset = second.offset * (1.0 - w) + own.offset * w;
-    let relative = quat_mul(quat_conjugate(second.turn), own.turn);
-    let turn = quat_mul(second.turn, quat_power(relative, w));
+    let turn = if second_is_rest {
+        quat_power(own.turn, w)
+    } else {
+        quat_mul(second.turn, quat_power(quat_mul(quat_conjugate(second.turn), own.turn), w))
+    };
     center + rotate(turn, offset)
 }
 
@@ -116,7 +143,10 @@ mod tests {
             offset: Vec3::new(0.0, 0.3, -0.2),
         };
         let position = |i: &Influence| i.center + rotate(i.turn, i.offset);
-        assert!((blend(&b, &a, 1.0) - position(&a)).length() < 1e-6);
-        assert!((blend(&b, &a, 0.0) - position(&b)).length() < 1e-6);
+        assert!((blend(&b, &a, 1.0, false) - position(&a)).length() < 1e-6);
+        assert!((blend(&b, &a, 0.0, false) - position(&b)).length() < 1e-6);
+        let rest = Influence { turn: Vec4::W, ..b };
+        assert!((blend(&rest, &a, 0.0, true) - position(&rest)).length() < 1e-6);
+        assert!((blend(&rest, &a, 0.5, true) - blend(&rest, &a, 0.5, false)).length() < 1e-6);
     }
 }

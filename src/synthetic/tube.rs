@@ -96,6 +96,36 @@ pub fn tube_rig(tube: &Tube, keys: usize, samples: usize) -> Rig {
     Rig::new(vec![sweep]).expect("a straight rig with distinct keys is valid")
 }
 
+/// A rig of two sweeps, `lower` and `upper`, splitting `tube` at its middle (the middle ring
+/// and below to `lower`), each of `keys` circular keys over its half and with falloff
+/// `falloff`: with falloff the two blend into each other over a band of that width on each
+/// side of the joint.
+pub fn split_tube_rig(tube: &Tube, keys: usize, samples: usize, falloff: f64) -> Rig {
+    let middle = (tube.rings - 1) / 2;
+    let z_middle = tube.length * middle as f64 / (tube.rings - 1) as f64;
+    let (bottom, top) = (tube.rings * tube.around, tube.rings * tube.around + 1);
+    let lower: Vec<u32> = (0..(middle + 1) * tube.around).chain([bottom]).collect();
+    let upper: Vec<u32> = ((middle + 1) * tube.around..tube.rings * tube.around).chain([top]).collect();
+    let half = |name: &str, vertices: Vec<u32>, z0: f64, z1: f64| {
+        let keys = (0..keys)
+            .map(|i| {
+                let z = z0 + (z1 - z0) * i as f64 / (keys - 1) as f64;
+                Key::circle(DVec3::new(0.0, 0.0, z), DQuat::IDENTITY, tube.radius, samples)
+            })
+            .collect();
+        RigSweep {
+            name: name.to_string(),
+            vertices: Some(VertexSelection::Indices(vertices)),
+            keys,
+            knots: None,
+            parent: None,
+            falloff,
+        }
+    };
+    Rig::new(vec![half("lower", lower, 0.0, z_middle), half("upper", upper, z_middle, tube.length)])
+        .expect("two straight rigs with distinct keys are valid")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -119,5 +149,14 @@ mod tests {
         let rig = tube_rig(&tube, 3, 8);
         let owners = rig.owners(&tube.mesh(), "tube").unwrap();
         assert!(owners.iter().all(|&o| o == 0));
+    }
+
+    #[test]
+    fn split_tube_rig_owns_every_vertex_once() {
+        let tube = Tube { rings: 9, around: 8, length: 2.0, radius: 0.2 };
+        let rig = split_tube_rig(&tube, 4, 8, 0.3);
+        let owners = rig.owners(&tube.mesh(), "tube").unwrap();
+        assert!(owners.iter().all(|&o| o == 0 || o == 1));
+        assert_eq!(owners.iter().filter(|&&o| o == 0).count(), 5 * 8 + 1);
     }
 }
