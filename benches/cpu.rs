@@ -1,15 +1,18 @@
 //! CPU throughput of binding and deformation on a synthetic tube (f64 reference path and the
-//! f32 twin of the GPU kernels), with a memory-copy baseline measured in the same run.
+//! f32 twin of the GPU kernels), with a memory-copy baseline measured in the same run, and of
+//! the falloff bands of binding, with the normals' adjacency build as the baseline.
 //!
 //! `cargo bench --bench cpu`; criterion reports vertices per second (throughput elements).
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use glam::DVec3;
-use sweepffd::bind::bind_vertices;
+use sweepffd::bind::falloff::band_weights;
+use sweepffd::bind::{UNOWNED, bind_vertices};
 use sweepffd::coeffs::{SweepCoefficients, bind_segments};
 use sweepffd::cpu;
 use sweepffd::deform::deform_vertices;
 use sweepffd::mesh::Mesh;
+use sweepffd::normals::NormalAdjacency;
 use sweepffd::rig::Rig;
 use sweepffd::sweep::Sweep;
 use sweepffd::synthetic::{BendTwistTaper, Tube, tube_rig};
@@ -78,5 +81,26 @@ fn deform(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bind, deform);
+fn falloff(c: &mut Criterion) {
+    let mut group = c.benchmark_group("falloff");
+    group.sample_size(10);
+    for n in [100_000, 1_000_000] {
+        // A tube of quads, length 4: its lower half is one sweep's with W = 1, so the band
+        // (1 ≤ z < 2) is a quarter of the mesh.
+        let mesh = Tube::with_vertex_count(n, 4.0, 0.5).mesh();
+        let owners: Vec<u32> = mesh.positions.iter().map(|p| if p.z < 2.0 { 0 } else { UNOWNED }).collect();
+        let count = mesh.positions.len();
+        group.throughput(Throughput::Elements(count as u64));
+        group.bench_function(BenchmarkId::new("band_weights", n), |b| {
+            b.iter(|| band_weights(&mesh.faces, &mesh.positions, &owners, &[1.0]))
+        });
+        // Baseline: the per-vertex adjacency the normals build for the same mesh.
+        group.bench_function(BenchmarkId::new("normal_adjacency_baseline", n), |b| {
+            b.iter(|| NormalAdjacency::new(&mesh.faces, count))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bind, deform, falloff);
 criterion_main!(benches);
