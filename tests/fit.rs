@@ -26,6 +26,41 @@ fn armadillo_leg(p: DVec3) -> bool {
     p.x < -5.0 && p.y < -8.0 && p.y > -44.0
 }
 
+/// The centroid of the part's boundary: its vertices that share a mesh edge with a vertex
+/// outside it.
+fn boundary_centroid(mesh: &Mesh, vertices: &[u32]) -> DVec3 {
+    let mut inside = vec![false; mesh.positions.len()];
+    for &v in vertices {
+        inside[v as usize] = true;
+    }
+    let mut boundary = vec![false; mesh.positions.len()];
+    for face in mesh.faces.iter() {
+        for (i, &a) in face.iter().enumerate() {
+            let b = face[(i + 1) % face.len()];
+            if inside[a as usize] != inside[b as usize] {
+                boundary[if inside[a as usize] { a } else { b } as usize] = true;
+            }
+        }
+    }
+    let points: Vec<DVec3> = (0..mesh.positions.len()).filter(|&v| boundary[v]).map(|v| mesh.positions[v]).collect();
+    assert!(!points.is_empty(), "the part has no boundary");
+    points.iter().copied().sum::<DVec3>() / points.len() as f64
+}
+
+/// Key 0 sits at the end where the part is attached: its center is nearer the boundary's
+/// centroid than the last key's center is, and the fit found more rim there.
+fn key_0_is_attached(mesh: &Mesh, vertices: &[u32], fitted: &Fit, name: &str) {
+    let rim = boundary_centroid(mesh, vertices);
+    let first = fitted.keys[0].center.distance(rim);
+    let last = fitted.keys[fitted.keys.len() - 1].center.distance(rim);
+    eprintln!(
+        "{name}: key 0 is {first:.5} from the boundary's centroid, the last key {last:.5}; rim {:.5} near key 0, {:.5} near the last",
+        fitted.rim[0], fitted.rim[1]
+    );
+    assert!(first < last, "{name}: key 0 is {first} from the boundary's centroid, the last key {last}");
+    assert!(fitted.rim[0] > fitted.rim[1], "{name}: rim {:?}", fitted.rim);
+}
+
 /// Fits the part and checks what the acceptance asks of every fit: each vertex has a root
 /// on the fitted sweep, and the reported quality agrees with binding afresh.
 fn fit_part(mesh: &Mesh, vertices: &[u32], name: &str) -> Fit {
@@ -66,6 +101,8 @@ fn the_bunnys_ears_fit_with_every_vertex_bound_by_a_root() {
     let front = largest_connected(&mesh, bunny_front_ear);
     assert!(front.len() > 1500, "{}", front.len());
     let fitted = fit_part(&mesh, &front, "front ear");
+    // The principal axis alone put this ear's key 0 at its tip.
+    key_0_is_attached(&mesh, &front, &fitted, "front ear");
     assert!(fitted.quality.rms_d <= 0.10, "front ear: RMS |d| {:.3} of the mean radius", fitted.quality.rms_d);
 
     // The back ear's sections are crescents: around no center is such a section star-shaped,
@@ -73,6 +110,8 @@ fn the_bunnys_ears_fit_with_every_vertex_bound_by_a_root() {
     let back = largest_connected(&mesh, bunny_back_ear);
     assert!(back.len() > 1500, "{}", back.len());
     let fitted = fit_part(&mesh, &back, "back ear");
+    // The principal axis alone already started this ear at its base.
+    key_0_is_attached(&mesh, &back, &fitted, "back ear");
     assert!(fitted.quality.rms_d <= 0.15, "back ear: RMS |d| {:.3} of the mean radius", fitted.quality.rms_d);
 }
 
@@ -83,6 +122,11 @@ fn the_armadillos_leg_fits_tightly_and_refinement_tightens_it() {
     let leg = largest_connected(&mesh, armadillo_leg);
     assert!(leg.len() > 3000, "{}", leg.len());
     let fitted = fit_part(&mesh, &leg, "armadillo leg");
+    // Cut at the hip and at the ankle, the leg is attached at the hip, the longer loop; the
+    // principal axis alone put key 0 at the ankle.
+    key_0_is_attached(&mesh, &leg, &fitted, "armadillo leg");
+    let (hip, ankle) = (fitted.keys[0].center.y, fitted.keys[fitted.keys.len() - 1].center.y);
+    assert!(hip > -12.0 && ankle < -40.0, "key 0 at y = {hip}, the last key at y = {ankle}");
     assert!(fitted.quality.rms_d <= 0.10, "RMS |d| {:.3} of the mean radius", fitted.quality.rms_d);
     // Fig. 3: the rough enclosing sweep, the first cut and the refined fit, each tighter.
     let rms: Vec<f64> = fitted.steps.iter().map(|s| s.quality.rms_d).collect();

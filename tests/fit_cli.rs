@@ -92,7 +92,7 @@ fn bad_requests_name_what_is_wrong_and_write_nothing() {
     scene(dir.path());
     fs::write(dir.path().join("bad.txt"), "1 2 x3").unwrap();
     fs::write(dir.path().join("far.txt"), "1 2 99999").unwrap();
-    let cases: [(&[&str], &str); 7] = [
+    let cases: [(&[&str], &str); 10] = [
         (&[], "say which part to fit with --group or --indices"),
         (&["--group", "wall", "--indices", "lower.json"], "give either --group or --indices, not both"),
         (&["--group", "handle"], "tube.obj: no group \"handle\" (groups: wall, caps)"),
@@ -103,6 +103,18 @@ fn bad_requests_name_what_is_wrong_and_write_nothing() {
             &["--group", "wall", "--keys", "1"],
             "tube.obj: fitting sweep \"wall\": --keys must be at least 2, found 1; nothing was written",
         ),
+        (
+            &["--group", "wall", "--falloff", "-1"],
+            "tube.obj: fitting sweep \"wall\": --falloff must be a finite width of at least 0 (mesh units), found -1; nothing was written",
+        ),
+        (
+            &["--group", "wall", "--falloff", "nan"],
+            "--falloff must be a finite width of at least 0 (mesh units), found NaN",
+        ),
+        (
+            &["--group", "wall", "--falloff", "inf"],
+            "--falloff must be a finite width of at least 0 (mesh units), found inf",
+        ),
     ];
     for (args, message) in cases {
         let out = fit(dir.path(), &[args, &["--out", "rig.json"]].concat());
@@ -110,5 +122,64 @@ fn bad_requests_name_what_is_wrong_and_write_nothing() {
         assert!(!out.status.success(), "{args:?}");
         assert!(stderr.contains(message), "{args:?}: {stderr}");
         assert!(!dir.path().join("rig.json").exists(), "{args:?} wrote the rig");
+    }
+}
+
+/// The chord length Σ |p_i − p_{i−1}| of a sweep's key centers.
+fn chord_length(sweep: &sweepffd::rig::RigSweep) -> f64 {
+    sweep.keys.windows(2).map(|pair| pair[0].center.distance(pair[1].center)).sum()
+}
+
+#[test]
+fn the_falloff_is_a_fraction_of_the_parts_length_unless_given() {
+    let dir = tempfile::tempdir().unwrap();
+    scene(dir.path());
+    let out = fit(dir.path(), &["--group", "wall", "--out", "rig.json"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let rig = Rig::load(&dir.path().join("rig.json")).unwrap();
+    let (sweep, fraction) = (&rig.sweeps()[0], sweepffd::fit::DEFAULT_FALLOFF_FRACTION);
+    assert!(
+        (sweep.falloff - fraction * chord_length(sweep)).abs() < 1e-9,
+        "{} of {}",
+        sweep.falloff,
+        chord_length(sweep)
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let line = format!("  falloff {:.6} (default: {fraction} of the part's length)", sweep.falloff);
+    assert!(stdout.contains(&line), "{stdout}");
+
+    let out = fit(dir.path(), &["--group", "wall", "--falloff", "0.25", "--out", "given.json"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(Rig::load(&dir.path().join("given.json")).unwrap().sweeps()[0].falloff, 0.25);
+    assert!(String::from_utf8_lossy(&out.stdout).contains("  falloff 0.250000 (--falloff)"));
+
+    // 0: a hard boundary, and the rig file leaves the field out.
+    let out = fit(dir.path(), &["--group", "wall", "--falloff", "0", "--out", "hard.json"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(Rig::load(&dir.path().join("hard.json")).unwrap().sweeps()[0].falloff, 0.0);
+    assert!(!fs::read_to_string(dir.path().join("hard.json")).unwrap().contains("falloff"));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("  falloff 0: a hard boundary (--falloff)"));
+}
+
+#[test]
+fn key_0_is_written_at_the_end_where_the_part_is_attached() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = scene(dir.path());
+    // Each part takes one cap (the ring's vertices and its center) and is cut from the rest of
+    // the wall at the other end: attached there only.
+    let ring = |r: u32| r * 24..(r + 1) * 24;
+    let lower: Vec<u32> = (0..30).flat_map(ring).chain([960]).collect();
+    let upper: Vec<u32> = (10..40).flat_map(ring).chain([961]).collect();
+    for (name, part, cut_z) in [("lower", lower, 29.0 * 3.0 / 39.0), ("upper", upper, 10.0 * 3.0 / 39.0)] {
+        assert!(part.iter().all(|&v| (v as usize) < mesh.positions.len()));
+        fs::write(dir.path().join(format!("{name}.json")), serde_json::to_string(&part).unwrap()).unwrap();
+        let out = fit(dir.path(), &["--indices", &format!("{name}.json"), "--out", &format!("{name}-rig.json")]);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert!(stdout.contains("key 0 at the attached end"), "{stdout}");
+        let rig = Rig::load(&dir.path().join(format!("{name}-rig.json"))).unwrap();
+        let keys = &rig.sweeps()[0].keys;
+        let (first, last) = (keys[0].center.z, keys[keys.len() - 1].center.z);
+        assert!((first - cut_z).abs() < (last - cut_z).abs(), "{name}: key 0 at z = {first}, the last at z = {last}");
     }
 }

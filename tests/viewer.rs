@@ -191,6 +191,11 @@ fn mesh_without_a_rig_gets_a_sweep_fitted_to_a_clicked_part() {
     let rig = sweepffd::rig::Rig::load(&dir.path().join("fitted-rig.json")).unwrap();
     assert_eq!(rig.sweeps().len(), 1);
     assert!(rig.sweeps()[0].keys.len() >= 2);
+    // The viewer's fit writes the default falloff, a fraction of the part's length.
+    let sweep = &rig.sweeps()[0];
+    let length: f64 = sweep.keys.windows(2).map(|w| w[0].center.distance(w[1].center)).sum();
+    let expected = sweepffd::fit::DEFAULT_FALLOFF_FRACTION * length;
+    assert!((sweep.falloff - expected).abs() <= 1e-9 * expected, "falloff {} but {expected}", sweep.falloff);
     // The fitted rig owns vertices of the mesh it was fitted to.
     let mesh = sweepffd::mesh::Mesh::load(&dir.path().join("demo/rest.obj")).unwrap();
     let owners = rig.owners(&mesh, "rest.obj").unwrap();

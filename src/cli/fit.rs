@@ -7,7 +7,7 @@ use std::time::Instant;
 use glam::DVec3;
 
 use super::CliResult;
-use sweepffd::fit::{Fit, FitOptions, fit};
+use sweepffd::fit::{DEFAULT_FALLOFF_FRACTION, Fit, FitOptions, fit};
 use sweepffd::mesh::{Mesh, write_atomically};
 use sweepffd::rig::{FORMAT, LinkKind, ParentLink, Rig, RigDocument, VERSION, VertexSelection};
 
@@ -165,6 +165,26 @@ fn print_report(name: &str, fitted: &Fit, options: &FitOptions, seconds: f64) {
             format!("{} vertices lie beyond an end", q.without_root)
         }
     );
+    let last = fitted.keys.len() - 1;
+    let [near_first, near_last] = fitted.rim;
+    let order = match (&options.axis, near_first + near_last > 0.0) {
+        (Some(_), _) => "key 0 at the first end of --axis",
+        (None, true) if near_first > near_last => "key 0 at the attached end",
+        (None, true) => "as much rim at both ends: key 0 where the principal axis starts",
+        (None, false) => "no rim: key 0 where the principal axis starts",
+    };
+    println!(
+        "  rim (where the part meets the rest of the mesh): {near_first:.6} near key 0, {near_last:.6} near key {last}; {order}"
+    );
+    let source = match options.falloff {
+        Some(_) => "--falloff".to_string(),
+        None => format!("default: {DEFAULT_FALLOFF_FRACTION} of the part's length"),
+    };
+    if fitted.falloff > 0.0 {
+        println!("  falloff {:.6} ({source})", fitted.falloff);
+    } else {
+        println!("  falloff 0: a hard boundary ({source})");
+    }
     for (k, section) in fitted.sections.iter().enumerate() {
         if !section.cut {
             println!("  key {k}: its plane misses the part; radii interpolated from the neighbouring keys");

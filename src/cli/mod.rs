@@ -136,6 +136,9 @@ enum Command {
         /// A knot interval whose RMS |d| exceeds this fraction of the mean radius gets a key inserted.
         #[arg(long, default_value_t = 0.05)]
         tolerance: f64,
+        /// Falloff width W in mesh units over which the sweep's deformation fades at the part's boundary; 0: a hard boundary (default: 0.3 of the part's length).
+        #[arg(long, allow_negative_numbers = true)]
+        falloff: Option<f64>,
         /// The sweep's name (default: the groups joined by "+", or the indices file's stem).
         #[arg(long)]
         name: Option<String>,
@@ -279,13 +282,14 @@ pub fn run() -> ExitCode {
             radii,
             max_keys,
             tolerance,
+            falloff,
             name,
             parent,
             kind,
             out,
             append_to,
         } => {
-            let options = FitOptions { axis: None, keys, radii, max_keys, tolerance };
+            let options = FitOptions { axis: None, keys, radii, max_keys, tolerance, falloff };
             let kind = kind.into();
             fit::run(&fit::Args { mesh, groups, indices, axis, options, name, parent, kind, out, append_to }, quiet)
         }

@@ -27,9 +27,20 @@
 //!    exceeds `tolerance` × the mean radius a key is inserted at the interval's middle, and
 //!    all keys are re-centered again, until no interval is loose, the fit stops improving,
 //!    or `max_keys` is reached.
+//! 7. **Key 0 at the attached end** ([`attached`]): the part's rim, where it meets the rest of
+//!    the mesh, is measured towards each end of the sweep by its edges' parameter t; when the
+//!    rim nearer the last key is strictly longer, the sweep is traversed from its other end
+//!    (the same surface, so the fit is unchanged), so that key 0 sits where the part is
+//!    attached (a leg's hip, an ear's base). A part with no rim, or as much at both ends,
+//!    keeps the principal axis's order. A user's axis keeps its own order: the user's axis
+//!    order wins over the rim.
+//! 8. **Falloff** ([`falloff`]): the width W of the band over which the sweep's deformation
+//!    fades at the part's boundary, the user's or a fraction of the part's length.
 
+pub mod attached;
 pub mod axis;
 mod error;
+pub mod falloff;
 pub mod frames;
 pub mod part;
 pub mod quality;
@@ -42,6 +53,7 @@ pub mod star;
 use glam::DVec3;
 
 pub use error::FitError;
+pub use falloff::DEFAULT_FALLOFF_FRACTION;
 pub use part::Part;
 pub use quality::FitQuality;
 pub use select::{connected_to, largest_connected};
@@ -54,7 +66,8 @@ use crate::sweep::Key;
 #[derive(Clone, Debug, PartialEq)]
 pub struct FitOptions {
     /// The first guess at the axis, a polyline from the first end of the part to the other;
-    /// `None`: the part's principal axis.
+    /// key 0 sits at its first point's end, whatever the part's rim. `None`: the part's
+    /// principal axis, oriented so that key 0 sits at the end where the part is attached.
     pub axis: Option<Vec<DVec3>>,
     /// Keys placed along the axis before any insertion (at least 2).
     pub keys: usize,
@@ -64,11 +77,15 @@ pub struct FitOptions {
     pub max_keys: usize,
     /// A knot interval whose RMS |d| exceeds this fraction of the mean radius is loose.
     pub tolerance: f64,
+    /// The falloff width W in mesh units (0: a hard boundary); `None`:
+    /// [`DEFAULT_FALLOFF_FRACTION`] of the part's length (the chord length of the fitted key
+    /// centers).
+    pub falloff: Option<f64>,
 }
 
 impl Default for FitOptions {
     fn default() -> FitOptions {
-        FitOptions { axis: None, keys: 6, radii: 32, max_keys: 24, tolerance: 0.05 }
+        FitOptions { axis: None, keys: 6, radii: 32, max_keys: 24, tolerance: 0.05, falloff: None }
     }
 }
 
@@ -86,6 +103,9 @@ impl FitOptions {
         }
         if !(self.tolerance > 0.0 && self.tolerance.is_finite()) {
             return fail(format!("--tolerance must be a positive number, found {}", self.tolerance));
+        }
+        if let Some(falloff) = self.falloff.filter(|w| !(w.is_finite() && *w >= 0.0)) {
+            return fail(format!("--falloff must be a finite width of at least 0 (mesh units), found {falloff}"));
         }
         Ok(())
     }
@@ -129,19 +149,27 @@ pub struct FitStep {
 /// A fitted sweep.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Fit {
-    /// The keys, from the first end of the part to the other.
+    /// The keys, from the end where the part is attached to the rest of the mesh (see
+    /// [`Fit::rim`]; with a user's axis, from its first point's end) to the other.
     pub keys: Vec<Key>,
     /// How tightly they fit the part.
     pub quality: FitQuality,
     /// How each key's section met its rays.
     pub sections: Vec<SectionReport>,
-    /// Every stage, from the rough sweep to the final one.
+    /// Every stage, from the rough sweep to the final one, each with its keys in the order of
+    /// [`Fit::keys`].
     pub steps: Vec<FitStep>,
+    /// The length of the part's rim (where it is attached to the rest of the mesh,
+    /// [`Part::rim`]) nearer key 0 and nearer the last key, mesh units
+    /// ([`attached::rim_lengths`]).
+    pub rim: [f64; 2],
+    /// The falloff width W, mesh units (0: a hard boundary).
+    pub falloff: f64,
 }
 
 impl Fit {
     /// The fitted sweep as a rig file writes it: named `name`, owning `selection`, hanging
-    /// from `parent` if given, knots by chord length.
+    /// from `parent` if given, knots by chord length, with the fit's falloff (absent when 0).
     pub fn sweep_document(
         &self,
         name: String,
@@ -154,7 +182,7 @@ impl Fit {
             keys: self.keys.iter().map(KeyDocument::from).collect(),
             knots: None,
             parent,
-            falloff: None,
+            falloff: (self.falloff > 0.0).then_some(self.falloff),
         }
     }
 }
@@ -172,8 +200,15 @@ pub fn fit(mesh: &Mesh, vertices: &[u32], options: &FitOptions) -> Result<Fit, F
     if part.triangles.is_empty() {
         return Err(FitError::NoFaces);
     }
-    let (fitted, steps) = refine::run(&part, options)?;
-    Ok(Fit { keys: fitted.keys, quality: fitted.measured.quality, sections: fitted.sections, steps })
+    let (mut fitted, mut steps) = refine::run(&part, options)?;
+    let mut rim = attached::rim_lengths(&part, &fitted.sweep);
+    if options.axis.is_none() && rim[1] > rim[0] {
+        fitted = attached::turned(&part, &fitted, &mut steps)?;
+        rim.reverse();
+    }
+    let falloff = falloff::falloff_width(options.falloff, &fitted.keys);
+    let quality = fitted.measured.quality;
+    Ok(Fit { keys: fitted.keys, quality, sections: fitted.sections, steps, rim, falloff })
 }
 
 #[cfg(test)]

@@ -1,19 +1,27 @@
-//! The part of a mesh a sweep is fitted to: the selected vertices and the triangles among them.
+//! The part of a mesh a sweep is fitted to: the selected vertices, the triangles among them and
+//! the rim where the part is attached to the rest of the mesh.
 
 use glam::DVec3;
 
 use crate::mesh::Mesh;
 
-/// The selected vertices of a mesh and every (fan-triangulated) face whose vertices are all
-/// selected. Indices in [`Part::triangles`] are local: they index [`Part::positions`].
+/// The selected vertices of a mesh and every triangle of its fan-triangulated faces whose
+/// vertices are all selected. Indices in [`Part::triangles`] and [`Part::rim`] are local: they
+/// index [`Part::positions`].
 #[derive(Clone, Debug)]
 pub struct Part {
     /// The selected vertices' indices in the mesh, increasing and unique.
     pub vertices: Vec<u32>,
     /// Their positions, in the same order.
     pub positions: Vec<DVec3>,
-    /// Triangles of faces lying wholly in the part, in local indices.
+    /// The mesh's fan triangles lying wholly in the part, in local indices.
     pub triangles: Vec<[u32; 3]>,
+    /// The rim, where the part is attached to the rest of the mesh: every edge of the mesh's
+    /// fan triangles between two selected vertices that lies both on a triangle of the part
+    /// and on a triangle with a vertex outside it. Each edge once, its smaller index first, in
+    /// increasing order. An edge of the mesh's own open boundary (a hole in a scan) lies on no
+    /// outside triangle and is not on the rim; a part that is a whole closed mesh has none.
+    pub rim: Vec<[u32; 2]>,
 }
 
 impl Part {
@@ -35,11 +43,78 @@ impl Part {
             })
             .collect();
         let positions = vertices.iter().map(|&v| mesh.positions[v as usize]).collect();
-        Part { vertices, positions, triangles }
+        let rim = rim(mesh, &local);
+        Part { vertices, positions, triangles, rim }
     }
 
     /// The centroid of the part's vertices.
     pub fn centroid(&self) -> DVec3 {
         self.positions.iter().copied().sum::<DVec3>() / self.positions.len() as f64
+    }
+}
+
+/// The rim edges of the part whose local index of each mesh vertex is `local` (`u32::MAX`:
+/// not selected); see [`Part::rim`].
+fn rim(mesh: &Mesh, local: &[u32]) -> Vec<[u32; 2]> {
+    // Every side of a triangle between two selected vertices, with whether the triangle is in
+    // the part.
+    let mut sides: Vec<([u32; 2], bool)> = Vec::new();
+    for triangle in mesh.faces.triangles() {
+        let t = triangle.map(|v| local[v as usize]);
+        let in_part = t.iter().all(|&i| i != u32::MAX);
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            if a != u32::MAX && b != u32::MAX && a != b {
+                sides.push(([a.min(b), a.max(b)], in_part));
+            }
+        }
+    }
+    sides.sort_unstable();
+    sides.dedup();
+    // Sorted, an edge on triangles both inside and outside the part appears as (edge, false)
+    // followed by (edge, true).
+    sides.windows(2).filter(|w| w[0].0 == w[1].0).map(|w| w[0].0).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::Faces;
+
+    /// A strip of `n` unit quads along x: vertices (i, 0, 0) = 2i and (i, 1, 0) = 2i + 1.
+    fn strip(n: u32) -> Mesh {
+        let positions =
+            (0..=n).flat_map(|i| [DVec3::new(i as f64, 0.0, 0.0), DVec3::new(i as f64, 1.0, 0.0)]).collect();
+        let mut faces = Faces::new();
+        for i in 0..n {
+            faces.push(&[2 * i, 2 * i + 2, 2 * i + 3, 2 * i + 1]);
+        }
+        Mesh::from_parts(positions, faces, Vec::new()).unwrap()
+    }
+
+    #[test]
+    fn the_rim_is_where_the_part_meets_the_rest_of_the_mesh() {
+        let mesh = strip(3);
+        // The first two quads: attached to the third along the edge x = 2; the strip's open
+        // sides and its end x = 0 belong to no other face.
+        let part = Part::new(&mesh, &[0, 1, 2, 3, 4, 5]);
+        assert_eq!(part.triangles.len(), 4);
+        assert_eq!(part.rim, [[4, 5]]);
+        // The middle quad: attached at both ends.
+        let part = Part::new(&mesh, &[2, 3, 4, 5]);
+        assert_eq!(part.rim, [[0, 1], [2, 3]]);
+        // The whole mesh: attached nowhere.
+        assert!(Part::new(&mesh, &(0..8).collect::<Vec<_>>()).rim.is_empty());
+    }
+
+    #[test]
+    fn the_rim_of_a_partly_selected_quad_follows_its_fan_triangles() {
+        let mesh = strip(2);
+        // Three corners of the second quad (2, 4, 5, 3): its fan triangle (2, 5, 3) is in the
+        // part; the other, (2, 4, 5), is not, nor is the first quad. The part is attached
+        // along the diagonal 2–5 and the side 2–3; the side 3–5 is the mesh's open boundary.
+        let part = Part::new(&mesh, &[2, 3, 5]);
+        assert_eq!(part.triangles, [[0, 2, 1]]);
+        assert_eq!(part.rim, [[0, 1], [0, 2]]);
     }
 }

@@ -147,3 +147,125 @@ fn bad_options_and_parts_are_refused() {
     let sparse: Vec<u32> = (0..mesh.positions.len() as u32).step_by(2).collect();
     assert_eq!(fit(&mesh, &sparse, &FitOptions::default()).unwrap_err(), FitError::NoFaces);
 }
+
+/// A cone-like tube along z from radius 1 at z = 0 to 0.5 at z = 6, 48 vertices around and 61
+/// rings (ring b at z = b/10), open at both ends; `turn` rotates it by π about x (z → −z).
+fn cone(turn: bool) -> Mesh {
+    let keys = [(0.0, 1.0), (6.0, 0.5)].map(|(z, r)| Key::circle(DVec3::Z * z, DQuat::IDENTITY, r, 8));
+    let mut mesh = surface_mesh(&Sweep::try_new(&keys, None).unwrap(), 48, 61);
+    if turn {
+        for p in &mut mesh.positions {
+            *p = DQuat::from_rotation_x(std::f64::consts::PI) * *p;
+        }
+    }
+    mesh
+}
+
+/// The vertices of the cone's rings `rings`.
+fn rings(rings: std::ops::RangeInclusive<u32>) -> Vec<u32> {
+    rings.flat_map(|b| b * 48..(b + 1) * 48).collect()
+}
+
+/// The length of the polygon of 48 sides inscribed in ring `b` of the cone.
+fn ring_length(b: u32) -> f64 {
+    let radius = 1.0 - 0.5 * b as f64 / 60.0;
+    48.0 * 2.0 * radius * (std::f64::consts::PI / 48.0).sin()
+}
+
+#[test]
+fn key_0_sits_at_the_longer_cut_of_a_part_cut_at_both_ends_either_way_round() {
+    // Rings 10 to 50: cut at z = 1 (radius 0.92) and at z = 5 (radius 0.58).
+    for turn in [false, true] {
+        let mesh = cone(turn);
+        let fitted = fit(&mesh, &rings(10..=50), &FitOptions::default()).unwrap();
+        let wide = mesh.positions[10 * 48].z.signum() * DVec3::Z;
+        let (first, last) = (fitted.keys[0].center, fitted.keys[fitted.keys.len() - 1].center);
+        assert!(first.distance(wide) < 0.2 && last.distance(5.0 * wide) < 0.2, "turned {turn}: {first} … {last}");
+        assert!((fitted.rim[0] - ring_length(10)).abs() < 1e-9, "{:?}", fitted.rim);
+        assert!((fitted.rim[1] - ring_length(50)).abs() < 1e-9, "{:?}", fitted.rim);
+        assert_eq!(fitted.quality.without_root, 0);
+        assert!(fitted.quality.rms_d < 0.01, "{:?}", fitted.quality);
+        // Every step's keys run the same way.
+        for step in &fitted.steps {
+            assert!(step.keys[0].center.distance(wide) < step.keys[step.keys.len() - 1].center.distance(wide));
+        }
+    }
+}
+
+#[test]
+fn key_0_sits_at_the_only_cut_and_the_meshs_own_open_end_is_no_rim() {
+    // Rings 0 to 40: the mesh's open end at z = 0 and a cut at z = 4 (the narrower end).
+    for turn in [false, true] {
+        let mesh = cone(turn);
+        let fitted = fit(&mesh, &rings(0..=40), &FitOptions::default()).unwrap();
+        let cut = mesh.positions[40 * 48].z.signum() * 4.0 * DVec3::Z;
+        let (first, last) = (fitted.keys[0].center, fitted.keys[fitted.keys.len() - 1].center);
+        assert!(first.distance(cut) < 0.2 && last.length() < 0.2, "turned {turn}: {first} … {last}");
+        assert!((fitted.rim[0] - ring_length(40)).abs() < 1e-9 && fitted.rim[1] == 0.0, "{:?}", fitted.rim);
+    }
+}
+
+#[test]
+fn the_users_axis_order_wins_over_the_rim() {
+    let mesh = cone(false);
+    // From the free end to the cut: key 0 stays at the free end, the rim is reported at the last.
+    let options = FitOptions { axis: Some(vec![DVec3::ZERO, DVec3::Z * 4.0]), ..FitOptions::default() };
+    let fitted = fit(&mesh, &rings(0..=40), &options).unwrap();
+    let (first, last) = (fitted.keys[0].center, fitted.keys[fitted.keys.len() - 1].center);
+    assert!(first.length() < 0.2 && last.distance(DVec3::Z * 4.0) < 0.2, "{first} … {last}");
+    assert!(fitted.rim[0] == 0.0 && (fitted.rim[1] - ring_length(40)).abs() < 1e-9, "{:?}", fitted.rim);
+}
+
+#[test]
+fn turning_a_fit_end_for_end_keeps_its_quality() {
+    let mesh = cone(false);
+    let part = Part::new(&mesh, &rings(10..=50));
+    let (fitted, mut steps) = super::refine::run(&part, &FitOptions::default()).unwrap();
+    let before: Vec<FitQuality> = steps.iter().map(|s| s.quality).collect();
+    let turned = super::attached::turned(&part, &fitted, &mut steps).unwrap();
+    let (q, p) = (fitted.measured.quality, turned.measured.quality);
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs().max(b.abs());
+    assert!(
+        (q.vertices, q.without_root) == (p.vertices, p.without_root)
+            && close(q.mean_radius, p.mean_radius)
+            && close(q.max_d, p.max_d)
+            && close(q.rms_d, p.rms_d),
+        "before {q:?}, turned {p:?}"
+    );
+    assert_eq!(turned.keys[0].center, fitted.keys[fitted.keys.len() - 1].center);
+    let reversed: Vec<SectionReport> = fitted.sections.iter().rev().copied().collect();
+    assert_eq!(turned.sections, reversed);
+    // Every step's keys are turned too, and each is still the surface its quality was measured on.
+    for (step, quality) in steps.iter().zip(before) {
+        let sweep = Sweep::try_new(&step.keys, None).unwrap();
+        let measured = super::quality::measure(&sweep, &part.positions).quality;
+        assert!(close(measured.rms_d, quality.rms_d), "{}: {measured:?} but {quality:?}", step.label);
+    }
+    assert_eq!(steps.last().unwrap().keys, turned.keys);
+}
+
+#[test]
+fn the_falloff_is_the_users_or_a_fraction_of_the_parts_length() {
+    let mesh = cone(false);
+    let part = rings(10..=50);
+    let fitted = fit(&mesh, &part, &FitOptions::default()).unwrap();
+    let length: f64 = fitted.keys.windows(2).map(|w| w[0].center.distance(w[1].center)).sum();
+    assert!((fitted.falloff - DEFAULT_FALLOFF_FRACTION * length).abs() < 1e-12, "{}", fitted.falloff);
+    assert!((length - 4.0).abs() < 0.1, "the part is 4 long, the keys' chord {length}");
+    let document = fitted.sweep_document("cone".to_string(), VertexSelection::All, None);
+    assert_eq!(document.falloff, Some(fitted.falloff));
+
+    let with = |falloff: f64| fit(&mesh, &part, &FitOptions { falloff: Some(falloff), ..FitOptions::default() });
+    let given = with(0.75).unwrap();
+    assert_eq!(given.falloff, 0.75);
+    assert_eq!(given.sweep_document("cone".to_string(), VertexSelection::All, None).falloff, Some(0.75));
+    let hard = with(0.0).unwrap();
+    assert_eq!(hard.falloff, 0.0);
+    assert_eq!(hard.sweep_document("cone".to_string(), VertexSelection::All, None).falloff, None);
+    for bad in [-0.5, f64::NAN, f64::INFINITY] {
+        assert_eq!(
+            with(bad).unwrap_err().to_string(),
+            format!("--falloff must be a finite width of at least 0 (mesh units), found {bad}")
+        );
+    }
+}

@@ -134,7 +134,9 @@ impl App {
         self.report(outcome);
     }
 
-    /// Fits a sweep to the selected part (§3) and adds it to the rig; the mesh is bound anew.
+    /// Fits a sweep to the selected part (§3), key 0 at its attached end and with the default
+    /// falloff ([`crate::fit::DEFAULT_FALLOFF_FRACTION`] of its length), and adds it to the
+    /// rig; the mesh is bound anew.
     fn fit_part(&mut self) {
         let Some(part) = self.part.clone() else {
             self.report(Err("select a part first: click the mesh where no sweep owns it".into()));
@@ -168,10 +170,11 @@ impl App {
         self.measure_rest_volumes();
         let q = &fitted.quality;
         Ok(format!(
-            "fitted {name:?}: {} vertices, {} keys, RMS |d| {:.1}% of the mean radius",
+            "fitted {name:?}: {} vertices, {} keys, RMS |d| {:.1}% of the mean radius, falloff {:.4}",
             q.vertices,
             fitted.keys.len(),
-            100.0 * q.rms_d
+            100.0 * q.rms_d,
+            fitted.falloff
         ))
     }
 
