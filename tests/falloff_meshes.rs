@@ -1,0 +1,213 @@
+//! Seamless deformation of real connected meshes (the falloff acceptance): parts fitted with
+//! `fit`'s defaults stay attached to the rest of the mesh when they are swung from their base
+//! or bent from their middle, where the same poses without falloff tear the surface.
+
+mod common;
+
+use glam::{DQuat, DVec3};
+use sweepffd::bind::MeshBindings;
+use sweepffd::deform::deform_vertices;
+use sweepffd::edit::{Edit, KeyMode, Posing};
+use sweepffd::fit::attached::reversed;
+use sweepffd::fit::{FitOptions, fit, largest_connected};
+use sweepffd::mesh::Mesh;
+use sweepffd::rig::{Rig, RigSweep, VertexSelection};
+use sweepffd::sweep::Key;
+
+/// The bunny's ear that bends towards −z (as the zipper scan is oriented, y up).
+fn bunny_front_ear(p: DVec3) -> bool {
+    p.z < -0.012 && p.x < -0.055 && p.y > 0.13
+}
+
+/// The bunny's other ear.
+fn bunny_back_ear(p: DVec3) -> bool {
+    p.x > -0.055 && p.x < 0.0 && p.y > 0.148 && p.z < 0.01
+}
+
+/// The armadillo's leg on the −x side, from the hip (y = −8) down, with its foot.
+fn armadillo_leg(p: DVec3) -> bool {
+    p.x < -5.0 && p.y < -8.0
+}
+
+/// Where a fitted sweep's key 0 is.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum KeyZero {
+    /// At the end where the part is attached, as `fit` places it.
+    Attached,
+    /// At the other end, as sweeps were fitted before `fit` oriented them.
+    Free,
+}
+
+/// A rig of one sweep per part, each fitted with `fit`'s defaults but for the falloff.
+fn fitted_rig(mesh: &Mesh, parts: &[(&str, Vec<u32>)], falloff: Option<f64>, key_zero: KeyZero) -> Rig {
+    let sweeps = parts
+        .iter()
+        .map(|(name, vertices)| {
+            let fitted = fit(mesh, vertices, &FitOptions { falloff, ..FitOptions::default() }).unwrap();
+            let keys = match key_zero {
+                KeyZero::Attached => fitted.keys.clone(),
+                KeyZero::Free => reversed(&fitted.keys),
+            };
+            RigSweep {
+                name: name.to_string(),
+                vertices: Some(VertexSelection::Indices(vertices.clone())),
+                keys,
+                knots: None,
+                parent: None,
+                falloff: fitted.falloff,
+            }
+        })
+        .collect();
+    Rig::new(sweeps).unwrap()
+}
+
+/// The direction, in the plane of `key`, of its widest diameter: bending about it folds the
+/// part across its thin side, as an ear folds.
+fn widest_axis(key: &Key) -> DVec3 {
+    let m = key.radii.len();
+    let diameter = |j: usize| key.radii[j] + key.radii[(j + m / 2) % m];
+    let widest = (0..m).max_by(|&a, &b| diameter(a).total_cmp(&diameter(b))).unwrap_or(0);
+    let theta = std::f64::consts::TAU * widest as f64 / m as f64;
+    key.rotation.normalize() * DVec3::new(theta.cos(), theta.sin(), 0.0)
+}
+
+/// The two poses of the acceptance, for every sweep at once: key 0 turned by 30° about its
+/// local x axis, and the middle key bent by 60° about its widest diameter; both local (the keys
+/// after the edited one follow).
+fn poses(rig: &Rig) -> Vec<(&'static str, Vec<Vec<Key>>)> {
+    let turned = |middle: bool, degrees: f64| {
+        let mut posing = Posing::new(rig);
+        for sweep in rig.sweeps() {
+            let key = if middle { sweep.keys.len() / 2 } else { 0 };
+            let axis =
+                if middle { widest_axis(&sweep.keys[key]) } else { sweep.keys[key].rotation.normalize() * DVec3::X };
+            posing
+                .apply(&Edit::MoveKey {
+                    sweep: sweep.name.clone(),
+                    key,
+                    translate: [0.0; 3],
+                    rotate: DQuat::from_axis_angle(axis, degrees.to_radians()).to_array(),
+                    mode: KeyMode::Local,
+                })
+                .unwrap();
+        }
+        posing.keys().to_vec()
+    };
+    vec![("key 0 turned 30°", turned(false, 30.0)), ("middle key bent 60°", turned(true, 60.0))]
+}
+
+/// Every mesh edge once.
+fn edges(mesh: &Mesh) -> Vec<(u32, u32)> {
+    let mut edges: Vec<(u32, u32)> = mesh
+        .faces
+        .triangles()
+        .flat_map(|[a, b, c]| [(a, b), (b, c), (c, a)])
+        .map(|(a, b)| (a.min(b), a.max(b)))
+        .collect();
+    edges.sort_unstable();
+    edges.dedup();
+    edges
+}
+
+/// The largest deformed / rest length over the edges of the mesh that `counts`, and its edge.
+fn largest_stretch(mesh: &Mesh, posed: &[DVec3], counts: impl Fn((u32, u32)) -> bool) -> (f64, (u32, u32)) {
+    let rest = &mesh.positions;
+    edges(mesh)
+        .into_iter()
+        .filter(|&(a, b)| rest[a as usize] != rest[b as usize] && counts((a, b)))
+        .map(|(a, b)| {
+            let (i, j) = (a as usize, b as usize);
+            (posed[i].distance(posed[j]) / rest[i].distance(rest[j]), (a, b))
+        })
+        .fold((0.0, (0, 0)), |best, next| if next.0 > best.0 { next } else { best })
+}
+
+/// The largest turn of a triangle's normal between rest and pose, over the triangles with a
+/// vertex in a band and none that `skip`, degrees.
+fn largest_band_normal_turn(mesh: &Mesh, bindings: &MeshBindings, posed: &[DVec3], skip: impl Fn(u32) -> bool) -> f64 {
+    let weights = bindings.weights();
+    let in_band = |v: u32| weights[v as usize] > 0.0 && weights[v as usize] < 1.0;
+    let normal = |p: &[DVec3], [a, b, c]: [u32; 3]| {
+        (p[b as usize] - p[a as usize]).cross(p[c as usize] - p[a as usize]).try_normalize()
+    };
+    mesh.faces
+        .triangles()
+        .filter(|t| t.iter().any(|&v| in_band(v)) && !t.iter().any(|&v| skip(v)))
+        .filter_map(|t| Some(normal(&mesh.positions, t)?.angle_between(normal(posed, t)?).to_degrees()))
+        .fold(0.0, f64::max)
+}
+
+/// Whether vertex `v` lies in the crease of a bend at the middle key: bound within the two knot
+/// intervals beside its sweep's middle key. A 60° turn of one key bends the sweep within those
+/// intervals alone (R(t) interpolates the keys interval by interval), which stretches the outside
+/// of a part as wide as an interval is long and folds its inside, whatever happens at its
+/// boundary: the sweep's own shape, not a seam.
+fn in_crease(rig: &Rig, bindings: &MeshBindings, v: u32) -> bool {
+    let binding = bindings.vertices[v as usize];
+    if binding.sweep == u32::MAX {
+        return false;
+    }
+    let knots = rig.rest()[binding.sweep as usize].knots();
+    let middle = knots.len() / 2;
+    (knots[middle - 1]..=knots[middle + 1]).contains(&binding.params.t)
+}
+
+/// The largest edge stretch of each acceptance pose (the crease of the middle-key bend left
+/// out, and reported), with the largest normal turn of a band triangle.
+fn measure(name: &str, mesh: &Mesh, rig: &Rig) -> Vec<(f64, f64)> {
+    let owners = rig.owners(mesh, name).unwrap();
+    let bindings = rig.bind_mesh(mesh, &owners, &|_| {});
+    let widths: Vec<String> = rig.sweeps().iter().map(|s| format!("{:.4}", s.falloff)).collect();
+    let widths = widths.join(" / ");
+    let mut measured = Vec::new();
+    for (i, (pose, keys)) in poses(rig).into_iter().enumerate() {
+        let posed = rig.pose(&keys).unwrap();
+        let mut out = vec![DVec3::ZERO; mesh.positions.len()];
+        deform_vertices(rig.rest(), &posed, &bindings, &mesh.positions, &mut out);
+        let crease = |v: u32| i == 1 && in_crease(rig, &bindings, v);
+        let (stretch, edge) = largest_stretch(mesh, &out, |(a, b)| !crease(a) && !crease(b));
+        let turn = largest_band_normal_turn(mesh, &bindings, &out, crease);
+        eprint!("{name}, {pose}, falloff {widths}: largest edge stretch {stretch:.2} at {edge:?}");
+        if i == 1 {
+            let (inside, _) = largest_stretch(mesh, &out, |(a, b)| crease(a) || crease(b));
+            eprint!(" (in the bend's crease {inside:.2})");
+        }
+        eprintln!(", largest band normal turn {turn:.1}°");
+        measured.push((stretch, turn));
+    }
+    measured
+}
+
+/// The acceptance: with the default falloff neither pose stretches an edge past 2 or turns a
+/// band triangle past 90°; without falloff the swing tears the seam (> 4), and so does the bend
+/// with key 0 at the free end.
+fn check_seams(name: &str, mesh: &Mesh, parts: &[(&str, Vec<u32>)]) {
+    let seamless = measure(name, mesh, &fitted_rig(mesh, parts, None, KeyZero::Attached));
+    for (pose, (stretch, turn)) in ["swing", "bend"].iter().zip(seamless) {
+        assert!(stretch <= 2.0, "{name}, {pose}: largest stretch {stretch:.2}");
+        assert!(turn <= 90.0, "{name}, {pose}: a band triangle turned {turn:.1}°");
+    }
+    let hard = measure(name, mesh, &fitted_rig(mesh, parts, Some(0.0), KeyZero::Attached));
+    assert!(hard[0].0 > 4.0, "{name}, swing without falloff: {:.2}", hard[0].0);
+    let free = measure(name, mesh, &fitted_rig(mesh, parts, Some(0.0), KeyZero::Free));
+    assert!(free[1].0 > 4.0, "{name}, bend with key 0 at the free end: {:.2}", free[1].0);
+}
+
+#[test]
+fn the_bunnys_ears_stay_attached_when_swung_and_bent() {
+    let Some(path) = common::shared_mesh("bunny_stanford_zipper.obj") else { return };
+    let mesh = Mesh::load(&path).unwrap();
+    let parts = [
+        ("front_ear", largest_connected(&mesh, bunny_front_ear)),
+        ("back_ear", largest_connected(&mesh, bunny_back_ear)),
+    ];
+    check_seams("bunny", &mesh, &parts);
+}
+
+#[test]
+fn the_armadillos_leg_stays_attached_when_swung_and_bent() {
+    let Some(path) = common::shared_mesh("armadillo_50k.obj") else { return };
+    let mesh = Mesh::load(&path).unwrap();
+    let parts = [("leg", largest_connected(&mesh, armadillo_leg))];
+    check_seams("armadillo", &mesh, &parts);
+}
