@@ -36,6 +36,7 @@ const KERNELS: &[(&str, &[&str])] = &[
         ],
     ),
     ("band_pack", &["layout.wgsl", "band_pack.wgsl"]),
+    ("band_flags", &["layout.wgsl", "band_flags.wgsl"]),
     ("normals_one_window", &["layout.wgsl", "normals.wgsl", "positions_one_window.wgsl"]),
     ("normals_two_windows", &["layout.wgsl", "normals.wgsl", "positions_two_windows.wgsl"]),
     ("copy", &["layout.wgsl", "copy.wgsl"]),

@@ -5,6 +5,8 @@ const WORKGROUP_SIZE: u32 = 128u;
 const UNBOUND: u32 = 0xffffffffu;
 // Set in a binding's cell (and a bind kernel owner) for a vertex in a falloff band.
 const BAND_FLAG: u32 = 0x80000000u;
+// Set in a BandFlag's vertex for a vertex that keeps its rest position in the new bands.
+const KEEPS_REST: u32 = 0x40000000u;
 
 // Most cells a rig may have for the deform kernel to read them from a uniform buffer (64 KiB).
 const UNIFORM_CELL_CAPACITY: u32 = 409u;
@@ -57,6 +59,16 @@ struct BandRecord {
     weight: f32,
     cell: u32,
     s_phi: u32,
+}
+
+// A change of one vertex's band membership (set_bands): the vertex (relative to the dispatch's
+// first) with BAND_FLAG set if it enters the bands (clear: it leaves them) and KEEPS_REST set if
+// it keeps its rest position there, which x, y, z then hold.
+struct BandFlag {
+    vertex: u32,
+    x: f32,
+    y: f32,
+    z: f32,
 }
 
 // One dispatch covers one chunk of vertices: its count, the global index of its first vertex,

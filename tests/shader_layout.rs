@@ -5,8 +5,8 @@
 use std::mem::{offset_of, size_of};
 
 use sweepffd::coeffs::{
-    BAND_FLAG, BandRecord, BindSegment, CellCoeffs, DispatchParams, GpuBinding, Joint, SkinInfluence, SweepInfo,
-    UNBOUND, UNIFORM_CELL_CAPACITY, WORKGROUP_SIZE,
+    BAND_FLAG, BandFlag, BandRecord, BindSegment, CellCoeffs, DispatchParams, GpuBinding, Joint, KEEPS_REST,
+    SkinInfluence, SweepInfo, UNBOUND, UNIFORM_CELL_CAPACITY, WORKGROUP_SIZE,
 };
 use sweepffd::gpu::shaders;
 use sweepffd::normals::{FAN_INDEX, FAN_START};
@@ -27,6 +27,7 @@ fn rust_layouts() -> Vec<RustLayout> {
         layout!(BindSegment { origin, normal, e_low, e5, t0, t1, _pad }),
         layout!(GpuBinding { cell, s, phi, d, h }),
         layout!(BandRecord { vertex, weight, cell, s_phi }),
+        layout!(BandFlag { vertex, x, y, z }),
         layout!(DispatchParams { vertex_count, first_vertex, window_split, _pad }),
         layout!(SkinInfluence { joints, weights }),
         layout!(Joint { rows }),
@@ -82,8 +83,8 @@ fn shared_structs_have_the_rust_layout() {
             checked += 1;
         }
     }
-    // layout.wgsl declares all eight structs and is part of every kernel.
-    assert_eq!(checked, 8 * shaders::ALL.len());
+    // layout.wgsl declares all nine structs and is part of every kernel.
+    assert_eq!(checked, 9 * shaders::ALL.len());
 }
 
 /// The value of the `u32` constant `name` in a kernel, if it declares it.
@@ -102,6 +103,7 @@ fn shared_constants_have_the_rust_values() {
         assert_eq!(u32_constant(&module, "UNIFORM_CELL_CAPACITY"), Some(UNIFORM_CELL_CAPACITY), "{name}");
         assert_eq!(u32_constant(&module, "UNBOUND"), Some(UNBOUND), "{name}");
         assert_eq!(u32_constant(&module, "BAND_FLAG"), Some(BAND_FLAG), "{name}");
+        assert_eq!(u32_constant(&module, "KEEPS_REST"), Some(KEEPS_REST), "{name}");
     }
     for source in [shaders::NORMALS_ONE_WINDOW, shaders::NORMALS_TWO_WINDOWS] {
         let normals = parse("normals", source);

@@ -1,7 +1,9 @@
 //! The viewer, driven by scripts in a virtual X display (Xvfb) on the GPU adapter (lavapipe in
 //! CI): a scripted drag of the mesh changes the picture where the mesh moved, its saved pose is
 //! exactly what `sweepffd pose` makes of the same drag_point edit, undo and redo walk back and
-//! forth, and a mesh without a rig gets a sweep fitted to a clicked part.
+//! forth, a mesh without a rig gets a sweep fitted to a clicked part, and the weight paint shows
+//! a falloff band that a scripted falloff change widens, moving the posed mesh to what a rig
+//! with that falloff draws.
 //!
 //! Without Xvfb (and no DISPLAY) or without an adapter the tests print why and skip; under
 //! `CI=true` a missing Xvfb fails them, and under `SWEEPFFD_REQUIRE_GPU=1` a missing adapter.
@@ -239,4 +241,88 @@ fn bad_script_is_an_error_naming_the_file_before_any_window_opens() {
     assert!(!output.status.success());
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(stderr.contains("bad.json") && stderr.contains("ctrl+q"), "{stderr}");
+}
+
+/// Whether a pixel shows the middle of the weight paint's ramp (w ≈ ½, yellow) under any light:
+/// shading scales the linear colour, so red and green stay close and blue stays far below
+/// (clay, the background, rings, sweeps and the ramp's other stops fail one of the two).
+fn halfway_yellow(pixel: &image::Rgba<u8>) -> bool {
+    let [r, g, b, _] = pixel.0.map(f32::from);
+    r >= 40.0 && g >= 0.85 * r && g <= 1.1 * r && b <= 0.45 * r
+}
+
+/// Pixels (x, y) of the scene (left of the panel) that `keep`.
+fn scene_count(keep: impl Fn(u32, u32) -> bool) -> usize {
+    (0..SCENE_WIDTH).flat_map(|x| (0..WINDOW.1).map(move |y| (x, y))).filter(|&(x, y)| keep(x, y)).count()
+}
+
+/// The demo's rig with its sweep owning only the tube's upper half (z ≥ 2), with falloff `width`,
+/// in `dir/name`: the band fades into the unowned lower half.
+fn half_owned_rig(dir: &Path, width: f64, name: &str) {
+    let mesh = sweepffd::mesh::Mesh::load(&dir.join("demo/rest.obj")).unwrap();
+    let upper: Vec<u32> = (0..mesh.positions.len() as u32).filter(|&v| mesh.positions[v as usize].z >= 2.0).collect();
+    let mut rig: Value = serde_json::from_str(&std::fs::read_to_string(dir.join("demo/rig.json")).unwrap()).unwrap();
+    rig["sweeps"][0]["vertices"] = serde_json::json!({ "indices": upper });
+    rig["sweeps"][0]["falloff"] = serde_json::json!(width);
+    write(&dir.join(name), &rig.to_string());
+}
+
+#[test]
+fn weight_paint_shows_the_band_and_a_new_falloff_changes_the_posed_mesh() {
+    let Some(display) = display() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    demo_tube(dir.path());
+    half_owned_rig(dir.path(), 0.4, "narrow-rig.json");
+    half_owned_rig(dir.path(), 1.2, "wide-rig.json");
+    // The sweeps hidden (W twice), so that only the mesh is drawn.
+    write(
+        &dir.path().join("paint.json"),
+        r#"[{"key": "w"}, {"key": "w"}, {"wait": 0.2}, {"screenshot": "plain"},
+            {"key": "k"}, {"screenshot": "painted"},
+            {"falloff": {"sweep": "tube", "width": 1.2}}, {"screenshot": "painted-wide"},
+            {"key": "k"}, {"screenshot": "wide"},
+            {"save_rig": "saved-rig.json"}, {"save_pose": "saved-pose.json"}]"#,
+    );
+    let posed = ["--mesh", "demo/rest.obj", "--pose", "demo/pose.json", "--rig"];
+    let Some(report) =
+        view(&display, dir.path(), &[&posed[..], &["narrow-rig.json", "--script", "paint.json"]].concat())
+    else {
+        return;
+    };
+    assert_eq!(report["errors"], Value::Array(vec![]), "{report}");
+    assert_eq!(report["screenshots"].as_array().unwrap().len(), 4, "{report}");
+    // The same pose with the wide falloff from the start.
+    write(
+        &dir.path().join("fresh.json"),
+        r#"[{"key": "w"}, {"key": "w"}, {"wait": 0.2}, {"screenshot": "fresh-wide"}]"#,
+    );
+    let report =
+        view(&display, dir.path(), &[&posed[..], &["wide-rig.json", "--script", "fresh.json"]].concat()).unwrap();
+    assert_eq!(report["errors"], Value::Array(vec![]), "{report}");
+
+    let shot = |name: &str| picture(&dir.path().join(format!("{name}.png")));
+    let (plain, painted, painted_wide, wide, fresh) =
+        (shot("plain"), shot("painted"), shot("painted-wide"), shot("wide"), shot("fresh-wide"));
+    let yellow = |p: &RgbaImage| scene_count(|x, y| halfway_yellow(p.get_pixel(x, y)));
+    let (none, narrow_band, wide_band) = (yellow(&plain), yellow(&painted), yellow(&painted_wide));
+    eprintln!("halfway-yellow pixels: {none} in clay, {narrow_band} with W = 0.4, {wide_band} with W = 1.2");
+    assert_eq!(none, 0, "clay shows no band colour");
+    assert!(narrow_band > 100, "the paint shows the band: {narrow_band} pixels");
+    assert!(wide_band > narrow_band, "a wider band shows more of its middle: {wide_band} ≤ {narrow_band}");
+
+    // The wider falloff moved the posed mesh, and drew what the rig with that falloff draws.
+    let changed = scene_count(|x, y| plain.get_pixel(x, y) != wide.get_pixel(x, y));
+    let differ = scene_count(|x, y| wide.get_pixel(x, y) != fresh.get_pixel(x, y));
+    eprintln!("falloff 0.4 → 1.2: {changed} scene pixels changed; {differ} differ from the rig made with 1.2");
+    assert!(changed > 2_000, "only {changed} pixels changed");
+    assert!(differ <= 50, "{differ} pixels differ from a viewer started with the wide falloff");
+
+    // The saved rig carries the new falloff, and the saved pose (the session kept) fits it.
+    let rig = sweepffd::rig::Rig::load(&dir.path().join("saved-rig.json")).unwrap();
+    assert_eq!(rig.sweeps()[0].falloff, 1.2);
+    rig.load_pose(&dir.path().join("saved-pose.json")).unwrap();
+    let json = |name: &str| -> Value {
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join(name)).unwrap()).unwrap()
+    };
+    assert_eq!(json("saved-pose.json")["sweeps"][0]["keys"], json("demo/pose.json")["sweeps"][0]["keys"]);
 }

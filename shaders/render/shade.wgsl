@@ -2,7 +2,7 @@
 // in src/render/pipeline.rs (vertex layout `RenderVertex`, uniform `ViewUniform` in
 // src/render/scene.rs and src/render/pipeline.rs); the same entry points draw the opaque and the
 // translucent layers, and the deformed mesh from the deformer's separate position and normal
-// buffers with its colour per instance.
+// buffers with its colour per instance, or per vertex (8-bit unorm, read as the same vec4).
 //
 // Two-sided Lambert: the normal is flipped towards the eye, so faces wound either way and open
 // surfaces light the same from both sides. Light = ambient + a key light + a headlight; colours

@@ -18,6 +18,11 @@ pub const UNBOUND: u32 = u32::MAX;
 /// `cell & !BAND_FLAG`. Rigs have fewer than 2³¹ cells.
 pub const BAND_FLAG: u32 = 1 << 31;
 
+/// Set in [`BandFlag::vertex`] for a vertex that keeps its rest position in the new bands (w = 0
+/// against the rest position): the band-flags kernel writes that position, which the band kernel
+/// never does. Dispatches hold fewer than 2³⁰ vertices.
+pub const KEEPS_REST: u32 = 1 << 30;
+
 /// Most cells a rig may have for the deform kernel to read them from a uniform buffer (64 KiB,
 /// the portable limit); larger rigs use the storage-buffer variant of the kernel.
 pub const UNIFORM_CELL_CAPACITY: u32 = 409;
@@ -126,6 +131,29 @@ pub struct BandRecord {
     pub s_phi: u32,
 }
 
+/// A change of one vertex's band membership when the falloff bands are replaced
+/// ([`GpuDeformer::set_bands`](crate::gpu::GpuDeformer::set_bands)), for the band-flags kernel.
+/// 16 bytes, only for the vertices whose membership changes.
+///
+/// `vertex` is the vertex relative to the first vertex of its dispatch, with [`BAND_FLAG`] set if
+/// it enters the bands (clear: it leaves them and the deform kernel moves it again) and
+/// [`KEEPS_REST`] set if it keeps its rest position there, which `x, y, z` then hold (f32, as
+/// the deformer uploaded it). The position is three scalars rather than a `[f32; 4]` so that the
+/// record packs into 16 bytes with its vertex.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct BandFlag {
+    /// The vertex, relative to the first vertex of its dispatch, with [`BAND_FLAG`] and
+    /// [`KEEPS_REST`] as flags.
+    pub vertex: u32,
+    /// Rest position x, for a vertex with [`KEEPS_REST`].
+    pub x: f32,
+    /// Rest position y.
+    pub y: f32,
+    /// Rest position z.
+    pub z: f32,
+}
+
 /// Per-dispatch constants of every kernel: one dispatch covers one chunk of vertices. 16 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Pod, Zeroable)]
@@ -168,5 +196,6 @@ const _: () = assert!(size_of::<BindSegment>() == 96);
 const _: () = assert!(size_of::<GpuBinding>() == 20);
 const _: () = assert!(size_of::<DispatchParams>() == 16);
 const _: () = assert!(size_of::<BandRecord>() == 16);
+const _: () = assert!(size_of::<BandFlag>() == 16);
 const _: () = assert!(size_of::<SkinInfluence>() == 8);
 const _: () = assert!(size_of::<Joint>() == 48);

@@ -1,7 +1,7 @@
 //! CPU twins of the WGSL kernels: f32 code that mirrors `shaders/*.wgsl` statement by
 //! statement, file for file (`shaders/bind.wgsl` ↔ [`bind`], `shaders/deform.wgsl` ↔
 //! [`deform`], `shaders/band.wgsl` ↔ [`band`], `shaders/band_pack.wgsl` ↔ [`band_pack`],
-//! `shaders/normals.wgsl` ↔ [`normals`], and the shared `shaders/sweep_eval.wgsl` ↔
+//! `shaders/band_flags.wgsl` ↔ [`band_flags`], `shaders/normals.wgsl` ↔ [`normals`], and the shared `shaders/sweep_eval.wgsl` ↔
 //! [`sweep_eval`], `shaders/angle.wgsl` ↔ [`angle`], `shaders/blend.wgsl` ↔ [`blend`]; the
 //! benchmark baselines `shaders/copy.wgsl` ↔ [`copy`],
 //! `shaders/skinning.wgsl` ↔ [`skinning`]).
@@ -13,6 +13,7 @@
 
 pub mod angle;
 pub mod band;
+pub mod band_flags;
 pub mod band_pack;
 pub mod bind;
 pub mod blend;

@@ -4,7 +4,10 @@
 //!
 //! When the deformer binds on the GPU, the bind kernel also binds every band vertex that fades
 //! into a neighbouring sweep to that sweep (a compact dispatch over those vertices only), and
-//! `shaders/band_pack.wgsl` packs the result into the records.
+//! `shaders/band_pack.wgsl` packs the result into the records. The records can be replaced
+//! later without touching the primary bindings ([`GpuDeformer::set_bands`]).
+//!
+//! [`GpuDeformer::set_bands`]: super::GpuDeformer::set_bands
 
 use std::ops::Range;
 
@@ -45,32 +48,43 @@ struct BandChunk {
 #[derive(Debug)]
 pub(crate) struct BandStage {
     kernel: Kernel,
+    /// `shaders/band_pack.wgsl`, compiled the first time second influences are bound.
+    pack: Option<Kernel>,
     rest_cells: wgpu::Buffer,
     chunks: Vec<BandChunk>,
 }
 
-/// What the band stage of a deformer is built from.
+/// The deformer's buffers the band dispatches bind.
 pub(crate) struct BandPlan<'a> {
-    pub variant: DeformVariant,
-    pub rest_cells: wgpu::Buffer,
     pub cells: &'a wgpu::Buffer,
     pub positions: &'a wgpu::Buffer,
     pub limits: &'a ChunkLimits,
 }
 
 impl BandStage {
-    /// The band stage for the deform chunks `chunks` (each a vertex range and its binding
-    /// buffer), recording any GPU binding of second influences into `encoder`.
-    pub(crate) fn new(
+    /// The band kernel for cell records of `variant`, reading the rest rig's from `rest_cells`;
+    /// no band records yet.
+    pub(crate) fn new(device: &wgpu::Device, variant: DeformVariant, rest_cells: &wgpu::Buffer) -> BandStage {
+        BandStage {
+            kernel: kernels::band(device, variant),
+            pack: None,
+            rest_cells: rest_cells.clone(),
+            chunks: Vec::new(),
+        }
+    }
+
+    /// Replaces the band records with those of `source` for the deform chunks `chunks` (each a
+    /// vertex range and its binding buffer), recording any GPU binding of second influences
+    /// into `encoder` (`binder` is needed for [`BandSource::Bind`]).
+    pub(crate) fn set_records(
+        &mut self,
         device: &wgpu::Device,
         plan: BandPlan,
         chunks: &[(Range<u32>, &wgpu::Buffer)],
         source: BandSource,
         binder: Option<&Binder>,
         encoder: &mut wgpu::CommandEncoder,
-    ) -> BandStage {
-        let kernel = kernels::band(device, plan.variant);
-        let pack = matches!(source, BandSource::Bind { .. }).then(|| kernels::band_pack(device));
+    ) {
         let vertex_of = |i: usize| match source {
             BandSource::Bind { weights, .. } => weights[i].vertex,
             BandSource::Records(records) => records[i].vertex,
@@ -79,7 +93,10 @@ impl BandStage {
             BandSource::Bind { weights, .. } => weights.len(),
             BandSource::Records(records) => records.len(),
         };
-        let mut band_chunks = Vec::with_capacity(chunks.len());
+        if matches!(source, BandSource::Bind { .. }) && total > 0 && self.pack.is_none() {
+            self.pack = Some(kernels::band_pack(device));
+        }
+        self.chunks.clear();
         let mut next = 0usize;
         for (range, bindings) in chunks {
             let start = next;
@@ -103,7 +120,7 @@ impl BandStage {
                 contents: bytemuck::cast_slice(&records),
                 usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             });
-            if let (BandSource::Bind { weights, positions }, Some(binder), Some(pack)) = (source, binder, &pack) {
+            if let (BandSource::Bind { weights, positions }, Some(binder), Some(pack)) = (source, binder, &self.pack) {
                 bind_second_influences(
                     device,
                     binder,
@@ -117,7 +134,7 @@ impl BandStage {
             }
             let count = (next - start) as u32;
             let params = params_buffer(device, DispatchParams { vertex_count: count, ..Default::default() });
-            let group = kernel.bind_group(
+            let group = self.kernel.bind_group(
                 device,
                 "sweepffd band",
                 &[
@@ -125,18 +142,20 @@ impl BandStage {
                     plan.cells.as_entire_binding(),
                     bindings.as_entire_binding(),
                     window(plan.positions, range, POSITION_STRIDE),
-                    plan.rest_cells.as_entire_binding(),
+                    self.rest_cells.as_entire_binding(),
                     buffer.as_entire_binding(),
                 ],
             );
             let grid = dispatch_grid(count, plan.limits);
-            band_chunks.push(BandChunk { first_vertex: range.start, count, records: buffer, group, grid });
+            self.chunks.push(BandChunk { first_vertex: range.start, count, records: buffer, group, grid });
         }
-        BandStage { kernel, rest_cells: plan.rest_cells, chunks: band_chunks }
     }
 
     /// Records the band dispatches into a compute pass, after the deform dispatches.
     pub(crate) fn encode(&self, pass: &mut wgpu::ComputePass) {
+        if self.chunks.is_empty() {
+            return;
+        }
         pass.set_pipeline(&self.kernel.pipeline);
         for chunk in &self.chunks {
             pass.set_bind_group(0, &chunk.group, &[]);

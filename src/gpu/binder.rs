@@ -12,7 +12,9 @@ use super::kernels::{self, Kernel};
 use crate::coeffs::{DispatchParams, SweepCoefficients, bind_segments};
 use crate::sweep::Sweep;
 
-/// The bind kernel with the rest rig's tables, used once while the deformer is built.
+/// The bind kernel with the rest rig's tables: used while the deformer is built, and kept to
+/// bind the second influences of new falloff bands. `cells` must hold the rest rig's records.
+#[derive(Debug)]
 pub(crate) struct Binder {
     kernel: Kernel,
     device: wgpu::Device,

@@ -1,10 +1,13 @@
 //! [`GpuDeformer`]: binding and Eq. 2 on the GPU, with the output position (and normal) buffer
 //! ready to be drawn by the host application.
 
+mod set_bands;
+
 use std::ops::Range;
 
 use glam::DVec3;
 
+use self::set_bands::{BandMember, Rebanding};
 use super::bands::{BandPlan, BandSource, BandStage};
 use super::binder::Binder;
 use super::buffers::{
@@ -47,7 +50,8 @@ pub enum BindingSource<'a> {
 /// application's command encoder: no allocation, pipeline or bind-group creation, no vertex
 /// upload per frame. The [`positions`](GpuDeformer::positions) buffer (and
 /// [`normals`](GpuDeformer::normals)) has `VERTEX | STORAGE` usage: draw it directly as a
-/// `Float32x3` vertex attribute. Reading it back is a separate, explicit call.
+/// `Float32x3` vertex attribute. Reading it back is a separate, explicit call. New falloff
+/// widths need no new deformer: [`set_bands`](GpuDeformer::set_bands) replaces the bands.
 ///
 /// Meshes whose buffers exceed the device's storage binding size or workgroup count are split
 /// into chunks transparently; the position buffer is one buffer and must fit `max_buffer_size`.
@@ -59,8 +63,9 @@ pub enum BindingSource<'a> {
 /// use sweepffd::gpu::{BindingSource, GpuDeformer};
 ///
 /// let owners = rig.owners(mesh, "mesh")?;
-/// let mut deformer = GpuDeformer::new(
-///     context, rig.rest(), &mesh.positions, BindingSource::Bind { owners: &owners }, Some(&mesh.faces))?;
+/// let bands = rig.band_weights(mesh, &owners); // empty without falloff
+/// let bindings = BindingSource::Bind { owners: &owners, bands: &bands };
+/// let mut deformer = GpuDeformer::new(context, rig.rest(), &mesh.positions, bindings, Some(&mesh.faces))?;
 /// for keys in poses {
 ///     let posed = rig.pose(keys)?; // f64 sweeps on the CPU: a few keys, not millions of vertices
 ///     deformer.set_pose(&posed)?; // uploads a few KB of coefficients
@@ -80,8 +85,12 @@ pub struct GpuDeformer {
     positions: wgpu::Buffer,
     cells: wgpu::Buffer,
     coefficients: SweepCoefficients,
+    variant: DeformVariant,
+    /// The rest rig's cell records, which binding and the band kernel read.
+    rest_cells: wgpu::Buffer,
     chunks: Vec<DeformChunk>,
     bands: Option<BandStage>,
+    rebanding: Rebanding,
     normals: Option<NormalsStage>,
 }
 
@@ -151,11 +160,12 @@ impl GpuDeformer {
         let positions_buffer = upload_positions(device, positions);
         let variant = DeformVariant::for_cells(coefficients.cells.len(), &device_limits);
         let cells = cells_buffer(device, &coefficients, variant);
+        let rest_cells = cells_buffer(device, &coefficients, variant);
         let kernel = kernels::deform(device, variant);
         let mut encoder =
             device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd bind") });
         let binder = match bindings {
-            BindingSource::Bind { .. } => Some(Binder::new(context, rest, &coefficients, &cells)),
+            BindingSource::Bind { .. } => Some(Binder::new(context, rest, &coefficients, &rest_cells)),
             BindingSource::Precomputed { .. } => None,
         };
         let band_vertices: Vec<u32> = match bindings {
@@ -196,17 +206,23 @@ impl GpuDeformer {
                 BindingSource::Bind { bands, .. } => BandSource::Bind { weights: bands, positions },
                 BindingSource::Precomputed { bands, .. } => BandSource::Records(bands),
             };
-            let plan = BandPlan {
-                variant,
-                rest_cells: cells_buffer(device, &coefficients, variant),
-                cells: &cells,
-                positions: &positions_buffer,
-                limits: &limits,
-            };
+            let plan = BandPlan { cells: &cells, positions: &positions_buffer, limits: &limits };
             let windows: Vec<(Range<u32>, &wgpu::Buffer)> =
                 chunks.iter().map(|chunk| (chunk.range.clone(), &chunk.bindings)).collect();
-            BandStage::new(device, plan, &windows, source, binder.as_ref(), &mut encoder)
+            let mut stage = BandStage::new(device, variant, &rest_cells);
+            stage.set_records(device, plan, &windows, source, binder.as_ref(), &mut encoder);
+            stage
         });
+        let (members, bound): (Vec<BandMember>, Vec<bool>) = match bindings {
+            BindingSource::Bind { owners, bands } => {
+                (bands.iter().map(BandMember::of_weight).collect(), owners.iter().map(|&o| o != UNBOUND).collect())
+            }
+            BindingSource::Precomputed { bindings, bands } => (
+                bands.iter().map(BandMember::of_record).collect(),
+                bindings.iter().map(|b| b.cell != UNBOUND).collect(),
+            ),
+        };
+        let rebanding = Rebanding::new(rest, binder, members, &bound);
         let normals = match faces {
             Some(faces) => Some(NormalsStage::new(device, faces, &positions_buffer, vertex_count, &limits)?),
             None => None,
@@ -219,8 +235,11 @@ impl GpuDeformer {
             positions: positions_buffer,
             cells,
             coefficients,
+            variant,
+            rest_cells,
             chunks,
             bands,
+            rebanding,
             normals,
         };
         // Normals of the rest mesh, so the buffer is meaningful before the first pose.
@@ -387,6 +406,23 @@ impl GpuDeformer {
     }
 }
 
+/// Fails unless `weights` are sorted by vertex, each vertex `bound` (owned by a sweep), each
+/// weight in [0, 1) and each neighbour one of the rig's `sweeps` or [`UNBOUND`] (the rest
+/// position).
+fn check_weights(weights: &[BandWeight], sweeps: usize, bound: impl Fn(usize) -> bool) -> Result<(), GpuError> {
+    let ordered = weights.windows(2).all(|pair| pair[0].vertex < pair[1].vertex);
+    let valid = |b: &BandWeight| {
+        bound(b.vertex as usize)
+            && b.weight.is_finite()
+            && (0.0..1.0).contains(&b.weight)
+            && (b.neighbour == UNBOUND || (b.neighbour as usize) < sweeps)
+    };
+    if !ordered || !weights.iter().all(valid) {
+        return Err(GpuError::Input("the falloff bands are not sorted, owned and in range".into()));
+    }
+    Ok(())
+}
+
 fn check_input(rest: &[Sweep], positions: &[DVec3], bindings: &BindingSource) -> Result<(), GpuError> {
     if positions.is_empty() {
         return Err(GpuError::Input("the mesh has no vertices".into()));
@@ -409,17 +445,7 @@ fn check_input(rest: &[Sweep], positions: &[DVec3], bindings: &BindingSource) ->
                     rest.len()
                 )));
             }
-            let ordered = bands.windows(2).all(|pair| pair[0].vertex < pair[1].vertex);
-            let valid = |b: &BandWeight| {
-                (b.vertex as usize) < owners.len()
-                    && owners[b.vertex as usize] != UNBOUND
-                    && b.weight.is_finite()
-                    && (0.0..1.0).contains(&b.weight)
-                    && (b.neighbour == UNBOUND || (b.neighbour as usize) < rest.len())
-            };
-            if !ordered || !bands.iter().all(valid) {
-                return Err(GpuError::Input("the falloff bands are not sorted, owned and in range".into()));
-            }
+            check_weights(bands, rest.len(), |v| owners.get(v).is_some_and(|&o| o != UNBOUND))?;
         }
         BindingSource::Precomputed { bindings, bands } => {
             if bindings.len() != positions.len() {

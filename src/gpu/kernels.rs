@@ -144,6 +144,17 @@ pub fn band_pack(device: &wgpu::Device) -> Kernel {
     Kernel::new(device, "sweepffd band pack", shaders::BAND_PACK, "band_pack_main", &[Uniform, Read, ReadWrite])
 }
 
+/// `shaders/band_flags.wgsl`: params, band flag changes (read); bindings, positions (written).
+pub fn band_flags(device: &wgpu::Device) -> Kernel {
+    Kernel::new(
+        device,
+        "sweepffd band flags",
+        shaders::BAND_FLAGS,
+        "band_flags_main",
+        &[Uniform, Read, ReadWrite, ReadWrite],
+    )
+}
+
 /// `shaders/normals.wgsl`: params, positions (two windows), offsets, fans (read); normals
 /// (written). `two_windows` when the positions do not fit one storage binding.
 pub fn normals(device: &wgpu::Device, two_windows: bool) -> Kernel {

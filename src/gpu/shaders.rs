@@ -20,6 +20,9 @@ pub const BAND_UNIFORM: &str = include_str!(concat!(env!("OUT_DIR"), "/band_unif
 pub const BAND_STORAGE: &str = include_str!(concat!(env!("OUT_DIR"), "/band_storage.wgsl"));
 /// The band records' second influences from bindings: `shaders/band_pack.wgsl`, `band_pack_main`.
 pub const BAND_PACK: &str = include_str!(concat!(env!("OUT_DIR"), "/band_pack.wgsl"));
+/// Band membership changes when the falloff bands are replaced: `shaders/band_flags.wgsl`,
+/// `band_flags_main`.
+pub const BAND_FLAGS: &str = include_str!(concat!(env!("OUT_DIR"), "/band_flags.wgsl"));
 /// Area-weighted vertex normals when the positions fit one storage binding:
 /// `shaders/normals.wgsl` with `shaders/positions_one_window.wgsl`, entry point `normals_main`.
 pub const NORMALS_ONE_WINDOW: &str = include_str!(concat!(env!("OUT_DIR"), "/normals_one_window.wgsl"));
@@ -33,13 +36,14 @@ pub const COPY: &str = include_str!(concat!(env!("OUT_DIR"), "/copy.wgsl"));
 pub const SKINNING: &str = include_str!(concat!(env!("OUT_DIR"), "/skinning.wgsl"));
 
 /// Every kernel as (name, composed source, entry point).
-pub const ALL: [(&str, &str, &str); 10] = [
+pub const ALL: [(&str, &str, &str); 11] = [
     ("bind", BIND, "bind_main"),
     ("deform_uniform", DEFORM_UNIFORM, "deform_main"),
     ("deform_storage", DEFORM_STORAGE, "deform_main"),
     ("band_uniform", BAND_UNIFORM, "band_main"),
     ("band_storage", BAND_STORAGE, "band_main"),
     ("band_pack", BAND_PACK, "band_pack_main"),
+    ("band_flags", BAND_FLAGS, "band_flags_main"),
     ("normals_one_window", NORMALS_ONE_WINDOW, "normals_main"),
     ("normals_two_windows", NORMALS_TWO_WINDOWS, "normals_main"),
     ("copy", COPY, "copy_main"),

@@ -58,6 +58,9 @@ pub struct Pipelines {
     /// [`GpuDeformer`](crate::gpu::GpuDeformer) writes them), buffer 2 one linear RGBA colour
     /// per instance; opaque.
     pub mesh: wgpu::RenderPipeline,
+    /// The same with one colour per vertex in buffer 2: linear RGBA as 8-bit unorm (4 bytes a
+    /// vertex), e.g. the viewer's weight paint.
+    pub mesh_painted: wgpu::RenderPipeline,
     /// Group 0: the [`ViewUniform`].
     pub view_layout: wgpu::BindGroupLayout,
 }
@@ -99,7 +102,8 @@ impl Pipelines {
         let translucent =
             shade.pipeline("sweepffd translucent", &INTERLEAVED, false, Some(wgpu::BlendState::ALPHA_BLENDING));
         let mesh = shade.pipeline("sweepffd deformed mesh", &SPLIT, true, None);
-        Pipelines { opaque, translucent, mesh, view_layout }
+        let mesh_painted = shade.pipeline("sweepffd painted mesh", &SPLIT_PAINTED, true, None);
+        Pipelines { opaque, translucent, mesh, mesh_painted, view_layout }
     }
 }
 
@@ -130,6 +134,25 @@ const SPLIT: [Option<wgpu::VertexBufferLayout<'static>>; 3] = [
         array_stride: 16,
         step_mode: wgpu::VertexStepMode::Instance,
         attributes: &wgpu::vertex_attr_array![2 => Float32x4],
+    }),
+];
+
+/// Positions and normals as in [`SPLIT`], one 8-bit RGBA colour per vertex.
+const SPLIT_PAINTED: [Option<wgpu::VertexBufferLayout<'static>>; 3] = [
+    Some(wgpu::VertexBufferLayout {
+        array_stride: 12,
+        step_mode: wgpu::VertexStepMode::Vertex,
+        attributes: &wgpu::vertex_attr_array![0 => Float32x3],
+    }),
+    Some(wgpu::VertexBufferLayout {
+        array_stride: 12,
+        step_mode: wgpu::VertexStepMode::Vertex,
+        attributes: &wgpu::vertex_attr_array![1 => Float32x3],
+    }),
+    Some(wgpu::VertexBufferLayout {
+        array_stride: 4,
+        step_mode: wgpu::VertexStepMode::Vertex,
+        attributes: &wgpu::vertex_attr_array![2 => Unorm8x4],
     }),
 ];
 

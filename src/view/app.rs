@@ -102,6 +102,7 @@ impl App {
             edits_path: format!("{stem}-edits.json"),
             rig_path: format!("{stem}-rig.json"),
             status: String::new(),
+            paint_weights: false,
         };
         let mut app = App {
             options,
@@ -187,8 +188,9 @@ impl App {
         let window = Arc::new(event_loop.create_window(attributes).map_err(|e| ViewError::Window(e.to_string()))?);
         let gpu = WindowGpu::new(&self.instance, Arc::clone(&window), self.player.is_none())?;
         let drawing = Drawing::new(&gpu.context.device, gpu.format);
-        let owners = self.model.owners.clone();
-        let mesh = MeshDraw::new(&gpu.context, &self.model.mesh, self.model.rig.as_ref().map(|r| (r, &owners[..])))?;
+        let model = &self.model;
+        let rig = model.rig.as_ref().map(|r| (r, &model.owners[..], &model.bands[..]));
+        let mesh = MeshDraw::new(&gpu.context, &model.mesh, rig)?;
         let context = egui::Context::default();
         let max_texture = gpu.context.device.limits().max_texture_dimension_2d as usize;
         let state = egui_winit::State::new(

@@ -47,6 +47,7 @@ impl App {
                 }
             }
             Command::ToggleHierarchy => settings.hierarchy = !settings.hierarchy,
+            Command::ToggleWeights => self.panel.paint_weights = !self.panel.paint_weights,
             Command::CycleVolume => {
                 settings.volume = match settings.volume {
                     VolumeRule::None => VolumeRule::Total,
@@ -134,6 +135,37 @@ impl App {
         self.report(outcome);
     }
 
+    /// Sets the falloff width of the sweep named `name` (a script's step).
+    pub(super) fn set_falloff_of(&mut self, name: &str, width: f64) {
+        match self.model.rig.as_ref().and_then(|rig| rig.sweep_index(name)) {
+            Some(sweep) => self.set_falloff(sweep, width),
+            None => self.report(Err(format!("falloff: the rig has no sweep named {name:?}"))),
+        }
+    }
+
+    /// Sets sweep `sweep`'s falloff width W (mesh units) live: the rig (and the rig saved) takes
+    /// it, and the deformer gets the new bands without binding the mesh again
+    /// ([`GpuDeformer::set_bands`](crate::gpu::GpuDeformer::set_bands)); the pose is deformed
+    /// again and the weight paint redrawn.
+    pub(super) fn set_falloff(&mut self, sweep: usize, width: f64) {
+        let outcome = self.try_set_falloff(sweep, width);
+        self.report(outcome.map_err(|e| e.to_string()));
+    }
+
+    fn try_set_falloff(&mut self, sweep: usize, width: f64) -> Result<String, ViewError> {
+        let name = self.model.set_falloff(sweep, width)?;
+        if let Some(running) = &mut self.running {
+            if let Some(deformer) = running.mesh.deformer() {
+                let (positions, bands) = (&self.model.mesh.positions, &self.model.bands);
+                deformer.set_bands(positions, bands).map_err(|e| ViewError::Gpu(e.to_string()))?;
+            }
+            running.mesh.weights_changed();
+        }
+        self.pose_changed = true;
+        self.mesh_volume_stale = true;
+        Ok(format!("falloff of {name:?}: W = {width:.4} ({} band vertices)", self.model.bands.len()))
+    }
+
     /// Fits a sweep to the selected part (§3), key 0 at its attached end and with the default
     /// falloff ([`crate::fit::DEFAULT_FALLOFF_FRACTION`] of its length), and adds it to the
     /// rig; the mesh is bound anew.
@@ -161,9 +193,9 @@ impl App {
         document.sweeps.push(fitted.sweep_document(name.clone(), part.selection.clone(), None));
         self.model.set_rig(document, None)?;
         if let Some(running) = &mut self.running {
-            let owners = self.model.owners.clone();
-            let rig = self.model.rig.as_ref().map(|r| (r, &owners[..]));
-            running.mesh = MeshDraw::new(&running.gpu.context, &self.model.mesh, rig)?;
+            let model = &self.model;
+            let rig = model.rig.as_ref().map(|r| (r, &model.owners[..], &model.bands[..]));
+            running.mesh = MeshDraw::new(&running.gpu.context, &model.mesh, rig)?;
         }
         self.selected_key = None;
         self.pose_changed = true;

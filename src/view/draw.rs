@@ -1,12 +1,14 @@
 //! Drawing a frame: the deformed mesh straight from the deformer's position and normal buffers
 //! (the buffers a host application draws; nothing is read back), the selected part over it, the
 //! key rings and the translucent sweep surfaces. Buffers are created once and rewritten in
-//! place; the overlay's grow only when an edit makes them larger.
+//! place; the overlay's grow only when an edit makes them larger. The weight paint's per-vertex
+//! colours are uploaded when first shown and again only when the weights change.
 
 use glam::Vec3;
 use wgpu::util::DeviceExt;
 
 use super::ViewError;
+use crate::bind::falloff::BandWeight;
 use crate::gpu::{BindingSource, GpuContext, GpuDeformer};
 use crate::mesh::Mesh;
 use crate::normals::{NormalAdjacency, vertex_normals};
@@ -35,17 +37,26 @@ pub struct MeshDraw {
     clay: wgpu::Buffer,
     highlight: wgpu::Buffer,
     selection: GrowingBuffer,
+    /// One colour per vertex (the weight paint), made the first time it is shown.
+    weight_colours: Option<wgpu::Buffer>,
+    /// The weights changed since the colours were written.
+    weights_stale: bool,
+    /// Whether the mesh is drawn in its weight colours rather than in clay.
+    painting: bool,
 }
 
 impl MeshDraw {
     /// Uploads `mesh`'s triangles once and, with a rig, binds its vertices on the GPU (`owners`
-    /// from [`Rig::owners`]).
-    pub fn new(context: &GpuContext, mesh: &Mesh, rig: Option<(&Rig, &[u32])>) -> Result<MeshDraw, ViewError> {
+    /// from [`Rig::owners`], `bands` from [`Rig::band_weights`]).
+    pub fn new(
+        context: &GpuContext,
+        mesh: &Mesh,
+        rig: Option<(&Rig, &[u32], &[BandWeight])>,
+    ) -> Result<MeshDraw, ViewError> {
         let device = &context.device;
         let source = match rig {
-            Some((rig, owners)) => {
-                let bands = rig.band_weights(mesh, owners);
-                let bindings = BindingSource::Bind { owners, bands: &bands };
+            Some((rig, owners, bands)) => {
+                let bindings = BindingSource::Bind { owners, bands };
                 let deformer = GpuDeformer::new(context, rig.rest(), &mesh.positions, bindings, Some(&mesh.faces))
                     .map_err(|e| ViewError::Gpu(e.to_string()))?;
                 MeshSource::Deformed(Box::new(deformer))
@@ -75,7 +86,32 @@ impl MeshDraw {
             clay: colour(crate::render::CLAY),
             highlight: colour(SELECTED_PART),
             selection: GrowingBuffer::new("sweepffd selected part", wgpu::BufferUsages::INDEX),
+            weight_colours: None,
+            weights_stale: true,
+            painting: false,
         })
+    }
+
+    /// Draws the mesh in its weight colours if `show` (`colours` gives one linear RGBA colour per
+    /// vertex; it is called, and its result uploaded, only when the weights changed since they
+    /// were last shown), or in clay.
+    pub fn show_weights(&mut self, context: &GpuContext, show: bool, colours: impl FnOnce() -> Vec<[u8; 4]>) {
+        self.painting = show;
+        if !show || (!self.weights_stale && self.weight_colours.is_some()) {
+            return;
+        }
+        let colours = colours();
+        let bytes: &[u8] = bytemuck::cast_slice(&colours);
+        match &self.weight_colours {
+            Some(buffer) => context.queue.write_buffer(buffer, 0, bytes),
+            None => self.weight_colours = Some(vertex_buffer(&context.device, "sweepffd weight colours", bytes)),
+        }
+        self.weights_stale = false;
+    }
+
+    /// The weights changed (a new falloff): the colours are written again when next shown.
+    pub fn weights_changed(&mut self) {
+        self.weights_stale = true;
     }
 
     /// The deformer, when there is a rig.
@@ -254,13 +290,22 @@ impl Drawing {
         pass.set_viewport(0.0, 0.0, viewport.x, viewport.y, 0.0, 1.0);
         pass.set_bind_group(0, &self.group, &[]);
         let (positions, normals) = mesh.buffers();
-        pass.set_pipeline(&self.pipelines.mesh);
         pass.set_vertex_buffer(0, positions.slice(..));
         pass.set_vertex_buffer(1, normals.slice(..));
-        pass.set_vertex_buffer(2, mesh.clay.slice(..));
         pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+        match mesh.weight_colours.as_ref().filter(|_| mesh.painting) {
+            Some(colours) => {
+                pass.set_pipeline(&self.pipelines.mesh_painted);
+                pass.set_vertex_buffer(2, colours.slice(..));
+            }
+            None => {
+                pass.set_pipeline(&self.pipelines.mesh);
+                pass.set_vertex_buffer(2, mesh.clay.slice(..));
+            }
+        }
         pass.draw_indexed(0..mesh.index_count, 0, 0..1);
         if let Some(selection) = mesh.selection.filled() {
+            pass.set_pipeline(&self.pipelines.mesh);
             pass.set_vertex_buffer(2, mesh.highlight.slice(..));
             pass.set_index_buffer(selection, wgpu::IndexFormat::Uint32);
             pass.draw_indexed(0..(mesh.selection.len / 4) as u32, 0, 0..1);

@@ -13,6 +13,7 @@ use super::panel::{PanelAction, PanelFacts, SweepDisplay, panel};
 use super::script::Action;
 use super::stats::FrameTimes;
 use super::surface::Capture;
+use super::weights::weight_colours;
 use crate::gpu::wait;
 use crate::render::{RING, Scene, SweepStyle, ViewUniform, add_key_ring, add_sweep_surface};
 
@@ -34,6 +35,7 @@ impl App {
                     Action::SaveEdits(path) => self.save_edits(&path),
                     Action::LoadPose(path) => self.load_pose(&path),
                     Action::SaveRig(path) => self.save_rig(&path),
+                    Action::Falloff { sweep, width } => self.set_falloff_of(&sweep, width),
                 }
             }
         }
@@ -130,10 +132,12 @@ impl App {
         let size = self.size();
         let uniform = ViewUniform::of(&self.camera.camera(), size.x / size.y);
         let Some(running) = &mut self.running else { return Ok(0.0) };
+        let (owners, bands) = (&self.model.owners, &self.model.bands);
+        let context = running.gpu.context.clone();
+        running.mesh.show_weights(&context, self.panel.paint_weights, || weight_colours(owners, bands));
         let Some(texture) = running.gpu.acquire() else { return Ok(0.0) };
         let screenshot = self.pending_screenshot.take();
         let target = running.gpu.view_of(&texture);
-        let context = running.gpu.context.clone();
         let mut encoder =
             context.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame") });
         running.drawing.encode(
@@ -214,6 +218,7 @@ impl App {
             match action {
                 PanelAction::Command(command) => self.command(command),
                 PanelAction::SaveRig => self.save_rig(std::path::Path::new(&self.panel.rig_path.clone())),
+                PanelAction::SetFalloff { sweep, width } => self.set_falloff(sweep, width),
             }
         }
         Ok(elapsed)
@@ -234,6 +239,11 @@ impl App {
             has_groups: !self.model.mesh.groups.is_empty(),
             selected_key: self.selected_key.and_then(|(s, k)| Some(format!("{} key {k}", rig?.sweeps()[s].name))),
             part: self.part.as_ref().map(|p| format!("part {:?}: {} vertices", p.name, p.vertices.len())),
+            falloffs: rig.map_or(Vec::new(), |rig| {
+                let owning = rig.sweeps().iter().enumerate().filter(|(_, s)| s.vertices.is_some());
+                owning.map(|(i, s)| (i, s.name.clone(), s.falloff)).collect()
+            }),
+            diagonal: self.model.diagonal,
         }
     }
 }

@@ -53,6 +53,8 @@ pub enum Command {
     ToggleHierarchy,
     /// V: cycle the volume rule.
     CycleVolume,
+    /// K: toggle the weight paint (each vertex coloured by its falloff weight).
+    ToggleWeights,
     /// G: dragging a key ring moves it.
     MoveTool,
     /// R: dragging a key ring turns it.
@@ -84,6 +86,7 @@ impl Command {
             ("l", ..) => Command::ToggleKeyMode,
             ("h", ..) => Command::ToggleHierarchy,
             ("v", ..) => Command::CycleVolume,
+            ("k", ..) => Command::ToggleWeights,
             ("g", ..) => Command::MoveTool,
             ("r", ..) => Command::RotateTool,
             ("s", ..) => Command::ScaleTool,
@@ -119,6 +122,8 @@ pub const CONTROLS: &[(&str, &str)] = &[
     ("H", "hierarchy propagation on / off"),
     ("V", "volume rule: none, total, ratio, mesh"),
     ("W", "sweeps: rings and surface, rings, hidden"),
+    ("K", "weight paint on / off: blue rest, yellow halfway, red follows its sweep"),
+    ("panel falloff sliders", "each sweep's falloff width W (mesh units), applied live"),
     ("F", "fit a sweep to the selected part"),
     ("Ctrl+Z, Ctrl+Shift+Z / Ctrl+Y", "undo, redo"),
     ("Ctrl+S, Ctrl+O, Ctrl+E", "save pose, load pose, save edits"),
@@ -136,6 +141,7 @@ mod tests {
         assert_eq!(Command::parse("s"), Some(Command::ScaleTool));
         assert_eq!(Command::parse("ctrl+s"), Some(Command::SavePose));
         assert_eq!(Command::parse("escape"), Some(Command::Cancel));
+        assert_eq!(Command::parse("K"), Some(Command::ToggleWeights));
         assert_eq!(Command::parse("alt+s"), None);
         assert_eq!(Command::parse("ctrl+q"), None);
         assert_eq!(Command::parse("x"), None);

@@ -9,7 +9,8 @@
 //!
 //! Data flow: input ([`input`], or a [`script`]) → gesture ([`gesture`]) → edit → session
 //! ([`session`]: hierarchy, volume rule, undo) → posed sweeps → coefficients → GPU deform and
-//! normals → draw ([`draw`]) and panel ([`panel`]).
+//! normals → draw ([`draw`], with the [`weights`] paint) and panel ([`panel`]). A falloff width
+//! changed in the panel re-bands the deformer without binding the mesh again.
 //!
 //! [`GpuContext::from_device`]: crate::gpu::GpuContext::from_device
 
@@ -29,6 +30,7 @@ pub mod script;
 pub mod session;
 pub mod stats;
 mod surface;
+pub mod weights;
 
 use std::path::PathBuf;
 

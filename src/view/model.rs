@@ -4,6 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use crate::bind::MeshBindings;
+use crate::bind::falloff::BandWeight;
 use crate::edit::{BoundMesh, Edit, EditError, VolumeRule};
 use crate::mesh::{Mesh, Subdivision};
 use crate::rig::{FORMAT, Rig, RigDocument, VERSION, VertexSelection};
@@ -22,12 +23,16 @@ pub struct Model {
     pub triangles: Vec<[u32; 3]>,
     /// Whether the mesh is closed, so its enclosed volume means something.
     pub closed: bool,
+    /// Its bounding box diagonal, the widest falloff a sweep may have.
+    pub diagonal: f64,
     /// The rig as a document (no sweeps until one is loaded or fitted).
     pub document: RigDocument,
     /// The rig, when it has sweeps.
     pub rig: Option<Rig>,
     /// The sweep owning each vertex, or `UNOWNED`.
     pub owners: Vec<u32>,
+    /// The falloff weights of the band vertices ([`Rig::band_weights`]; empty without falloff).
+    pub bands: Vec<BandWeight>,
     /// The edits, when there is a rig.
     pub session: Option<Session>,
     /// How edits are made.
@@ -61,14 +66,17 @@ impl Model {
         };
         let triangles = mesh.faces.triangles().collect();
         let closed = mesh.is_closed();
+        let diagonal = mesh.diagonal();
         let mut model = Model {
             mesh,
             mesh_name,
             triangles,
             closed,
+            diagonal,
             document: RigDocument { format: FORMAT.to_string(), version: VERSION, sweeps: Vec::new() },
             rig: None,
             owners: Vec::new(),
+            bands: Vec::new(),
             session: None,
             settings: Settings::default(),
             bindings: None,
@@ -93,16 +101,43 @@ impl Model {
         if document.sweeps.is_empty() {
             self.rig = None;
             self.owners = vec![crate::bind::UNOWNED; self.mesh.positions.len()];
+            self.bands = Vec::new();
             self.session = None;
         } else {
             let rig = Rig::from_document(&document, file).map_err(|e| ViewError::Input(e.to_string()))?;
             self.owners = rig.owners(&self.mesh, &self.mesh_name).map_err(|e| ViewError::Input(e.to_string()))?;
+            self.bands = rig.band_weights(&self.mesh, &self.owners);
             self.session = Some(Session::new(rig.sweeps().iter().map(|s| s.keys.clone()).collect()));
             self.rig = Some(rig);
         }
         self.document = document;
         self.bindings = None;
         Ok(())
+    }
+
+    /// Sets the falloff width W of sweep `sweep` (mesh units; 0: a hard boundary) in the rig and
+    /// in its document (so a saved rig carries it), keeping the session: the keys, edits and
+    /// history do not depend on it. The band weights are computed again, and the CPU bindings
+    /// (the mesh volume rule's) made again when next needed. Errors name the sweep: a virtual
+    /// sweep, a negative or non-finite width, or one wider than the mesh. Returns the sweep's name.
+    pub fn set_falloff(&mut self, sweep: usize, width: f64) -> Result<String, ViewError> {
+        let Some(rig) = &self.rig else {
+            return Err(ViewError::Input("there is no rig, so no falloff to set".into()));
+        };
+        let Some(name) = rig.sweeps().get(sweep).map(|s| s.name.clone()) else {
+            return Err(ViewError::Input(format!("the rig has no sweep {sweep}")));
+        };
+        let mut document = self.document.clone();
+        // Rig validation refuses negative and non-finite widths, naming the sweep.
+        document.sweeps[sweep].falloff = if width == 0.0 { None } else { Some(width) };
+        let fail = |e: crate::rig::RigError| ViewError::Input(e.to_string());
+        let rig = Rig::from_document(&document, rig.file().map(Path::to_path_buf)).map_err(fail)?;
+        rig.check_falloffs_fit(&self.mesh, &self.mesh_name).map_err(fail)?;
+        self.bands = rig.band_weights(&self.mesh, &self.owners);
+        self.rig = Some(rig);
+        self.document = document;
+        self.bindings = None;
+        Ok(name)
     }
 
     /// Starts a new session from the pose in `path`.

@@ -1,5 +1,5 @@
-//! The side panel (egui): timings, the device, volumes, the edit settings, history, files,
-//! fitting and the controls.
+//! The side panel (egui): timings, the device, volumes, the edit settings, each sweep's falloff
+//! width and the weight paint, history, files, fitting and the controls.
 
 use crate::edit::{DragMode, KeyMode, VolumeRule};
 
@@ -53,6 +53,8 @@ pub struct PanelState {
     pub rig_path: String,
     /// The last message (an error or what was saved).
     pub status: String,
+    /// Colour the mesh by each vertex's falloff weight (K).
+    pub paint_weights: bool,
 }
 
 /// Read-only facts the panel shows.
@@ -80,6 +82,10 @@ pub struct PanelFacts {
     pub selected_key: Option<String>,
     /// The part selected for fitting, as text.
     pub part: Option<String>,
+    /// (index, name, falloff width W) of each sweep that owns vertices.
+    pub falloffs: Vec<(usize, String, f64)>,
+    /// The mesh's bounding box diagonal: the widest falloff.
+    pub diagonal: f64,
 }
 
 /// What the user asked for in the panel.
@@ -89,6 +95,8 @@ pub enum PanelAction {
     Command(Command),
     /// Save the rig (with fitted sweeps).
     SaveRig,
+    /// Set sweep `sweep`'s falloff width to `width` (mesh units).
+    SetFalloff { sweep: usize, width: f64 },
 }
 
 /// Draws the panel; returns the actions asked for.
@@ -112,6 +120,7 @@ pub fn panel(
             ui.separator();
             if facts.has_rig {
                 edit_settings(ui, state, settings, facts.mesh_volume.is_some());
+                falloffs(ui, facts, state, &mut actions);
                 ui.horizontal_wrapped(|ui| {
                     let (done, undone) = facts.history;
                     if ui.add_enabled(done > 0, egui::Button::new(format!("Undo ({done})"))).clicked() {
@@ -206,6 +215,26 @@ fn edit_settings(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Setti
         ui.selectable_value(&mut state.sweeps, SweepDisplay::Rings, "rings");
         ui.selectable_value(&mut state.sweeps, SweepDisplay::Hidden, "hidden");
     });
+}
+
+/// A slider per sweep that owns vertices for its falloff width (0 to the mesh's diagonal), and
+/// the weight paint's switch.
+fn falloffs(ui: &mut egui::Ui, facts: &PanelFacts, state: &mut PanelState, actions: &mut Vec<PanelAction>) {
+    ui.checkbox(&mut state.paint_weights, "paint falloff weights (K)");
+    if state.paint_weights {
+        ui.label("  blue: rest, yellow: halfway, red: follows its sweep");
+    }
+    if facts.falloffs.is_empty() {
+        return;
+    }
+    ui.label("falloff width W (mesh units)");
+    for (sweep, name, width) in &facts.falloffs {
+        let mut w = *width;
+        let slider = egui::Slider::new(&mut w, 0.0..=facts.diagonal).text(name);
+        if ui.add(slider).changed() && w != *width {
+            actions.push(PanelAction::SetFalloff { sweep: *sweep, width: w });
+        }
+    }
 }
 
 fn file_row(

@@ -8,6 +8,7 @@
 //!  {"key": "ctrl+z"}, {"key": "ctrl+shift+z"},
 //!  {"click": {"at": [120, 80]}},
 //!  {"scroll": 2},
+//!  {"key": "k"}, {"falloff": {"sweep": "arm", "width": 0.5}},
 //!  {"save_pose": "pose.json"}, {"save_edits": "edits.json"},
 //!  {"screenshot": "after"}]
 //! ```
@@ -75,6 +76,8 @@ pub enum Step {
     LoadPose(PathBuf),
     /// Save the rig (with fitted sweeps) to this file.
     SaveRig(PathBuf),
+    /// Set a sweep's falloff width W (mesh units), as its slider in the panel does.
+    Falloff { sweep: String, width: f64 },
 }
 
 /// What a script asks of one frame, besides input.
@@ -92,6 +95,8 @@ pub enum Action {
     LoadPose(PathBuf),
     /// Save the rig.
     SaveRig(PathBuf),
+    /// Set a sweep's falloff width.
+    Falloff { sweep: String, width: f64 },
 }
 
 /// Reads a script file; errors name the file.
@@ -104,6 +109,11 @@ pub fn load(path: &Path) -> Result<Vec<Step>, String> {
             && Command::parse(key).is_none()
         {
             return Err(format!("{}: step {i}: no command is bound to the key {key:?}", path.display()));
+        }
+        if let Step::Falloff { width, .. } = step
+            && !(width.is_finite() && *width >= 0.0)
+        {
+            return Err(format!("{}: step {i}: a falloff width is a number ≥ 0, found {width}", path.display()));
         }
         let seconds = match step {
             Step::Wait(s) | Step::Move { seconds: s, .. } | Step::Drag { seconds: s, .. } => *s,
@@ -226,6 +236,10 @@ impl Player {
                 actions.push(Action::Input(Input::Command(command)));
                 true
             }
+            Step::Falloff { sweep, width } => {
+                actions.push(Action::Falloff { sweep: sweep.clone(), width: *width });
+                true
+            }
             Step::SavePose(path) | Step::SaveEdits(path) | Step::LoadPose(path) | Step::SaveRig(path) => {
                 let path = self.folder.join(path);
                 actions.push(match step {
@@ -268,10 +282,12 @@ mod tests {
         let text = r#"[{"wait": 0.5}, {"screenshot": "a"}, {"move": {"to": [1, 2]}},
             {"press": {"at": [1, 2], "button": "right"}}, {"release": {}}, {"click": {"at": [3, 4]}},
             {"drag": {"from": [0, 0], "to": [10, 0], "seconds": 1}}, {"scroll": -2}, {"key": "ctrl+z"},
-            {"save_pose": "p.json"}, {"save_edits": "e.json"}, {"load_pose": "p.json"}, {"save_rig": "r.json"}]"#;
+            {"save_pose": "p.json"}, {"save_edits": "e.json"}, {"load_pose": "p.json"}, {"save_rig": "r.json"},
+            {"falloff": {"sweep": "arm", "width": 0.5}}]"#;
         let steps: Vec<Step> = serde_json::from_str(text).unwrap();
-        assert_eq!(steps.len(), 13);
+        assert_eq!(steps.len(), 14);
         assert_eq!(steps[3], Step::Press { at: [1.0, 2.0], button: Button::Right });
+        assert_eq!(steps[13], Step::Falloff { sweep: "arm".into(), width: 0.5 });
     }
 
     #[test]
@@ -305,6 +321,17 @@ mod tests {
             ]
         );
         assert_eq!(player.frame(Instant::now()), vec![Action::Input(Input::Command(Command::CycleDragMode))]);
+    }
+
+    #[test]
+    fn a_negative_falloff_is_an_error_naming_the_file_and_step() {
+        let dir = std::env::temp_dir().join(format!("sweepffd-script-falloff-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("falloff.json");
+        std::fs::write(&path, r#"[{"wait": 0}, {"falloff": {"sweep": "arm", "width": -1}}]"#).unwrap();
+        let error = load(&path).unwrap_err();
+        assert!(error.contains("falloff.json") && error.contains("step 1") && error.contains("-1"), "{error}");
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]
