@@ -3,7 +3,7 @@
 // frame at the vertex. The deform kernel skips these vertices (BAND_FLAG); this kernel runs over
 // the band records of one dispatch's vertices only.
 // Composed after layout.wgsl, cells_*.wgsl (binding 1: the posed cells), rest_cells_*.wgsl
-// (binding 4: the rest cells), sweep_eval.wgsl, angle.wgsl and blend.wgsl. Twin: src/cpu/band.rs.
+// (binding 4: the rest cells), sweep_eval.wgsl and blend.wgsl. Twin: src/cpu/band.rs.
 
 @group(0) @binding(0) var<uniform> params: DispatchParams;
 @group(0) @binding(2) var<storage, read> bindings: array<GpuBinding>;
@@ -40,14 +40,13 @@ fn band_main(
     let rest_offset = rotate(frame.turn, local);
     let own = sweep_influence(cells[cell], frame, binding.s, binding.phi, rest_offset);
     var second = Influence(rest_center, vec4<f32>(0.0, 0.0, 0.0, 1.0), rest_offset);
-    let second_is_rest = band.cell == UNBOUND;
-    if (!second_is_rest) {
+    if (band.cell != UNBOUND) {
         let at = unpack_s_phi(band.s_phi);
         let other = rest_cells[band.cell];
         let offset = rest_center + rest_offset - curve_at(other, at.x);
         second = sweep_influence(cells[band.cell], rest_frame(other, at.x, at.y), at.x, at.y, offset);
     }
-    let p = blend(second, own, band.weight, second_is_rest);
+    let p = blend(second, own, band.weight);
     positions[3u * band.vertex] = p.x;
     positions[3u * band.vertex + 1u] = p.y;
     positions[3u * band.vertex + 2u] = p.z;

@@ -1,8 +1,8 @@
 // The falloff blend: a vertex in a band follows its own sweep part of the way. Each influence
 // moves the vertex by a frame: p = center + turn offset, with the turn from the rest frame to the
 // posed frame and the offset in rest orientation. With weight w on the own influence:
-// v = mix(c2, c1, w) + slerp(Q2, Q1, w) mix(o2, o1, w)   (README, "Falloff").
-// Composed after sweep_eval.wgsl and angle.wgsl. Twin: src/cpu/blend.rs.
+// v = mix(c2, c1, w) + nlerp(Q2, Q1, w) mix(o2, o1, w)   (README, "Falloff").
+// Composed after sweep_eval.wgsl. Twin: src/cpu/blend.rs.
 
 struct Influence {
     center: vec3<f32>,
@@ -19,24 +19,15 @@ fn quat_conjugate(q: vec4<f32>) -> vec4<f32> {
     return vec4<f32>(-q.xyz, q.w);
 }
 
-// q^w for a unit quaternion q along the shorter arc, w in [0, 1]: with q = +-(u, cos beta),
-// beta = angle_of(|cos beta|, |u|) in [0, pi / 2], q^w = (u sin(w beta) / |u|, cos(w beta)); sin and
-// cos of w beta from those of w beta / 2 (at most pi / 4) by the polynomials of direction_at, so
-// that no transcendental of driver-defined precision runs.
-fn quat_power(q_in: vec4<f32>, w: f32) -> vec4<f32> {
-    var q = q_in;
-    if (q.w < 0.0) {
-        q = -q;
+// The turn between unit quaternions a (w = 0) and b (w = 1) along the shorter arc, as their
+// normalized linear blend (as dual-quaternion skinning blends): smooth and monotonic in w, exact at
+// both ends; rotate() normalizes it.
+fn turn_blend(a: vec4<f32>, b: vec4<f32>, w: f32) -> vec4<f32> {
+    var far = b;
+    if (dot(a, b) < 0.0) {
+        far = -b;
     }
-    let len = length(q.xyz);
-    if (len == 0.0) {
-        return vec4<f32>(0.0, 0.0, 0.0, 1.0);
-    }
-    let beta = angle_of(q.w, len);
-    let half = cos_sin_small(0.5 * w * beta);
-    let sin_wb = 2.0 * half.x * half.y;
-    let cos_wb = half.x * half.x - half.y * half.y;
-    return vec4<f32>(q.xyz * (sin_wb / len), cos_wb);
+    return a * (1.0 - w) + far * w;
 }
 
 // Where a vertex sits in a rest cell: the cell's unnormalized rest quaternion at s, the vertex's
@@ -65,16 +56,9 @@ fn sweep_influence(posed: CellCoeffs, frame: RestFrame, s: f32, phi: f32, offset
 }
 
 // The blended position with weight w on `own` and 1 - w on `second`: centers and offsets mixed
-// linearly, turns by slerp along the shorter arc. `second_is_rest`: the second turn is the
-// identity, and slerp(1, Q, w) = Q^w.
-fn blend(second: Influence, own: Influence, w: f32, second_is_rest: bool) -> vec3<f32> {
+// linearly, turns by turn_blend.
+fn blend(second: Influence, own: Influence, w: f32) -> vec3<f32> {
     let center = second.center * (1.0 - w) + own.center * w;
     let offset = second.offset * (1.0 - w) + own.offset * w;
-    var turn: vec4<f32>;
-    if (second_is_rest) {
-        turn = quat_power(own.turn, w);
-    } else {
-        turn = quat_mul(second.turn, quat_power(quat_mul(quat_conjugate(second.turn), own.turn), w));
-    }
-    return center + rotate(turn, offset);
+    return center + rotate(turn_blend(second.turn, own.turn, w), offset);
 }

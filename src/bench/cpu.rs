@@ -6,7 +6,7 @@ use glam::DVec3;
 use super::skinning::{skinning_influences, skinning_joints};
 use std::time::Instant;
 
-use super::{BenchReport, BenchScene, Round, median, median_seconds};
+use super::{BenchReport, BenchScene, FalloffReport, Round, median, median_seconds};
 use crate::bind::MeshBindings;
 use crate::coeffs::GpuBinding;
 use crate::cpu;
@@ -18,7 +18,7 @@ const WARMUP: usize = 1;
 pub struct CpuBench {
     scene: BenchScene,
     bindings: MeshBindings,
-    falloff_bindings: Option<MeshBindings>,
+    falloff_bindings: Vec<MeshBindings>,
     twin_bindings: Vec<GpuBinding>,
     rest_f32: Vec<f32>,
 }
@@ -30,7 +30,8 @@ impl CpuBench {
         let rest = scene.rig.rest();
         let rest_f32 = cpu::packed(&scene.mesh.positions);
         let twin_bindings = cpu::bind::bind_to(rest, &scene.owners, &rest_f32);
-        let falloff_bindings = scene.with_falloff.as_ref().map(|s| s.rig.bind_mesh(&s.mesh, &s.owners, &|_| {}));
+        let falloff_bindings =
+            scene.with_falloff.iter().map(|(_, s)| s.rig.bind_mesh(&s.mesh, &s.owners, &|_| {})).collect();
         CpuBench { scene, bindings, falloff_bindings, twin_bindings, rest_f32 }
     }
 
@@ -55,12 +56,15 @@ impl CpuBench {
                 deform: time(&mut || {
                     deform_vertices(scene.rig.rest(), &scene.posed, &self.bindings, &scene.mesh.positions, &mut out)
                 }),
-                falloff: match (&scene.with_falloff, &self.falloff_bindings) {
-                    (Some(split), Some(bindings)) => time(&mut || {
-                        deform_vertices(split.rig.rest(), &split.posed, bindings, &split.mesh.positions, &mut out)
-                    }),
-                    _ => 0.0,
-                },
+                falloff: scene
+                    .with_falloff
+                    .iter()
+                    .zip(&self.falloff_bindings)
+                    .map(|((_, variant), bindings)| {
+                        let (rest, positions) = (variant.rig.rest(), &variant.mesh.positions);
+                        time(&mut || deform_vertices(rest, &variant.posed, bindings, positions, &mut out))
+                    })
+                    .collect(),
                 copy: time(&mut || cpu::copy::copy(&self.twin_bindings, &mut out_f32)),
                 lbs: time(&mut || cpu::skinning::skinning(&joints, &self.rest_f32, &influences, &mut out_f32)),
                 frame: time(&mut || {
@@ -91,10 +95,19 @@ impl CpuBench {
             normals_ms: 0.0,
             readback_ms: None,
             device_bytes_per_vertex: None,
-            falloff_band_fraction: self.falloff_bindings.as_ref().map(|b| b.bands.len() as f64 / n_f),
-            falloff_deform_verts_per_s: self.falloff_bindings.as_ref().map(|_| n_f / column(|r| r.falloff)),
-            falloff_over_plain: self.falloff_bindings.as_ref().map(|_| column(|r| r.falloff / r.deform)),
-            falloff_device_bytes_per_vertex: None,
+            falloff: scene
+                .with_falloff
+                .iter()
+                .zip(&self.falloff_bindings)
+                .enumerate()
+                .map(|(i, ((kind, _), bindings))| FalloffReport {
+                    kind: *kind,
+                    band_fraction: bindings.bands.len() as f64 / n_f,
+                    deform_verts_per_s: n_f / median(&mut rounds.iter().map(|r| r.falloff[i]).collect::<Vec<_>>()),
+                    over_plain: median(&mut rounds.iter().map(|r| r.falloff[i] / r.deform).collect::<Vec<_>>()),
+                    device_bytes_per_vertex: None,
+                })
+                .collect(),
             runs,
             timestamps: false,
         }

@@ -6,7 +6,7 @@ use std::time::Instant;
 use wgpu::util::DeviceExt;
 
 use super::skinning::{skinning_influences, skinning_joints};
-use super::{BenchReport, BenchScene, GpuTimer, Round, best_of, median, median_of};
+use super::{BenchReport, BenchScene, FalloffKind, FalloffReport, GpuTimer, Round, best_of, median, median_of};
 use crate::coeffs::{BAND_FLAG, DispatchParams, SweepCoefficients};
 use crate::gpu::binder::Binder;
 use crate::gpu::buffers::{params_buffer, window};
@@ -30,8 +30,8 @@ pub struct GpuBench {
     deformer: GpuDeformer,
     /// The owners as the bind kernel takes them, with BAND_FLAG on band vertices.
     flagged_owners: Vec<u32>,
-    /// The falloff comparison's deformer, posed once.
-    falloff: Option<GpuDeformer>,
+    /// The falloff comparisons' deformers, posed once.
+    falloff: Vec<(FalloffKind, GpuDeformer)>,
     binder: Binder,
     copy: Dispatches,
     skinning: Dispatches,
@@ -50,16 +50,14 @@ impl GpuBench {
         for band in &bands {
             flagged_owners[band.vertex as usize] |= BAND_FLAG;
         }
-        let falloff = match &scene.with_falloff {
-            Some(split) => {
-                let bands = split.rig.band_weights(&split.mesh, &split.owners);
-                let source = BindingSource::Bind { owners: &split.owners, bands: &bands };
-                let mut deformer = GpuDeformer::new(context, split.rig.rest(), &split.mesh.positions, source, None)?;
-                deformer.set_pose(&split.posed)?;
-                Some(deformer)
-            }
-            None => None,
-        };
+        let mut falloff = Vec::with_capacity(scene.with_falloff.len());
+        for (kind, variant) in &scene.with_falloff {
+            let bands = variant.rig.band_weights(&variant.mesh, &variant.owners);
+            let source = BindingSource::Bind { owners: &variant.owners, bands: &bands };
+            let mut deformer = GpuDeformer::new(context, variant.rig.rest(), &variant.mesh.positions, source, None)?;
+            deformer.set_pose(&variant.posed)?;
+            falloff.push((*kind, deformer));
+        }
         let binder = Binder::new(context, rest, &SweepCoefficients::new(rest), deformer.cells());
         let n = deformer.vertex_count();
         let scratch = device.create_buffer(&wgpu::BufferDescriptor {
@@ -163,9 +161,9 @@ impl GpuBench {
         self.time(|encoder, timer| self.deformer.encode_deform_pass(encoder, timer.and_then(|t| t.writes(true, true))))
     }
 
-    /// Seconds of the deform pass of the falloff comparison (zero without one).
-    pub fn time_falloff_deform(&self) -> Result<f64, GpuError> {
-        let Some(deformer) = &self.falloff else { return Ok(0.0) };
+    /// Seconds of the deform pass of falloff comparison `i`.
+    pub fn time_falloff_deform(&self, i: usize) -> Result<f64, GpuError> {
+        let deformer = &self.falloff[i].1;
         self.time(|encoder, timer| deformer.encode_deform_pass(encoder, timer.and_then(|t| t.writes(true, true))))
     }
 
@@ -217,7 +215,9 @@ impl GpuBench {
         for round in 0..WARMUP + runs {
             let times = Round {
                 deform: best_of(BEST_OF, || self.time_deform())?,
-                falloff: best_of(BEST_OF, || self.time_falloff_deform())?,
+                falloff: (0..self.falloff.len())
+                    .map(|i| best_of(BEST_OF, || self.time_falloff_deform(i)))
+                    .collect::<Result<_, _>>()?,
                 copy: best_of(BEST_OF, || self.time_copy())?,
                 lbs: best_of(BEST_OF, || self.time_skinning())?,
                 frame: best_of(BEST_OF, || self.time_frame())?,
@@ -230,7 +230,22 @@ impl GpuBench {
         let readback = median_of(1, runs, || self.time_readback())?;
         let device_bytes = self.deformer.device_bytes();
         let column = |f: fn(&Round) -> f64| median(&mut rounds.iter().map(f).collect::<Vec<_>>());
-        let falloff = self.falloff.as_ref();
+        let falloff = self
+            .falloff
+            .iter()
+            .enumerate()
+            .map(|(i, (kind, deformer))| {
+                let mut over: Vec<f64> = rounds.iter().map(|r| r.falloff[i] / r.deform).collect();
+                let mut times: Vec<f64> = rounds.iter().map(|r| r.falloff[i]).collect();
+                FalloffReport {
+                    kind: *kind,
+                    band_fraction: deformer.band_vertex_count() as f64 / deformer.vertex_count() as f64,
+                    deform_verts_per_s: n / median(&mut times),
+                    over_plain: median(&mut over),
+                    device_bytes_per_vertex: Some(deformer.device_bytes() as f64 / deformer.vertex_count() as f64),
+                }
+            })
+            .collect();
         Ok(BenchReport {
             backend: "gpu",
             adapter: format!("{} ({:?})", self.context.info.name, self.context.info.backend),
@@ -245,10 +260,7 @@ impl GpuBench {
             normals_ms: column(|r| r.normals) * 1e3,
             readback_ms: Some(readback * 1e3),
             device_bytes_per_vertex: Some(device_bytes as f64 / n),
-            falloff_band_fraction: falloff.map(|d| d.band_vertex_count() as f64 / d.vertex_count() as f64),
-            falloff_deform_verts_per_s: falloff.map(|_| n / column(|r| r.falloff)),
-            falloff_over_plain: falloff.map(|_| column(|r| r.falloff / r.deform)),
-            falloff_device_bytes_per_vertex: falloff.map(|d| d.device_bytes() as f64 / d.vertex_count() as f64),
+            falloff,
             runs,
             timestamps: self.timer.is_some(),
         })

@@ -16,7 +16,7 @@ use serde::Serialize;
 
 pub use cpu::CpuBench;
 pub use gpu::GpuBench;
-pub use scene::{BAND_FRACTION, BenchScene};
+pub use scene::{BAND_FRACTION, BenchScene, FalloffKind};
 pub use skinning::{skinning_influences, skinning_joints};
 pub use timer::GpuTimer;
 
@@ -51,26 +51,35 @@ pub struct BenchReport {
     pub readback_ms: Option<f64>,
     /// Device memory for bindings and positions, bytes per vertex (`null` on the CPU).
     pub device_bytes_per_vertex: Option<f64>,
-    /// Share of the vertices in falloff bands in the falloff comparison (`null` without one:
-    /// a mesh and rig of the user's).
-    pub falloff_band_fraction: Option<f64>,
-    /// Vertices per second of the deform pass (deform and band kernels) with those bands.
-    pub falloff_deform_verts_per_s: Option<f64>,
-    /// Deform time with the bands over deform time without, same round.
-    pub falloff_over_plain: Option<f64>,
-    /// Device memory for bindings, positions and bands, bytes per vertex, with the bands.
-    pub falloff_device_bytes_per_vertex: Option<f64>,
+    /// The falloff comparisons (none for a mesh and rig of the user's).
+    pub falloff: Vec<FalloffReport>,
     /// Runs each median is taken over.
     pub runs: usize,
     /// Whether GPU times come from timestamp queries.
     pub timestamps: bool,
 }
 
+/// The deform pass with falloff bands against the same mesh without, in the same rounds.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct FalloffReport {
+    /// What the bands fade into.
+    pub kind: FalloffKind,
+    /// Share of the vertices in the bands.
+    pub band_fraction: f64,
+    /// Vertices per second of the deform pass (deform and band kernels) with the bands.
+    pub deform_verts_per_s: f64,
+    /// Deform time with the bands over deform time without, same round.
+    pub over_plain: f64,
+    /// Device memory for bindings, positions and band records, bytes per vertex (`null` on
+    /// the CPU).
+    pub device_bytes_per_vertex: Option<f64>,
+}
+
 /// One round of back-to-back timings, seconds.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 struct Round {
     deform: f64,
-    falloff: f64,
+    falloff: Vec<f64>,
     copy: f64,
     lbs: f64,
     frame: f64,

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use super::CliResult;
 use super::backend::{Backend, resolve};
-use sweepffd::bench::{BenchReport, BenchScene, CpuBench, GpuBench};
+use sweepffd::bench::{BenchReport, BenchScene, CpuBench, FalloffKind, GpuBench};
 use sweepffd::mesh::Mesh;
 use sweepffd::rig::Rig;
 
@@ -63,16 +63,19 @@ fn print_table(r: &BenchReport) {
     if let Some(bytes) = r.device_bytes_per_vertex {
         println!("  device memory for bindings + positions: {bytes:.1} bytes per vertex");
     }
-    if let (Some(fraction), Some(rate_with), Some(ratio)) =
-        (r.falloff_band_fraction, r.falloff_deform_verts_per_s, r.falloff_over_plain)
-    {
+    for f in &r.falloff {
+        let into = match f.kind {
+            FalloffKind::Rest => "the rest position",
+            FalloffKind::Sweep => "a neighbouring sweep",
+        };
         println!(
-            "  falloff   {}   ({:.0}% of the vertices in bands: {ratio:.2} × the deform time without)",
-            rate(rate_with),
-            100.0 * fraction
+            "  falloff   {}   ({:.0}% of the vertices in bands fading into {into}: {:.2} × the deform time without)",
+            rate(f.deform_verts_per_s),
+            100.0 * f.band_fraction,
+            f.over_plain
         );
-        if let Some(bytes) = r.falloff_device_bytes_per_vertex {
-            println!("  device memory with the bands: {bytes:.1} bytes per vertex");
+        if let Some(bytes) = f.device_bytes_per_vertex {
+            println!("            device memory with the bands: {bytes:.1} bytes per vertex");
         }
     }
 }

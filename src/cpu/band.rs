@@ -34,14 +34,13 @@ pub fn band_vertex(
     let rest_offset = rotate(frame.turn, local);
     let own = sweep_influence(&cells[cell], &frame, binding.s, binding.phi, rest_offset);
     let mut second = Influence { center: rest_center, turn: Vec4::new(0.0, 0.0, 0.0, 1.0), offset: rest_offset };
-    let second_is_rest = band.cell == UNBOUND;
-    if !second_is_rest {
+    if band.cell != UNBOUND {
         let at = unpack_s_phi(band.s_phi);
         let other = &rest_cells[band.cell as usize];
         let offset = rest_center + rest_offset - curve_at(other, at.x);
         second = sweep_influence(&cells[band.cell as usize], &rest_frame(other, at.x, at.y), at.x, at.y, offset);
     }
-    Some(blend(&second, &own, band.weight, second_is_rest))
+    Some(blend(&second, &own, band.weight))
 }
 
 /// Every invocation of the kernel over one dispatch: overwrites the band vertices of `positions`

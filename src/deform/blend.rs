@@ -16,11 +16,14 @@
 //! vertex at rest. With weight w on the own sweep,
 //!
 //! ```text
-//! v = (1 − w)·c_2 + w·c_1 + slerp(Q_2, Q_1, w)·((1 − w)·o_2 + w·o_1)
+//! v = (1 − w)·c_2 + w·c_1 + nlerp(Q_2, Q_1, w)·((1 − w)·o_2 + w·o_1)
+//! nlerp(Q_2, Q_1, w) = normalize((1 − w)·Q_2 + w·(±Q_1)),  the sign making the two agree (shorter arc)
 //! ```
 //!
 //! Against the rest position this is the rest and posed frames blended at w: center and radius
-//! linearly, orientation by quaternion slerp; so a twisted band turns instead of collapsing
+//! linearly, orientation by quaternion interpolation (the normalized linear blend that
+//! dual-quaternion skinning uses: smooth and monotonic in w, within a few degrees of slerp's
+//! constant speed, and far cheaper on the GPU); so a twisted band turns instead of collapsing
 //! onto its axis (the "candy wrapper" of a linear blend of positions). A rigid motion of both
 //! influences moves the vertex rigidly.
 
@@ -68,11 +71,19 @@ impl Influence {
 }
 
 /// The position of a band vertex with weight `w` on its own influence `own` and 1 − w on
-/// `second`: centers and offsets mixed linearly, turns by slerp (shortest arc).
+/// `second`: centers and offsets mixed linearly, turns by [`turn_blend`].
 pub fn blend(second: &Influence, own: &Influence, w: f64) -> DVec3 {
     let center = second.center.lerp(own.center, w);
     let offset = second.offset.lerp(own.offset, w);
-    center + second.turn.slerp(own.turn, w) * offset
+    center + turn_blend(second.turn, own.turn, w) * offset
+}
+
+/// The turn between `a` (w = 0) and `b` (w = 1) along the shorter arc: the normalized linear
+/// blend of the unit quaternions, b negated when a·b < 0. Exact at both ends.
+pub fn turn_blend(a: DQuat, b: DQuat, w: f64) -> DQuat {
+    let far = if a.dot(b) < 0.0 { -b } else { b };
+    let mixed = a * (1.0 - w) + far * w;
+    mixed.normalize()
 }
 
 /// The deformed position of a band vertex bound by `own` (its sweep's binding) with weight `w`

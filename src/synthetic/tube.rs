@@ -96,6 +96,30 @@ pub fn tube_rig(tube: &Tube, keys: usize, samples: usize) -> Rig {
     Rig::new(vec![sweep]).expect("a straight rig with distinct keys is valid")
 }
 
+/// A rig with one sweep, `tube`, owning every vertex of `tube` but its first ring and bottom
+/// cap, which stay at rest: with `falloff` the sweep's deformation fades into them over a band of
+/// that width. `keys` circular keys of `samples` radii from just below the second ring to the top.
+pub fn attached_tube_rig(tube: &Tube, keys: usize, samples: usize, falloff: f64) -> Rig {
+    let step = tube.length / (tube.rings - 1) as f64;
+    let owned: Vec<u32> = (tube.around..tube.rings * tube.around).chain([tube.rings * tube.around + 1]).collect();
+    let z0 = 0.5 * step;
+    let keys = (0..keys)
+        .map(|i| {
+            let z = z0 + (tube.length - z0) * i as f64 / (keys - 1) as f64;
+            Key::circle(DVec3::new(0.0, 0.0, z), DQuat::IDENTITY, tube.radius, samples)
+        })
+        .collect();
+    let sweep = RigSweep {
+        name: "tube".to_string(),
+        vertices: Some(VertexSelection::Indices(owned)),
+        keys,
+        knots: None,
+        parent: None,
+        falloff,
+    };
+    Rig::new(vec![sweep]).expect("a straight rig with distinct keys is valid")
+}
+
 /// A rig of two sweeps, `lower` and `upper`, splitting `tube` at its middle (the middle ring
 /// and below to `lower`), each of `keys` circular keys over its half and with falloff
 /// `falloff`: with falloff the two blend into each other over a band of that width on each
