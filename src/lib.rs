@@ -23,16 +23,16 @@
 //!
 //! ```no_run
 //! use glam::DVec3;
-//! use sweepffd::{bind::bind_vertices, deform::deform_vertices, mesh::Mesh, rig::Rig};
+//! use sweepffd::{deform::deform_vertices, mesh::Mesh, rig::Rig};
 //!
 //! # fn main() -> Result<(), Box<dyn std::error::Error>> {
 //! let mesh = Mesh::load("bunny.obj".as_ref())?;
 //! let rig = Rig::load("bunny-rig.json".as_ref())?;
 //! let owners = rig.owners(&mesh, "bunny.obj")?;
-//! let bindings = bind_vertices(rig.rest(), &owners, &mesh.positions, &|_| {});
+//! let bindings = rig.bind_mesh(&mesh, &owners, &|_| {}); // with the falloff bands, if any
 //! let posed = rig.load_pose("bunny-pose.json".as_ref())?;
 //! let mut deformed = vec![DVec3::ZERO; mesh.positions.len()];
-//! deform_vertices(&posed, &bindings, &mesh.positions, &mut deformed);
+//! deform_vertices(rig.rest(), &posed, &bindings, &mesh.positions, &mut deformed);
 //! mesh.save("bunny-posed.obj".as_ref(), &deformed)?;
 //! # Ok(())
 //! # }
