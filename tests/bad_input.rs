@@ -546,13 +546,14 @@ fn corrupt_bindings_file() {
     let scene = Scene::new();
     scene.bind("b.sffd");
     let bytes = scene.read("b.sffd");
-    assert_eq!(bytes.len(), 40 + 40 * 8);
+    // The header, 8 vertex records and a band count of 0 (version 2).
+    assert_eq!(bytes.len(), 40 + 40 * 8 + 8);
 
     scene.write("truncated.sffd", &bytes[..100]);
     assert_eq!(
         scene.deform_with_bindings_fails("mesh.obj", "rig.json", "truncated.sffd"),
         "error: truncated.sffd: not a sweepffd bindings file \
-         (100 bytes for 8 vertices, expected 360)\n"
+         (100 bytes for 8 vertices and a band count)\n"
     );
 
     scene.write("garbage.sffd", "not bindings at all, just some text\n");
@@ -661,4 +662,95 @@ fn rest_keys_too_far_apart_for_chord_length() {
         scene.deform_fails("mesh.obj", "bad.json", "pose.json"),
         "error: bad.json: sweep \"neck\": key 1: the distance from the center of key 0 is too large to represent\n"
     );
+}
+
+/// The neck sweep of [`Scene`]'s rig with `"falloff": value` (the text as given).
+fn neck_with_falloff(value: &str) -> String {
+    sweep("neck", NECK_GROUP, &unit_keys()).replace("\"keys\"", &format!("\"falloff\": {value}, \"keys\""))
+}
+
+#[test]
+fn negative_falloff() {
+    let scene = Scene::new();
+    scene.write("bad.json", rig(&[neck_with_falloff("-0.5")]));
+    assert_eq!(
+        scene.deform_fails("mesh.obj", "bad.json", "pose.json"),
+        "error: bad.json: sweep \"neck\": falloff -0.5 must be a finite width of at least 0 (mesh units)\n"
+    );
+}
+
+#[test]
+fn infinite_falloff() {
+    let scene = Scene::new();
+    scene.write("bad.json", rig(&[neck_with_falloff("1e999")]));
+    let stderr = scene.deform_fails("mesh.obj", "bad.json", "pose.json");
+    assert_one_line_starting(&stderr, "error: bad.json: ");
+}
+
+#[test]
+fn falloff_larger_than_the_mesh() {
+    let scene = Scene::new();
+    scene.write("bad.json", rig(&[neck_with_falloff("40")]));
+    let stderr = scene.deform_fails("mesh.obj", "bad.json", "pose.json");
+    assert_one_line_starting(
+        &stderr,
+        "error: bad.json: sweep \"neck\": falloff 40 is larger than the mesh mesh.obj (its bounding box diagonal is 3.46",
+    );
+    // The same through `bind` and `render`, which write nothing either.
+    let stderr = scene.fail(&["bind", "--mesh", "mesh.obj", "--rig", "bad.json", "--out", "b.sffd"]);
+    assert_one_line_starting(&stderr, "error: bad.json: sweep \"neck\": falloff 40 is larger than the mesh");
+}
+
+#[test]
+fn falloff_on_a_virtual_sweep() {
+    let scene = Scene::new();
+    let virtual_sweep =
+        format!("  {{\"name\": \"joint\", \"falloff\": 0.5, \"keys\": [\n    {}\n  ]}}", unit_keys().join(",\n    "));
+    scene.write("bad.json", rig(&[sweep("neck", NECK_GROUP, &unit_keys()), virtual_sweep]));
+    assert_eq!(
+        scene.deform_fails("mesh.obj", "bad.json", "pose.json"),
+        "error: bad.json: sweep \"joint\": a virtual sweep (one that owns no vertices) cannot have a falloff\n"
+    );
+}
+
+#[test]
+fn bindings_file_with_a_bad_band_record() {
+    let scene = Scene::new();
+    scene.write("rig.json", rig(&[neck_with_falloff("1.5")]));
+    scene.write("pose.json", rig(&[neck_with_falloff("1.5")]));
+    scene.bind("good.sffd");
+    let good = scene.read("good.sffd");
+    // The band count follows the 40-byte header and 8 vertex records of 40 bytes.
+    let bands_at = 40 + 8 * 40;
+    let count = u64::from_le_bytes(good[bands_at..bands_at + 8].try_into().unwrap());
+    assert!(count > 0, "the falloff puts vertices in a band");
+    // The first band record's weight (after its vertex and second sweep) set to 2.
+    let mut bad = good.clone();
+    let weight_at = bands_at + 8 + 8;
+    bad[weight_at..weight_at + 8].copy_from_slice(&2.0f64.to_le_bytes());
+    scene.write("bad.sffd", &bad);
+    assert_eq!(
+        scene.deform_with_bindings_fails("mesh.obj", "rig.json", "bad.sffd"),
+        "error: bad.sffd: not a sweepffd bindings file (band vertex 0 (vertex 0) has an invalid binding)\n"
+    );
+    // A truncated band section.
+    scene.write("short.sffd", &good[..good.len() - 4]);
+    let stderr = scene.deform_with_bindings_fails("mesh.obj", "rig.json", "short.sffd");
+    assert_one_line_starting(&stderr, "error: short.sffd: not a sweepffd bindings file (");
+}
+
+#[test]
+fn version_1_bindings_files_still_load() {
+    let scene = Scene::new();
+    scene.bind("v2.sffd");
+    let v2 = scene.read("v2.sffd");
+    // Without falloff a version 2 file is the version 1 file plus a band count of 0.
+    assert_eq!(&v2[v2.len() - 8..], &[0u8; 8]);
+    let mut v1 = v2[..v2.len() - 8].to_vec();
+    v1[8..12].copy_from_slice(&1u32.to_le_bytes());
+    scene.write("v1.sffd", &v1);
+    let args =
+        ["--quiet", "deform", "--mesh", "mesh.obj", "--rig", "rig.json", "--pose", "pose.json", "--out", "o.obj"];
+    let output = scene.run(&[&args[..], &["--bindings", "v1.sffd", "--backend", "cpu"]].concat());
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
 }
