@@ -44,7 +44,7 @@ fn main() {
         keys: fitted.keys.clone(),
         knots: None,
         parent: None,
-        falloff: 0.0,
+        falloff: fitted.falloff,
     }])
     .unwrap_or_else(|e| panic!("{e}"));
     out.rig("leg-rig.json", &rig, &rig.sweeps().iter().map(|s| s.keys.clone()).collect::<Vec<_>>());

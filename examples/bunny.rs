@@ -32,11 +32,12 @@ fn main() {
         let fitted = fit(&mesh, &vertices, &FitOptions::default()).unwrap_or_else(|e| panic!("{e}"));
         let q = fitted.quality;
         println!(
-            "fitted {name}: {} vertices, {} keys, |d| / mean radius max {:.1}%, RMS {:.2}%",
+            "fitted {name}: {} vertices, {} keys, |d| / mean radius max {:.1}%, RMS {:.2}%, falloff {:.4}",
             vertices.len(),
             fitted.keys.len(),
             100.0 * q.max_d,
-            100.0 * q.rms_d
+            100.0 * q.rms_d,
+            fitted.falloff
         );
         sweeps.push(RigSweep {
             name: name.into(),
@@ -44,7 +45,8 @@ fn main() {
             keys: fitted.keys,
             knots: None,
             parent: None,
-            falloff: 0.0,
+            // The default falloff: the ears fade into the head instead of tearing from it.
+            falloff: fitted.falloff,
         });
     }
     let rig = Rig::new(sweeps).unwrap_or_else(|e| panic!("{e}"));
@@ -80,7 +82,11 @@ fn main() {
     posing.apply(&twist).unwrap_or_else(|e| panic!("{e}"));
     let posed = posing.sweeps().unwrap_or_else(|e| panic!("{e}"));
     let bent = common::deform(&rig, &mesh, &posed);
-    println!("bent and twisted the ears: largest vertex move {:.4}", common::largest_move(&mesh.positions, &bent));
+    println!(
+        "bent and twisted the ears: largest vertex move {:.4}, largest edge stretch {:.2} (the ears stay attached)",
+        common::largest_move(&mesh.positions, &bent),
+        common::largest_edge_stretch(&mesh, &bent)
+    );
     out.mesh("ears-bent.obj", &mesh, &bent);
     out.picture("ears-bent.png", &mesh, &[(&mesh.positions, rig.rest()), (&bent, &posed)], (60.0, 35.0));
 

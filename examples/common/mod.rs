@@ -101,3 +101,16 @@ pub fn deform(rig: &Rig, mesh: &Mesh, posed: &[Sweep]) -> Vec<DVec3> {
 pub fn largest_move(before: &[DVec3], after: &[DVec3]) -> f64 {
     before.iter().zip(after).map(|(a, b)| a.distance(*b)).fold(0.0, f64::max)
 }
+
+/// The largest deformed / rest length over the mesh's edges: 1 for a rigid motion, large
+/// where the surface tears.
+pub fn largest_edge_stretch(mesh: &Mesh, positions: &[DVec3]) -> f64 {
+    let rest = &mesh.positions;
+    mesh.faces
+        .triangles()
+        .flat_map(|[a, b, c]| [(a, b), (b, c), (c, a)])
+        .map(|(a, b)| (a as usize, b as usize))
+        .filter(|&(a, b)| rest[a] != rest[b])
+        .map(|(a, b)| positions[a].distance(positions[b]) / rest[a].distance(rest[b]))
+        .fold(0.0, f64::max)
+}
