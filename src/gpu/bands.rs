@@ -168,9 +168,10 @@ impl BandStage {
         self.chunks.iter().map(|c| c.count as usize).sum()
     }
 
-    /// Device memory of the records and the rest cells, bytes.
+    /// Device memory of the records, bytes: 16 per band vertex. The rest cells, like the posed
+    /// ones, are the rig's (a few KB) and not counted.
     pub(crate) fn device_bytes(&self) -> u64 {
-        self.len() as u64 * BAND_STRIDE + self.rest_cells.size()
+        self.len() as u64 * BAND_STRIDE
     }
 
     /// Copies the records back (blocking), vertices global.

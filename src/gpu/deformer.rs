@@ -368,7 +368,8 @@ impl GpuDeformer {
         self.bands.as_ref().map_or(0, BandStage::len)
     }
 
-    /// Device memory for bindings, positions and the falloff bands, bytes (normals excluded).
+    /// Device memory that grows with the mesh: bindings, positions and the falloff bands' records,
+    /// bytes (normals and the rig's cell records excluded).
     pub fn device_bytes(&self) -> u64 {
         let per_vertex = self.vertex_count as u64 * (BINDING_STRIDE + POSITION_STRIDE);
         per_vertex + self.bands.as_ref().map_or(0, BandStage::device_bytes)
