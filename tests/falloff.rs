@@ -6,7 +6,6 @@ mod common;
 
 use glam::{DQuat, DVec3, Vec3};
 use sweepffd::bind::MeshBindings;
-use sweepffd::coeffs::{BandRecord, GpuBinding, SweepCoefficients};
 use sweepffd::cpu;
 use sweepffd::deform::{deform_hard, deform_vertices};
 use sweepffd::edit::{Edit, KeyMode, Posing};
@@ -238,19 +237,6 @@ fn a_rigid_motion_of_every_key_moves_two_blended_sweeps_rigidly() {
     assert!(worst <= 1e-9 * mesh.diagonal(), "{worst:e}");
 }
 
-/// The twin's positions for the f64 bindings converted to the GPU form.
-fn twin_positions(rig: &Rig, mesh: &Mesh, bindings: &MeshBindings, keys: &[Vec<Key>]) -> Vec<f32> {
-    let rest = rig.rest();
-    let coefficients = SweepCoefficients::new(rest);
-    let (gpu, records): (Vec<GpuBinding>, Vec<BandRecord>) = coefficients.gpu_mesh_bindings(rest, bindings);
-    let mut posed = SweepCoefficients::new(rest);
-    posed.update(&rig.pose(keys).unwrap()).unwrap();
-    let mut positions = cpu::packed(&mesh.positions);
-    cpu::deform::deform(&posed.cells, &gpu, &mut positions);
-    cpu::band::band(&posed.cells, &coefficients.cells, &gpu, &records, &mut positions);
-    positions
-}
-
 #[test]
 fn twin_and_gpu_match_the_f64_reference_with_falloff() {
     let cases = [("attached arm", attached_arm(1.5), "arm"), ("split tube", split_tube(1.0), "upper")];
@@ -260,10 +246,16 @@ fn twin_and_gpu_match_the_f64_reference_with_falloff() {
         let bindings = rig.bind_mesh(&mesh, &owners, &|_| {});
         let keys = turn_key0(&rig, sweep, DQuat::from_rotation_x(0.8) * DQuat::from_rotation_z(0.6));
         let reference = cpu::packed(&deform(&rig, &bindings, &mesh, &keys));
-        let twin = twin_positions(&rig, &mesh, &bindings, &keys);
+        let twin = common::twin_positions(&rig, &mesh, &bindings, &keys);
         let (error, ulps, at) = common::worst_f32(&reference, &twin);
         eprintln!("{name}: twin vs f64 {:.2e} × diagonal, {ulps} ULP, at vertex {}", error / diagonal, at / 3);
         assert!(error <= 1e-5 * diagonal, "{name}: twin vs f64 {error:e} at vertex {}", at / 3);
+        // Round trip at rest, falloff on.
+        let rest = cpu::packed(&mesh.positions);
+        let rest_keys: Vec<Vec<Key>> = rig.sweeps().iter().map(|s| s.keys.clone()).collect();
+        let back = common::twin_positions(&rig, &mesh, &bindings, &rest_keys);
+        let (error, _, at) = common::worst_f32(&rest, &back);
+        assert!(error <= 1e-5 * diagonal, "{name}: twin round trip {error:e} at vertex {}", at / 3);
         let Some(context) = common::gpu() else { continue };
         let weights = rig.band_weights(&mesh, &owners);
         let source = BindingSource::Bind { owners: &owners, bands: &weights };
@@ -276,8 +268,13 @@ fn twin_and_gpu_match_the_f64_reference_with_falloff() {
         assert!(error <= 1e-5 * diagonal, "{name}: GPU vs twin {error:e} at vertex {}", at / 3);
         let (error, _, at) = common::worst_f32(&reference, &gpu);
         assert!(error <= 1e-5 * diagonal, "{name}: GPU vs f64 {error:e} at vertex {}", at / 3);
+        deformer.deform(rig.rest()).unwrap();
+        let (error, _, at) = common::worst_f32(&rest, &deformer.read_positions().unwrap());
+        eprintln!("{name}: GPU round trip at rest {:.2e} × diagonal, at vertex {}", error / diagonal, at / 3);
+        assert!(error <= 1e-5 * diagonal, "{name}: GPU round trip {error:e} at vertex {}", at / 3);
+        deformer.deform(&rig.pose(&keys).unwrap()).unwrap();
+        let gpu = deformer.read_positions().unwrap();
         // Weight-0 vertices against the rest position keep the f32 rest position to the bit.
-        let rest = cpu::packed(&mesh.positions);
         for (v, keeps) in bindings.keeps_rest().iter().enumerate() {
             if *keeps {
                 assert_eq!(Vec3::from_slice(&gpu[3 * v..]), Vec3::from_slice(&rest[3 * v..]), "{name}: vertex {v}");

@@ -165,6 +165,9 @@ pub fn sweepffd(dir: &std::path::Path) -> std::process::Command {
 }
 
 mod teapot;
+mod twin;
 
 #[allow(unused_imports, reason = "each test binary uses a different subset of the helpers")]
 pub use teapot::{keys_through, teapot_rig};
+#[allow(unused_imports, reason = "each test binary uses a different subset of the helpers")]
+pub use twin::twin_positions;
