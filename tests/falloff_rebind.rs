@@ -7,64 +7,20 @@
 
 mod common;
 
-use glam::{DQuat, DVec3, Vec3};
+use common::falloff_tubes::{attached_arm, split_tube};
+
+use glam::{DQuat, Vec3};
 use sweepffd::coeffs::BAND_FLAG;
 use sweepffd::cpu;
 use sweepffd::edit::{Edit, KeyMode, Posing};
 use sweepffd::gpu::{BindingSource, GpuContext, GpuDeformer};
 use sweepffd::mesh::Mesh;
-use sweepffd::rig::{Rig, RigSweep, VertexSelection};
+use sweepffd::rig::Rig;
 use sweepffd::sweep::Key;
-use sweepffd::synthetic::Tube;
-
-/// The tube of `tests/falloff.rs`.
-const TUBE: Tube = Tube { rings: 61, around: 32, length: 6.0, radius: 0.5 };
 
 /// Positions of a deformer rebound with `set_bands` must match the fresh one within this share of
 /// the bounding box diagonal (the same kernels on the same inputs: in practice bit for bit).
 const TOLERANCE: f32 = 1e-6;
-
-/// A sweep of six circular keys from z0 to z1 along the tube, owning `vertices`.
-fn tube_sweep(name: &str, vertices: Vec<u32>, z0: f64, z1: f64, falloff: f64) -> RigSweep {
-    let keys = (0..6)
-        .map(|i| {
-            let z = z0 + (z1 - z0) * i as f64 / 5.0;
-            Key::circle(DVec3::new(0.0, 0.0, z), DQuat::IDENTITY, TUBE.radius, 16)
-        })
-        .collect();
-    RigSweep {
-        name: name.to_string(),
-        vertices: Some(VertexSelection::Indices(vertices)),
-        keys,
-        knots: None,
-        parent: None,
-        falloff,
-    }
-}
-
-fn tube_vertices(mesh: &Mesh, keep: impl Fn(f64) -> bool) -> Vec<u32> {
-    (0..mesh.positions.len() as u32).filter(|&v| keep(mesh.positions[v as usize].z)).collect()
-}
-
-/// The tube's upper part (z ≥ 1) owned by one sweep whose band fades into the unowned rest.
-fn attached_arm(falloff: f64) -> (Mesh, Rig) {
-    let mesh = TUBE.mesh();
-    let owned = tube_vertices(&mesh, |z| z >= 1.0 - 1e-9);
-    let rig = Rig::new(vec![tube_sweep("arm", owned, 0.95, 6.05, falloff)]).unwrap();
-    (mesh, rig)
-}
-
-/// The tube split at z = 3 into two sweeps that meet there, both with falloff: band vertices
-/// fade into the other sweep, whose binding the bind kernel makes.
-fn split_tube(falloff: f64) -> (Mesh, Rig) {
-    let mesh = TUBE.mesh();
-    let lower = tube_vertices(&mesh, |z| z <= 3.0 + 1e-9);
-    let upper = tube_vertices(&mesh, |z| z > 3.0 + 1e-9);
-    let rig =
-        Rig::new(vec![tube_sweep("lower", lower, -0.05, 3.0, falloff), tube_sweep("upper", upper, 3.0, 6.05, falloff)])
-            .unwrap();
-    (mesh, rig)
-}
 
 /// The rig's keys with key 0 of `sweep` turned and moved (local mode: the keys after it follow).
 fn swing(rig: &Rig, sweep: &str) -> Vec<Vec<Key>> {

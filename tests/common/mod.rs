@@ -164,6 +164,7 @@ pub fn sweepffd(dir: &std::path::Path) -> std::process::Command {
     command
 }
 
+pub mod falloff_tubes;
 mod teapot;
 mod twin;
 
