@@ -118,18 +118,24 @@ const INTERLEAVED: [Option<wgpu::VertexBufferLayout<'static>>; 1] = [Some(wgpu::
     attributes: &VERTEX_ATTRIBUTES,
 })];
 
-/// Positions and normals in buffers of their own (12 bytes a vertex), the colour per instance.
+/// Positions in a buffer of their own (12 bytes a vertex), at location 0.
+const POSITION_STREAM: Option<wgpu::VertexBufferLayout<'static>> = Some(wgpu::VertexBufferLayout {
+    array_stride: 12,
+    step_mode: wgpu::VertexStepMode::Vertex,
+    attributes: &wgpu::vertex_attr_array![0 => Float32x3],
+});
+
+/// Normals in a buffer of their own (12 bytes a vertex), at location 1.
+const NORMAL_STREAM: Option<wgpu::VertexBufferLayout<'static>> = Some(wgpu::VertexBufferLayout {
+    array_stride: 12,
+    step_mode: wgpu::VertexStepMode::Vertex,
+    attributes: &wgpu::vertex_attr_array![1 => Float32x3],
+});
+
+/// Positions and normals in buffers of their own, the colour per instance.
 const SPLIT: [Option<wgpu::VertexBufferLayout<'static>>; 3] = [
-    Some(wgpu::VertexBufferLayout {
-        array_stride: 12,
-        step_mode: wgpu::VertexStepMode::Vertex,
-        attributes: &wgpu::vertex_attr_array![0 => Float32x3],
-    }),
-    Some(wgpu::VertexBufferLayout {
-        array_stride: 12,
-        step_mode: wgpu::VertexStepMode::Vertex,
-        attributes: &wgpu::vertex_attr_array![1 => Float32x3],
-    }),
+    POSITION_STREAM,
+    NORMAL_STREAM,
     Some(wgpu::VertexBufferLayout {
         array_stride: 16,
         step_mode: wgpu::VertexStepMode::Instance,
@@ -139,16 +145,8 @@ const SPLIT: [Option<wgpu::VertexBufferLayout<'static>>; 3] = [
 
 /// Positions and normals as in [`SPLIT`], one 8-bit RGBA colour per vertex.
 const SPLIT_PAINTED: [Option<wgpu::VertexBufferLayout<'static>>; 3] = [
-    Some(wgpu::VertexBufferLayout {
-        array_stride: 12,
-        step_mode: wgpu::VertexStepMode::Vertex,
-        attributes: &wgpu::vertex_attr_array![0 => Float32x3],
-    }),
-    Some(wgpu::VertexBufferLayout {
-        array_stride: 12,
-        step_mode: wgpu::VertexStepMode::Vertex,
-        attributes: &wgpu::vertex_attr_array![1 => Float32x3],
-    }),
+    POSITION_STREAM,
+    NORMAL_STREAM,
     Some(wgpu::VertexBufferLayout {
         array_stride: 4,
         step_mode: wgpu::VertexStepMode::Vertex,
