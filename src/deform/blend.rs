@@ -23,9 +23,9 @@
 //! Against the rest position this is the rest and posed frames blended at w: center and radius
 //! linearly, orientation by quaternion interpolation (the normalized linear blend that
 //! dual-quaternion skinning uses: smooth and monotonic in w, exact at w = 0 and 1, off slerp's
-//! constant angular speed by at most 0.1° for a 45° turn, 0.9° for 90° and 8.1° for a half turn, with no
-//! transcendental function on the GPU); so a twisted band turns instead of collapsing
-//! onto its axis (the "candy wrapper" of a linear blend of positions). A rigid motion of both
+//! constant angular speed by at most 0.1° for a 45° turn, 0.9° for 90° and 8.1° for a half
+//! turn, with no transcendental function on the GPU); so a twisted band turns instead of
+//! collapsing onto its axis (the "candy wrapper" of a linear blend of positions). A rigid motion of both
 //! influences moves the vertex rigidly.
 
 use glam::{DQuat, DVec3};
