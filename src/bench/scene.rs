@@ -17,7 +17,7 @@ pub struct BenchScene {
     pub rig: Rig,
     /// The owning sweep of each vertex.
     pub owners: Vec<u32>,
-    /// The keys of the rig bent, twisted and tapered by [`BENCH_POSE`].
+    /// The keys of the rig bent, twisted and tapered by `BENCH_POSE`.
     pub keys: Vec<Vec<Key>>,
     /// The posed sweeps of those keys.
     pub posed: Vec<Sweep>,

@@ -105,7 +105,7 @@ impl RadiusField {
 }
 
 /// A(s) = ½ ∫₀^{2π} r(θ, s)² dθ on one knot interval as the degree-6 polynomial it is (r is
-/// cubic in s), integrated in θ exactly: with r = Σ_p s^p Σ_q c[p][q] φ^q on each angular
+/// cubic in s), integrated in θ exactly: with r = Σ_p s^p Σ_q c\[p\]\[q\] φ^q on each angular
 /// interval, ∫₀¹ φ^q φ^q′ dφ = 1/(q + q′ + 1).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AreaPolynomial {
