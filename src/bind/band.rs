@@ -52,8 +52,7 @@ impl MeshBindings {
         progress: &(dyn Fn(usize) + Sync),
     ) -> MeshBindings {
         let vertices = bind_vertices(rest, owners, positions, progress);
-        let weights =
-            if falloff.iter().any(|&w| w > 0.0) { band_weights(faces, positions, owners, falloff) } else { Vec::new() };
+        let weights = band_weights(faces, positions, owners, falloff);
         MeshBindings { vertices, bands: bind_bands(rest, positions, &weights) }
     }
 

@@ -103,7 +103,7 @@ fn deform_on_gpu(
     match saved {
         Some(saved) => keeps_rest = saved.keeps_rest(),
         None => {
-            for band in weights.iter().filter(|b| b.weight == 0.0 && b.fades_to_rest()) {
+            for band in weights.iter().filter(|b| b.keeps_rest()) {
                 keeps_rest[band.vertex as usize] = true;
             }
         }

@@ -411,17 +411,26 @@ impl GpuDeformer {
 /// weight in [0, 1) and each neighbour one of the rig's `sweeps` or [`UNBOUND`] (the rest
 /// position).
 fn check_weights(weights: &[BandWeight], sweeps: usize, bound: impl Fn(usize) -> bool) -> Result<(), GpuError> {
-    let ordered = weights.windows(2).all(|pair| pair[0].vertex < pair[1].vertex);
-    let valid = |b: &BandWeight| {
-        bound(b.vertex as usize)
-            && b.weight.is_finite()
-            && (0.0..1.0).contains(&b.weight)
-            && (b.neighbour == UNBOUND || (b.neighbour as usize) < sweeps)
+    let band = |b: &BandWeight| (b.vertex, b.weight, b.neighbour);
+    check_bands(weights, band, sweeps, bound)
+        .map_err(|()| GpuError::Input("the falloff bands are not sorted, owned and in range".into()))
+}
+
+/// Whether `bands`, each seen as (vertex, weight, second influence), are sorted by vertex, each
+/// vertex `bound`, each weight in [0, 1) and each second influence below `seconds` or
+/// [`UNBOUND`] (the rest position).
+fn check_bands<B>(
+    bands: &[B],
+    band: impl Fn(&B) -> (u32, f64, u32),
+    seconds: usize,
+    bound: impl Fn(usize) -> bool,
+) -> Result<(), ()> {
+    let ordered = bands.windows(2).all(|pair| band(&pair[0]).0 < band(&pair[1]).0);
+    let valid = |b: &B| {
+        let (vertex, weight, second) = band(b);
+        bound(vertex as usize) && (0.0..1.0).contains(&weight) && (second == UNBOUND || (second as usize) < seconds)
     };
-    if !ordered || !weights.iter().all(valid) {
-        return Err(GpuError::Input("the falloff bands are not sorted, owned and in range".into()));
-    }
-    Ok(())
+    if ordered && bands.iter().all(valid) { Ok(()) } else { Err(()) }
 }
 
 fn check_input(rest: &[Sweep], positions: &[DVec3], bindings: &BindingSource) -> Result<(), GpuError> {
@@ -460,17 +469,10 @@ fn check_input(rest: &[Sweep], positions: &[DVec3], bindings: &BindingSource) ->
                     bindings[i].cell
                 )));
             }
-            let ordered = bands.windows(2).all(|pair| pair[0].vertex < pair[1].vertex);
-            let valid = |b: &BandRecord| {
-                (b.vertex as usize) < bindings.len()
-                    && bindings[b.vertex as usize].cell != UNBOUND
-                    && b.weight.is_finite()
-                    && (0.0..1.0).contains(&b.weight)
-                    && (b.cell == UNBOUND || (b.cell as usize) < cells)
-            };
-            if !ordered || !bands.iter().all(valid) {
-                return Err(GpuError::Input("the band records are not sorted, bound and in range".into()));
-            }
+            let band = |b: &BandRecord| (b.vertex, b.weight as f64, b.cell);
+            let bound = |v: usize| bindings.get(v).is_some_and(|b| b.cell != UNBOUND);
+            check_bands(bands, band, cells, bound)
+                .map_err(|()| GpuError::Input("the band records are not sorted, bound and in range".into()))?;
         }
     }
     Ok(())

@@ -16,11 +16,7 @@ impl Rig {
     /// The falloff weights of `mesh`'s band vertices ([`band_weights`]), for the GPU deformer;
     /// empty when no sweep has a falloff.
     pub fn band_weights(&self, mesh: &Mesh, owners: &[u32]) -> Vec<BandWeight> {
-        let falloff = self.falloffs();
-        if falloff.iter().all(|&w| w == 0.0) {
-            return Vec::new();
-        }
-        band_weights(&mesh.faces, &mesh.positions, owners, &falloff)
+        band_weights(&mesh.faces, &mesh.positions, owners, &self.falloffs())
     }
 
     /// Fails, naming the sweep, if a falloff is wider than `mesh` (its bounding box diagonal):

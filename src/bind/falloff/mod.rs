@@ -55,6 +55,11 @@ impl BandWeight {
     pub fn fades_to_rest(&self) -> bool {
         self.neighbour == UNOWNED
     }
+
+    /// Whether the vertex keeps its rest position exactly: weight 0 against the rest position.
+    pub fn keeps_rest(&self) -> bool {
+        self.weight == 0.0 && self.fades_to_rest()
+    }
 }
 
 /// The falloff band of every part (see the module docs): one entry for each owned vertex with
