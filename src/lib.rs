@@ -17,6 +17,7 @@
 //! - [`coeffs`]: sweeps as compact f32 coefficient arrays, the GPU buffer layouts.
 //! - [`cpu`]: f32 twins of the WGSL kernels in `shaders/`.
 //! - [`synthetic`]: procedural meshes, rigs and poses.
+//! - [`limits`]: the largest inputs accepted, checked before allocating.
 //! - [`render`]: headless pictures of meshes and their control sweeps (PNG).
 //! - `view` (feature `viewer`, on by default): the interactive viewer, a winit window drawing
 //!   the GPU deformer's buffers, with direct manipulation (§4–5), undo and scripted sessions.
@@ -46,6 +47,7 @@ pub mod deform;
 pub mod edit;
 pub mod fit;
 pub mod gpu;
+pub mod limits;
 pub mod mesh;
 pub mod normals;
 pub mod render;

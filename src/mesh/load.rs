@@ -16,9 +16,16 @@ impl Mesh {
     /// line, for OBJ and OFF), never a panic. glTF files give world-space positions (node
     /// transforms of the default scene applied) and one group per mesh (see `gltf`).
     pub fn load(path: &Path) -> Result<Mesh, MeshError> {
-        let format = Format::of(path)?;
+        Format::of(path)?; // an unknown extension is refused before the file is read
         let bytes = std::fs::read(path).map_err(|e| MeshError::read(path, e))?;
-        match format {
+        Mesh::parse(path, bytes)
+    }
+
+    /// Reads a mesh from the bytes of the file `path`, the format chosen by its extension as
+    /// in [`Mesh::load`]; errors name `path`. A `.gltf` file's external buffers are resolved
+    /// in the folder of `path`.
+    pub fn parse(path: &Path, bytes: Vec<u8>) -> Result<Mesh, MeshError> {
+        match Format::of(path)? {
             Format::Obj => obj::read::read(path, bytes),
             Format::Ply => ply::read::read(path, &bytes),
             Format::Off => off::read::read(path, bytes),
