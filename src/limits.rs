@@ -40,3 +40,51 @@ pub const MAX_BENCH_VERTICES: usize = 1 << 25;
 
 /// The most timed runs per `bench` figure.
 pub const MAX_BENCH_RUNS: usize = 10_000;
+
+/// The largest input file read (4 GiB).
+pub const MAX_INPUT_BYTES: u64 = 1 << 32;
+
+/// Reads the whole of the regular file `path` (symbolic links followed), refusing any other
+/// kind of file (a FIFO would block, a device would not end) and files over
+/// [`MAX_INPUT_BYTES`]. The buffer is reserved once, fallibly, so a file too large for the
+/// memory left is an error, not an abort.
+///
+/// # Errors
+///
+/// The I/O error, or `InvalidInput` for a file that is not regular or is too large, or
+/// `OutOfMemory` when the buffer cannot be reserved. The error does not name `path`; callers
+/// add it.
+pub fn read_input(path: &std::path::Path) -> std::io::Result<Vec<u8>> {
+    use std::io::{Error, ErrorKind, Read};
+    let mut file = std::fs::File::open(path)?;
+    let meta = file.metadata()?;
+    if !meta.is_file() {
+        return Err(Error::new(ErrorKind::InvalidInput, "not a regular file"));
+    }
+    if meta.len() > MAX_INPUT_BYTES {
+        return Err(Error::new(
+            ErrorKind::InvalidInput,
+            format!("{} bytes, over the limit of {MAX_INPUT_BYTES} bytes for an input file", meta.len()),
+        ));
+    }
+    let mut bytes = Vec::new();
+    // One byte more than the length seen, so that a file growing while read is noticed.
+    bytes.try_reserve_exact(meta.len() as usize + 1).map_err(|_| {
+        Error::new(ErrorKind::OutOfMemory, format!("{} bytes do not fit in the memory left", meta.len()))
+    })?;
+    file.by_ref().take(MAX_INPUT_BYTES + 1).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > MAX_INPUT_BYTES {
+        return Err(Error::new(ErrorKind::InvalidInput, "the file grew past the input limit while read"));
+    }
+    Ok(bytes)
+}
+
+/// [`read_input`] as UTF-8 text.
+///
+/// # Errors
+///
+/// As [`read_input`], or `InvalidData` for text that is not UTF-8.
+pub fn read_input_text(path: &std::path::Path) -> std::io::Result<String> {
+    String::from_utf8(read_input(path)?)
+        .map_err(|_| std::io::Error::new(std::io::ErrorKind::InvalidData, "stream did not contain valid UTF-8"))
+}

@@ -16,7 +16,7 @@
 //!
 //! The fingerprints let `deform` refuse bindings made for another rig or mesh.
 
-use std::io::{Read, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use glam::DVec3;
@@ -183,9 +183,7 @@ impl BindingsFile {
 
     /// Reads a bindings file.
     pub fn load(path: &Path) -> Result<BindingsFile, BindingsFileError> {
-        let mut bytes = Vec::new();
-        std::fs::File::open(path)
-            .and_then(|mut file| file.read_to_end(&mut bytes))
+        let bytes = crate::limits::read_input(path)
             .map_err(|source| BindingsFileError::Read { path: path.to_path_buf(), source })?;
         BindingsFile::from_bytes(&bytes, path)
     }

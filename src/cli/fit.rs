@@ -95,7 +95,7 @@ fn select(mesh: &Mesh, args: &Args) -> Result<(VertexSelection, Vec<u32>), Box<d
 /// Zero-based vertex indices from a file: a JSON array, or integers separated by white space
 /// or commas.
 fn read_indices(path: &Path) -> Result<Vec<u32>, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let text = sweepffd::limits::read_input_text(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     let mut indices: Vec<u32> = if text.trim_start().starts_with('[') {
         serde_json::from_str(&text)
             .map_err(|e| format!("{}: not a JSON array of vertex indices: {e}", path.display()))?

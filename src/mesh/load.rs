@@ -17,7 +17,7 @@ impl Mesh {
     /// transforms of the default scene applied) and one group per mesh (see `gltf`).
     pub fn load(path: &Path) -> Result<Mesh, MeshError> {
         Format::of(path)?; // an unknown extension is refused before the file is read
-        let bytes = std::fs::read(path).map_err(|e| MeshError::read(path, e))?;
+        let bytes = crate::limits::read_input(path).map_err(|e| MeshError::read(path, e))?;
         Mesh::parse(path, bytes)
     }
 

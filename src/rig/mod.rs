@@ -232,7 +232,7 @@ impl RigDocument {
 
 fn read_document(path: &Path) -> Result<RigDocument, RigError> {
     let file = Some(path.to_path_buf());
-    let text = std::fs::read_to_string(path).map_err(|e| RigError::new(file.clone(), RigErrorKind::Io(e)))?;
+    let text = crate::limits::read_input_text(path).map_err(|e| RigError::new(file.clone(), RigErrorKind::Io(e)))?;
     RigDocument::parse(&text).map_err(|e| RigError::new(file, RigErrorKind::Json(e)))
 }
 

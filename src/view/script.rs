@@ -101,7 +101,7 @@ pub enum Action {
 
 /// Reads a script file; errors name the file.
 pub fn load(path: &Path) -> Result<Vec<Step>, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let text = crate::limits::read_input_text(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     let steps: Vec<Step> =
         serde_json::from_str(&text).map_err(|e| format!("{}: not a viewer script: {e}", path.display()))?;
     for (i, step) in steps.iter().enumerate() {
