@@ -99,31 +99,60 @@ pub enum Action {
     Falloff { sweep: String, width: f64 },
 }
 
+/// The longest a timed step (wait, move, drag) may last, in seconds: one hour.
+pub const MAX_STEP_SECONDS: f64 = 3600.0;
+
+/// The largest pointer coordinate, in pixels, and the most lines one scroll step may turn.
+pub const MAX_PIXELS: f32 = 65536.0;
+
 /// Reads a script file; errors name the file.
 pub fn load(path: &Path) -> Result<Vec<Step>, String> {
     let text = crate::limits::read_input_text(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    parse(&text, path)
+}
+
+/// Parses and checks the text of the script file `path`; errors name the file and the step.
+pub fn parse(text: &str, path: &Path) -> Result<Vec<Step>, String> {
     let steps: Vec<Step> =
-        serde_json::from_str(&text).map_err(|e| format!("{}: not a viewer script: {e}", path.display()))?;
+        serde_json::from_str(text).map_err(|e| format!("{}: not a viewer script: {e}", path.display()))?;
     for (i, step) in steps.iter().enumerate() {
-        if let Step::Key(key) = step
-            && Command::parse(key).is_none()
-        {
-            return Err(format!("{}: step {i}: no command is bound to the key {key:?}", path.display()));
-        }
-        if let Step::Falloff { width, .. } = step
-            && !(width.is_finite() && *width >= 0.0)
-        {
-            return Err(format!("{}: step {i}: a falloff width is a number ≥ 0, found {width}", path.display()));
-        }
-        let seconds = match step {
-            Step::Wait(s) | Step::Move { seconds: s, .. } | Step::Drag { seconds: s, .. } => *s,
-            _ => 0.0,
-        };
-        if !(seconds.is_finite() && seconds >= 0.0) {
-            return Err(format!("{}: step {i}: seconds must be a number ≥ 0, found {seconds}", path.display()));
-        }
+        check(step).map_err(|problem| format!("{}: step {i}: {problem}", path.display()))?;
     }
     Ok(steps)
+}
+
+/// What is wrong with one step, if anything: an unbound key, a falloff width that is not a
+/// number ≥ 0, seconds outside [0, [`MAX_STEP_SECONDS`]], a position or scroll that is not
+/// finite or is beyond [`MAX_PIXELS`].
+fn check(step: &Step) -> Result<(), String> {
+    if let Step::Key(key) = step
+        && Command::parse(key).is_none()
+    {
+        return Err(format!("no command is bound to the key {key:?}"));
+    }
+    if let Step::Falloff { width, .. } = step
+        && !(width.is_finite() && *width >= 0.0)
+    {
+        return Err(format!("a falloff width is a number ≥ 0, found {width}"));
+    }
+    let seconds = match step {
+        Step::Wait(s) | Step::Move { seconds: s, .. } | Step::Drag { seconds: s, .. } => *s,
+        _ => 0.0,
+    };
+    if !(seconds.is_finite() && (0.0..=MAX_STEP_SECONDS).contains(&seconds)) {
+        return Err(format!("seconds must be a number from 0 to {MAX_STEP_SECONDS}, found {seconds:?}"));
+    }
+    let values: &[f32] = match step {
+        Step::Move { to, .. } => to,
+        Step::Press { at, .. } | Step::Click { at, .. } => at,
+        Step::Drag { from, to, .. } => &[from[0], from[1], to[0], to[1]],
+        Step::Scroll(lines) => std::slice::from_ref(lines),
+        _ => &[],
+    };
+    match values.iter().find(|v| !(v.is_finite() && v.abs() <= MAX_PIXELS)) {
+        Some(v) => Err(format!("positions and scrolls are numbers from -{MAX_PIXELS} to {MAX_PIXELS}, found {v:?}")),
+        None => Ok(()),
+    }
 }
 
 /// Plays a script frame by frame.
@@ -343,5 +372,36 @@ mod tests {
         let error = load(&path).unwrap_err();
         assert!(error.contains("bad.json") && error.contains("ctrl+q"), "{error}");
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn hostile_numbers_are_errors_naming_the_step() {
+        let path = Path::new("s.json");
+        let cases = [
+            // Finite but too long for a `Duration`: the player used to panic on it.
+            (r#"[{"wait": 1e300}]"#, "s.json: step 0: seconds must be a number from 0 to 3600, found 1e300"),
+            (
+                r#"[{"wait": 0}, {"drag": {"from": [0, 0], "to": [1, 1], "seconds": 3601}}]"#,
+                "s.json: step 1: seconds must be a number from 0 to 3600, found 3601.0",
+            ),
+            // 1e39 does not fit an f32.
+            (
+                r#"[{"click": {"at": [1e39, 0]}}]"#,
+                "s.json: not a viewer script: number out of range at line 1 column 23",
+            ),
+            (
+                r#"[{"move": {"to": [0, -70000]}}]"#,
+                "s.json: step 0: positions and scrolls are numbers from -65536 to 65536, found -70000.0",
+            ),
+            (
+                r#"[{"scroll": 1e6}]"#,
+                "s.json: step 0: positions and scrolls are numbers from -65536 to 65536, found 1000000.0",
+            ),
+        ];
+        for (text, expected) in cases {
+            assert_eq!(parse(text, path).unwrap_err(), expected, "{text}");
+        }
+        let bounds = r#"[{"wait": 3600}, {"drag": {"from": [-65536, 0], "to": [65536, 0]}}, {"scroll": -3}]"#;
+        assert_eq!(parse(bounds, path).unwrap().len(), 3);
     }
 }
