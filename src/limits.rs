@@ -88,3 +88,7 @@ pub fn read_input_text(path: &std::path::Path) -> std::io::Result<String> {
     String::from_utf8(read_input(path)?)
         .map_err(|_| std::io::Error::new(std::io::ErrorKind::InvalidData, "stream did not contain valid UTF-8"))
 }
+
+/// The most entries of a PLY element other than `vertex` and `face` (such elements are read
+/// and kept so that a faithful write copies them).
+pub const MAX_PLY_ENTRIES: usize = MAX_FACES;

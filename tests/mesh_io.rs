@@ -331,7 +331,10 @@ fn failed_saves_leave_no_file_and_no_temporary() {
 
     let nan = vec![DVec3::ZERO, DVec3::X, DVec3::new(0.0, f64::NAN, 0.0)];
     let err = mesh.save(&out, &nan).unwrap_err();
-    assert_eq!(err.to_string(), "vertex 2 has a non-finite coordinate");
+    assert_eq!(
+        err.to_string(),
+        format!("{}: vertex 2 has the coordinate NaN, which is not finite; nothing was written", out.display())
+    );
 
     let err = mesh.save(&dir.path().join("out.stl"), &mesh.positions).unwrap_err();
     assert!(matches!(err, MeshError::UnsupportedFormat { .. }), "{err}");

@@ -10,6 +10,8 @@ use thiserror::Error;
 
 use super::gltf::GltfDataError;
 use super::off::OffLineError;
+use super::ply::PlyHeaderError;
+use crate::limits;
 
 /// A reason a mesh file cannot be read or written, or mesh data cannot form a [`Mesh`].
 ///
@@ -94,6 +96,55 @@ pub enum MeshError {
         /// The parser's reason, on one line.
         reason: String,
     },
+    /// A line of a PLY header declares something this reader refuses (see [`PlyHeaderError`]).
+    #[error("{}:{line}: {problem}", path.display())]
+    PlyHeader {
+        /// The file as given.
+        path: PathBuf,
+        /// 1-based line number in the header.
+        line: usize,
+        /// What is wrong with the declaration.
+        problem: PlyHeaderError,
+    },
+    /// A `float` or `double` property of a PLY element (scalar or list) holds an infinite or
+    /// NaN value: in ASCII a number too large for the type, in binary any bit pattern.
+    #[error("{}: element \"{element}\" entry {entry}, property \"{property}\": the value {value} is not finite", path.display())]
+    PlyNonFinite {
+        /// The file as given.
+        path: PathBuf,
+        /// The element's name.
+        element: String,
+        /// Zero-based entry of the element.
+        entry: usize,
+        /// The property's name.
+        property: String,
+        /// The value read.
+        value: f64,
+    },
+    /// The file holds more of something than sweepffd reads (see [`crate::limits`]).
+    #[error("{}: {problem}", path.display())]
+    Limit {
+        /// The file as given.
+        path: PathBuf,
+        /// Which limit, and the count met.
+        problem: LimitError,
+    },
+    /// A position to be written is not finite, or does not fit in the f32 the output format
+    /// stores; nothing was written.
+    #[error(
+        "{}: vertex {vertex} has the coordinate {}, {}; nothing was written",
+        path.display(),
+        super::obj::write::Coordinate(*value),
+        if value.is_finite() { "which does not fit in the f32 this format stores" } else { "which is not finite" }
+    )]
+    Unwritable {
+        /// The output file as given.
+        path: PathBuf,
+        /// Zero-based vertex number.
+        vertex: usize,
+        /// The coordinate at fault (the first of the vertex's three).
+        value: f64,
+    },
     /// The PLY file has no `vertex` element with float or double `x`, `y` and `z`.
     #[error("{}: no \"vertex\" element with x, y, z properties", path.display())]
     NoPlyVertices {
@@ -127,13 +178,76 @@ pub enum MeshError {
     },
 }
 
+/// A count read from a file that is over one of the limits of [`crate::limits`].
+#[derive(Clone, Copy, Debug, Error, PartialEq, Eq)]
+#[error("{count} {}, over the limit of {} ({})", .limited.noun(), .limited.limit(), .limited.name())]
+pub struct LimitError {
+    /// What is counted.
+    pub limited: Limited,
+    /// The count declared by a header, or reached while reading (the limit plus one).
+    pub count: u64,
+}
+
+/// The counts of a mesh file that [`crate::limits`] bounds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Limited {
+    /// Vertices of a mesh ([`limits::MAX_VERTICES`]).
+    Vertices,
+    /// Polygon faces of a mesh ([`limits::MAX_FACES`]).
+    Faces,
+    /// Triangles of a mesh once its faces are fan-triangulated ([`limits::MAX_FACES`]).
+    Triangles,
+    /// Corners of one polygon face ([`limits::MAX_FACE_CORNERS`]).
+    FaceCorners,
+    /// Entries of a PLY element other than `vertex` and `face` ([`limits::MAX_PLY_ENTRIES`]).
+    PlyEntries,
+}
+
+impl Limited {
+    /// The limit's value.
+    pub fn limit(self) -> usize {
+        match self {
+            Limited::Vertices => limits::MAX_VERTICES,
+            Limited::Faces | Limited::Triangles => limits::MAX_FACES,
+            Limited::FaceCorners => limits::MAX_FACE_CORNERS,
+            Limited::PlyEntries => limits::MAX_PLY_ENTRIES,
+        }
+    }
+
+    /// The limit's name in [`crate::limits`], as errors show it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Limited::Vertices => "limits::MAX_VERTICES",
+            Limited::Faces | Limited::Triangles => "limits::MAX_FACES",
+            Limited::FaceCorners => "limits::MAX_FACE_CORNERS",
+            Limited::PlyEntries => "limits::MAX_PLY_ENTRIES",
+        }
+    }
+
+    /// What is counted, in the plural.
+    pub fn noun(self) -> &'static str {
+        match self {
+            Limited::Vertices => "vertices",
+            Limited::Faces => "faces",
+            Limited::Triangles => "triangles after fan triangulation",
+            Limited::FaceCorners => "vertices in one face",
+            Limited::PlyEntries => "entries",
+        }
+    }
+
+    /// `Err` with `count` when it is over the limit.
+    pub(crate) fn check(self, count: u64) -> Result<(), LimitError> {
+        if count > self.limit() as u64 { Err(LimitError { limited: self, count }) } else { Ok(()) }
+    }
+}
+
 /// What is wrong with one statement of an OBJ file. Vertex numbers are 1-based, as in OBJ.
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum ObjLineError {
     /// A token that should be a number is not one.
     #[error("{what} \"{token}\" is not a number")]
     NotANumber {
-        /// `"vertex coordinate"` or `"face index"`.
+        /// `"vertex coordinate"`, `"face index"`, `"vertex value"`, `"texture coordinate"`, ….
         what: &'static str,
         /// The token as written (invalid UTF-8 replaced).
         token: String,
@@ -150,6 +264,19 @@ pub enum ObjLineError {
         /// 1-based vertex number.
         vertex: usize,
     },
+    /// A `v` value after the position (w or a colour), or a `vt`, `vn` or `vp` value, that is
+    /// infinite or NaN (as written, or too large for f64).
+    #[error("{what} \"{token}\" is not finite")]
+    NonFiniteValue {
+        /// `"vertex value"`, `"texture coordinate"`, `"normal coordinate"` or
+        /// `"parameter-space coordinate"`.
+        what: &'static str,
+        /// The token as written.
+        token: String,
+    },
+    /// The file reaches one of the limits at this statement.
+    #[error(transparent)]
+    Limit(LimitError),
     /// A face index of 0, which OBJ does not define.
     #[error("face refers to vertex 0 (OBJ indices start at 1)")]
     ZeroIndex,

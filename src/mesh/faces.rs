@@ -1,6 +1,6 @@
 //! Access to the flat polygon list [`Faces`]: face by face, or fan-triangulated.
 
-use super::{Faces, MeshDataError};
+use super::{Faces, LimitError, Limited, MeshDataError};
 
 impl Faces {
     /// An empty face list (`offsets == [0]`).
@@ -64,6 +64,21 @@ impl Faces {
         self.indices.extend_from_slice(face);
         self.offsets.push(end);
         true
+    }
+
+    /// Appends a face read from a file, within the limits: at most
+    /// [`MAX_FACE_CORNERS`](crate::limits::MAX_FACE_CORNERS) corners, at most
+    /// [`MAX_FACES`](crate::limits::MAX_FACES) faces, and at most as many triangles once
+    /// fan-triangulated (a face of n ≥ 3 corners gives n − 2). On error the faces are unchanged.
+    pub(crate) fn push_within_limits(&mut self, face: &[u32]) -> Result<(), LimitError> {
+        Limited::FaceCorners.check(face.len() as u64)?;
+        Limited::Faces.check(self.len() as u64 + 1)?;
+        // Each face of n corners gives n − 2 triangles: indices − 2 × faces in all.
+        let triangles = ((self.indices.len() + face.len()) as u64).saturating_sub(2 * (self.len() as u64 + 1));
+        Limited::Triangles.check(triangles)?;
+        let pushed = self.try_push(face);
+        debug_assert!(pushed, "the limits keep the indices within u32");
+        Ok(())
     }
 
     /// Checks that `offsets` describes `indices`: starts at 0 (or is empty with no index),
@@ -139,6 +154,18 @@ mod tests {
         faces.push(&[5, 6, 7, 8, 9]);
         let tris: Vec<[u32; 3]> = faces.triangles().collect();
         assert_eq!(tris, vec![[5, 6, 7], [5, 7, 8], [5, 8, 9]]);
+    }
+
+    #[test]
+    fn push_within_limits_refuses_a_face_of_too_many_corners() {
+        let mut faces = Faces::new();
+        let corners = crate::limits::MAX_FACE_CORNERS;
+        let big: Vec<u32> = (0..corners as u32).collect();
+        assert_eq!(faces.push_within_limits(&big), Ok(()));
+        let bigger: Vec<u32> = (0..=corners as u32).collect();
+        let err = faces.push_within_limits(&bigger).unwrap_err();
+        assert_eq!(err.to_string(), "65537 vertices in one face, over the limit of 65536 (limits::MAX_FACE_CORNERS)");
+        assert_eq!(faces.len(), 1);
     }
 
     #[test]

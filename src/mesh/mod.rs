@@ -17,7 +17,8 @@
 //!   file + rename, [`write_atomically`], which other file writers of the crate share).
 //! - [`Mesh::enclosed_volume`], [`Mesh::bounds`], [`Mesh::group_vertices`] measure it.
 //! - [`MeshError`] names the file (and the OBJ or OFF line) at fault; malformed input never
-//!   panics.
+//!   panics, every number read must be finite, and counts are checked against
+//!   [`crate::limits`] ([`LimitError`]) before anything is allocated for them.
 
 mod atomic;
 mod bounds;
@@ -39,10 +40,11 @@ mod volume;
 use glam::DVec3;
 
 pub use atomic::write_atomically;
-pub use error::{MeshDataError, MeshError, ObjLineError};
+pub use error::{LimitError, Limited, MeshDataError, MeshError, ObjLineError};
 pub use format::Format;
 pub use gltf::GltfDataError;
 pub use off::OffLineError;
+pub use ply::PlyHeaderError;
 pub use subdivide::{Parents, Subdivision};
 
 use source::Source;

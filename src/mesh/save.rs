@@ -7,7 +7,7 @@ use glam::DVec3;
 use super::atomic::write_atomically;
 use super::format::Format;
 use super::source::Source;
-use super::{Mesh, MeshDataError, MeshError, gltf, obj, off, ply};
+use super::{Mesh, MeshError, gltf, obj, off, ply};
 
 impl Mesh {
     /// Writes the mesh with `positions` (one per vertex, same order) to `path`, format by
@@ -26,13 +26,19 @@ impl Mesh {
     /// counts, or glTF with one mesh of one primitive (f32 POSITION, area-weighted NORMAL, u32
     /// indices of the fan-triangulated faces).
     ///
+    /// Every coordinate must be finite, and, where the output stores f32 (generic PLY, a
+    /// faithful PLY whose `x`, `y` or `z` is `float`, glTF and GLB), within f32's range once
+    /// rounded; OBJ and OFF print shortest round-trip f64 digits. This is checked for every
+    /// vertex before anything is written.
+    ///
     /// Atomic: the file is written to a temporary file in the same directory, flushed, then
     /// renamed over `path`; on any error the temporary file is removed and `path` is untouched.
     ///
     /// # Errors
     ///
     /// [`MeshError::PositionCount`] if `positions.len() != self.positions.len()`,
-    /// [`MeshError::Invalid`] with [`MeshDataError::NonFinite`] for a NaN or infinite position,
+    /// [`MeshError::Unwritable`] naming `path`, the vertex and the coordinate for a NaN or
+    /// infinite coordinate or one that overflows the f32 of the format,
     /// [`MeshError::UnsupportedFormat`] for another extension, [`MeshError::Write`] if the file
     /// cannot be written.
     pub fn save(&self, path: &Path, positions: &[DVec3]) -> Result<(), MeshError> {
@@ -40,9 +46,7 @@ impl Mesh {
             return Err(MeshError::PositionCount { expected: self.positions.len(), found: positions.len() });
         }
         let format = Format::of(path)?;
-        if let Some(vertex) = positions.iter().position(|p| !p.is_finite()) {
-            return Err(MeshDataError::NonFinite { vertex }.into());
-        }
+        check_writable(path, positions, self.stores_f32(format))?;
         write_atomically(path, |out| match (&self.source, format) {
             (Source::Obj(o), Format::Obj) if o.describes(self) => {
                 obj::write::write_faithful(out, &o.file, &o.positions, positions)
@@ -64,5 +68,64 @@ impl Mesh {
             }
         })
         .map_err(|e| MeshError::write(path, e))
+    }
+
+    /// Whether [`Mesh::save`] to a file of `format` stores positions as f32.
+    fn stores_f32(&self, format: Format) -> bool {
+        match (&self.source, format) {
+            (Source::Ply(p), Format::Ply) if p.describes(self) => ply::write::stores_f32(&p.file),
+            (_, Format::Ply | Format::Gltf | Format::Glb) => true,
+            (_, Format::Obj | Format::Off) => false,
+        }
+    }
+}
+
+/// Checks that every coordinate of `positions` is finite and, if `f32`, stays finite once
+/// rounded to f32 (magnitudes up to `f32::MAX` plus half an ulp round to `f32::MAX`).
+fn check_writable(path: &Path, positions: &[DVec3], f32: bool) -> Result<(), MeshError> {
+    for (vertex, p) in positions.iter().enumerate() {
+        let bad = p.to_array().into_iter().find(|&c| !c.is_finite() || (f32 && !(c as f32).is_finite()));
+        if let Some(value) = bad {
+            return Err(MeshError::Unwritable { path: path.to_path_buf(), vertex, value });
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn f32_range_is_checked_after_rounding() {
+        let path = Path::new("out.ply");
+        let just_over = f64::from(f32::MAX) * (1.0 + f64::from(f32::EPSILON));
+        let rounds_down = f64::from(f32::MAX) * (1.0 + f64::from(f32::EPSILON) / 4.0);
+        assert!(check_writable(path, &[DVec3::new(0.0, rounds_down, 0.0)], true).is_ok());
+        let err = check_writable(path, &[DVec3::ZERO, DVec3::new(0.0, 0.0, -just_over)], true).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            format!(
+                "out.ply: vertex 1 has the coordinate {}, which does not fit in the f32 this format stores; nothing was written",
+                format_args!("{:e}", -just_over)
+            )
+        );
+        assert!(check_writable(path, &[DVec3::splat(1e300)], false).is_ok());
+    }
+
+    #[test]
+    fn non_finite_coordinates_are_refused_in_every_format() {
+        for f32 in [false, true] {
+            let err = check_writable(Path::new("o.obj"), &[DVec3::new(f64::NAN, 0.0, 0.0)], f32).unwrap_err();
+            assert_eq!(
+                err.to_string(),
+                "o.obj: vertex 0 has the coordinate NaN, which is not finite; nothing was written"
+            );
+        }
+        let err = check_writable(Path::new("o.off"), &[DVec3::new(1.0, f64::NEG_INFINITY, 0.0)], false).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "o.off: vertex 0 has the coordinate -inf, which is not finite; nothing was written"
+        );
     }
 }

@@ -12,37 +12,34 @@ use glam::DVec3;
 
 use super::scan::{self, Keyword, Scanner, VertexIssue};
 use crate::mesh::source::{Original, Source};
-use crate::mesh::{FaceGroup, Faces, Mesh, MeshError, ObjLineError};
+use crate::mesh::{FaceGroup, Faces, Limited, Mesh, MeshError, ObjLineError};
 
 /// Reads the OBJ file `bytes` (read from `path`, which errors name).
 pub(crate) fn read(path: &Path, bytes: Vec<u8>) -> Result<Mesh, MeshError> {
     let mut reader = Reader::default();
     for line in Scanner::new(&bytes) {
-        reader.statement(line.number, &line.body).map_err(|e| e.at(path, line.number))?;
+        reader.statement(line.number, &line.body).map_err(|problem| MeshError::Obj {
+            path: path.to_path_buf(),
+            line: line.number,
+            problem,
+        })?;
     }
     let mesh = reader.finish(path)?;
     Ok(Mesh { source: Source::Obj(Original::new(bytes, &mesh)), ..mesh })
 }
 
-/// A failure at one statement: a problem with the line, or a 32-bit limit.
-enum Failure {
-    Line(ObjLineError),
-    TooLarge,
-}
-
-impl Failure {
-    fn at(self, path: &Path, line: usize) -> MeshError {
-        match self {
-            Failure::Line(problem) => MeshError::Obj { path: path.to_path_buf(), line, problem },
-            Failure::TooLarge => MeshError::TooLarge { path: path.to_path_buf() },
+/// Checks that every word of `text` is a finite number (the values of `vt`, `vn`, `vp`, and
+/// the w or colour after a position): the faithful writer copies them verbatim.
+fn finite_numbers(text: &[u8], what: &'static str) -> Result<(), ObjLineError> {
+    for range in scan::words(text) {
+        let word = &text[range];
+        let value: f64 =
+            scan::number(word).ok_or_else(|| ObjLineError::NotANumber { what, token: scan::lossy(word) })?;
+        if !value.is_finite() {
+            return Err(ObjLineError::NonFiniteValue { what, token: scan::lossy(word) });
         }
     }
-}
-
-impl From<ObjLineError> for Failure {
-    fn from(e: ObjLineError) -> Self {
-        Failure::Line(e)
-    }
+    Ok(())
 }
 
 /// The mesh read so far.
@@ -67,7 +64,7 @@ struct Reader {
 
 impl Reader {
     /// Reads the statement `body` of the logical line `number`.
-    fn statement(&mut self, number: usize, body: &[u8]) -> Result<(), Failure> {
+    fn statement(&mut self, number: usize, body: &[u8]) -> Result<(), ObjLineError> {
         self.line = number;
         let code = scan::code(body);
         let (keyword, args) = scan::keyword(code);
@@ -85,28 +82,28 @@ impl Reader {
                 self.object = (!name.is_empty()).then(|| self.group_id(name));
                 Ok(())
             }
+            Keyword::Values(what) => finite_numbers(&code[args], what),
             Keyword::Other => Ok(()),
         }
     }
 
-    fn vertex(&mut self, code: &[u8], args: std::ops::Range<usize>) -> Result<(), Failure> {
-        let ([x, y, z], _) = scan::vertex(code, args).map_err(|issue| match issue {
+    fn vertex(&mut self, code: &[u8], args: std::ops::Range<usize>) -> Result<(), ObjLineError> {
+        let ([x, y, z], tail) = scan::vertex(code, args).map_err(|issue| match issue {
             VertexIssue::NotANumber(token) => ObjLineError::NotANumber { what: "vertex coordinate", token },
             VertexIssue::Missing(found) => ObjLineError::MissingCoordinates { found },
         })?;
         let p = DVec3::new(x, y, z);
         if !p.is_finite() {
             let vertex = self.positions.len() + 1;
-            return Err(ObjLineError::NonFinite { vertex }.into());
+            return Err(ObjLineError::NonFinite { vertex });
         }
-        if self.positions.len() >= u32::MAX as usize {
-            return Err(Failure::TooLarge);
-        }
+        finite_numbers(&code[tail..], "vertex value")?;
+        Limited::Vertices.check(self.positions.len() as u64 + 1).map_err(ObjLineError::Limit)?;
         self.positions.push(p);
         Ok(())
     }
 
-    fn face(&mut self, args: &[u8]) -> Result<(), Failure> {
+    fn face(&mut self, args: &[u8]) -> Result<(), ObjLineError> {
         self.face.clear();
         for w in scan::words(args) {
             let word = &args[w];
@@ -114,16 +111,15 @@ impl Reader {
             let index: i64 = scan::number(index)
                 .ok_or_else(|| ObjLineError::NotANumber { what: "face index", token: scan::lossy(word) })?;
             let resolved = self.resolve(index)?;
+            Limited::FaceCorners.check(self.face.len() as u64 + 1).map_err(ObjLineError::Limit)?;
             self.face.push(resolved);
         }
         if self.face.len() < 3 {
             let count = self.face.len();
-            return Err(ObjLineError::ShortFace { count }.into());
+            return Err(ObjLineError::ShortFace { count });
         }
         let f = self.faces.len() as u32;
-        if !self.faces.try_push(&self.face) {
-            return Err(Failure::TooLarge);
-        }
+        self.faces.push_within_limits(&self.face).map_err(ObjLineError::Limit)?;
         for &g in self.current.iter().chain(self.object.iter()) {
             let faces = &mut self.groups[g].faces;
             if faces.last() != Some(&f) {
@@ -168,7 +164,7 @@ impl Reader {
         }
         if let Some((index, line)) = self.largest.filter(|&(i, _)| i > count as i64) {
             let problem = ObjLineError::IndexOutOfRange { index, count };
-            return Err(Failure::Line(problem).at(path, line));
+            return Err(MeshError::Obj { path: path.to_path_buf(), line, problem });
         }
         self.groups.retain(|g| !g.faces.is_empty());
         if self.faces.offsets.is_empty() {

@@ -117,7 +117,10 @@ pub(crate) enum Keyword {
     Group,
     /// `o`: the current object name.
     Object,
-    /// Anything else, kept verbatim and otherwise ignored (`vt`, `vn`, `usemtl`, `s`, `l`, …).
+    /// `vt`, `vn` or `vp`: numbers kept verbatim, each checked to be finite; the name of what
+    /// they are, for errors.
+    Values(&'static str),
+    /// Anything else, kept verbatim and otherwise ignored (`usemtl`, `s`, `l`, …).
     Other,
 }
 
@@ -132,6 +135,9 @@ pub(crate) fn keyword(code: &[u8]) -> (Keyword, Range<usize>) {
         b"f" | b"fo" => Keyword::Face,
         b"g" => Keyword::Group,
         b"o" => Keyword::Object,
+        b"vt" => Keyword::Values("texture coordinate"),
+        b"vn" => Keyword::Values("normal coordinate"),
+        b"vp" => Keyword::Values("parameter-space coordinate"),
         _ => Keyword::Other,
     };
     (kind, first.end..code.len())
@@ -234,7 +240,9 @@ mod tests {
         assert_eq!(keyword(b"fo 1 2 3").0, Keyword::Face);
         assert_eq!(keyword(b"g").0, Keyword::Group);
         assert_eq!(keyword(b"o thing").0, Keyword::Object);
-        assert_eq!(keyword(b"vt 0 0").0, Keyword::Other);
+        assert_eq!(keyword(b"vt 0 0").0, Keyword::Values("texture coordinate"));
+        assert_eq!(keyword(b"vn 0 0 1").0, Keyword::Values("normal coordinate"));
+        assert_eq!(keyword(b"usemtl red").0, Keyword::Other);
         assert_eq!(keyword(b"").0, Keyword::Other);
         assert_eq!(keyword(b"   ").0, Keyword::Other);
     }

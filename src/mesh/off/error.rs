@@ -2,6 +2,8 @@
 
 use thiserror::Error;
 
+use crate::mesh::LimitError;
+
 /// What is wrong with one line of an OFF file. Vertex numbers are zero-based, as in OFF.
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum OffLineError {
@@ -44,6 +46,21 @@ pub enum OffLineError {
         /// Zero-based vertex number.
         vertex: usize,
     },
+    /// A value after the position of a vertex (normal, colour, texture coordinates) or after
+    /// the indices of a face (colour) that is infinite or NaN (as written, or too large for
+    /// f64).
+    #[error("{what} {index} has the non-finite value \"{token}\"")]
+    NonFiniteValue {
+        /// `"vertex"` or `"face"`.
+        what: &'static str,
+        /// Zero-based vertex or face number.
+        index: usize,
+        /// The token as written.
+        token: String,
+    },
+    /// A count of the header, or the corner count of a face, over a limit.
+    #[error(transparent)]
+    Limit(LimitError),
     /// The file ends before the counts of the header are met.
     #[error("the file ends after {read} of the {declared} {what} the header declares")]
     Truncated {

@@ -9,7 +9,7 @@ use super::OffFile;
 use super::error::OffLineError;
 use super::lines::{Line, Lines};
 use crate::mesh::source::{Original, Source};
-use crate::mesh::{Faces, Mesh, MeshError};
+use crate::mesh::{Faces, Limited, Mesh, MeshError};
 
 /// What the header keyword says each vertex line holds beyond `x y z`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -51,13 +51,16 @@ pub(crate) fn read(path: &Path, bytes: Vec<u8>) -> Result<Mesh, MeshError> {
     }
     let vertex_count: usize = number(counts.tokens[0].1, "vertex count").map_err(|p| error(counts.number, p))?;
     let face_count: usize = number(counts.tokens[1].1, "face count").map_err(|p| error(counts.number, p))?;
+    if let Some((_, edges)) = counts.tokens.get(2) {
+        number::<usize>(edges, "edge count").map_err(|p| error(counts.number, p))?;
+    }
     if vertex_count == 0 {
         return Err(MeshError::Empty { path: path.to_path_buf() });
     }
-    if vertex_count > u32::MAX as usize {
-        return Err(MeshError::TooLarge { path: path.to_path_buf() });
+    for (limited, count) in [(Limited::Vertices, vertex_count), (Limited::Faces, face_count)] {
+        limited.check(count as u64).map_err(|e| error(counts.number, OffLineError::Limit(e)))?;
     }
-    // Capacities are bounded by the file size: the counts of a corrupt header may be huge.
+    // Capacities are bounded by the file size too: a vertex line takes at least 6 bytes.
     let mut positions = Vec::with_capacity(vertex_count.min(bytes.len() / 6));
     let mut coordinates = Vec::with_capacity(positions.capacity());
     for vertex in 0..vertex_count {
@@ -77,9 +80,7 @@ pub(crate) fn read(path: &Path, bytes: Vec<u8>) -> Result<Mesh, MeshError> {
             return Err(error(lines.number.max(1), truncated));
         };
         read_face(&line, f, vertex_count, &mut face).map_err(|p| error(line.number, p))?;
-        if !faces.try_push(&face) {
-            return Err(MeshError::TooLarge { path: path.to_path_buf() });
-        }
+        faces.push_within_limits(&face).map_err(|e| error(line.number, OffLineError::Limit(e)))?;
     }
     if let Some(line) = lines.next() {
         return Err(error(line.number, OffLineError::TrailingData { faces: face_count }));
@@ -136,22 +137,39 @@ fn read_vertex(line: &Line, vertex: usize, header: Header) -> Result<DVec3, OffL
     for (value, (_, token)) in xyz.iter_mut().zip(&line.tokens) {
         *value = number(token, "vertex coordinate")?;
     }
-    for (_, token) in &line.tokens[3..] {
-        number::<f64>(token, "vertex value")?;
-    }
     let p = DVec3::from_array(xyz);
     if !p.is_finite() {
         return Err(OffLineError::NonFinite { vertex });
     }
+    finite_values(&line.tokens[3..], "vertex", vertex)?;
     Ok(p)
 }
 
-/// The vertex indices of a face line into `face`; tokens after them (a colour) are ignored.
+/// Checks that the `tokens` after the position of a vertex (normal, colour, texture
+/// coordinates) or after the indices of a face (colour) are finite numbers: the faithful
+/// writer copies them.
+fn finite_values(tokens: &[(usize, &[u8])], what: &'static str, index: usize) -> Result<(), OffLineError> {
+    for (_, token) in tokens {
+        let value: f64 = number(token, if what == "vertex" { "vertex value" } else { "face colour value" })?;
+        if !value.is_finite() {
+            return Err(OffLineError::NonFiniteValue {
+                what,
+                index,
+                token: String::from_utf8_lossy(token).into_owned(),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The vertex indices of a face line into `face`; the tokens after them (a colour) must be
+/// finite numbers.
 fn read_face(line: &Line, f: usize, count: usize, face: &mut Vec<u32>) -> Result<(), OffLineError> {
     let declared: usize = number(line.tokens[0].1, "face vertex count")?;
     if declared < 3 {
         return Err(OffLineError::ShortFace { face: f, count: declared });
     }
+    Limited::FaceCorners.check(declared as u64).map_err(OffLineError::Limit)?;
     let found = line.tokens.len() - 1;
     if found < declared {
         return Err(OffLineError::MissingIndices { face: f, declared, found });
@@ -162,7 +180,7 @@ fn read_face(line: &Line, f: usize, count: usize, face: &mut Vec<u32>) -> Result
         let vertex = u32::try_from(index).ok().filter(|&v| (v as usize) < count);
         face.push(vertex.ok_or(OffLineError::IndexOutOfRange { face: f, index, count })?);
     }
-    Ok(())
+    finite_values(&line.tokens[declared + 1..], "face", f)
 }
 
 #[cfg(test)]
@@ -264,9 +282,9 @@ mod tests {
     fn huge_counts_do_not_allocate_or_panic() {
         assert_eq!(
             error("OFF\n99999999999 1 0\n"),
-            "m.off: more than 4294967295 vertices or face indices (indices are 32-bit)"
+            "m.off:2: 99999999999 vertices, over the limit of 33554432 (limits::MAX_VERTICES)"
         );
-        assert!(error("OFF\n999999999 1 0\n0 0 0\n").contains("the file ends after 1 of the 999999999 vertices"));
+        assert!(error("OFF\n9999999 1 0\n0 0 0\n").contains("the file ends after 1 of the 9999999 vertices"));
         let mut state = 0x2545_f491_4f6c_dd1d_u64;
         for _ in 0..300 {
             let mut noisy = SQUARE.as_bytes().to_vec();

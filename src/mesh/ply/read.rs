@@ -6,6 +6,7 @@ use glam::DVec3;
 use ply_rs_bw::parser::Parser;
 use ply_rs_bw::ply::{DefaultElement, ElementDef, Ply, Property, PropertyType, ScalarType};
 
+use super::header;
 use crate::mesh::source::{Original, Source};
 use crate::mesh::{Faces, Mesh, MeshDataError, MeshError};
 
@@ -14,20 +15,31 @@ const INDEX_LISTS: [&str; 2] = ["vertex_indices", "vertex_index"];
 
 /// Reads the PLY file `bytes` (read from `path`, which errors name).
 pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
+    header::check(bytes).map_err(|(line, problem)| MeshError::PlyHeader { path: path.to_path_buf(), line, problem })?;
     let ply = Parser::<DefaultElement>::new()
         .read_ply(&mut &bytes[..])
         .map_err(|e| MeshError::InvalidPly { path: path.to_path_buf(), reason: one_line(&e.to_string()) })?;
     let positions = positions(path, &ply)?;
     let faces = faces(path, &ply, positions.len())?;
+    check_finite(path, &ply)?;
     let mesh = Mesh { positions, faces, groups: Vec::new(), source: Source::Code };
     Ok(Mesh { source: Source::Ply(Original::new(ply, &mesh)), ..mesh })
 }
 
+/// The longest parser message shown, in characters: the parser quotes the offending line,
+/// which may be the whole file.
+const MAX_REASON_CHARS: usize = 300;
+
 /// The parser's multi-line message on one line, without the parser's internal state (a debug
-/// dump that follows `Error:`).
+/// dump that follows `Error:`), cut to [`MAX_REASON_CHARS`].
 fn one_line(message: &str) -> String {
     let message = message.split("; Error:").next().unwrap_or(message);
-    message.replace("\n'", "'").lines().map(str::trim).filter(|l| !l.is_empty()).collect::<Vec<_>>().join("; ")
+    let line =
+        message.replace("\n'", "'").lines().map(str::trim).filter(|l| !l.is_empty()).collect::<Vec<_>>().join("; ");
+    match line.char_indices().nth(MAX_REASON_CHARS) {
+        Some((cut, _)) => format!("{}…", &line[..cut]),
+        None => line,
+    }
 }
 
 /// Whether the `vertex` element declares float or double `x`, `y` and `z`.
@@ -50,9 +62,7 @@ fn positions(path: &Path, ply: &Ply<DefaultElement>) -> Result<Vec<DVec3>, MeshE
     if vertices.is_empty() {
         return Err(MeshError::Empty { path: path.to_path_buf() });
     }
-    if vertices.len() > u32::MAX as usize {
-        return Err(MeshError::TooLarge { path: path.to_path_buf() });
-    }
+    // The header check bounds the count by limits::MAX_VERTICES, and the parser has read them.
     let mut positions = Vec::with_capacity(vertices.len());
     for (vertex, element) in vertices.iter().enumerate() {
         let coordinate = |name| match element.get(name) {
@@ -100,11 +110,32 @@ fn faces(path: &Path, ply: &Ply<DefaultElement>, count: usize) -> Result<Faces, 
             let count = face.len();
             return Err(data_error(MeshDataError::ShortFace { face: f, count }));
         }
-        if !faces.try_push(&face) {
-            return Err(MeshError::TooLarge { path: path.to_path_buf() });
-        }
+        faces.push_within_limits(&face).map_err(|problem| MeshError::Limit { path: path.to_path_buf(), problem })?;
     }
     Ok(faces)
+}
+
+/// Checks that every `float` and `double` value of every element, scalar or in a list, is
+/// finite: the faithful writer copies them all.
+fn check_finite(path: &Path, ply: &Ply<DefaultElement>) -> Result<(), MeshError> {
+    for (name, entries) in &ply.payload {
+        for (entry, element) in entries.iter().enumerate() {
+            for (property, value) in element {
+                let bad = match value {
+                    Property::Float(v) => (!v.is_finite()).then_some(f64::from(*v)),
+                    Property::Double(v) => (!v.is_finite()).then_some(*v),
+                    Property::ListFloat(v) => v.iter().find(|v| !v.is_finite()).map(|&v| f64::from(v)),
+                    Property::ListDouble(v) => v.iter().find(|v| !v.is_finite()).copied(),
+                    _ => None,
+                };
+                if let Some(value) = bad {
+                    let (element, property) = (name.clone(), property.clone());
+                    return Err(MeshError::PlyNonFinite { path: path.to_path_buf(), element, entry, property, value });
+                }
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The values of an integer list property, widened to i64 (empty for anything else).

@@ -49,6 +49,18 @@ pub(crate) fn write_faithful(
     out.flush()
 }
 
+/// Whether [`write_faithful`] stores some coordinate of `ply` as f32: `x`, `y` or `z` of its
+/// `vertex` element is declared `float` (the others are written as `double`).
+pub(crate) fn stores_f32(ply: &Ply<DefaultElement>) -> bool {
+    let vertex = ply.header.elements.get("vertex");
+    ["x", "y", "z"].iter().any(|name| {
+        matches!(
+            vertex.and_then(|v| v.properties.get(*name)).map(|p| &p.data_type),
+            Some(PropertyType::Scalar(ScalarType::Float))
+        )
+    })
+}
+
 /// Whether two positions are equal bit for bit.
 fn same_bits(a: DVec3, b: DVec3) -> bool {
     a.to_array().map(f64::to_bits) == b.to_array().map(f64::to_bits)
