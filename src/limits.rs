@@ -88,3 +88,9 @@ pub fn read_input_text(path: &std::path::Path) -> std::io::Result<String> {
     String::from_utf8(read_input(path)?)
         .map_err(|_| std::io::Error::new(std::io::ErrorKind::InvalidData, "stream did not contain valid UTF-8"))
 }
+
+/// The most node instances a glTF scene expands to: each node counted once per path from a
+/// root to it, when a mesh lies at or below it (2²² = 4,194,304). Bounds the time of the
+/// expansion, which multiplies one matrix per node instance, in a graph whose nodes share
+/// children.
+pub const MAX_GLTF_NODE_INSTANCES: usize = 1 << 22;
