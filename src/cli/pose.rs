@@ -19,8 +19,8 @@ pub struct Args {
 
 pub fn run(args: &Args, quiet: bool) -> CliResult {
     let rig = Rig::load(&args.rig)?;
-    let text =
-        sweepffd::limits::read_input_text(&args.edits).map_err(|e| format!("cannot read {}: {e}", args.edits.display()))?;
+    let text = sweepffd::limits::read_input_text(&args.edits)
+        .map_err(|e| format!("cannot read {}: {e}", args.edits.display()))?;
     let edits = parse_edits(&text).map_err(|e| format!("{}: not a valid edits file: {e}", args.edits.display()))?;
     let mesh = match (&args.mesh, args.volume) {
         (Some(path), _) => Some((Mesh::load(path)?, path)),

@@ -29,7 +29,8 @@ pub(super) fn read<T>(
     (limit, name): (usize, &'static str),
     decode: impl Fn(&[u8]) -> T,
 ) -> Result<Vec<T>, GltfDataError> {
-    let too_large = || GltfDataError::AccessorTooLarge { accessor: accessor.index(), count: accessor.count(), limit, name };
+    let too_large =
+        || GltfDataError::AccessorTooLarge { accessor: accessor.index(), count: accessor.count(), limit, name };
     if accessor.count() > limit {
         return Err(too_large());
     }
@@ -66,7 +67,9 @@ pub(super) fn visit(
         Some(view) => {
             let stride = view.stride().unwrap_or(size);
             if stride < size {
-                return Err(layout(format!("its buffer view's byteStride {stride} is less than its element size {size}")));
+                return Err(layout(format!(
+                    "its buffer view's byteStride {stride} is less than its element size {size}"
+                )));
             }
             let data = view_bytes(index, &view, buffers)?;
             let at = accessor.offset();
@@ -91,7 +94,13 @@ pub(super) fn visit(
     let index_view = indices.view();
     let index_data = view_bytes(index, &index_view, buffers)?;
     let index_at = indices.offset();
-    within(index, "its sparse indices", span(index_at, index_size, n, index_size), index_data.len(), index_view.index())?;
+    within(
+        index,
+        "its sparse indices",
+        span(index_at, index_size, n, index_size),
+        index_data.len(),
+        index_view.index(),
+    )?;
     let values = sparse.values();
     let value_view = values.view();
     let value_data = view_bytes(index, &value_view, buffers)?;
@@ -113,7 +122,11 @@ pub(super) fn visit(
 }
 
 /// The bytes of `view` in its buffer.
-fn view_bytes<'b>(accessor: usize, view: &::gltf::buffer::View, buffers: &'b [Vec<u8>]) -> Result<&'b [u8], GltfDataError> {
+fn view_bytes<'b>(
+    accessor: usize,
+    view: &::gltf::buffer::View,
+    buffers: &'b [Vec<u8>],
+) -> Result<&'b [u8], GltfDataError> {
     let buffer = view.buffer().index();
     let data = buffers.get(buffer).map_or(&[][..], Vec::as_slice);
     let end = view.offset().saturating_add(view.length());
@@ -136,7 +149,13 @@ fn span(at: usize, stride: usize, count: usize, size: usize) -> usize {
 }
 
 /// Refuses a span longer than the view.
-fn within(accessor: usize, what: &'static str, needed: usize, available: usize, view: usize) -> Result<(), GltfDataError> {
+fn within(
+    accessor: usize,
+    what: &'static str,
+    needed: usize,
+    available: usize,
+    view: usize,
+) -> Result<(), GltfDataError> {
     if needed > available {
         return Err(GltfDataError::AccessorOutOfBounds {
             accessor,

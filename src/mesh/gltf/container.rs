@@ -132,7 +132,10 @@ mod tests {
         );
         assert_eq!(split_glb(b"glTF\x01\0\0\0\x0c\0\0\0").unwrap_err(), "GLB version 1 is not supported (only 2 is)");
         let mut glb = b"glTF\x02\0\0\0\x18\0\0\0\xff\xff\xff\xffJSON{}  ".to_vec();
-        assert_eq!(split_glb(&glb).unwrap_err(), "the GLB chunk at byte 12 claims 4294967295 bytes, past the end of the file");
+        assert_eq!(
+            split_glb(&glb).unwrap_err(),
+            "the GLB chunk at byte 12 claims 4294967295 bytes, past the end of the file"
+        );
         glb[12..16].copy_from_slice(&4u32.to_le_bytes());
         assert_eq!(split_glb(&glb).unwrap(), (&b"{}  "[..], None));
         glb[16..20].copy_from_slice(b"BIN\0");

@@ -35,7 +35,9 @@ pub enum GltfDataError {
         primitive: usize,
     },
     /// An index accessor whose elements are not unsigned byte, short or int scalars.
-    #[error("mesh {mesh} primitive {primitive}: indices accessor {accessor} is {found}, not an unsigned integer SCALAR")]
+    #[error(
+        "mesh {mesh} primitive {primitive}: indices accessor {accessor} is {found}, not an unsigned integer SCALAR"
+    )]
     IndexType {
         /// Mesh index.
         mesh: usize,
@@ -69,9 +71,7 @@ pub enum GltfDataError {
         reason: String,
     },
     /// An accessor of more elements than the mesh it feeds may have.
-    #[error(
-        "accessor {accessor} has {count} elements, more than the limit of {limit} ({name} in sweepffd::limits)"
-    )]
+    #[error("accessor {accessor} has {count} elements, more than the limit of {limit} ({name} in sweepffd::limits)")]
     AccessorTooLarge {
         /// Accessor index.
         accessor: usize,
@@ -83,7 +83,9 @@ pub enum GltfDataError {
         name: &'static str,
     },
     /// A float vertex attribute with an infinite or NaN component.
-    #[error("mesh {mesh} primitive {primitive}: {attribute} accessor {accessor} element {element} has the non-finite value {value}")]
+    #[error(
+        "mesh {mesh} primitive {primitive}: {attribute} accessor {accessor} element {element} has the non-finite value {value}"
+    )]
     NonFinite {
         /// Mesh index.
         mesh: usize,

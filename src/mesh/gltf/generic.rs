@@ -70,7 +70,7 @@ fn finite_f32(positions: &[DVec3], local: &[[f32; 3]]) -> io::Result<()> {
     match first_non_finite(local) {
         Some((vertex, _)) => {
             let value = positions[vertex].to_array().into_iter().find(|c| !(*c as f32).is_finite()).unwrap_or_default();
-            Err(invalid(format!("vertex {vertex}: the coordinate {value} does not fit in f32")))
+            Err(invalid(format!("vertex {vertex}: the coordinate {value:?} does not fit in f32")))
         }
         None => Ok(()),
     }

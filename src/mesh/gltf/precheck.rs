@@ -37,7 +37,10 @@ mod tests {
     #[test]
     fn a_position_past_the_accessors_is_refused() {
         let json = serde_json::json!({"accessors": [{}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}, {"attributes": {"POSITION": 1}}]}]});
-        assert_eq!(check(&json).unwrap_err(), "mesh 0 primitive 1: POSITION is accessor 1 but the file has 1 accessors");
+        assert_eq!(
+            check(&json).unwrap_err(),
+            "mesh 0 primitive 1: POSITION is accessor 1 but the file has 1 accessors"
+        );
         assert_eq!(check(&serde_json::json!({"meshes": 3})), Ok(()));
     }
 }

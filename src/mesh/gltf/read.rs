@@ -35,7 +35,8 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
 fn read_unguarded(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
     let invalid = |reason: String| MeshError::InvalidGltf { path: path.to_path_buf(), reason };
     let data_error = |problem| MeshError::GltfData { path: path.to_path_buf(), problem };
-    let (text, blob) = if bytes.starts_with(b"glTF") { container::split_glb(bytes).map_err(invalid)? } else { (bytes, None) };
+    let (text, blob) =
+        if bytes.starts_with(b"glTF") { container::split_glb(bytes).map_err(invalid)? } else { (bytes, None) };
     let json: serde_json::Value = serde_json::from_slice(text).map_err(|e| invalid(e.to_string()))?;
     precheck::check(&json).map_err(invalid)?;
     let gltf = ::gltf::Gltf::from_slice(text).map_err(|e| invalid(one_line(&e.to_string())))?;

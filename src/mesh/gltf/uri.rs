@@ -26,7 +26,8 @@ pub(super) fn read_relative(folder: &Path, uri: &str, length: usize) -> Result<V
     }
     let mut data = Vec::new();
     let reserve = usize::try_from(meta.len()).unwrap_or(usize::MAX).min(length);
-    data.try_reserve_exact(reserve).map_err(|_| format!("uri {uri:?}: {reserve} bytes do not fit in the memory left"))?;
+    data.try_reserve_exact(reserve)
+        .map_err(|_| format!("uri {uri:?}: {reserve} bytes do not fit in the memory left"))?;
     file.take(length as u64).read_to_end(&mut data).map_err(cannot)?;
     Ok(data)
 }

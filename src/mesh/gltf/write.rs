@@ -119,10 +119,11 @@ fn to_local(block: &Block, old: &[DVec3], new: &[DVec3], moved: &mut [bool]) -> 
             continue;
         }
         *flag = true;
-        let p = inverse.transform_point3(*b).as_vec3();
-        if let Some(&value) = p.to_array().iter().find(|c| !c.is_finite()) {
+        let exact = inverse.transform_point3(*b);
+        let p = exact.as_vec3();
+        if let Some(value) = exact.to_array().into_iter().find(|c| !(*c as f32).is_finite()) {
             return Err(invalid(format!(
-                "vertex {}: its node-local coordinate {value} (from {b}) does not fit in f32",
+                "vertex {}: its node-local coordinate {value:?} does not fit in f32",
                 block.first + i
             )));
         }
