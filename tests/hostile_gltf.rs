@@ -183,6 +183,24 @@ fn instances_of_large_meshes_are_refused_by_their_vertex_count() {
     );
 }
 
+#[test]
+fn long_paths_below_shared_children_are_refused_by_the_node_instance_count() {
+    let dir = tempfile::tempdir().unwrap();
+    // 13 doubling levels (8192 instances, within the limit), then a chain of 600 nodes above
+    // the mesh: each instance walks the chain, 4.9 million node instances in all.
+    let (mut document, data) = triangle();
+    let mut nodes: Vec<Value> = (1..=13).map(|i| json!({"children": [i, i]})).collect();
+    nodes.extend((14..613).map(|i| json!({"children": [i]})));
+    nodes.push(json!({"mesh": 0}));
+    document["nodes"] = Value::Array(nodes);
+    fails(
+        dir.path(),
+        "long.glb",
+        &glb(&document, &data),
+        "the scene would give 4923391 node instances, more than the limit of 4194304 (MAX_GLTF_NODE_INSTANCES in sweepffd::limits)",
+    );
+}
+
 /// A `.gltf` of the triangle whose buffer has the URI `uri` (and the right byte length).
 fn gltf_with_uri(uri: &str) -> Vec<u8> {
     let (mut document, _) = triangle();
