@@ -92,3 +92,9 @@ pub fn read_input_text(path: &std::path::Path) -> std::io::Result<String> {
 /// The most entries of a PLY element other than `vertex` and `face` (such elements are read
 /// and kept so that a faithful write copies them).
 pub const MAX_PLY_ENTRIES: usize = MAX_FACES;
+
+/// The most node instances a glTF scene expands to: each node counted once per path from a
+/// root to it, when a mesh lies at or below it (2²² = 4,194,304). Bounds the time of the
+/// expansion, which multiplies one matrix per node instance, in a graph whose nodes share
+/// children.
+pub const MAX_GLTF_NODE_INSTANCES: usize = 1 << 22;

@@ -1,14 +1,22 @@
-//! The data of a glTF file's buffers: the GLB BIN chunk, base64 data URIs, or files beside it.
+//! The data of a glTF file's buffers: the GLB BIN chunk, base64 data URIs, or files beside it
+//! (see [`uri`](super::uri) for which files may be read).
 
 use std::path::Path;
 
 use base64::Engine;
 use base64::engine::general_purpose::STANDARD;
 
-use super::GltfDataError;
+use super::{GltfDataError, uri};
 
 /// The data of every buffer of `document`, each cut to its `byteLength`. `blob` is the GLB
-/// BIN chunk, if any; relative URIs are resolved against `path`'s folder.
+/// BIN chunk, if any; relative URIs are resolved against `path`'s folder. No buffer reads
+/// more than its `byteLength` from a file.
+///
+/// # Errors
+///
+/// [`GltfDataError::Buffer`] for a buffer whose data are missing, shorter than its
+/// `byteLength`, or not allowed (a URI other than a data URI or a relative path inside the
+/// folder).
 pub(super) fn resolve(
     path: &Path,
     document: &::gltf::Document,
@@ -18,22 +26,21 @@ pub(super) fn resolve(
     let mut buffers = Vec::new();
     for buffer in document.buffers() {
         let error = |reason: String| GltfDataError::Buffer { buffer: buffer.index(), reason };
+        let length = buffer.length();
         let mut data = match buffer.source() {
             ::gltf::buffer::Source::Bin => {
-                blob.ok_or_else(|| error("the file has no GLB BIN chunk".to_string()))?.to_vec()
+                let bin = blob.ok_or_else(|| error("the file has no GLB BIN chunk".to_string()))?;
+                bin[..length.min(bin.len())].to_vec()
             }
             ::gltf::buffer::Source::Uri(uri) => match uri.strip_prefix("data:") {
                 Some(rest) => decode_data_uri(rest).map_err(error)?,
-                None => {
-                    let file = folder.join(uri);
-                    std::fs::read(&file).map_err(|e| error(format!("cannot read {}: {e}", file.display())))?
-                }
+                None => uri::read_relative(folder, uri, length).map_err(error)?,
             },
         };
-        if data.len() < buffer.length() {
-            return Err(error(format!("has {} bytes but its byteLength is {}", data.len(), buffer.length())));
+        if data.len() < length {
+            return Err(error(format!("has {} bytes but its byteLength is {length}", data.len())));
         }
-        data.truncate(buffer.length());
+        data.truncate(length);
         buffers.push(data);
     }
     Ok(buffers)

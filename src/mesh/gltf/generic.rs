@@ -19,9 +19,7 @@ const UNSIGNED_INT: u32 = 5125;
 /// own buffer view. A mesh without faces is written as one POINTS primitive without normals.
 pub(crate) fn write_generic(out: &mut impl Write, positions: &[DVec3], faces: &Faces, binary: bool) -> io::Result<()> {
     let local: Vec<[f32; 3]> = positions.iter().map(|p| p.as_vec3().to_array()).collect();
-    if local.iter().flatten().any(|c| !c.is_finite()) {
-        return Err(io::Error::new(io::ErrorKind::InvalidInput, "a position overflows f32"));
-    }
+    finite_f32(positions, &local)?;
     let triangles: Vec<[u32; 3]> = faces.triangles().collect();
     let (min, max) = bounds(&local);
     let mut data: Vec<u8> = bytemuck::cast_slice(&local).to_vec();
@@ -33,6 +31,9 @@ pub(crate) fn write_generic(out: &mut impl Write, positions: &[DVec3], faces: &F
     if !triangles.is_empty() {
         let sums = normals::sums(|v| DVec3::from_array(local[v as usize].map(f64::from)), local.len(), &triangles);
         let unit: Vec<[f32; 3]> = sums.into_iter().map(|s| normals::unit(s).unwrap_or([0.0, 0.0, 1.0])).collect();
+        if let Some((vertex, value)) = first_non_finite(&unit) {
+            return Err(invalid(format!("vertex {vertex}: its normal has the non-finite component {value}")));
+        }
         let offset = data.len();
         data.extend_from_slice(bytemuck::cast_slice(&unit));
         views.push(json!({"buffer": 0, "byteOffset": offset, "byteLength": data.len() - offset, "target": 34962}));
@@ -58,8 +59,34 @@ pub(crate) fn write_generic(out: &mut impl Write, positions: &[DVec3], faces: &F
     container::write(out, document, &[data], binary)
 }
 
-/// The componentwise minimum and maximum of `points`, as JSON arrays.
+/// An `InvalidInput` error with `message`.
+pub(super) fn invalid(message: String) -> io::Error {
+    io::Error::new(io::ErrorKind::InvalidInput, message)
+}
+
+/// Refuses a position whose f32 conversion `local` is not finite, naming the vertex and the
+/// coordinate.
+fn finite_f32(positions: &[DVec3], local: &[[f32; 3]]) -> io::Result<()> {
+    match first_non_finite(local) {
+        Some((vertex, _)) => {
+            let value = positions[vertex].to_array().into_iter().find(|c| !(*c as f32).is_finite()).unwrap_or_default();
+            Err(invalid(format!("vertex {vertex}: the coordinate {value:?} does not fit in f32")))
+        }
+        None => Ok(()),
+    }
+}
+
+/// The first element with a non-finite component, and that component.
+pub(super) fn first_non_finite(values: &[[f32; 3]]) -> Option<(usize, f32)> {
+    values.iter().enumerate().find_map(|(i, v)| v.iter().find(|c| !c.is_finite()).map(|&c| (i, c)))
+}
+
+/// The componentwise minimum and maximum of `points`, as JSON arrays (zeros for none: JSON
+/// has no infinity).
 pub(super) fn bounds(points: &[[f32; 3]]) -> (Value, Value) {
+    if points.is_empty() {
+        return (json!([0.0, 0.0, 0.0]), json!([0.0, 0.0, 0.0]));
+    }
     let mut min = [f32::INFINITY; 3];
     let mut max = [f32::NEG_INFINITY; 3];
     for p in points {

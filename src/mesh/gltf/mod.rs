@@ -9,7 +9,17 @@
 //! into one vertex array in scene order. Each mesh becomes a [`FaceGroup`](super::FaceGroup)
 //! named after it (`mesh0`, `mesh1`, … for unnamed meshes; `name.3` if a name repeats), so
 //! rigs can select parts by group. Buffers come from the GLB BIN chunk, base64 data URIs or
-//! files beside the glTF (the URI is taken as a relative path, without percent-decoding).
+//! files beside the glTF ([`mod@uri`]: a relative path, percent-decoded, resolving to a regular
+//! file inside the folder of the `.gltf` file; at most `byteLength` bytes are read). Image
+//! URIs are never read.
+//!
+//! **Hostile files** are refused before they cost more than their size: the node graph is
+//! walked without recursion and measured before it is expanded ([`mod@graph`]: depth at most
+//! [`MAX_GLTF_NODE_DEPTH`](crate::limits::MAX_GLTF_NODE_DEPTH), instances, vertices,
+//! triangles and node visits within [`crate::limits`]), accessors are bounds-checked before
+//! anything is allocated for them ([`mod@accessor`]), non-finite positions, float attributes
+//! and node transforms are errors, and what the `gltf` crate would panic on is checked first
+//! ([`mod@precheck`]; any other panic is caught silently, [`mod@quiet`]).
 //!
 //! **Writing back** ([`mod@write`]): the same JSON document and buffers, with only the POSITION
 //! elements of moved vertices changed (mapped back through the inverse world matrix into the
@@ -24,13 +34,18 @@
 //! **Writing generically** ([`mod@generic`]): one mesh, one primitive, f32 POSITION,
 //! area-weighted NORMAL and u32 indices of the fan-triangulated faces.
 
+mod accessor;
 mod buffers;
 mod container;
 mod error;
 pub(crate) mod generic;
+mod graph;
 mod normals;
+mod precheck;
+mod quiet;
 pub(crate) mod read;
 mod scene;
+mod uri;
 pub(crate) mod write;
 
 use glam::DMat4;

@@ -1,23 +1,31 @@
 //! Reading a glTF or GLB file into a [`Mesh`] (see the module docs for what is read).
+//!
+//! Order of the checks, so that no hostile file costs more than its size: the GLB container
+//! ([`container::split_glb`]), the JSON ([`precheck`]), the `gltf` crate's validation, the
+//! node graph and what it would expand to ([`scene::instances`]), the buffers
+//! ([`buffers::resolve`]), then each accessor as it is read ([`accessor`]).
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::path::Path;
 
 use ::gltf::accessor::{DataType, Dimensions};
 use ::gltf::mesh::{Mode, Semantic};
 use glam::{DMat4, DVec3};
 
-use super::{Block, GltfDataError, GltfFile, PrimitiveRecord, Target, buffers, scene};
+use super::accessor::{self, f32_at};
+use super::scene::Instance;
+use super::{Block, GltfDataError, GltfFile, PrimitiveRecord, Target, buffers, container, precheck, quiet, scene};
+use crate::limits::{MAX_FACES, MAX_VERTICES};
 use crate::mesh::source::{Original, Source};
 use crate::mesh::{FaceGroup, Faces, Mesh, MeshError};
 
 /// Reads the glTF (JSON) or GLB (binary, by its `glTF` magic) file `bytes` read from `path`.
 ///
-/// The `gltf` crate (1.4) can panic on some malformed documents (its validation indexes
-/// arrays unchecked), so a panic while reading is caught and reported as
-/// [`MeshError::InvalidGltf`]; the default panic hook still prints its message.
+/// What the `gltf` crate (1.4) is known to panic on is checked before it is called. A panic
+/// it did not foresee is still caught and reported as [`MeshError::InvalidGltf`], and the
+/// panic hook stays silent for it ([`quiet`]): only the error reaches the user.
 pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
-    std::panic::catch_unwind(|| read_unguarded(path, bytes)).unwrap_or_else(|_| {
+    quiet::catch_quietly(|| read_unguarded(path, bytes)).unwrap_or_else(|_| {
         let reason = "the glTF reader panicked on this malformed file".to_string();
         Err(MeshError::InvalidGltf { path: path.to_path_buf(), reason })
     })
@@ -27,14 +35,18 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
 fn read_unguarded(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
     let invalid = |reason: String| MeshError::InvalidGltf { path: path.to_path_buf(), reason };
     let data_error = |problem| MeshError::GltfData { path: path.to_path_buf(), problem };
-    let gltf = ::gltf::Gltf::from_slice(bytes).map_err(|e| invalid(one_line(&e.to_string())))?;
-    let json = json_value(bytes).map_err(invalid)?;
-    let buffers = buffers::resolve(path, &gltf.document, gltf.blob.as_deref()).map_err(data_error)?;
+    let (text, blob) =
+        if bytes.starts_with(b"glTF") { container::split_glb(bytes).map_err(invalid)? } else { (bytes, None) };
+    let json: serde_json::Value = serde_json::from_slice(text).map_err(|e| invalid(e.to_string()))?;
+    precheck::check(&json).map_err(invalid)?;
+    let gltf = ::gltf::Gltf::from_slice(text).map_err(|e| invalid(one_line(&e.to_string())))?;
+    let instances = scene::instances(&gltf.document).map_err(data_error)?;
+    let buffers = buffers::resolve(path, &gltf.document, blob).map_err(data_error)?;
     let mut builder = Builder::default();
-    for (instance, (mesh, transform)) in scene::instances(&gltf.document).map_err(data_error)?.into_iter().enumerate() {
-        let Some(mesh) = gltf.document.meshes().nth(mesh) else { continue };
+    for (number, instance) in instances.iter().enumerate() {
+        let Some(mesh) = gltf.document.meshes().nth(instance.mesh) else { continue };
         for primitive in mesh.primitives() {
-            builder.add(instance, &mesh, &primitive, transform, &buffers).map_err(data_error)?;
+            builder.add(number, instance, &mesh, &primitive, &buffers).map_err(data_error)?;
         }
     }
     if builder.positions.is_empty() {
@@ -52,16 +64,6 @@ fn read_unguarded(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
 /// The parser's message on one line.
 fn one_line(message: &str) -> String {
     message.lines().map(str::trim).filter(|l| !l.is_empty()).collect::<Vec<_>>().join("; ")
-}
-
-/// The JSON document of a glTF or GLB file, as a generic value (nothing dropped).
-fn json_value(bytes: &[u8]) -> Result<serde_json::Value, String> {
-    if bytes.starts_with(b"glTF") {
-        let glb = ::gltf::binary::Glb::from_slice(bytes).map_err(|e| e.to_string())?;
-        serde_json::from_slice(&glb.json).map_err(|e| e.to_string())
-    } else {
-        serde_json::from_slice(bytes).map_err(|e| e.to_string())
-    }
 }
 
 /// Where a dense float VEC3 accessor's elements lie, or `None` (sparse, no buffer view, or
@@ -90,19 +92,30 @@ struct Builder {
     /// (instance, POSITION accessor) → block.
     block_of: HashMap<(usize, usize), usize>,
     primitives: Vec<PrimitiveRecord>,
+    /// Float attribute accessors already checked to be finite.
+    checked: HashSet<usize>,
+}
+
+/// Which primitive of which mesh, drawn by which node: what errors name.
+#[derive(Clone, Copy)]
+struct Site {
+    mesh: usize,
+    primitive: usize,
+    node: Option<usize>,
 }
 
 impl Builder {
-    /// Adds one primitive of the `instance`-th mesh instance.
+    /// Adds one primitive of the `number`-th mesh instance.
     fn add(
         &mut self,
-        instance: usize,
+        number: usize,
+        instance: &Instance,
         mesh: &::gltf::Mesh,
         primitive: &::gltf::Primitive,
-        transform: DMat4,
         buffers: &[Vec<u8>],
     ) -> Result<(), GltfDataError> {
-        let (m, p) = (mesh.index(), primitive.index());
+        let site = Site { mesh: mesh.index(), primitive: primitive.index(), node: instance.node };
+        let (m, p) = (site.mesh, site.primitive);
         let mode = match primitive.mode() {
             Mode::Lines => Some("LINES"),
             Mode::LineLoop => Some("LINE_LOOP"),
@@ -117,23 +130,20 @@ impl Builder {
         if accessor.data_type() != DataType::F32 || accessor.dimensions() != Dimensions::Vec3 {
             return Err(GltfDataError::PositionType { mesh: m, primitive: p });
         }
-        let reader = primitive.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
-        let block = match self.block_of.get(&(instance, accessor.index())) {
+        self.check_attributes(site, primitive, buffers)?;
+        let block = match self.block_of.get(&(number, accessor.index())) {
             Some(&block) => block,
             None => {
-                let out_of_bounds = GltfDataError::AccessorOutOfBounds { accessor: accessor.index() };
-                let local: Vec<[f32; 3]> = reader.read_positions().ok_or(out_of_bounds)?.collect();
-                self.add_block(accessor.index(), local, transform, dense_target(&accessor))?;
-                self.block_of.insert((instance, accessor.index()), self.blocks.len() - 1);
+                let decode = |b: &[u8]| [f32_at(b, 0), f32_at(b, 4), f32_at(b, 8)];
+                let local = accessor::read(&accessor, buffers, (MAX_VERTICES, "MAX_VERTICES"), decode)?;
+                self.add_block(site, accessor.index(), local, instance.world, dense_target(&accessor))?;
+                self.block_of.insert((number, accessor.index()), self.blocks.len() - 1);
                 self.blocks.len() - 1
             }
         };
         let count = self.blocks[block].local.len();
         let indices: Vec<u32> = match primitive.indices() {
-            Some(a) => {
-                let out_of_bounds = GltfDataError::AccessorOutOfBounds { accessor: a.index() };
-                reader.read_indices().ok_or(out_of_bounds)?.into_u32().collect()
-            }
+            Some(a) => read_indices(site, &a, buffers)?,
             None => (0..count as u32).collect(),
         };
         if let Some(&index) = indices.iter().find(|&&i| i as usize >= count) {
@@ -156,19 +166,71 @@ impl Builder {
         Ok(())
     }
 
+    /// Refuses a float attribute other than POSITION (NORMAL, TEXCOORD_n, COLOR_n, …) with a
+    /// non-finite component: the faithful writer would copy it through.
+    fn check_attributes(
+        &mut self,
+        site: Site,
+        primitive: &::gltf::Primitive,
+        buffers: &[Vec<u8>],
+    ) -> Result<(), GltfDataError> {
+        for (semantic, accessor) in primitive.attributes() {
+            if semantic == Semantic::Positions
+                || accessor.data_type() != DataType::F32
+                || !self.checked.insert(accessor.index())
+            {
+                continue;
+            }
+            accessor::visit(&accessor, buffers, |element, bytes| {
+                let bad = (0..bytes.len() / 4).map(|k| f32_at(bytes, 4 * k)).find(|v| !v.is_finite());
+                match bad {
+                    Some(value) => Err(GltfDataError::NonFinite {
+                        mesh: site.mesh,
+                        primitive: site.primitive,
+                        attribute: semantic.to_string(),
+                        accessor: accessor.index(),
+                        element,
+                        value,
+                    }),
+                    None => Ok(()),
+                }
+            })?;
+        }
+        Ok(())
+    }
+
     /// Adds the vertices of a POSITION accessor, transformed to world space.
     fn add_block(
         &mut self,
+        site: Site,
         accessor: usize,
         local: Vec<[f32; 3]>,
         transform: DMat4,
         target: Option<Target>,
     ) -> Result<(), GltfDataError> {
         let first = self.positions.len();
+        self.positions.try_reserve(local.len()).map_err(|_| GltfDataError::AccessorTooLarge {
+            accessor,
+            count: local.len(),
+            limit: MAX_VERTICES,
+            name: "MAX_VERTICES",
+        })?;
         for (element, p) in local.iter().enumerate() {
+            if let Some(&value) = p.iter().find(|c| !c.is_finite()) {
+                let attribute = "POSITION".to_string();
+                let (mesh, primitive) = (site.mesh, site.primitive);
+                return Err(GltfDataError::NonFinite { mesh, primitive, attribute, accessor, element, value });
+            }
             let world = transform.transform_point3(DVec3::from_array(p.map(f64::from)));
-            if !world.is_finite() {
-                return Err(GltfDataError::NonFinite { accessor, element });
+            if let Some(&value) = world.to_array().iter().find(|c| !c.is_finite()) {
+                return Err(GltfDataError::WorldOverflow {
+                    mesh: site.mesh,
+                    primitive: site.primitive,
+                    accessor,
+                    element,
+                    node: site.node.unwrap_or_default(),
+                    value,
+                });
             }
             self.positions.push(world);
         }
@@ -191,6 +253,24 @@ impl Builder {
         };
         &mut self.groups[at].1
     }
+}
+
+/// The elements of the index accessor `accessor` of a primitive, as u32.
+fn read_indices(site: Site, accessor: &::gltf::Accessor, buffers: &[Vec<u8>]) -> Result<Vec<u32>, GltfDataError> {
+    let decode: fn(&[u8]) -> u32 = match (accessor.data_type(), accessor.dimensions()) {
+        (DataType::U8, Dimensions::Scalar) => |b| u32::from(b[0]),
+        (DataType::U16, Dimensions::Scalar) => |b| u32::from(u16::from_le_bytes([b[0], b[1]])),
+        (DataType::U32, Dimensions::Scalar) => |b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]),
+        _ => {
+            return Err(GltfDataError::IndexType {
+                mesh: site.mesh,
+                primitive: site.primitive,
+                accessor: accessor.index(),
+                found: accessor::describe(accessor),
+            });
+        }
+    };
+    accessor::read(accessor, buffers, (3 * MAX_FACES, "3 × MAX_FACES"), decode)
 }
 
 /// The triangles of a primitive of `mode` (triangles, strip or fan; points give none), with

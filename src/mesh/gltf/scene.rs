@@ -1,53 +1,134 @@
-//! Which meshes a glTF scene draws, and where: node hierarchy → (mesh, world matrix).
+//! Which meshes a glTF scene draws, and where: node hierarchy → (node, mesh, world matrix).
+//!
+//! The graph is measured first ([`graph::measure`]): a scene that would give more mesh
+//! instances, vertices, triangles or node visits than [`crate::limits`] allow is refused
+//! before any matrix is multiplied. The expansion then walks the graph with an explicit
+//! stack, skipping subtrees without a mesh.
 
+use ::gltf::mesh::{Mode, Semantic};
+use ::gltf::scene::Transform;
 use glam::DMat4;
 
 use super::GltfDataError;
+use super::graph::{self, Graph, Totals};
+use crate::limits::{MAX_FACES, MAX_GLTF_INSTANCES, MAX_GLTF_NODE_INSTANCES, MAX_VERTICES};
 
-/// Each mesh instance of the default scene (else the first scene; else every root node) as
-/// (mesh index, world matrix in f64), depth first in node order. A file with meshes but no
-/// node gives each mesh once with the identity.
-pub(super) fn instances(document: &::gltf::Document) -> Result<Vec<(usize, DMat4)>, GltfDataError> {
+/// One mesh drawn by one node (or, in a file without nodes, by none).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Instance {
+    /// The node drawing the mesh, `None` in a file without nodes.
+    pub node: Option<usize>,
+    /// The mesh index.
+    pub mesh: usize,
+    /// The node's world matrix, in f64.
+    pub world: DMat4,
+}
+
+/// Each mesh instance of the default scene (else the first scene; else every root node),
+/// depth first in node order. A file with meshes but no node gives each mesh once with the
+/// identity.
+///
+/// # Errors
+///
+/// A cycle or a node too deep ([`graph::measure`]); [`GltfDataError::SceneTooLarge`] for a
+/// scene over a limit; [`GltfDataError::NodeTransform`] for a non-finite local transform and
+/// [`GltfDataError::NodeWorldOverflow`] for a world matrix that overflows.
+pub(super) fn instances(document: &::gltf::Document) -> Result<Vec<Instance>, GltfDataError> {
+    let meshes: Vec<Totals> = document.meshes().map(|m| mesh_totals(&m)).collect();
     if document.nodes().len() == 0 {
-        return Ok(document.meshes().map(|mesh| (mesh.index(), DMat4::IDENTITY)).collect());
+        check(meshes.iter().fold(Totals::default(), |sum, m| sum.plus(*m)))?;
+        return Ok((0..meshes.len()).map(|mesh| Instance { node: None, mesh, world: DMat4::IDENTITY }).collect());
     }
-    let roots: Vec<::gltf::Node> = match document.default_scene().or_else(|| document.scenes().next()) {
-        Some(scene) => scene.nodes().collect(),
-        None => {
-            let mut child = vec![false; document.nodes().len()];
-            for node in document.nodes() {
-                for c in node.children() {
-                    child[c.index()] = true;
-                }
-            }
-            document.nodes().filter(|n| !child[n.index()]).collect()
-        }
+    let graph = Graph {
+        children: document.nodes().map(|n| n.children().map(|c| c.index()).collect()).collect(),
+        mesh: document.nodes().map(|n| n.mesh().map(|m| m.index())).collect(),
     };
+    let roots = roots(document, &graph);
+    let totals = graph::measure(&graph, &roots, &meshes)?;
+    check(roots.iter().fold(Totals::default(), |sum, &r| sum.plus(totals[r])))?;
+    let locals = document.nodes().map(|n| local_matrix(&n)).collect::<Vec<_>>();
     let mut out = Vec::new();
-    for root in roots {
-        visit(&root, DMat4::IDENTITY, 0, document.nodes().len(), &mut out)?;
+    let mut stack: Vec<(usize, DMat4)> = roots.iter().rev().map(|&r| (r, DMat4::IDENTITY)).collect();
+    while let Some((node, parent)) = stack.pop() {
+        if totals[node].instances == 0 {
+            continue;
+        }
+        let world = parent * locals[node].clone()?;
+        if let Some(&value) = world.to_cols_array().iter().find(|v| !v.is_finite()) {
+            return Err(GltfDataError::NodeWorldOverflow { node, value });
+        }
+        if let Some(mesh) = graph.mesh[node] {
+            out.push(Instance { node: Some(node), mesh, world });
+        }
+        stack.extend(graph.children[node].iter().rev().map(|&c| (c, world)));
     }
     Ok(out)
 }
 
-/// Adds the instances of `node` and its descendants; deeper than the node count means a cycle.
-fn visit(
-    node: &::gltf::Node,
-    parent: DMat4,
-    depth: usize,
-    limit: usize,
-    out: &mut Vec<(usize, DMat4)>,
-) -> Result<(), GltfDataError> {
-    if depth > limit {
-        return Err(GltfDataError::NodeCycle { node: node.index() });
+/// The root nodes: those of the default scene, else of the first scene, else every node that
+/// is no node's child.
+fn roots(document: &::gltf::Document, graph: &Graph) -> Vec<usize> {
+    if let Some(scene) = document.default_scene().or_else(|| document.scenes().next()) {
+        return scene.nodes().map(|n| n.index()).collect();
+    }
+    let mut child = vec![false; graph.children.len()];
+    for &c in graph.children.iter().flatten() {
+        child[c] = true;
+    }
+    (0..child.len()).filter(|&n| !child[n]).collect()
+}
+
+/// Refuses totals over the limits on instances, vertices, triangles and node visits.
+fn check(totals: Totals) -> Result<(), GltfDataError> {
+    let limits = [
+        ("mesh instances", totals.instances, MAX_GLTF_INSTANCES, "MAX_GLTF_INSTANCES"),
+        ("vertices", totals.vertices, MAX_VERTICES, "MAX_VERTICES"),
+        ("triangles", totals.triangles, MAX_FACES, "MAX_FACES"),
+        ("node instances", totals.visits, MAX_GLTF_NODE_INSTANCES, "MAX_GLTF_NODE_INSTANCES"),
+    ];
+    match limits.into_iter().find(|(_, count, limit, _)| count > limit) {
+        Some((what, count, limit, name)) => Err(GltfDataError::SceneTooLarge { what, count, limit, name }),
+        None => Ok(()),
+    }
+}
+
+/// What one instance of `mesh` gives, from its accessors' declared counts: the vertices of
+/// each distinct POSITION accessor and the triangles of each primitive.
+fn mesh_totals(mesh: &::gltf::Mesh) -> Totals {
+    let mut positions: Vec<usize> = Vec::new();
+    let mut totals = Totals { instances: 1, ..Totals::default() };
+    for primitive in mesh.primitives() {
+        let Some(accessor) = primitive.get(&Semantic::Positions) else { continue };
+        if !positions.contains(&accessor.index()) {
+            positions.push(accessor.index());
+            totals.vertices = totals.vertices.saturating_add(accessor.count());
+        }
+        let n = primitive.indices().map_or(accessor.count(), |a| a.count());
+        let triangles = match primitive.mode() {
+            Mode::Triangles => n / 3,
+            Mode::TriangleStrip | Mode::TriangleFan => n.saturating_sub(2),
+            _ => 0,
+        };
+        totals.triangles = totals.triangles.saturating_add(triangles);
+    }
+    totals
+}
+
+/// The local matrix of `node` in f64, or the error naming its non-finite property.
+fn local_matrix(node: &::gltf::Node) -> Result<DMat4, GltfDataError> {
+    let bad = |property, values: &[f32]| {
+        let value = *values.iter().find(|v| !v.is_finite())?;
+        Some(GltfDataError::NodeTransform { node: node.index(), property, value })
+    };
+    let error = match node.transform() {
+        Transform::Matrix { matrix } => bad("matrix", matrix.as_flattened()),
+        Transform::Decomposed { translation, rotation, scale } => {
+            bad("translation", &translation).or_else(|| bad("rotation", &rotation)).or_else(|| bad("scale", &scale))
+        }
+    };
+    if let Some(error) = error {
+        return Err(error);
     }
     let local = node.transform().matrix().map(|column| column.map(f64::from));
-    let world = parent * DMat4::from_cols_array_2d(&local);
-    if let Some(mesh) = node.mesh() {
-        out.push((mesh.index(), world));
-    }
-    for child in node.children() {
-        visit(&child, world, depth + 1, limit, out)?;
-    }
-    Ok(())
+    Ok(DMat4::from_cols_array_2d(&local))
 }

@@ -7,7 +7,7 @@ use std::io::{self, Write};
 use glam::DVec3;
 use serde_json::{Value, json};
 
-use super::generic::bounds;
+use super::generic::{bounds, first_non_finite};
 use super::{Block, GltfFile, Target, container, normals};
 use crate::mesh::source::Original;
 
@@ -85,6 +85,12 @@ pub(crate) fn write_faithful(
         }
         let sums = normals::sums(|v| DVec3::from_array(local[v as usize].map(f64::from)), dirty.len(), &triangles);
         let unit: Vec<[f32; 3]> = sums.into_iter().map(|s| normals::unit(s).unwrap_or([0.0; 3])).collect();
+        if let Some((element, value)) = first_non_finite(&unit) {
+            return Err(io::Error::new(
+                io::ErrorKind::InvalidData,
+                format!("vertex {}: its normal has the non-finite component {value}", first + element),
+            ));
+        }
         let keep: Vec<bool> = dirty.iter().zip(&unit).map(|(&d, n)| d && *n != [0.0; 3]).collect();
         store(&mut buffers, target, &unit, &keep)?;
     }
@@ -113,9 +119,13 @@ fn to_local(block: &Block, old: &[DVec3], new: &[DVec3], moved: &mut [bool]) -> 
             continue;
         }
         *flag = true;
-        let p = inverse.transform_point3(*b).as_vec3();
-        if !p.is_finite() {
-            return Err(invalid(format!("vertex {} does not fit in f32", block.first + i)));
+        let exact = inverse.transform_point3(*b);
+        let p = exact.as_vec3();
+        if let Some(value) = exact.to_array().into_iter().find(|c| !(*c as f32).is_finite()) {
+            return Err(invalid(format!(
+                "vertex {}: its node-local coordinate {value:?} does not fit in f32",
+                block.first + i
+            )));
         }
         local[i] = p.to_array();
     }
