@@ -38,12 +38,12 @@ mod volume;
 
 use glam::DVec3;
 
-pub use atomic::write_atomically;
+pub use atomic::{exit_removing_temporaries, write_atomically};
 pub use error::{MeshDataError, MeshError, ObjLineError};
 pub use format::Format;
 pub use gltf::GltfDataError;
 pub use off::OffLineError;
-pub use subdivide::{Parents, Subdivision};
+pub use subdivide::{Parents, Subdivision, SubdivisionError};
 
 use source::Source;
 
