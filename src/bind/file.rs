@@ -15,7 +15,7 @@
 //! | 48 + 40·N | 48·B | per band vertex, by increasing vertex: u32 vertex, u32 second sweep (0xFFFFFFFF: the rest position), f64 weight w, and the second binding's f64 t, θ, d, h |
 //!
 //! The fingerprints let `deform` refuse bindings made for another rig or mesh. Every record
-//! is range-checked on load ([`check`]: θ ∈ [0, 2π), t ∈ [0, 1], finite d and h, sweeps in
+//! is range-checked on load ([`check`]: θ ∈ [0, 2π], t ∈ [0, 1], finite d and h, sweeps in
 //! range, band weights in [0, 1), band vertices owned and strictly increasing), and against
 //! the rig and mesh by [`BindingsFile::check_matches`] (|d|, |h| ≤ [`check::offset_bound`]),
 //! so the CPU and the GPU deform the same positions or both refuse the file.

@@ -2,8 +2,9 @@
 //! load instead of deforming into huge or non-finite positions (or into different positions on
 //! the CPU and the GPU).
 //!
-//! Without the rig ([`params`], [`sweep`]): θ ∈ [0, 2π), t ∈ [0, 1], d and h finite, sweeps in
-//! range. With the rig and mesh ([`offset_bound`]): |d| and |h| at most
+//! Without the rig ([`params`], [`sweep`]): θ ∈ [0, 2π], t ∈ [0, 1], d and h finite, sweeps in
+//! range. θ = 2π itself is the same angle as 0 on every path (the radius is periodic), and
+//! bindings made on the GPU can hold it: their θ = (j + φ)·2π/M is 2π at j = M − 1, φ = 1. With the rig and mesh ([`offset_bound`]): |d| and |h| at most
 //! B = 2·(L + R), where L is the diagonal of the box that holds the mesh's vertices and every
 //! rest sweep's center curve C(t), and R bounds the rest radii |r(θ, t)|. A binding made by
 //! `sweepffd bind` has |h| ≤ |v − C(t)| ≤ L and |d| ≤ |v − C(t)| + |r(θ, t)| ≤ L + R, since v
@@ -28,8 +29,8 @@ pub fn params(params: &VertexBinding) -> Result<(), String> {
     if !(0.0..=1.0).contains(&t) {
         return Err(format!("t = {} is outside [0, 1]", number(t)));
     }
-    if !(0.0..TAU).contains(&theta) {
-        return Err(format!("θ = {} is outside [0, 2π)", number(theta)));
+    if !(0.0..=TAU).contains(&theta) {
+        return Err(format!("θ = {} is outside [0, 2π]", number(theta)));
     }
     for (name, value) in [("d", d), ("h", h)] {
         if !value.is_finite() {
@@ -102,14 +103,14 @@ mod tests {
     }
 
     #[test]
-    fn theta_at_two_pi_and_beyond_is_refused() {
+    fn theta_beyond_two_pi_is_refused() {
         assert_eq!(params(&AT_REST), Ok(()));
-        assert_eq!(params(&VertexBinding { theta: TAU - 1e-12, ..AT_REST }), Ok(()));
+        assert_eq!(params(&VertexBinding { theta: TAU, ..AT_REST }), Ok(()));
         let refused = |theta: f64| params(&VertexBinding { theta, ..AT_REST }).unwrap_err();
-        assert_eq!(refused(TAU), "θ = 6.283185307179586 is outside [0, 2π)");
-        assert_eq!(refused(1e300), "θ = 1e300 is outside [0, 2π)");
-        assert_eq!(refused(-0.5), "θ = -0.5 is outside [0, 2π)");
-        assert_eq!(refused(f64::NAN), "θ = NaN is outside [0, 2π)");
+        assert_eq!(refused(6.5), "θ = 6.5 is outside [0, 2π]");
+        assert_eq!(refused(1e300), "θ = 1e300 is outside [0, 2π]");
+        assert_eq!(refused(-0.5), "θ = -0.5 is outside [0, 2π]");
+        assert_eq!(refused(f64::NAN), "θ = NaN is outside [0, 2π]");
     }
 
     #[test]
