@@ -568,7 +568,7 @@ fn corrupt_bindings_file() {
     scene.write("bad_sweep.sffd", bad_sweep);
     assert_eq!(
         scene.deform_with_bindings_fails("mesh.obj", "rig.json", "bad_sweep.sffd"),
-        "error: bad_sweep.sffd: not a sweepffd bindings file (vertex 0 has an invalid binding)\n"
+        "error: bad_sweep.sffd: vertex 0: sweep 5 is out of range: the rig has 1 sweep\n"
     );
 }
 
@@ -731,7 +731,7 @@ fn bindings_file_with_a_bad_band_record() {
     scene.write("bad.sffd", &bad);
     assert_eq!(
         scene.deform_with_bindings_fails("mesh.obj", "rig.json", "bad.sffd"),
-        "error: bad.sffd: not a sweepffd bindings file (band vertex 0 (vertex 0) has an invalid binding)\n"
+        "error: bad.sffd: band vertex 0 (vertex 0): weight 2 is outside [0, 1)\n"
     );
     // A truncated band section.
     scene.write("short.sffd", &good[..good.len() - 4]);

@@ -9,6 +9,7 @@
 mod cpu;
 mod gpu;
 mod scene;
+mod size;
 mod skinning;
 mod timer;
 
@@ -17,6 +18,7 @@ use serde::Serialize;
 pub use cpu::CpuBench;
 pub use gpu::GpuBench;
 pub use scene::{BAND_FRACTION, BenchScene, FalloffKind};
+pub use size::{BenchSizeError, MIN_BENCH_VERTICES, check_runs, tube_vertex_count};
 pub use skinning::{skinning_influences, skinning_joints};
 pub use timer::GpuTimer;
 

@@ -41,9 +41,14 @@ pub enum FalloffKind {
 }
 
 impl BenchScene {
-    /// A closed tube of about `vertices` vertices bound to one straight 8-key sweep.
+    /// A closed tube of about `vertices` vertices bound to one straight 8-key sweep (at least
+    /// [`MIN_BENCH_VERTICES`], the smallest tube the falloff comparison can split at a middle
+    /// ring; see [`tube_vertex_count`]).
+    ///
+    /// [`MIN_BENCH_VERTICES`]: super::MIN_BENCH_VERTICES
+    /// [`tube_vertex_count`]: super::tube_vertex_count
     pub fn tube(vertices: usize) -> BenchScene {
-        let tube = Tube::with_vertex_count(vertices, 4.0, 0.5);
+        let tube = Tube::with_vertex_count(vertices.max(super::MIN_BENCH_VERTICES), 4.0, 0.5);
         let mut scene =
             BenchScene::new(tube.mesh(), tube_rig(&tube, 8, 16), "tube").expect("the tube rig owns the tube");
         // The tube attached at its first ring, fading to rest over BAND_FRACTION of its length;

@@ -14,7 +14,13 @@
 //! | 40 + 40·N | 8 | number of falloff band vertices B (version 2) |
 //! | 48 + 40·N | 48·B | per band vertex, by increasing vertex: u32 vertex, u32 second sweep (0xFFFFFFFF: the rest position), f64 weight w, and the second binding's f64 t, θ, d, h |
 //!
-//! The fingerprints let `deform` refuse bindings made for another rig or mesh.
+//! The fingerprints let `deform` refuse bindings made for another rig or mesh. Every record
+//! is range-checked on load ([`check`]: θ ∈ [0, 2π], t ∈ [0, 1], finite d and h, sweeps in
+//! range, band weights in [0, 1), band vertices owned and strictly increasing), and against
+//! the rig and mesh by [`BindingsFile::check_matches`] (|d|, |h| ≤ [`check::offset_bound`]),
+//! so the CPU and the GPU deform the same positions or both refuse the file.
+
+pub mod check;
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -55,6 +61,9 @@ pub enum BindingsFileError {
     Malformed { path: PathBuf, reason: String },
     #[error("{}: the bindings were made for {what}", path.display())]
     Mismatch { path: PathBuf, what: String },
+    /// A record of a well-formed file holds a value no binding can have.
+    #[error("{}: {reason}", path.display())]
+    OutOfRange { path: PathBuf, reason: String },
 }
 
 /// FNV-1a 64 of the rest rig's canonical JSON.
@@ -151,30 +160,26 @@ impl BindingsFile {
             }
             band_count
         };
-        let valid = |sweep: u32, params: &VertexBinding| {
-            sweep == UNOWNED
-                || (sweep < sweep_count
-                    && [params.t, params.theta, params.d, params.h].iter().all(|v| v.is_finite())
-                    && (0.0..=1.0).contains(&params.t))
+        let out_of_range = |reason: String| BindingsFileError::OutOfRange { path: path.to_path_buf(), reason };
+        // The sweep, then (for an owned record) its parameters, `prefix` before their reason.
+        let binding = |sweep: u32, params: &VertexBinding, what: &str, prefix: &str| {
+            check::sweep(sweep, sweep_count, what)?;
+            if sweep == UNOWNED { Ok(()) } else { check::params(params).map_err(|reason| format!("{prefix}{reason}")) }
         };
         let mut vertices = Vec::with_capacity(count as usize);
         for i in 0..count as usize {
             let at = HEADER_BYTES + i * RECORD_BYTES;
             let (sweep, params) = (u32_at(at), params_at(at + 8));
-            if !valid(sweep, &params) {
-                return Err(malformed(format!("vertex {i} has an invalid binding")));
-            }
+            binding(sweep, &params, "sweep", "").map_err(|reason| out_of_range(format!("vertex {i}: {reason}")))?;
             vertices.push(Binding { sweep, params });
         }
-        let mut bands = Vec::with_capacity(band_count as usize);
+        let mut bands: Vec<BandBinding> = Vec::with_capacity(band_count as usize);
         for i in 0..band_count as usize {
             let at = vertices_end as usize + 8 + i * BAND_RECORD_BYTES;
             let (vertex, sweep, weight, params) = (u32_at(at), u32_at(at + 4), f64_at(at + 8), params_at(at + 16));
-            let own = vertices.get(vertex as usize).map_or(UNOWNED, |b| b.sweep);
-            let ordered = bands.last().is_none_or(|last: &BandBinding| last.vertex < vertex);
-            if own == UNOWNED || !ordered || !(0.0..1.0).contains(&weight) || sweep == own || !valid(sweep, &params) {
-                return Err(malformed(format!("band vertex {i} (vertex {vertex}) has an invalid binding")));
-            }
+            let band = check_band(&vertices, bands.last(), vertex, sweep, weight)
+                .and_then(|()| binding(sweep, &params, "second sweep", "second binding: "));
+            band.map_err(|reason| out_of_range(format!("band vertex {i} (vertex {vertex}): {reason}")))?;
             bands.push(BandBinding { vertex, weight, second: Binding { sweep, params } });
         }
         let bindings = MeshBindings { vertices, bands };
@@ -209,6 +214,64 @@ impl BindingsFile {
         if self.mesh_fingerprint != mesh_fingerprint(positions) {
             return mismatch("another mesh with the same vertex count (run `sweepffd bind` again)");
         }
+        self.check_offsets(check::offset_bound(rig.rest(), positions))
+            .map_err(|reason| BindingsFileError::OutOfRange { path: path.to_path_buf(), reason })
+    }
+
+    /// Why some binding's d or h is beyond `bound` in size, if one is.
+    fn check_offsets(&self, bound: f64) -> Result<(), String> {
+        let beyond = |params: &VertexBinding| {
+            [("d", params.d), ("h", params.h)].into_iter().find(|(_, value)| value.abs() > bound).map(
+                |(name, value)| {
+                    format!(
+                        "{name} = {} is out of range: |d| and |h| are at most {} for this mesh and rig",
+                        check::number(value),
+                        check::number(bound)
+                    )
+                },
+            )
+        };
+        let MeshBindings { vertices, bands } = &self.bindings;
+        for (i, b) in vertices.iter().enumerate().filter(|(_, b)| b.sweep != UNOWNED) {
+            if let Some(reason) = beyond(&b.params) {
+                return Err(format!("vertex {i}: {reason}"));
+            }
+        }
+        for (i, band) in bands.iter().enumerate().filter(|(_, b)| b.second.sweep != UNOWNED) {
+            if let Some(reason) = beyond(&band.second.params) {
+                return Err(format!("band vertex {i} (vertex {}): second binding: {reason}", band.vertex));
+            }
+        }
         Ok(())
     }
+}
+
+/// Why a band record of `vertex` (second sweep `sweep`, weight `weight`) cannot follow
+/// `previous` among the bands of `vertices`, if it cannot.
+fn check_band(
+    vertices: &[Binding],
+    previous: Option<&BandBinding>,
+    vertex: u32,
+    sweep: u32,
+    weight: f64,
+) -> Result<(), String> {
+    let Some(own) = vertices.get(vertex as usize).map(|b| b.sweep) else {
+        return Err(format!("the vertex is out of range: the file has {} vertices", vertices.len()));
+    };
+    if own == UNOWNED {
+        return Err("the vertex is unowned, so it has no sweep to fade from".to_string());
+    }
+    if let Some(previous) = previous.filter(|p| p.vertex >= vertex) {
+        return Err(format!(
+            "listed after vertex {}; band vertices must be listed by strictly increasing vertex",
+            previous.vertex
+        ));
+    }
+    if !(0.0..1.0).contains(&weight) {
+        return Err(format!("weight {} is outside [0, 1)", check::number(weight)));
+    }
+    if sweep == own {
+        return Err(format!("its second sweep {sweep} is its own sweep"));
+    }
+    Ok(())
 }

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use super::CliResult;
 use super::backend::{Backend, resolve};
-use sweepffd::bench::{BenchReport, BenchScene, CpuBench, FalloffKind, GpuBench};
+use sweepffd::bench::{BenchReport, BenchScene, CpuBench, FalloffKind, GpuBench, check_runs, tube_vertex_count};
 use sweepffd::mesh::Mesh;
 use sweepffd::rig::Rig;
 
@@ -19,16 +19,27 @@ pub struct Args {
 }
 
 pub fn run(args: &Args, quiet: bool) -> CliResult {
+    check_runs(args.runs)?;
     let scene = match (&args.mesh, &args.rig) {
         (Some(mesh_path), Some(rig_path)) => {
             let mesh = Mesh::load(mesh_path)?;
             let rig = Rig::load(rig_path)?;
             BenchScene::new(mesh, rig, &mesh_path.display().to_string())?
         }
-        (None, None) => BenchScene::tube(args.vertices),
+        (None, None) => {
+            let vertices = tube_vertex_count(args.vertices)?;
+            if vertices != args.vertices && !quiet {
+                eprintln!(
+                    "note: measuring {vertices} vertices, the largest synthetic tube with at most --vertices {} \
+                     (tubes have 256·k + 2 vertices)",
+                    args.vertices
+                );
+            }
+            BenchScene::tube(vertices)
+        }
         _ => return Err("--mesh and --rig go together".into()),
     };
-    let runs = args.runs.max(1);
+    let runs = args.runs;
     let report = match resolve(args.backend, quiet || args.json)? {
         Some(context) => GpuBench::new(&context, scene)?.report(runs)?,
         None => CpuBench::new(scene).report(runs),

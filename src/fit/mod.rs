@@ -58,6 +58,7 @@ pub use part::Part;
 pub use quality::FitQuality;
 pub use select::{connected_to, largest_connected};
 
+use crate::limits::{MAX_KEYS_PER_SWEEP, MAX_RADII_PER_KEY};
 use crate::mesh::Mesh;
 use crate::rig::{KeyDocument, ParentLink, SweepDocument, VertexSelection};
 use crate::sweep::Key;
@@ -69,11 +70,12 @@ pub struct FitOptions {
     /// key 0 sits at its first point's end, whatever the part's rim. `None`: the part's
     /// principal axis, oriented so that key 0 sits at the end where the part is attached.
     pub axis: Option<Vec<DVec3>>,
-    /// Keys placed along the axis before any insertion (at least 2).
+    /// Keys placed along the axis before any insertion (at least 2, at most
+    /// [`MAX_KEYS_PER_SWEEP`]).
     pub keys: usize,
-    /// Radii M per key (at least 3).
+    /// Radii M per key (at least 3, at most [`MAX_RADII_PER_KEY`]).
     pub radii: usize,
-    /// The most keys insertion may reach.
+    /// The most keys insertion may reach (at most [`MAX_KEYS_PER_SWEEP`]).
     pub max_keys: usize,
     /// A knot interval whose RMS |d| exceeds this fraction of the mean radius is loose.
     pub tolerance: f64,
@@ -97,6 +99,16 @@ impl FitOptions {
         }
         if self.radii < 3 {
             return fail(format!("--radii must be at least 3, found {}", self.radii));
+        }
+        if self.radii > MAX_RADII_PER_KEY {
+            return fail(format!("--radii {} is over the limit of {MAX_RADII_PER_KEY} radii per key", self.radii));
+        }
+        if self.keys > MAX_KEYS_PER_SWEEP {
+            return fail(format!("--keys {} is over the limit of {MAX_KEYS_PER_SWEEP} keys per sweep", self.keys));
+        }
+        if self.max_keys > MAX_KEYS_PER_SWEEP {
+            let max_keys = self.max_keys;
+            return fail(format!("--max-keys {max_keys} is over the limit of {MAX_KEYS_PER_SWEEP} keys per sweep"));
         }
         if self.max_keys < self.keys {
             return fail(format!("--max-keys ({}) must be at least --keys ({})", self.max_keys, self.keys));

@@ -138,6 +138,18 @@ fn bad_options_and_parts_are_refused() {
     assert_eq!(with(FitOptions { keys: 1, ..FitOptions::default() }), "--keys must be at least 2, found 1");
     assert_eq!(with(FitOptions { radii: 2, ..FitOptions::default() }), "--radii must be at least 3, found 2");
     assert_eq!(with(FitOptions { max_keys: 3, ..FitOptions::default() }), "--max-keys (3) must be at least --keys (6)");
+    assert_eq!(
+        with(FitOptions { radii: 10_000_000, ..FitOptions::default() }),
+        "--radii 10000000 is over the limit of 4096 radii per key"
+    );
+    assert_eq!(
+        with(FitOptions { keys: 2000, max_keys: 2000, ..FitOptions::default() }),
+        "--keys 2000 is over the limit of 1024 keys per sweep"
+    );
+    assert_eq!(
+        with(FitOptions { max_keys: usize::MAX, ..FitOptions::default() }),
+        "--max-keys 18446744073709551615 is over the limit of 1024 keys per sweep"
+    );
     assert_eq!(with(FitOptions { axis: Some(vec![DVec3::ONE]), ..FitOptions::default() }), FitError::Axis.to_string());
     let error = fit(&mesh, &[0, 1, 2], &FitOptions::default()).unwrap_err();
     assert_eq!(error, FitError::TooFewVertices(3));

@@ -2,12 +2,24 @@
 //!
 //! The content goes to a new temporary file in the target's directory (so the final rename
 //! stays on one file system), which is flushed and synced, then renamed over the target. On
-//! any error the temporary file is removed and the target is not touched.
+//! any error (or a panic while filling) the temporary file is removed and the target is not
+//! touched.
+//!
+//! Every temporary file in progress is listed in one process-wide registry, so that a signal
+//! handler can remove them as the process exits ([`exit_removing_temporaries`]; the command line
+//! does so on SIGINT and SIGTERM). Creating a temporary file and renaming it over its target
+//! each happen under the registry's lock, so a handler that takes the lock sees either the
+//! temporary file (and removes it: the target keeps its old bytes) or the finished target.
+//! SIGKILL cannot be caught: it leaves the temporary file, never a partly written target.
+//!
+//! A symbolic link at the target is written through: its final target is replaced, and the
+//! link stays a link (as a shell's `>` and most editors do).
 
 use std::fs::{self, File, OpenOptions};
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Mutex, MutexGuard, PoisonError};
 
 /// Tells temporary files of one process apart.
 static COUNTER: AtomicU64 = AtomicU64::new(0);
@@ -15,32 +27,44 @@ static COUNTER: AtomicU64 = AtomicU64::new(0);
 /// How many temporary names to try when one is taken.
 const ATTEMPTS: usize = 16;
 
-/// Writes `path` atomically with what `fill` writes: into a new temporary file beside `path`
-/// (`.<name>.<pid>-<n>.tmp`), flushed and synced, then renamed over `path`, keeping the
-/// permissions of a file being replaced.
+/// The most symbolic links followed from the target to the file it names (Linux's own limit).
+const MAX_LINKS: usize = 40;
+
+/// The temporary files being written now, by any thread of the process.
+static TEMPORARIES: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// The registry; a panic in another thread while it held the lock does not make it unusable
+/// (every change to it is a single push or retain).
+fn temporaries() -> MutexGuard<'static, Vec<PathBuf>> {
+    TEMPORARIES.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+/// Removes every temporary file still being written and ends the process with `code`: each
+/// write in progress leaves its target untouched. For a signal handler. The registry's lock is
+/// held until the process ends, so no write can start or finish in between.
+pub fn exit_removing_temporaries(code: i32) -> ! {
+    let registry = temporaries();
+    for temp in registry.iter() {
+        // Nothing is left to report to: a file that cannot be removed stays.
+        let _ = fs::remove_file(temp);
+    }
+    std::process::exit(code)
+}
+
+/// Writes `path` atomically with what `fill` writes: into a new temporary file beside the
+/// file `path` names (`.<name>.<pid>-<n>.tmp`), flushed and synced, then renamed over it,
+/// keeping the permissions of a file being replaced. A symbolic link at `path` is followed
+/// (up to 40 links): the file it leads to is replaced, the link is kept.
 ///
 /// # Errors
 ///
-/// Any I/O error, from `fill` or the file system. The temporary file is then removed and
-/// `path` is untouched. The error does not name `path`; callers add it.
+/// Any I/O error, from `fill` or the file system (also a chain of more than 40 links). The
+/// temporary file is then removed and the target is untouched. The error does not name
+/// `path`; callers add it.
 pub fn write_atomically(path: &Path, fill: impl FnOnce(&mut BufWriter<File>) -> io::Result<()>) -> io::Result<()> {
-    let (temp, file) = create_temporary(path)?;
-    let result = finish(path, &temp, file, fill);
-    if result.is_err() {
-        // The temporary file is ours; failing to remove it must not hide the first error.
-        let _ = fs::remove_file(&temp);
-    }
-    result
-}
-
-/// Fills, syncs and renames the temporary file over `path`.
-fn finish(
-    path: &Path,
-    temp: &Path,
-    file: File,
-    fill: impl FnOnce(&mut BufWriter<File>) -> io::Result<()>,
-) -> io::Result<()> {
-    if let Ok(meta) = fs::metadata(path) {
+    let target = follow_links(path)?;
+    let (temp, file) = Temporary::create(&target)?;
+    if let Ok(meta) = fs::metadata(&target) {
         // Keep the permissions of the file being replaced; not fatal if the platform refuses.
         let _ = file.set_permissions(meta.permissions());
     }
@@ -50,31 +74,89 @@ fn finish(
     let file = out.into_inner().map_err(io::IntoInnerError::into_error)?;
     file.sync_all()?;
     drop(file);
-    fs::rename(temp, path)
+    temp.rename_over(&target)
 }
 
-/// Creates a new, empty temporary file beside `path`: `.<name>.<pid>-<n>.tmp`.
-fn create_temporary(path: &Path) -> io::Result<(PathBuf, File)> {
-    let name =
-        path.file_name().ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "the path does not name a file"))?;
-    let dir = match path.parent() {
-        Some(dir) if !dir.as_os_str().is_empty() => dir,
-        _ => Path::new("."),
-    };
-    let mut last = None;
-    for _ in 0..ATTEMPTS {
-        let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-        let mut temp_name = std::ffi::OsString::from(".");
-        temp_name.push(name);
-        temp_name.push(format!(".{}-{n}.tmp", std::process::id()));
-        let temp = dir.join(temp_name);
-        match OpenOptions::new().write(true).create_new(true).open(&temp) {
-            Ok(file) => return Ok((temp, file)),
-            Err(e) if e.kind() == io::ErrorKind::AlreadyExists => last = Some(e),
-            Err(e) => return Err(e),
+/// The file that `path` names once every symbolic link at its final component is followed
+/// (the link's target need not exist yet); `path` itself when it is not a link.
+fn follow_links(path: &Path) -> io::Result<PathBuf> {
+    let mut current = path.to_path_buf();
+    for _ in 0..MAX_LINKS {
+        match fs::symlink_metadata(&current) {
+            Ok(meta) if meta.file_type().is_symlink() => {
+                let link = fs::read_link(&current)?;
+                current = match current.parent() {
+                    Some(dir) if link.is_relative() => dir.join(link),
+                    _ => link,
+                };
+            }
+            _ => return Ok(current),
         }
     }
-    Err(last.unwrap_or_else(|| io::Error::other("no temporary file name was free")))
+    Err(io::Error::new(io::ErrorKind::InvalidInput, format!("more than {MAX_LINKS} symbolic links to follow")))
+}
+
+/// A registered temporary file: removed (and unregistered) when dropped unless renamed.
+struct Temporary {
+    path: PathBuf,
+}
+
+impl Temporary {
+    /// Creates and registers a new, empty temporary file beside `path`:
+    /// `.<name>.<pid>-<n>.tmp`.
+    fn create(path: &Path) -> io::Result<(Temporary, File)> {
+        let name = path
+            .file_name()
+            .ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "the path does not name a file"))?;
+        let dir = match path.parent() {
+            Some(dir) if !dir.as_os_str().is_empty() => dir,
+            _ => Path::new("."),
+        };
+        let mut last = None;
+        for _ in 0..ATTEMPTS {
+            let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+            let mut temp_name = std::ffi::OsString::from(".");
+            temp_name.push(name);
+            temp_name.push(format!(".{}-{n}.tmp", std::process::id()));
+            let temp = dir.join(temp_name);
+            // Created and listed under the lock: a signal handler never misses it.
+            let mut registry = temporaries();
+            match OpenOptions::new().write(true).create_new(true).open(&temp) {
+                Ok(file) => {
+                    registry.push(temp.clone());
+                    return Ok((Temporary { path: temp }, file));
+                }
+                Err(e) if e.kind() == io::ErrorKind::AlreadyExists => last = Some(e),
+                Err(e) => return Err(e),
+            }
+        }
+        Err(last.unwrap_or_else(|| io::Error::other("no temporary file name was free")))
+    }
+
+    /// Renames the file over `target` and unregisters it, under the registry's lock. On
+    /// error the temporary file is removed (by the drop).
+    fn rename_over(self, target: &Path) -> io::Result<()> {
+        let mut registry = temporaries();
+        let renamed = fs::rename(&self.path, target);
+        if renamed.is_ok() {
+            // Unregistered: the drop leaves the renamed file alone.
+            registry.retain(|p| *p != self.path);
+        }
+        drop(registry);
+        renamed
+    }
+}
+
+impl Drop for Temporary {
+    /// Removes the file if it is still registered (not renamed over its target).
+    fn drop(&mut self) {
+        let mut registry = temporaries();
+        if let Some(at) = registry.iter().position(|p| *p == self.path) {
+            // The temporary file is ours; failing to remove it must not hide the first error.
+            let _ = fs::remove_file(&self.path);
+            registry.swap_remove(at);
+        }
+    }
 }
 
 #[cfg(test)]
@@ -120,6 +202,79 @@ mod tests {
         let err = write_atomically(&path, |w| w.write_all(b"x")).unwrap_err();
         assert_eq!(err.kind(), io::ErrorKind::NotFound, "{err}");
         assert!(entries(dir.path()).is_empty());
+    }
+
+    #[test]
+    fn the_temporary_is_registered_while_filled_and_not_after() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("out.obj");
+        let mut seen = Vec::new();
+        write_atomically(&path, |w| {
+            seen = temporaries().iter().filter(|p| p.starts_with(dir.path())).cloned().collect();
+            w.write_all(b"new")
+        })
+        .unwrap();
+        assert_eq!(seen.len(), 1, "{seen:?}");
+        assert!(seen[0].file_name().unwrap().to_string_lossy().starts_with(".out.obj."), "{seen:?}");
+        assert!(!temporaries().contains(&seen[0]));
+        assert_eq!(entries(dir.path()), vec!["out.obj"]);
+    }
+
+    #[test]
+    fn a_panic_while_filling_removes_the_temporary() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("out.obj");
+        fs::write(&path, b"old").unwrap();
+        let result = std::panic::catch_unwind(|| {
+            let _ = write_atomically(&path, |w| {
+                w.write_all(b"partial")?;
+                panic!("fill panicked")
+            });
+        });
+        assert!(result.is_err());
+        assert_eq!(fs::read(&path).unwrap(), b"old");
+        assert_eq!(entries(dir.path()), vec!["out.obj"]);
+        assert!(!temporaries().iter().any(|p| p.starts_with(dir.path())));
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_symbolic_link_is_written_through() {
+        let dir = tempfile::tempdir().unwrap();
+        fs::create_dir(dir.path().join("assets")).unwrap();
+        let target = dir.path().join("assets").join("model.obj");
+        fs::write(&target, b"old").unwrap();
+        let link = dir.path().join("out.obj");
+        std::os::unix::fs::symlink("assets/model.obj", &link).unwrap();
+        write_atomically(&link, |w| w.write_all(b"new")).unwrap();
+        assert!(fs::symlink_metadata(&link).unwrap().file_type().is_symlink());
+        assert_eq!(fs::read_link(&link).unwrap(), Path::new("assets/model.obj"));
+        assert_eq!(fs::read(&target).unwrap(), b"new");
+        assert_eq!(entries(&dir.path().join("assets")), vec!["model.obj"]);
+        assert_eq!(entries(dir.path()), vec!["assets", "out.obj"]);
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_dangling_link_creates_its_target() {
+        let dir = tempfile::tempdir().unwrap();
+        let link = dir.path().join("out.obj");
+        std::os::unix::fs::symlink(dir.path().join("new.obj"), &link).unwrap();
+        write_atomically(&link, |w| w.write_all(b"new")).unwrap();
+        assert_eq!(fs::read(dir.path().join("new.obj")).unwrap(), b"new");
+        assert!(fs::symlink_metadata(&link).unwrap().file_type().is_symlink());
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_loop_of_links_is_an_error() {
+        let dir = tempfile::tempdir().unwrap();
+        let (a, b) = (dir.path().join("a.obj"), dir.path().join("b.obj"));
+        std::os::unix::fs::symlink(&b, &a).unwrap();
+        std::os::unix::fs::symlink(&a, &b).unwrap();
+        let err = write_atomically(&a, |w| w.write_all(b"x")).unwrap_err();
+        assert_eq!(err.to_string(), "more than 40 symbolic links to follow");
+        assert_eq!(entries(dir.path()), vec!["a.obj", "b.obj"]);
     }
 
     #[test]

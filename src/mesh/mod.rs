@@ -39,13 +39,13 @@ mod volume;
 
 use glam::DVec3;
 
-pub use atomic::write_atomically;
+pub use atomic::{exit_removing_temporaries, write_atomically};
 pub use error::{LimitError, Limited, MeshDataError, MeshError, ObjLineError};
 pub use format::Format;
 pub use gltf::GltfDataError;
 pub use off::OffLineError;
 pub use ply::PlyHeaderError;
-pub use subdivide::{Parents, Subdivision};
+pub use subdivide::{Parents, Subdivision, SubdivisionError};
 
 use source::Source;
 

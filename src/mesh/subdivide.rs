@@ -5,11 +5,77 @@
 //! mesh (each adds one vertex and leaves the edges alone, so no crack opens). Old vertices keep
 //! their indices; new ones are appended, each the mean of its parents, so a rig's vertex
 //! selection carries over ([`Subdivision::carry`]).
+//!
+//! The size of the result is predicted before anything is allocated, and a subdivision that
+//! would pass [`MAX_VERTICES`] or [`MAX_FACES`] is refused ([`SubdivisionError`]): a level
+//! adds one vertex per distinct edge E of the fan triangles and makes four triangles of each
+//! of the T, so after a level V′ = V + E, T′ = 4T and E′ = 2E + 3T (exact unless a triangle
+//! repeats a corner, where it overestimates).
 
 use std::collections::HashMap;
 use std::ops::Range;
 
+use thiserror::Error;
+
 use super::{FaceGroup, Faces, Mesh, MeshError};
+use crate::limits::{MAX_FACES, MAX_VERTICES};
+
+/// Why a mesh cannot be subdivided as asked.
+#[derive(Debug, Error)]
+pub enum SubdivisionError {
+    /// A step would make a mesh past the limits.
+    #[error(
+        "{step} would make {vertices} vertices and {faces} faces, over the limits of {MAX_VERTICES} vertices \
+         and {MAX_FACES} faces"
+    )]
+    TooLarge {
+        /// Which step: "midpoint subdivision level 7 (of 30)", "centroid splits".
+        step: String,
+        /// The vertices it would make (saturated at `usize::MAX`).
+        vertices: usize,
+        /// The faces it would make (saturated at `usize::MAX`).
+        faces: usize,
+    },
+    /// A vertex count to subdivide to past [`MAX_VERTICES`].
+    #[error("a target of {vertices} vertices is over the limit of {MAX_VERTICES} vertices")]
+    TargetTooLarge {
+        /// The target asked for.
+        vertices: usize,
+    },
+    /// The subdivided data do not form a mesh.
+    #[error(transparent)]
+    Mesh(#[from] MeshError),
+}
+
+/// The size of a mesh as subdivision changes it: vertices, fan triangles and their distinct
+/// edges.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Size {
+    vertices: usize,
+    triangles: usize,
+    edges: usize,
+}
+
+impl Size {
+    /// The size after one midpoint level (saturating).
+    fn midpoint_level(self) -> Size {
+        Size {
+            vertices: self.vertices.saturating_add(self.edges),
+            triangles: self.triangles.saturating_mul(4),
+            edges: self.edges.saturating_mul(2).saturating_add(self.triangles.saturating_mul(3)),
+        }
+    }
+
+    /// Whether a mesh of this size (one face per triangle) fits the limits.
+    fn fits(self) -> bool {
+        self.vertices <= MAX_VERTICES && self.triangles <= MAX_FACES
+    }
+
+    /// The error for `step` making a mesh of this size.
+    fn too_large(self, step: String) -> SubdivisionError {
+        SubdivisionError::TooLarge { step, vertices: self.vertices, faces: self.triangles }
+    }
+}
 
 /// The old vertices a new vertex is the mean of.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -41,7 +107,16 @@ pub struct Subdivision {
 
 impl Mesh {
     /// One level of midpoint subdivision; face groups keep their faces' four children each.
-    pub fn subdivided(&self) -> Result<(Mesh, Subdivision), MeshError> {
+    ///
+    /// # Errors
+    ///
+    /// [`SubdivisionError::TooLarge`] when the result would pass the limits (checked before
+    /// allocating).
+    pub fn subdivided(&self) -> Result<(Mesh, Subdivision), SubdivisionError> {
+        let next = self.size().midpoint_level();
+        if !next.fits() {
+            return Err(next.too_large("one level of midpoint subdivision".to_string()));
+        }
         let old_count = self.positions.len() as u32;
         let mut positions = self.positions.clone();
         let mut parents: Vec<Parents> = Vec::new();
@@ -74,10 +149,26 @@ impl Mesh {
     }
 
     /// Splits `count` triangles (of the fan triangulation), spread evenly over the mesh, at
-    /// their centroids into three; the other triangles stay.
-    pub fn split_at_centroids(&self, count: usize) -> Result<(Mesh, Subdivision), MeshError> {
+    /// their centroids into three; the other triangles stay. A `count` over the number of
+    /// triangles splits them all.
+    ///
+    /// # Errors
+    ///
+    /// [`SubdivisionError::TooLarge`] when the result would pass the limits (checked before
+    /// allocating).
+    pub fn split_at_centroids(&self, count: usize) -> Result<(Mesh, Subdivision), SubdivisionError> {
+        let triangles = self.faces.triangles().count();
+        let count = count.min(triangles);
+        let after = Size {
+            vertices: self.positions.len().saturating_add(count),
+            triangles: triangles.saturating_add(count.saturating_mul(2)),
+            edges: 0,
+        };
+        if !after.fits() {
+            return Err(after.too_large(format!("splitting {count} triangles at their centroids")));
+        }
         let old_count = self.positions.len() as u32;
-        let total = self.faces.triangles().count().max(1);
+        let total = triangles.max(1);
         let mut positions = self.positions.clone();
         let mut parents = Vec::new();
         let mut faces = Faces::new();
@@ -111,7 +202,15 @@ impl Mesh {
     /// Midpoint subdivisions while the count stays at most `vertices`, then centroid splits
     /// up to exactly `vertices` (or as near as one round of splits gets): the final mesh and
     /// each step.
-    pub fn subdivided_to(&self, vertices: usize) -> Result<(Mesh, Vec<Subdivision>), MeshError> {
+    ///
+    /// # Errors
+    ///
+    /// [`SubdivisionError::TargetTooLarge`] for a target over [`MAX_VERTICES`], checked first;
+    /// [`SubdivisionError::TooLarge`] when a step would make more than [`MAX_FACES`] faces.
+    pub fn subdivided_to(&self, vertices: usize) -> Result<(Mesh, Vec<Subdivision>), SubdivisionError> {
+        if vertices > MAX_VERTICES {
+            return Err(SubdivisionError::TargetTooLarge { vertices });
+        }
         let mut mesh = self.clone();
         let mut steps = Vec::new();
         while mesh.positions.len() < vertices {
@@ -129,6 +228,15 @@ impl Mesh {
             steps.push(step);
         }
         Ok((mesh, steps))
+    }
+
+    /// The vertices, fan triangles and distinct triangle edges of the mesh.
+    fn size(&self) -> Size {
+        Size {
+            vertices: self.positions.len(),
+            triangles: self.faces.triangles().count(),
+            edges: self.triangle_edge_count(),
+        }
     }
 
     /// The number of distinct edges of the fan triangles.
@@ -157,7 +265,24 @@ impl Mesh {
 
     /// `levels` levels of [`Mesh::subdivided`]: the final mesh and each level's step (to
     /// [`carry`](Subdivision::carry) vertex selections through).
-    pub fn subdivided_times(&self, levels: usize) -> Result<(Mesh, Vec<Subdivision>), MeshError> {
+    ///
+    /// # Errors
+    ///
+    /// [`SubdivisionError::TooLarge`], naming the first level past the limits, when the
+    /// predicted size of some level passes them; checked for all levels before the first.
+    pub fn subdivided_times(&self, levels: usize) -> Result<(Mesh, Vec<Subdivision>), SubdivisionError> {
+        let mut size = self.size();
+        if size.triangles == 0 {
+            // No face to split: every level would leave the mesh as it is.
+            return Ok((self.clone(), Vec::new()));
+        }
+        // At most ⌈log₄ MAX_FACES⌉ + 1 rounds: the triangles quadruple each level.
+        for level in 1..=levels {
+            size = size.midpoint_level();
+            if !size.fits() {
+                return Err(size.too_large(format!("midpoint subdivision level {level} (of {levels})")));
+            }
+        }
         let mut mesh = self.clone();
         let mut steps = Vec::with_capacity(levels);
         for _ in 0..levels {
@@ -234,6 +359,44 @@ mod tests {
         let inside: Vec<Parents> = carried[3..].iter().map(|&v| step.parents[v as usize - 4]).collect();
         assert_eq!(inside.len(), 3);
         assert!(inside.iter().all(|p| !p.all().contains(&0)), "{inside:?}");
+    }
+
+    #[test]
+    fn levels_past_the_vertex_limit_are_refused_before_any_work() {
+        let mesh = Tube { rings: 5, around: 12, length: 2.0, radius: 0.5 }.mesh();
+        let err = mesh.subdivided_times(30).unwrap_err();
+        // 62 vertices, 120 triangles and 180 edges: level k has 62 + 180·(2^k − 1)·… until
+        // level 10 makes 125,829,122 triangles, past 2²⁶.
+        assert_eq!(
+            err.to_string(),
+            "midpoint subdivision level 10 (of 30) would make 62914562 vertices and 125829120 faces, over the \
+             limits of 33554432 vertices and 67108864 faces"
+        );
+        // The prediction is exact: the level before the limit has the predicted size.
+        let (fine, _) = mesh.subdivided_times(2).unwrap();
+        let mut size = mesh.size();
+        for _ in 0..2 {
+            size = size.midpoint_level();
+        }
+        assert_eq!(size, fine.size());
+    }
+
+    #[test]
+    fn huge_level_counts_and_targets_are_refused_at_once() {
+        let mesh = Tube { rings: 5, around: 12, length: 2.0, radius: 0.5 }.mesh();
+        let err = mesh.subdivided_times(usize::MAX).unwrap_err();
+        assert!(err.to_string().starts_with("midpoint subdivision level 10 (of 18446744073709551615) would make"));
+        let err = mesh.subdivided_to(1_000_000_000_000).unwrap_err();
+        assert_eq!(err.to_string(), "a target of 1000000000000 vertices is over the limit of 33554432 vertices");
+        assert!(mesh.subdivided_to(crate::limits::MAX_VERTICES + 1).is_err());
+    }
+
+    #[test]
+    fn a_mesh_without_faces_subdivides_to_itself() {
+        let mesh = Mesh::from_parts(vec![DVec3::ZERO, DVec3::X], Faces::new(), Vec::new()).unwrap();
+        let (same, steps) = mesh.subdivided_times(usize::MAX).unwrap();
+        assert_eq!(same.positions, mesh.positions);
+        assert!(steps.is_empty());
     }
 
     #[test]

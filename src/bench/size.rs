@@ -1,0 +1,104 @@
+//! The sizes and run counts a bench can honour. The synthetic tube has 256 vertices per ring,
+//! at least three rings (its falloff comparison splits it at a middle ring), and a center
+//! vertex on each cap: 256·k + 2 vertices for k ≥ 3 (770 to 33,554,178 within
+//! [`MAX_BENCH_VERTICES`]). A size between two tubes measures the largest tube below it, and
+//! the caller says so.
+
+use thiserror::Error;
+
+use crate::limits::{MAX_BENCH_RUNS, MAX_BENCH_VERTICES};
+use crate::synthetic::Tube;
+
+/// The fewest vertices of a bench tube: three rings of 256 (a middle ring to split the tube
+/// at) and the two cap centers.
+pub const MIN_BENCH_VERTICES: usize = 3 * 256 + 2;
+
+/// A bench size or run count that cannot be honoured.
+#[derive(Clone, Debug, Error, PartialEq, Eq)]
+pub enum BenchSizeError {
+    /// Fewer vertices than the smallest tube.
+    #[error(
+        "--vertices {0} is below the smallest synthetic tube, {MIN_BENCH_VERTICES} vertices (3 rings of 256 and \
+         2 cap centers)"
+    )]
+    TooFewVertices(usize),
+    /// More vertices than [`MAX_BENCH_VERTICES`].
+    #[error("--vertices {0} is over the limit of {MAX_BENCH_VERTICES} vertices")]
+    TooManyVertices(usize),
+    /// No timed run.
+    #[error("--runs must be at least 1, found 0")]
+    NoRuns,
+    /// More runs than [`MAX_BENCH_RUNS`].
+    #[error("--runs {0} is over the limit of {MAX_BENCH_RUNS} runs")]
+    TooManyRuns(usize),
+}
+
+/// The vertex count of the largest synthetic tube with at most `requested` vertices.
+///
+/// # Errors
+///
+/// A request below [`MIN_BENCH_VERTICES`] or over [`MAX_BENCH_VERTICES`].
+pub fn tube_vertex_count(requested: usize) -> Result<usize, BenchSizeError> {
+    if requested < MIN_BENCH_VERTICES {
+        return Err(BenchSizeError::TooFewVertices(requested));
+    }
+    if requested > MAX_BENCH_VERTICES {
+        return Err(BenchSizeError::TooManyVertices(requested));
+    }
+    Ok(Tube::with_vertex_count(requested, 4.0, 0.5).vertex_count())
+}
+
+/// Checks a count of timed runs per figure: 1 to [`MAX_BENCH_RUNS`].
+///
+/// # Errors
+///
+/// Zero runs, or more than [`MAX_BENCH_RUNS`].
+pub fn check_runs(runs: usize) -> Result<(), BenchSizeError> {
+    match runs {
+        0 => Err(BenchSizeError::NoRuns),
+        _ if runs > MAX_BENCH_RUNS => Err(BenchSizeError::TooManyRuns(runs)),
+        _ => Ok(()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sizes_round_down_to_a_whole_tube() {
+        assert_eq!(tube_vertex_count(770), Ok(770));
+        assert_eq!(tube_vertex_count(1025), Ok(770));
+        assert_eq!(tube_vertex_count(1026), Ok(1026));
+        assert_eq!(tube_vertex_count(1_000_000), Ok(999_938));
+        assert_eq!(tube_vertex_count(MAX_BENCH_VERTICES), Ok(33_554_178));
+    }
+
+    #[test]
+    fn the_smallest_tube_makes_a_bench_scene() {
+        let n = tube_vertex_count(MIN_BENCH_VERTICES).unwrap();
+        assert_eq!(crate::bench::BenchScene::tube(n).vertex_count(), MIN_BENCH_VERTICES);
+    }
+
+    #[test]
+    fn sizes_outside_the_tubes_are_refused() {
+        assert_eq!(tube_vertex_count(0), Err(BenchSizeError::TooFewVertices(0)));
+        assert_eq!(tube_vertex_count(769), Err(BenchSizeError::TooFewVertices(769)));
+        assert_eq!(
+            tube_vertex_count(514).unwrap_err().to_string(),
+            "--vertices 514 is below the smallest synthetic tube, 770 vertices (3 rings of 256 and 2 cap centers)"
+        );
+        assert_eq!(
+            tube_vertex_count(MAX_BENCH_VERTICES + 1).unwrap_err().to_string(),
+            "--vertices 33554433 is over the limit of 33554432 vertices"
+        );
+    }
+
+    #[test]
+    fn run_counts_from_one_to_the_limit() {
+        assert_eq!(check_runs(1), Ok(()));
+        assert_eq!(check_runs(MAX_BENCH_RUNS), Ok(()));
+        assert_eq!(check_runs(0).unwrap_err().to_string(), "--runs must be at least 1, found 0");
+        assert_eq!(check_runs(10_001).unwrap_err().to_string(), "--runs 10001 is over the limit of 10000 runs");
+    }
+}
