@@ -517,18 +517,30 @@ fn the_glb_writers_refuse_coordinates_beyond_f32_and_write_nothing() {
     let mesh = Mesh::from_parts(positions.clone(), faces, Vec::new()).unwrap();
     let far = vec![DVec3::ZERO, DVec3::new(1e39, 0.0, 0.0), DVec3::Y];
     for name in ["generic.glb", "generic.gltf"] {
+        // `Mesh::save` refuses it before any writer runs.
         let out = dir.path().join(name);
         let error = mesh.save(&out, &far).unwrap_err().to_string();
-        assert!(error.ends_with("vertex 1: the coordinate 1e39 does not fit in f32"), "{error}");
-        assert!(error.contains(name), "{error}");
+        let expected = format!(
+            "{}: vertex 1 has the coordinate 1e39, which does not fit in the f32 this format stores; nothing was written",
+            out.display()
+        );
+        assert_eq!(error, expected);
         assert!(!out.exists());
     }
-    // The faithful writer: a glTF read from a file, moved beyond f32 in local space.
-    let (document, data) = triangle();
+    // The faithful writer stores node-local coordinates: a world coordinate that fits in f32
+    // can overflow it under a node that scales down.
+    let (mut document, data) = triangle();
+    document["nodes"] = json!([{"mesh": 0, "scale": [0.01, 0.01, 0.01]}]);
     let mesh = load(dir.path(), "in.glb", &glb(&document, &data)).unwrap();
     let out = dir.path().join("out.glb");
-    let error = mesh.save(&out, &far).unwrap_err().to_string();
-    assert!(error.ends_with("vertex 1: its node-local coordinate 1e39 does not fit in f32"), "{error}");
+    let near_max = vec![DVec3::ZERO, DVec3::new(1e37, 0.0, 0.0), DVec3::Y];
+    let error = mesh.save(&out, &near_max).unwrap_err().to_string();
+    // 1e37 / 0.01f32 (the scale is stored as f32).
+    let expected = format!(
+        "cannot write {}: vertex 1: its node-local coordinate 1.0000000223517425e39 does not fit in f32",
+        out.display()
+    );
+    assert_eq!(error, expected);
     assert!(!out.exists());
     let mut names: Vec<PathBuf> = fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().path()).collect();
     names.sort();
