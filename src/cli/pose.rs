@@ -19,8 +19,8 @@ pub struct Args {
 
 pub fn run(args: &Args, quiet: bool) -> CliResult {
     let rig = Rig::load(&args.rig)?;
-    let text =
-        sweepffd::limits::read_input_text(&args.edits).map_err(|e| format!("cannot read {}: {e}", args.edits.display()))?;
+    let text = sweepffd::limits::read_input_text(&args.edits)
+        .map_err(|e| format!("cannot read {}: {e}", args.edits.display()))?;
     let edits = parse_edits(&text).map_err(|e| format!("{}: not a valid edits file: {e}", args.edits.display()))?;
     let mesh = match (&args.mesh, args.volume) {
         (Some(path), _) => Some((Mesh::load(path)?, path)),
@@ -45,7 +45,8 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
             )
         })?;
     }
-    write_pose(&args.out, &rig.pose_document(posing.keys()).to_json())?;
+    let text = rig.pose_document(posing.keys()).try_to_json(&args.out)?;
+    write_pose(&args.out, &text)?;
     if !quiet {
         println!("applied {} edits -> {}", edits.len(), args.out.display());
     }
