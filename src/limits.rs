@@ -98,3 +98,18 @@ pub const MAX_PLY_ENTRIES: usize = MAX_FACES;
 /// expansion, which multiplies one matrix per node instance, in a graph whose nodes share
 /// children.
 pub const MAX_GLTF_NODE_INSTANCES: usize = 1 << 22;
+
+/// The most radii of a whole rig, summed over its sweeps' keys (2²⁰ = 1,048,576). A sweep's
+/// radius function keeps one 128-byte bicubic patch per radius (§3), and an edit rebuilds it,
+/// so this keeps a rig's surfaces within about 128 MB and an edit's work bounded.
+pub const MAX_RADII_PER_RIG: usize = 1 << 20;
+
+/// The largest magnitude of a rig or pose coordinate or radius, in mesh units (10¹⁵). Keys
+/// within it give sweep surfaces, volumes (Eq. 1) and f32 coefficients that are all finite;
+/// a pose or an edit that goes beyond it is an error naming the sweep and key.
+pub const MAX_RIG_COORDINATE: f64 = 1e15;
+
+/// The smallest gap between consecutive knots u_i (10⁻⁶ of the knots' span [0, 1]), whether
+/// given or from the chord length: closer knots would not survive the f32 parameters of the
+/// GPU (its resolution near 1 is 6·10⁻⁸) and make the spline's second derivatives explode.
+pub const MIN_KNOT_SPACING: f64 = 1e-6;

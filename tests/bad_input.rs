@@ -602,14 +602,15 @@ fn bind_into_a_missing_folder() {
 
 #[test]
 fn pose_that_overflows_writes_nothing() {
-    // Every number is finite, but radii of 1e308 put the deformed vertices at infinity.
+    // Every number is finite, but radii of 1e308 would put the deformed vertices at infinity:
+    // the pose is refused for radii beyond the largest rig coordinate.
     let scene = Scene::new();
     let huge = "1e308, 1e308, 1e308, 1e308";
     scene.write("bad.json", neck_rig(&[key("0", IDENTITY, huge), key("2", IDENTITY, huge)]));
     assert_eq!(
         scene.deform_fails("mesh.obj", "rig.json", "bad.json"),
-        "error: bad.json: vertex index 0 (sweep \"neck\") deforms to a non-finite position; \
-         nothing was written\n"
+        "error: bad.json: sweep \"neck\": key 0: radius 0 (1e308) is larger than 1e15 mesh units, the largest a \
+         rig may have\n"
     );
 }
 
@@ -648,7 +649,8 @@ fn volume_that_overflows_is_an_error() {
     assert_eq!(output.status.code(), Some(1));
     assert_eq!(
         String::from_utf8_lossy(&output.stderr),
-        "error: huge.json: sweep \"neck\": the volume (Eq. 1) is not a finite number\n"
+        "error: huge.json: sweep \"neck\": key 0: center coordinate -1e308 lies beyond ±1e15 mesh units, the \
+         largest a rig may have\n"
     );
     assert!(output.stdout.is_empty());
 }
@@ -660,7 +662,8 @@ fn rest_keys_too_far_apart_for_chord_length() {
     scene.write("bad.json", neck_rig(&keys));
     assert_eq!(
         scene.deform_fails("mesh.obj", "bad.json", "pose.json"),
-        "error: bad.json: sweep \"neck\": key 1: the distance from the center of key 0 is too large to represent\n"
+        "error: bad.json: sweep \"neck\": key 0: center coordinate -1e308 lies beyond ±1e15 mesh units, the largest \
+         a rig may have\n"
     );
 }
 

@@ -45,7 +45,8 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
             )
         })?;
     }
-    write_pose(&args.out, &rig.pose_document(posing.keys()).to_json())?;
+    let text = rig.pose_document(posing.keys()).try_to_json(&args.out)?;
+    write_pose(&args.out, &text)?;
     if !quiet {
         println!("applied {} edits -> {}", edits.len(), args.out.display());
     }

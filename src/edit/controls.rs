@@ -3,6 +3,13 @@
 /// How far the iterative controls go: at most `max_iterations` rounds, stopping when the
 /// position error is below `position_tolerance` × the sweep's length (its keys' chord length)
 /// and the orientation error below `angle_tolerance` radians.
+///
+/// The work of an edit is bounded by these caps: a drag rebuilds its sweep at most
+/// `max_iterations` × (edited keys + 1) times, a cross-section move `max_iterations` ×
+/// (targets + 1) times, and a volume rule runs at most 21 rounds of rescaling and downward
+/// propagation, each volume (Eq. 1) taking at most 2⁸ quadrature leaves per knot interval.
+/// Each rebuild costs time proportional to the sweep's keys × radii, so the whole is linear
+/// in the rig's size.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Controls {
     /// Rounds before an edit is reported as not converging. Default 50.

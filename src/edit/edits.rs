@@ -94,7 +94,11 @@ impl Edit {
     }
 }
 
-/// Parses an edits file's text.
+/// Parses an edits file's text: a list of at most [`crate::limits::MAX_EDITS`] edits, refused
+/// while read.
 pub fn parse_edits(text: &str) -> Result<Vec<Edit>, serde_json::Error> {
-    serde_json::from_str(text)
+    let mut deserializer = serde_json::Deserializer::from_str(text);
+    let edits = crate::rig::bounded::edits(&mut deserializer)?;
+    deserializer.end()?;
+    Ok(edits)
 }

@@ -21,6 +21,12 @@ pub enum EditError {
     NotConverged { iterations: usize, remaining: f64, angle: f64 },
     #[error("while keeping sweep {sweep:?} attached in the hierarchy: {source}")]
     Hierarchy { sweep: String, source: Box<EditError> },
+    #[error("sweep {sweep:?} no longer makes a sweep: {source}")]
+    Sweep { sweep: String, source: SweepError },
+    #[error(
+        "the volume rule did not converge in {rounds} rounds: the volumes are still {remaining:.3e} (relative) from their targets"
+    )]
+    VolumeNotConverged { rounds: usize, remaining: f64 },
     #[error("the volume rule cannot give sweep {sweep:?} the volume {target:.6e}")]
     VolumeUnreachable { sweep: String, target: f64 },
     #[error("the mesh volume rule needs a closed mesh bound to the rig")]

@@ -96,7 +96,12 @@ fn follow_parent(rig: &Rig, keys: &mut [Vec<Key>], child: usize, link: &Link) ->
             }
         }
     }
-    Ok(())
+    // A parent far out can carry its child beyond the representable: fail here, naming the
+    // child and its key, rather than later on a non-finite pose.
+    Sweep::validate(chain).map_err(|source| EditError::Hierarchy {
+        sweep: rig.sweeps()[child].name.clone(),
+        source: Box::new(EditError::Degenerate(source)),
+    })
 }
 
 /// Drives the parent's cross-sections bound to `child`'s first (and last) key to hold them.

@@ -97,6 +97,10 @@ impl<'a> Posing<'a> {
         if let Some(before) = &before {
             apply_rule(self.volume, rig, &mut keys, sweep, before, self.mesh.as_ref())?;
         }
+        // Every sweep the edit reached is checked as rest keys are: finite, in range.
+        for (keys, rest) in keys.iter().zip(rig.sweeps()) {
+            Sweep::validate(keys).map_err(|source| EditError::Sweep { sweep: rest.name.clone(), source })?;
+        }
         self.keys = keys;
         Ok(rounds)
     }

@@ -143,7 +143,7 @@ fn until_converged(mut round: impl FnMut() -> Result<f64, EditError>) -> Result<
     if remaining <= SWEEP_TOLERANCE {
         Ok(())
     } else {
-        Err(EditError::NotConverged { iterations: ROUNDS + 1, remaining, angle: 0.0 })
+        Err(EditError::VolumeNotConverged { rounds: ROUNDS + 1, remaining })
     }
 }
 

@@ -12,6 +12,7 @@
 use glam::{DQuat, DVec3};
 use serde::{Deserialize, Serialize};
 
+use super::bounded;
 use crate::sweep::Key;
 
 /// The value of the `format` field.
@@ -27,7 +28,9 @@ pub struct RigDocument {
     pub format: String,
     /// Always [`VERSION`].
     pub version: u32,
-    /// The sweeps, in order; a vertex binds to the sweep that owns it.
+    /// The sweeps, in order; a vertex binds to the sweep that owns it. At most
+    /// [`crate::limits::MAX_SWEEPS`], refused while read.
+    #[serde(deserialize_with = "bounded::sweeps")]
     pub sweeps: Vec<SweepDocument>,
 }
 
@@ -40,10 +43,11 @@ pub struct SweepDocument {
     /// Which vertices the sweep owns; absent: none.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub vertices: Option<VertexSelection>,
-    /// The key cross-sections, at least two.
+    /// The key cross-sections, at least two, at most [`crate::limits::MAX_KEYS_PER_SWEEP`].
+    #[serde(deserialize_with = "bounded::keys")]
     pub keys: Vec<KeyDocument>,
     /// Knots u_i, one per key, from 0 to 1, increasing; absent: chord length of the centers.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none", deserialize_with = "bounded::knots")]
     pub knots: Option<Vec<f64>>,
     /// The sweep this one hangs from in the hierarchy (§5); absent: a root.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -82,7 +86,7 @@ pub enum VertexSelection {
     /// The vertices of the faces of these OBJ groups (or objects).
     Groups(Vec<String>),
     /// These zero-based vertex indices, in file order.
-    Indices(Vec<u32>),
+    Indices(#[serde(deserialize_with = "bounded::indices")] Vec<u32>),
 }
 
 /// One key cross-section in a rig file.
@@ -93,7 +97,8 @@ pub struct KeyDocument {
     pub center: [f64; 3],
     /// Orientation q_i as `[x, y, z, w]`; normalized on load.
     pub rotation: [f64; 4],
-    /// Radii ρ_ij at θ_j = 2πj/M.
+    /// Radii ρ_ij at θ_j = 2πj/M; at most [`crate::limits::MAX_RADII_PER_KEY`].
+    #[serde(deserialize_with = "bounded::radii")]
     pub radii: Vec<f64>,
 }
 
@@ -119,10 +124,46 @@ impl RigDocument {
         serde_json::from_str(text)
     }
 
-    /// The file's text: pretty JSON, one key per line.
+    /// The file's text: pretty JSON, one key per line. JSON has no infinities: a non-finite
+    /// number would be written as `null`, so a writer of user data calls
+    /// [`RigDocument::try_to_json`] instead.
     pub fn to_json(&self) -> String {
         let mut text = serde_json::to_string_pretty(self).expect("a rig document always serializes");
         text.push('\n');
         text
+    }
+
+    /// [`RigDocument::to_json`], or an error naming `file` (the file to be written), the sweep,
+    /// the key and the field of the first number that is not finite.
+    pub fn try_to_json(&self, file: &std::path::Path) -> Result<String, super::RigError> {
+        self.check_finite().map_err(|kind| super::RigError::new(Some(file.to_path_buf()), kind))?;
+        Ok(self.to_json())
+    }
+
+    /// Fails on the first number of a key, a knot or a falloff that is not finite.
+    fn check_finite(&self) -> Result<(), super::RigErrorKind> {
+        for sweep in &self.sweeps {
+            let bad = |place: String, value: f64| super::RigErrorKind::NonFiniteOutput {
+                sweep: sweep.name.clone(),
+                place,
+                value,
+            };
+            for (k, key) in sweep.keys.iter().enumerate() {
+                let fields = [("center", &key.center[..]), ("rotation", &key.rotation[..]), ("radii", &key.radii[..])];
+                for (name, values) in fields {
+                    if let Some((i, &value)) = values.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+                        return Err(bad(format!("key {k}: {name}[{i}]"), value));
+                    }
+                }
+            }
+            let knots = sweep.knots.iter().flatten();
+            if let Some((i, &value)) = knots.enumerate().find(|(_, v)| !v.is_finite()) {
+                return Err(bad(format!("knot {i}"), value));
+            }
+            if let Some(value) = sweep.falloff.filter(|f| !f.is_finite()) {
+                return Err(bad("falloff".into(), value));
+            }
+        }
+        Ok(())
     }
 }

@@ -46,6 +46,15 @@ pub enum RigErrorKind {
     Version { found: u32 },
     #[error("the rig has no sweeps")]
     NoSweeps,
+    #[error("the rig has {count} sweeps, more than {}, the most a rig may have", crate::limits::MAX_SWEEPS)]
+    TooManySweeps { count: usize },
+    #[error(
+        "sweep {sweep:?}: the rig holds more than {} radii in all, the most a rig may have",
+        crate::limits::MAX_RADII_PER_RIG
+    )]
+    TooManyRadii { sweep: String },
+    #[error("sweep {sweep:?}: {place} is {value}, not a finite number; nothing was written")]
+    NonFiniteOutput { sweep: String, place: String, value: f64 },
     #[error("two sweeps are named {name:?}")]
     DuplicateName { name: String },
     #[error("sweep {sweep:?}: {source}")]

@@ -8,6 +8,7 @@
 //! i+1 stays between them.
 
 mod binding;
+pub(crate) mod bounded;
 mod document;
 mod error;
 mod links;
@@ -85,6 +86,7 @@ impl Rig {
         if sweeps.is_empty() {
             return Err(fail(RigErrorKind::NoSweeps));
         }
+        check_sizes(&sweeps).map_err(fail)?;
         for (i, sweep) in sweeps.iter().enumerate() {
             if sweeps[..i].iter().any(|other| other.name == sweep.name) {
                 return Err(fail(RigErrorKind::DuplicateName { name: sweep.name.clone() }));
@@ -234,6 +236,23 @@ fn read_document(path: &Path) -> Result<RigDocument, RigError> {
     let file = Some(path.to_path_buf());
     let text = crate::limits::read_input_text(path).map_err(|e| RigError::new(file.clone(), RigErrorKind::Io(e)))?;
     RigDocument::parse(&text).map_err(|e| RigError::new(file, RigErrorKind::Json(e)))
+}
+
+/// At most [`MAX_SWEEPS`](crate::limits::MAX_SWEEPS) sweeps and
+/// [`MAX_RADII_PER_RIG`](crate::limits::MAX_RADII_PER_RIG) radii in all, before any surface is
+/// built (each sweep's keys and radii are bounded by [`Sweep::try_new`]).
+fn check_sizes(sweeps: &[RigSweep]) -> Result<(), RigErrorKind> {
+    if sweeps.len() > crate::limits::MAX_SWEEPS {
+        return Err(RigErrorKind::TooManySweeps { count: sweeps.len() });
+    }
+    let mut total = 0usize;
+    for sweep in sweeps {
+        total = sweep.keys.iter().fold(total, |sum, key| sum.saturating_add(key.radii.len()));
+        if total > crate::limits::MAX_RADII_PER_RIG {
+            return Err(RigErrorKind::TooManyRadii { sweep: sweep.name.clone() });
+        }
+    }
+    Ok(())
 }
 
 /// A falloff must be finite and not negative, and only a sweep that owns vertices can have one.

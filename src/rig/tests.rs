@@ -106,3 +106,44 @@ fn pose_may_bring_coincident_centers_but_not_a_zero_rotation() {
     let zero = Key { rotation: DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0), ..key.clone() };
     assert_eq!(message(rig.pose(&[vec![key, zero]])), "sweep \"neck\": key 1: rotation is the zero quaternion");
 }
+
+#[test]
+fn a_pose_with_a_non_finite_number_is_not_written() {
+    let rig = example();
+    let mut document = rig.to_document();
+    document.sweeps[0].keys[1].center[2] = f64::INFINITY;
+    let error = document.try_to_json(std::path::Path::new("out/pose.json")).unwrap_err().to_string();
+    assert_eq!(
+        error,
+        "out/pose.json: sweep \"neck\": key 1: center[2] is inf, not a finite number; nothing was written"
+    );
+    document.sweeps[0].keys[1].center[2] = 2.0;
+    document.sweeps[0].keys[0].radii[5] = f64::NAN;
+    let error = document.try_to_json(std::path::Path::new("pose.json")).unwrap_err().to_string();
+    assert_eq!(error, "pose.json: sweep \"neck\": key 0: radii[5] is NaN, not a finite number; nothing was written");
+}
+
+#[test]
+fn knots_may_be_null_or_absent_but_not_too_many() {
+    let with_knots = |knots: &str| EXAMPLE.replacen("\"vertices\"", &format!("\"knots\": {knots}, \"vertices\""), 1);
+    assert_eq!(RigDocument::parse(&with_knots("null")).unwrap().sweeps[0].knots, None);
+    assert_eq!(RigDocument::parse(&with_knots("[0, 1]")).unwrap().sweeps[0].knots, Some(vec![0.0, 1.0]));
+    let many = format!("[{}]", vec!["0.5"; crate::limits::MAX_KEYS_PER_SWEEP + 1].join(", "));
+    let error = RigDocument::parse(&with_knots(&many)).unwrap_err().to_string();
+    assert!(error.starts_with("sweeps[0].knots: more than 1024 values"), "{error}");
+}
+
+#[test]
+fn a_rig_built_in_code_is_held_to_the_same_limits() {
+    let key = Key::circle(DVec3::ZERO, DQuat::IDENTITY, 1.0, 4096);
+    let sweep = |i: usize| RigSweep {
+        name: format!("s{i}"),
+        vertices: None,
+        keys: (0..200).map(|k| Key { center: DVec3::new(0.0, 0.0, k as f64), ..key.clone() }).collect(),
+        knots: None,
+        parent: None,
+        falloff: 0.0,
+    };
+    let error = message(Rig::new((0..2).map(sweep).collect()));
+    assert_eq!(error, "sweep \"s1\": the rig holds more than 1048576 radii in all, the most a rig may have");
+}

@@ -7,9 +7,11 @@
 use glam::DVec3;
 
 use super::error::SweepError;
+use crate::limits::MIN_KNOT_SPACING;
 
 /// Normalized chord-length knots of `centers`. Fails if two consecutive centers coincide (the
-/// knot would not increase) or a distance is not finite.
+/// knot would not increase), lie closer than [`MIN_KNOT_SPACING`] of the chord length, or a
+/// distance is not finite.
 pub fn chord_length_knots(centers: &[DVec3]) -> Result<Vec<f64>, SweepError> {
     let mut knots = Vec::with_capacity(centers.len());
     knots.push(0.0);
@@ -25,6 +27,9 @@ pub fn chord_length_knots(centers: &[DVec3]) -> Result<Vec<f64>, SweepError> {
         total += chord;
         knots.push(total);
     }
+    if !total.is_finite() {
+        return Err(SweepError::ChordOverflow { key: centers.len() - 1, previous: centers.len() - 2 });
+    }
     for knot in &mut knots {
         *knot /= total;
     }
@@ -32,10 +37,15 @@ pub fn chord_length_knots(centers: &[DVec3]) -> Result<Vec<f64>, SweepError> {
     if let Some(last) = knots.last_mut() {
         *last = 1.0;
     }
+    if let Some(i) = knots.windows(2).position(|pair| pair[1] - pair[0] < MIN_KNOT_SPACING) {
+        let fraction = centers[i].distance(centers[i + 1]) / total;
+        return Err(SweepError::CentersTooClose { key: i + 1, previous: i, fraction });
+    }
     Ok(knots)
 }
 
-/// Checks explicit knots: one per key, finite, from exactly 0 to exactly 1, strictly increasing.
+/// Checks explicit knots: one per key, finite, from exactly 0 to exactly 1, increasing by at
+/// least [`MIN_KNOT_SPACING`] from one to the next.
 pub fn validate_knots(knots: &[f64], keys: usize) -> Result<(), SweepError> {
     if knots.len() != keys {
         return Err(SweepError::KnotCount { keys, found: knots.len() });
@@ -50,6 +60,9 @@ pub fn validate_knots(knots: &[f64], keys: usize) -> Result<(), SweepError> {
     for (index, pair) in knots.windows(2).enumerate() {
         if pair[1] <= pair[0] {
             return Err(SweepError::KnotsNotIncreasing { index: index + 1, previous: pair[0], value: pair[1] });
+        }
+        if pair[1] - pair[0] < MIN_KNOT_SPACING {
+            return Err(SweepError::KnotsTooClose { index: index + 1, previous: pair[0], value: pair[1] });
         }
     }
     Ok(())
@@ -81,5 +94,30 @@ mod tests {
             Err(SweepError::KnotsNotIncreasing { index: 2, .. })
         ));
         assert!(matches!(validate_knots(&[0.0, f64::NAN, 1.0], 3), Err(SweepError::NonFiniteKnot { index: 1 })));
+    }
+
+    #[test]
+    fn knots_closer_than_the_minimum_spacing_are_rejected() {
+        assert_eq!(
+            validate_knots(&[0.0, 1e-300, 1.0], 3),
+            Err(SweepError::KnotsTooClose { index: 1, previous: 0.0, value: 1e-300 })
+        );
+        assert!(validate_knots(&[0.0, 2.0 * MIN_KNOT_SPACING, 1.0], 3).is_ok());
+        assert!(validate_knots(&[0.0, 1.0 - 0.5 * MIN_KNOT_SPACING, 1.0], 3).is_err());
+    }
+
+    #[test]
+    fn centers_closer_than_the_minimum_spacing_are_rejected() {
+        let centers = [DVec3::ZERO, DVec3::new(0.0, 0.0, 1e-9), DVec3::Z];
+        assert!(matches!(
+            chord_length_knots(&centers),
+            Err(SweepError::CentersTooClose { key: 1, previous: 0, fraction }) if fraction < 1e-8
+        ));
+    }
+
+    #[test]
+    fn a_chord_length_that_overflows_is_rejected() {
+        let centers = [DVec3::splat(-1e308), DVec3::ZERO, DVec3::splat(1e308)];
+        assert!(matches!(chord_length_knots(&centers), Err(SweepError::ChordOverflow { .. })));
     }
 }

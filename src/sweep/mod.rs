@@ -69,8 +69,13 @@ impl Sweep {
     /// centers when `knots` is `None` (see [`knots`]).
     ///
     /// Fails, naming the key, on fewer than 2 keys, fewer than 3 radii or a radius count that
-    /// differs from key 0's, a non-finite number, a zero quaternion, a negative radius,
-    /// coincident consecutive centers (when knots are computed) or invalid explicit knots.
+    /// differs from key 0's, a non-finite number, a coordinate or radius beyond
+    /// [`MAX_RIG_COORDINATE`](crate::limits::MAX_RIG_COORDINATE), a zero quaternion or one
+    /// whose squared length under- or overflows, a negative radius, consecutive centers closer
+    /// than [`MIN_KNOT_SPACING`](crate::limits::MIN_KNOT_SPACING) of the chord length (when
+    /// knots are computed) or invalid explicit knots. The radius count is at most
+    /// [`MAX_RADII_PER_KEY`](crate::limits::MAX_RADII_PER_KEY) and the key count at most
+    /// [`MAX_KEYS_PER_SWEEP`](crate::limits::MAX_KEYS_PER_SWEEP).
     pub fn try_new(keys: &[Key], knots: Option<&[f64]>) -> Result<Sweep, SweepError> {
         validate_keys(keys)?;
         let knots = match knots {
@@ -84,6 +89,11 @@ impl Sweep {
             }
         };
         Ok(Sweep::from_valid(keys, knots))
+    }
+
+    /// Checks `keys` as [`Sweep::try_new`] does, without building the sweep (knots aside).
+    pub fn validate(keys: &[Key]) -> Result<(), SweepError> {
+        validate_keys(keys)
     }
 
     fn from_valid(keys: &[Key], knots: Vec<f64>) -> Sweep {
@@ -185,23 +195,40 @@ impl Sweep {
     }
 }
 
+/// Checks keys as [`Sweep::try_new`] documents; every number within
+/// [`MAX_RIG_COORDINATE`](crate::limits::MAX_RIG_COORDINATE), so that every value the sweep
+/// evaluates to is finite.
 fn validate_keys(keys: &[Key]) -> Result<(), SweepError> {
+    use crate::limits::MAX_RIG_COORDINATE;
     if keys.len() < 2 {
         return Err(SweepError::TooFewKeys { count: keys.len() });
+    }
+    if keys.len() > crate::limits::MAX_KEYS_PER_SWEEP {
+        return Err(SweepError::TooManyKeys { count: keys.len() });
     }
     let samples = keys[0].radii.len();
     for (key, Key { center, rotation, radii }) in keys.iter().enumerate() {
         if !center.is_finite() {
             return Err(SweepError::NonFinite { key, field: "center" });
         }
+        if let Some(&value) = center.to_array().iter().find(|c| c.abs() > MAX_RIG_COORDINATE) {
+            return Err(SweepError::CenterOutOfRange { key, value });
+        }
         if !rotation.is_finite() {
             return Err(SweepError::NonFinite { key, field: "rotation" });
         }
-        if rotation.length_squared() == 0.0 {
+        let length_squared = rotation.length_squared();
+        if length_squared == 0.0 {
             return Err(SweepError::ZeroRotation { key });
+        }
+        if !length_squared.is_normal() {
+            return Err(SweepError::RotationScale { key, length_squared });
         }
         if radii.len() < 3 {
             return Err(SweepError::TooFewRadii { key, count: radii.len() });
+        }
+        if radii.len() > crate::limits::MAX_RADII_PER_KEY {
+            return Err(SweepError::TooManyRadii { key, count: radii.len() });
         }
         if radii.len() != samples {
             return Err(SweepError::RadiusCountMismatch { key, expected: samples, found: radii.len() });
@@ -212,6 +239,9 @@ fn validate_keys(keys: &[Key]) -> Result<(), SweepError> {
             }
             if value < 0.0 {
                 return Err(SweepError::NegativeRadius { key, index, value });
+            }
+            if value > MAX_RIG_COORDINATE {
+                return Err(SweepError::RadiusOutOfRange { key, index, value });
             }
         }
     }

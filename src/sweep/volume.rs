@@ -4,7 +4,7 @@
 use glam::DVec3;
 
 use super::Sweep;
-use super::quadrature::integrate_adaptive;
+use super::quadrature::{integrate_adaptive, magnitude};
 use super::radius::AreaPolynomial;
 
 /// Relative accuracy the quadrature aims at; the contract is 1e-9.
@@ -12,8 +12,13 @@ const VOLUME_TOLERANCE: f64 = 1e-12;
 
 impl Sweep {
     /// The volume of Eq. 1, in cubic mesh units, by adaptive Gauss–Legendre quadrature over each
-    /// knot interval (A(t) itself is integrated exactly in θ, as a polynomial in t). Signed: a sweep whose normals
-    /// point against its direction of travel has negative volume.
+    /// knot interval (A(t) itself is integrated exactly in θ, as a polynomial in t). Signed: a
+    /// sweep whose normals point against its direction of travel has negative volume, and one
+    /// whose normals lie across its direction of travel has a volume near zero.
+    ///
+    /// The accuracy is relative to ∫ A(t)·|C′(t)| dt, the volume the sweep would have with its
+    /// normals along its travel, so a volume that cancels to near zero costs no more than any
+    /// other: at most [`super::quadrature::MAX_DEPTH`] bisections per knot interval.
     pub fn volume(&self) -> f64 {
         self.segments()
             .iter()
@@ -25,7 +30,8 @@ impl Sweep {
                     let normal = segment.orientation.value(s) * DVec3::Z;
                     area.value(s) * normal.dot(segment.curve.derivative(s))
                 };
-                h * integrate_adaptive(0.0, 1.0, VOLUME_TOLERANCE, &mut integrand)
+                let scale = magnitude(0.0, 1.0, |s| area.value(s) * segment.curve.derivative(s).length());
+                h * integrate_adaptive(0.0, 1.0, VOLUME_TOLERANCE, scale, &mut integrand)
             })
             .sum()
     }
