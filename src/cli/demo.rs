@@ -35,8 +35,8 @@ pub fn run(out: &Path, quiet: bool) -> CliResult {
         ["rest.obj", "deformed.obj", "rig.json", "pose.json"].map(|name| out.join(name));
     mesh.save(&rest_path, &mesh.positions)?;
     mesh.save(&deformed_path, &deformed)?;
-    write_text(&rig_path, &rig.to_document().to_json())?;
-    write_text(&pose_path, &rig.pose_document(&posed_keys).to_json())?;
+    write_text(&rig_path, &rig.to_document().try_to_json(&rig_path)?)?;
+    write_text(&pose_path, &rig.pose_document(&posed_keys).try_to_json(&pose_path)?)?;
 
     if !quiet {
         let (rest_volume, posed_volume) = (rig.rest()[0].volume(), posed[0].volume());

@@ -50,7 +50,8 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     // The written rig must load and own the mesh's vertices without conflict.
     let rig = Rig::from_document(&document, args.append_to.clone())?;
     rig.owners(&mesh, &args.mesh.display().to_string())?;
-    write_atomically(&args.out, |out| out.write_all(document.to_json().as_bytes()))
+    let text = document.try_to_json(&args.out)?;
+    write_atomically(&args.out, |out| out.write_all(text.as_bytes()))
         .map_err(|e| format!("cannot write {}: {e}", args.out.display()))?;
     print_report(&name, &fitted, &options, elapsed);
     if !quiet {

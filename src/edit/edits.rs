@@ -94,6 +94,53 @@ impl Edit {
     }
 }
 
+/// The edits file's text (pretty JSON and a newline), or, since JSON would write a non-finite
+/// number as `null`, the first edit holding one: `edit 3 (drag_point on "arm"): to[1] is inf,
+/// not a finite number`.
+pub fn edits_to_json(edits: &[Edit]) -> Result<String, String> {
+    for (i, edit) in edits.iter().enumerate() {
+        if let Some((field, value)) = edit.numbers().into_iter().find(|(_, v)| !v.is_finite()) {
+            return Err(format!(
+                "edit {i} ({} on {:?}): {field} is {value}, not a finite number",
+                edit.op(),
+                edit.sweep()
+            ));
+        }
+    }
+    let mut text = serde_json::to_string_pretty(edits).map_err(|e| e.to_string())?;
+    text.push('\n');
+    Ok(text)
+}
+
+impl Edit {
+    /// Every number of the edit with its field name as in the file.
+    fn numbers(&self) -> Vec<(String, f64)> {
+        let named = |name: &str, values: &[f64]| -> Vec<(String, f64)> {
+            values.iter().enumerate().map(|(i, v)| (format!("{name}[{i}]"), *v)).collect()
+        };
+        match self {
+            Edit::MoveKey { translate, rotate, .. } | Edit::MoveSection { translate, rotate, .. } => {
+                let mut numbers = named("translate", translate);
+                numbers.extend(named("rotate", rotate));
+                if let Edit::MoveSection { t, .. } = self {
+                    numbers.push(("t".into(), *t));
+                }
+                numbers
+            }
+            Edit::ScaleRadii { factor, theta_range, .. } => {
+                let mut numbers = vec![("factor".to_string(), *factor)];
+                numbers.extend(theta_range.iter().flat_map(|range| named("theta_range", range)));
+                numbers
+            }
+            Edit::DragPoint { theta, t, d, h, to, .. } => {
+                let mut numbers = vec![("theta".into(), *theta), ("t".into(), *t), ("d".into(), *d), ("h".into(), *h)];
+                numbers.extend(named("to", to));
+                numbers
+            }
+        }
+    }
+}
+
 /// Parses an edits file's text: a list of at most [`crate::limits::MAX_EDITS`] edits, refused
 /// while read.
 pub fn parse_edits(text: &str) -> Result<Vec<Edit>, serde_json::Error> {
@@ -101,4 +148,34 @@ pub fn parse_edits(text: &str) -> Result<Vec<Edit>, serde_json::Error> {
     let edits = crate::rig::bounded::edits(&mut deserializer)?;
     deserializer.end()?;
     Ok(edits)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn edits_with_a_non_finite_number_are_not_written() {
+        let drag = |to: [f64; 3]| Edit::DragPoint {
+            sweep: "arm".into(),
+            theta: 0.5,
+            t: 0.5,
+            d: 0.0,
+            h: 0.0,
+            to,
+            mode: DragMode::default(),
+            keys: DEFAULT_DRAG_KEYS,
+        };
+        let scale = Edit::ScaleRadii { sweep: "arm".into(), key: 1, factor: 2.0, theta_range: None };
+        let good = [scale.clone(), drag([1.0, 2.0, 3.0])];
+        let text = edits_to_json(&good).unwrap();
+        assert_eq!(parse_edits(&text).unwrap(), good, "what is written reads back");
+        let bad = [scale, drag([1.0, f64::INFINITY, 3.0])];
+        assert_eq!(
+            edits_to_json(&bad).unwrap_err(),
+            "edit 1 (drag_point on \"arm\"): to[1] is inf, not a finite number"
+        );
+        // serde_json alone would have written `null`.
+        assert!(serde_json::to_string(&bad).unwrap().contains("null"));
+    }
 }

@@ -95,10 +95,12 @@ impl App {
 
     pub(super) fn save_pose(&mut self, path: &Path) {
         let outcome = match (&self.model.rig, &self.model.session) {
-            (Some(rig), Some(session)) => {
-                let text = rig.pose_document(session.committed()).to_json();
-                write_text(path, &text).map(|()| format!("pose saved to {}", path.display()))
-            }
+            (Some(rig), Some(session)) => rig
+                .pose_document(session.committed())
+                .try_to_json(path)
+                .map_err(|e| e.to_string())
+                .and_then(|text| write_text(path, &text))
+                .map(|()| format!("pose saved to {}", path.display())),
             _ => Err("there is no rig, so no pose to save".to_string()),
         };
         self.report(outcome);
@@ -108,8 +110,9 @@ impl App {
         let outcome = match &self.model.session {
             Some(session) => {
                 let edits = session.edits();
-                let text = serde_json::to_string_pretty(&edits).expect("edits serialize");
-                write_text(path, &format!("{text}\n"))
+                crate::edit::edits_to_json(&edits)
+                    .map_err(|e| format!("{}: {e}; nothing was written", path.display()))
+                    .and_then(|text| write_text(path, &text))
                     .map(|()| format!("{} edits saved to {}", edits.len(), path.display()))
             }
             None => Err("there is no rig, so no edits to save".to_string()),
@@ -130,7 +133,9 @@ impl App {
         let outcome = if self.model.document.sweeps.is_empty() {
             Err("there is no rig to save".to_string())
         } else {
-            write_text(path, &self.model.document.to_json()).map(|()| format!("rig saved to {}", path.display()))
+            (self.model.document.try_to_json(path).map_err(|e| e.to_string()))
+                .and_then(|text| write_text(path, &text))
+                .map(|()| format!("rig saved to {}", path.display()))
         };
         self.report(outcome);
     }
