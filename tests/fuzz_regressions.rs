@@ -6,7 +6,6 @@
 //! the seeds derived from the fuzz scene) instead of comparing.
 
 #[path = "../fuzz/src/lib.rs"]
-#[expect(dead_code, unused_imports, reason = "the fuzz crate's own entry points are unused here")]
 mod harness;
 
 use std::panic::{AssertUnwindSafe, catch_unwind};

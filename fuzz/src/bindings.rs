@@ -6,9 +6,9 @@ use std::path::Path;
 use sweepffd::bind::file::BindingsFile;
 use sweepffd::deform::deform_vertices;
 
-use crate::Outcome;
-use crate::rig::{POSE_FILE, check_deformed};
-use crate::scene::scene;
+use super::Outcome;
+use super::rig::{POSE_FILE, check_deformed};
+use super::scene::scene;
 
 /// The name the bindings input goes by in errors.
 pub const BINDINGS_FILE: &str = "bindings.bin";

@@ -7,8 +7,8 @@
 use sweepffd::edit::{BoundMesh, Posing, VolumeRule, parse_edits};
 use sweepffd::rig::RigDocument;
 
-use crate::Outcome;
-use crate::scene::scene;
+use super::Outcome;
+use super::scene::scene;
 
 /// The name the edits input goes by in errors.
 pub const EDITS_FILE: &str = "edits.json";

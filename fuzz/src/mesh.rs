@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use sweepffd::mesh::Mesh;
 
-use crate::Outcome;
+use super::Outcome;
 
 /// The folder the parsed files pretend to lie in; it does not exist.
 pub const MISSING_FOLDER: &str = "/nonexistent/sweepffd-fuzz";

@@ -5,8 +5,8 @@ use sweepffd::deform::deform_vertices;
 use sweepffd::rig::{Rig, RigDocument};
 use sweepffd::sweep::Sweep;
 
-use crate::Outcome;
-use crate::scene::scene;
+use super::Outcome;
+use super::scene::scene;
 
 /// The name the rig input goes by in errors.
 pub const RIG_FILE: &str = "rig.json";

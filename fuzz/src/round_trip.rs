@@ -10,8 +10,8 @@
 use glam::{DAffine3, DQuat, DVec3};
 use sweepffd::mesh::Mesh;
 
-use crate::mesh::parse;
-use crate::{Outcome, without_dir};
+use super::mesh::parse;
+use super::{Outcome, without_dir};
 
 /// The mesh formats by extension, in the order the first byte picks them.
 pub const EXTENSIONS: [&str; 5] = ["obj", "ply", "off", "gltf", "glb"];

@@ -5,7 +5,7 @@ use std::time::{Duration, Instant};
 
 use sweepffd::view::script::{Player, load};
 
-use crate::{Outcome, without_dir};
+use super::{Outcome, without_dir};
 
 /// The most frames played.
 const FRAMES: u32 = 1000;

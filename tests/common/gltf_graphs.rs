@@ -4,7 +4,8 @@
 
 /// A GLB of one triangle mesh whose scene holds node 0 of `nodes` (JSON objects).
 pub fn triangle_glb(nodes: &[String]) -> Vec<u8> {
-    let mut blob: Vec<u8> = [0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0].iter().flat_map(|c| c.to_le_bytes()).collect();
+    let mut blob: Vec<u8> =
+        [0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0].iter().flat_map(|c| c.to_le_bytes()).collect();
     let json = format!(
         concat!(
             r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":[0]}}],"nodes":[{}],"#,
