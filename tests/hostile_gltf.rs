@@ -547,6 +547,73 @@ fn the_glb_writers_refuse_coordinates_beyond_f32_and_write_nothing() {
     assert_eq!(names, [dir.path().join("in.glb")], "no temporary file left");
 }
 
+/// The triangle drawn by two nodes, node 1's with the extra local transform `second`.
+fn two_instances(second: Value) -> Vec<u8> {
+    let (mut document, data) = triangle();
+    let mut node = json!({"mesh": 0});
+    node.as_object_mut().unwrap().extend(second.as_object().unwrap().clone());
+    document["nodes"] = json!([{"mesh": 0, "translation": [0.0, 0.0, 2.0]}, node]);
+    document["scenes"] = json!([{"nodes": [0, 1]}]);
+    glb(&document, &data)
+}
+
+/// Asserts that `path` reads back with `expected` positions, within f32 rounding.
+fn reads_back(path: &Path, expected: &[DVec3]) {
+    let read = Mesh::load(path).unwrap();
+    assert_eq!(read.positions.len(), expected.len());
+    for (vertex, (a, b)) in read.positions.iter().zip(expected).enumerate() {
+        let error = (*a - *b).abs().max_element();
+        assert!(error <= 1e-6, "vertex {vertex} reads back as {a}, written as {b}");
+    }
+}
+
+#[test]
+fn instances_of_one_position_accessor_write_only_when_they_moved_alike() {
+    let dir = tempfile::tempdir().unwrap();
+    let bytes = two_instances(json!({"translation": [5.0, 0.0, 0.0]}));
+    let mesh = load(dir.path(), "in.glb", &bytes).unwrap();
+    assert_eq!(mesh.positions.len(), 6, "one copy of the triangle per node");
+    let shift = DVec3::new(0.5, 0.25, -1.0);
+    // Under translated nodes a world translation is the same local translation for both.
+    let both: Vec<DVec3> = mesh.positions.iter().map(|&p| p + shift).collect();
+    let out = dir.path().join("both.glb");
+    mesh.save(&out, &both).unwrap();
+    reads_back(&out, &both);
+    // The second instance alone: the one accessor cannot hold both triangles.
+    let second: Vec<DVec3> =
+        mesh.positions.iter().enumerate().map(|(v, &p)| if v < 3 { p } else { p + shift }).collect();
+    for name in ["second.glb", "second.gltf"] {
+        let out = dir.path().join(name);
+        let error = mesh.save(&out, &second).unwrap_err().to_string();
+        let expected = format!(
+            "cannot write {}: mesh 0: nodes 0 and 1 draw POSITION accessor 0 but moved it differently (vertex 3, \
+             element 0 of the accessor); a glTF file shares one POSITION accessor between these nodes, so it cannot \
+             hold both: write another format (.obj, .ply, .off), which keeps each instance's vertices",
+            out.display()
+        );
+        assert_eq!(error, expected);
+        assert!(!out.exists());
+    }
+    // Those formats keep them.
+    let out = dir.path().join("second.ply");
+    mesh.save(&out, &second).unwrap();
+    reads_back(&out, &second);
+}
+
+#[test]
+fn unmoved_instances_of_one_position_accessor_still_write() {
+    let dir = tempfile::tempdir().unwrap();
+    // A turned and scaled second node: unmoved vertices keep their bytes.
+    let bytes = two_instances(json!({"rotation": [0.0, 0.0, 0.38268343, 0.9238795], "scale": [2.0, 2.0, 2.0]}));
+    let mesh = load(dir.path(), "in.glb", &bytes).unwrap();
+    let out = dir.path().join("out.glb");
+    mesh.save(&out, &mesh.positions).unwrap();
+    reads_back(&out, &mesh.positions);
+    let mut names: Vec<PathBuf> = fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().path()).collect();
+    names.sort();
+    assert_eq!(names, [dir.path().join("in.glb"), out]);
+}
+
 /// Runs `sweepffd fit --mesh <name> --out rig.json` on `bytes` in a fresh folder, with
 /// `RUST_BACKTRACE=1`, expecting failure; returns stderr.
 fn fit_fails(name: &str, bytes: &[u8]) -> String {

@@ -420,12 +420,14 @@ fn gltf_instances_shared_accessors_sparse_positions_and_groups() {
     let mut moved = mesh.positions.clone();
     moved[9] = DVec3::new(6.0, 6.0, 6.0);
     moved[1] = DVec3::new(2.0, 0.0, 0.0);
+    // The plate's instances share one accessor: both must move alike (else nothing is written).
+    moved[5] = DVec3::new(2.0, 0.0, 10.0);
     let out = dir.path().join("scene.glb");
     mesh.save(&out, &moved).unwrap();
     let back = Mesh::load(&out).unwrap();
     assert_eq!(back.positions[9], moved[9], "the sparse accessor was made dense");
     assert_eq!(back.positions[1], moved[1]);
-    assert_eq!(back.positions[5], DVec3::new(2.0, 0.0, 10.0), "the second instance follows the first");
+    assert_eq!(back.positions[5], moved[5], "the second instance, moved alike");
     let (json, _) = parts(&out);
     assert!(json["accessors"][3].get("sparse").is_none());
     assert_eq!(json["accessors"][3]["max"], json!([6.0, 6.0, 6.0]));

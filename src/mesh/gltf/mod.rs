@@ -26,8 +26,11 @@
 //! node's local space), the `min`/`max` of those accessors, and the NORMAL of the vertices of
 //! triangles that touch a moved vertex (area-weighted normals of the primitive's triangles;
 //! TANGENT is left as it is). Everything else (UVs, colours, joints, weights, materials,
-//! textures, animations, extensions, extras) is kept. A mesh instantiated by several nodes is
-//! written from its first instance. Every buffer is written embedded — in the BIN chunk (buffer
+//! textures, animations, extensions, extras) is kept. A mesh instantiated by several nodes
+//! shares one POSITION accessor between them, so its instances must agree: each instance's
+//! new positions, mapped into local space through its own node, must equal (within f32
+//! rounding) those written from the first instance, else the write is an error that suggests
+//! another format (.obj, .ply, .off), which keeps the instances' vertices apart. Every buffer is written embedded — in the BIN chunk (buffer
 //! 0 of a `.glb`) or as a base64 data URI — so the output is one self-contained file, written
 //! atomically; image URIs are kept as they are.
 //!
@@ -68,6 +71,10 @@ pub(crate) struct GltfFile {
 pub(crate) struct Block {
     /// The POSITION accessor.
     pub accessor: usize,
+    /// The mesh whose primitive gave the block.
+    pub mesh: usize,
+    /// The node drawing the mesh, `None` in a file without nodes.
+    pub node: Option<usize>,
     /// The mesh vertex of the accessor's element 0.
     pub first: usize,
     /// The accessor's elements as read (node-local space).

@@ -234,7 +234,7 @@ impl Builder {
             }
             self.positions.push(world);
         }
-        self.blocks.push(Block { accessor, first, local, transform, target });
+        self.blocks.push(Block { accessor, mesh: site.mesh, node: site.node, first, local, transform, target });
         Ok(())
     }
 

@@ -1,10 +1,10 @@
 //! Writing a glTF file back faithfully: the document as read with only moved vertices'
 //! POSITION (and the NORMAL around them) changed.
 
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 use std::io::{self, Write};
 
-use glam::DVec3;
+use glam::{DMat4, DVec3};
 use serde_json::{Value, json};
 
 use super::generic::{bounds, first_non_finite};
@@ -13,10 +13,11 @@ use crate::mesh::source::Original;
 
 /// Writes the glTF file `original` with new mesh positions (GLB when `binary`).
 ///
-/// For each POSITION accessor (from the first node instance that uses it), the elements whose
-/// mesh position changed (any coordinate differs bit for bit from the positions as read) are
-/// mapped back through the inverse of the node's world matrix and stored as f32 in place;
-/// the others keep their bytes. The accessor's `min`/`max` are recomputed. A sparse accessor
+/// For each POSITION accessor, the elements whose mesh position changed in its first node
+/// instance (any coordinate differs bit for bit from the positions as read) are mapped back
+/// through the inverse of the node's world matrix and stored as f32 in place; the others keep
+/// their bytes. Every later instance of the accessor must agree with what is stored
+/// ([`check_instances`]): a glTF file cannot hold instances of one accessor deformed apart. The accessor's `min`/`max` are recomputed. A sparse accessor
 /// (or one without a buffer view) that moved is made dense: its elements go to a new buffer
 /// and buffer view, and `sparse` is removed. Then, for each primitive with a dense float
 /// NORMAL, the vertices of triangles that touch a moved vertex get the area-weighted normal of
@@ -25,8 +26,8 @@ use crate::mesh::source::Original;
 ///
 /// # Errors
 ///
-/// `InvalidData` when a node's world matrix is not invertible or a position does not fit in
-/// f32; any error of `out`.
+/// `InvalidData` when a node's world matrix is not invertible, a position does not fit in
+/// f32, or two instances of one POSITION accessor moved differently; any error of `out`.
 pub(crate) fn write_faithful(
     out: &mut impl Write,
     original: &Original<GltfFile>,
@@ -60,6 +61,7 @@ pub(crate) fn write_faithful(
         }
         new_local.push(Some(local));
     }
+    check_instances(file, original, positions, &new_local)?;
     for primitive in &file.primitives {
         let (Some((count, target)), Some(Some(local))) = (primitive.normal, new_local.get(primitive.block)) else {
             continue;
@@ -102,17 +104,26 @@ fn same_bits(a: DVec3, b: DVec3) -> bool {
     a.to_array().map(f64::to_bits) == b.to_array().map(f64::to_bits)
 }
 
+/// The inverse of the block's world matrix.
+fn inverse(block: &Block) -> io::Result<DMat4> {
+    let inverse = block.transform.inverse();
+    if block.transform.determinant() == 0.0 || !inverse.is_finite() {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidData,
+            format!(
+                "the node transform of POSITION accessor {} is not invertible; cannot write positions back",
+                block.accessor
+            ),
+        ));
+    }
+    Ok(inverse)
+}
+
 /// The block's elements in local space: moved ones (flagged in `moved`) through the inverse
 /// world matrix, the others as read.
 fn to_local(block: &Block, old: &[DVec3], new: &[DVec3], moved: &mut [bool]) -> io::Result<Vec<[f32; 3]>> {
     let invalid = |message: String| io::Error::new(io::ErrorKind::InvalidData, message);
-    let inverse = block.transform.inverse();
-    if block.transform.determinant() == 0.0 || !inverse.is_finite() {
-        return Err(invalid(format!(
-            "the node transform of POSITION accessor {} is not invertible; cannot write positions back",
-            block.accessor
-        )));
-    }
+    let inverse = inverse(block)?;
     let mut local = block.local.clone();
     for (i, ((a, b), flag)) in old.iter().zip(new).zip(moved.iter_mut()).enumerate() {
         if same_bits(*a, *b) {
@@ -130,6 +141,107 @@ fn to_local(block: &Block, old: &[DVec3], new: &[DVec3], moved: &mut [bool]) -> 
         local[i] = p.to_array();
     }
     Ok(local)
+}
+
+/// Refuses to write when a POSITION accessor drawn by several instances (blocks) cannot serve
+/// them all: the accessor is stored once, from its first instance (`new_local`, or the
+/// elements as read when that instance did not move), and each later instance `b` reads it
+/// back through its own world matrix `M_b`.
+///
+/// Element `i` of a later instance is in local space `q = M_b⁻¹·p_i` (its new mesh position
+/// `p_i`; an unmoved element is exactly its value as read), and must lie within
+///
+/// `4·ε₃₂·m + f32::MIN_POSITIVE + 64·ε₆₄·(|M_a⁻¹|·|p_a| + |M_b⁻¹|·|p_b|)`
+///
+/// of the stored `w`, per coordinate, where `m` is the largest stored coordinate magnitude of
+/// the accessor. The reasoning: two instances that moved alike have the same exact local
+/// position; the stored `w` is within half an f32 ulp (≤ ½·ε₃₂·m) of the first one's, or a
+/// subnormal away when it underflows; and each computed `q` carries the f64 rounding of the
+/// inverse and its product, bounded by a few ε₆₄ of the magnitudes summed in it (`|M⁻¹|` the
+/// entrywise absolute matrix, the translation included). So instances that moved alike pass
+/// with a margin of 8 (×4 for f32, ×16 for f64), and instances deformed differently by more
+/// than a few f32 ulps of the accessor's extent are refused. Rigid instances left unmoved, or
+/// moved by one world motion that commutes with both node matrices (a translation under
+/// translated nodes), agree.
+///
+/// # Errors
+///
+/// `InvalidData` naming the mesh, the accessor, the two nodes and the first vertex (of the
+/// later instance) that disagrees; nothing is written.
+fn check_instances(
+    file: &GltfFile,
+    original: &Original<GltfFile>,
+    positions: &[DVec3],
+    new_local: &[Option<Vec<[f32; 3]>>],
+) -> io::Result<()> {
+    let mut first_of: HashMap<usize, usize> = HashMap::new();
+    for (index, b) in file.blocks.iter().enumerate() {
+        let a = *first_of.entry(b.accessor).or_insert(index);
+        if a == index {
+            continue;
+        }
+        let first = &file.blocks[a];
+        let stored = new_local.get(a).and_then(Option::as_ref).unwrap_or(&first.local);
+        let m = stored.iter().flatten().fold(0f32, |m, c| m.max(c.abs()));
+        let rounding = 4.0 * f64::from(f32::EPSILON) * f64::from(m) + f64::from(f32::MIN_POSITIVE);
+        let (inverse_a, inverse_b) = (inverse(first)?, inverse(b)?);
+        for (i, w) in stored.iter().enumerate() {
+            let (_, error_a) = exact_local(first, &inverse_a, original, positions, i);
+            let (q, error_b) = exact_local(b, &inverse_b, original, positions, i);
+            let tolerance = DVec3::splat(rounding) + 64.0 * f64::EPSILON * (error_a + error_b);
+            let w = DVec3::from_array(w.map(f64::from));
+            if (q - w).abs().cmpgt(tolerance).any() {
+                return Err(disagreement(first, b, b.first + i));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Element `i` of `block` in local space, and the magnitudes summed in computing it (zero for
+/// an unmoved element, which is exactly its value as read).
+fn exact_local(
+    block: &Block,
+    inverse: &DMat4,
+    original: &Original<GltfFile>,
+    positions: &[DVec3],
+    i: usize,
+) -> (DVec3, DVec3) {
+    let read = DVec3::from_array(block.local.get(i).copied().unwrap_or_default().map(f64::from));
+    let vertex = block.first + i;
+    match (original.positions.get(vertex), positions.get(vertex)) {
+        (Some(old), Some(new)) if !same_bits(*old, *new) => {
+            let absolute = DMat4::from_cols(
+                inverse.x_axis.abs(),
+                inverse.y_axis.abs(),
+                inverse.z_axis.abs(),
+                inverse.w_axis.abs(),
+            );
+            (inverse.transform_point3(*new), absolute.transform_point3(new.abs()))
+        }
+        _ => (read, DVec3::ZERO),
+    }
+}
+
+/// The error for two instances of one POSITION accessor that moved differently (first at
+/// `vertex` of the later instance `b`).
+fn disagreement(a: &Block, b: &Block, vertex: usize) -> io::Error {
+    let mesh = if a.mesh == b.mesh { format!("mesh {}", a.mesh) } else { format!("meshes {} and {}", a.mesh, b.mesh) };
+    let nodes = match (a.node, b.node) {
+        (Some(x), Some(y)) if x == y => format!("two instances of node {x} (through different parents)"),
+        (Some(x), Some(y)) => format!("nodes {x} and {y}"),
+        _ => "their instances without a node".to_string(),
+    };
+    io::Error::new(
+        io::ErrorKind::InvalidData,
+        format!(
+            "{mesh}: {nodes} draw POSITION accessor {} but moved it differently (vertex {vertex}, element {} of the \
+             accessor); a glTF file shares one POSITION accessor between these nodes, so it cannot hold both: write \
+             another format (.obj, .ply, .off), which keeps each instance's vertices",
+            a.accessor,
+            vertex - b.first
+        ),
+    )
 }
 
 /// Stores `values[i]` as element `i` of the dense accessor at `target`, for every `i` with
