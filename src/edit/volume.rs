@@ -147,7 +147,9 @@ fn rescale_to(
     if !(target > 0.0 && volume > 0.0 && target.is_finite()) {
         return Err(EditError::VolumeUnreachable { sweep: rig.sweeps()[sweep].name.clone(), target });
     }
-    scale(&mut keys[sweep], (target / volume).sqrt());
+    let factor = (target / volume).sqrt();
+    scale(&mut keys[sweep], factor);
+    shapes[sweep].scale_radii(&keys[sweep], factor);
     propagate_down_kept(rig, keys, sweep, shapes)
 }
 

@@ -2,6 +2,8 @@
 //! changes C(t) and R(t) only, so the radius function r(θ, t) — the costly part, one bicubic
 //! patch per radius — is kept.
 
+use std::sync::Arc;
+
 use super::{Key, Sweep, SweepError, axis_segments, validate_count, validate_frame};
 
 impl Sweep {
@@ -20,5 +22,15 @@ impl Sweep {
             return Err(SweepError::KnotCount { keys: keys.len(), found: self.knots.len() });
         }
         Ok(Sweep { knots: self.knots.clone(), segments: axis_segments(keys, &self.knots), radius: self.radius.clone() })
+    }
+
+    /// This sweep with every radius scaled by `factor`: r(θ, t) by `factor` ([`RadiusField::scaled`](super::radius::RadiusField::scaled),
+    /// equal up to rounding to the sweep built from the scaled radii), C(t) and R(t) kept.
+    pub fn with_radii_scaled(&self, factor: f64) -> Sweep {
+        Sweep {
+            knots: self.knots.clone(),
+            segments: self.segments.clone(),
+            radius: Arc::new(self.radius.scaled(factor)),
+        }
     }
 }
