@@ -35,7 +35,6 @@ struct Kept {
 /// The most scalings of a kept radius function before it is rebuilt: each adds a rounding of
 /// about 1 ulp (1.1·10⁻¹⁶) relative to r and A, so 64 stay under 10⁻¹⁴, and the rebuild costs
 /// 1/64 of one per scaling.
-
 const MAX_SCALED: usize = 64;
 
 impl Shape {
