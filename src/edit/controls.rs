@@ -8,8 +8,10 @@
 /// `max_iterations` × (edited keys + 1) times, a cross-section move `max_iterations` ×
 /// (targets + 1) times, and a volume rule runs at most 21 rounds of rescaling and downward
 /// propagation, each volume (Eq. 1) taking at most 2⁸ quadrature leaves per knot interval.
-/// Each rebuild costs time proportional to the sweep's keys × radii, so the whole is linear
-/// in the rig's size.
+/// A rebuild after a rigid move keeps the radius function and costs time linear in the keys
+/// (beyond comparing the radii); one after a change of radii is linear in keys × radii, and a
+/// volume rule's uniform rescale scales the kept radius function instead (see `shapes`), so
+/// the whole is linear in the rig's size.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Controls {
     /// Rounds before an edit is reported as not converging. Default 50.

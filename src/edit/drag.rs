@@ -15,8 +15,9 @@ use serde::{Deserialize, Serialize};
 use super::EditError;
 use super::controls::Controls;
 use super::rigid::{Motion, chord_length};
+use super::shapes::Shape;
 use crate::bind::VertexBinding;
-use crate::sweep::{Key, Sweep};
+use crate::sweep::Key;
 
 /// Which parts of the difference a drag applies.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -47,9 +48,25 @@ pub fn drag_point(
     k: usize,
     controls: &Controls,
 ) -> Result<usize, EditError> {
+    drag_point_kept(keys, knots, point, target, mode, k, controls, &mut Shape::default())
+}
+
+/// [`drag_point`] with the sweep's memo `shape`: each round moves keys rigidly, so it costs
+/// time independent of the number of radii.
+#[expect(clippy::too_many_arguments, reason = "drag_point's arguments and the memo")]
+pub(super) fn drag_point_kept(
+    keys: &mut [Key],
+    knots: &[f64],
+    point: VertexBinding,
+    target: DVec3,
+    mode: DragMode,
+    k: usize,
+    controls: &Controls,
+    shape: &mut Shape,
+) -> Result<usize, EditError> {
     let tolerance = controls.position_tolerance * chord_length(keys);
-    let locate = |keys: &[Key]| -> Result<(DVec3, usize), EditError> {
-        let sweep = Sweep::try_new(keys, Some(knots)).map_err(EditError::Degenerate)?;
+    let mut locate = |keys: &[Key]| -> Result<(DVec3, usize), EditError> {
+        let sweep = shape.sweep(keys, knots).map_err(EditError::Degenerate)?;
         let VertexBinding { theta, t, d, h } = point;
         Ok((sweep.point(theta, t, d, h), sweep.locate(t).segment))
     };
@@ -68,7 +85,7 @@ pub fn drag_point(
             let share = 1.0 / (lower - m + 1) as f64;
             let motion = step(keys[m].center, v, target, mode, share);
             for key in &mut keys[m..] {
-                *key = motion.key(key);
+                motion.apply(key);
             }
         }
     }

@@ -15,20 +15,32 @@ use std::collections::VecDeque;
 use super::EditError;
 use super::controls::Controls;
 use super::rigid::Motion;
-use super::section::{SectionTarget, move_sections};
+use super::section::{SectionTarget, move_sections_kept};
+use super::shapes::Shape;
 use crate::bind::VertexBinding;
 use crate::rig::{KeyBinding, Link, Rig};
 use crate::sweep::{Key, Sweep};
 
 /// Satisfies every link of `rig` again after sweep `edited` changed in `keys`.
 pub fn propagate(rig: &Rig, keys: &mut [Vec<Key>], edited: usize, controls: &Controls) -> Result<(), EditError> {
+    propagate_kept(rig, keys, edited, controls, &mut vec![Shape::default(); keys.len()])
+}
+
+/// [`propagate`] with the sweeps' memos `shapes`.
+pub(super) fn propagate_kept(
+    rig: &Rig,
+    keys: &mut [Vec<Key>],
+    edited: usize,
+    controls: &Controls,
+    shapes: &mut [Shape],
+) -> Result<(), EditError> {
     let mut visited = vec![false; keys.len()];
     let mut queue = VecDeque::from([edited]);
     visited[edited] = true;
     while let Some(node) = queue.pop_front() {
         for (child, link) in children(rig, node) {
             if !visited[child] {
-                follow_parent(rig, keys, child, link)?;
+                follow_parent(rig, keys, child, link, shapes)?;
                 visited[child] = true;
                 queue.push_back(child);
             }
@@ -36,7 +48,7 @@ pub fn propagate(rig: &Rig, keys: &mut [Vec<Key>], edited: usize, controls: &Con
         if let Some(link) = &rig.links()[node]
             && !visited[link.parent]
         {
-            hold_child(rig, keys, node, link, controls)?;
+            hold_child(rig, keys, node, link, controls, shapes)?;
             visited[link.parent] = true;
             queue.push_back(link.parent);
         }
@@ -46,10 +58,20 @@ pub fn propagate(rig: &Rig, keys: &mut [Vec<Key>], edited: usize, controls: &Con
 
 /// Updates every descendant of `node` from it (downward only).
 pub fn propagate_down(rig: &Rig, keys: &mut [Vec<Key>], node: usize) -> Result<(), EditError> {
+    propagate_down_kept(rig, keys, node, &mut vec![Shape::default(); keys.len()])
+}
+
+/// [`propagate_down`] with the sweeps' memos `shapes`.
+pub(super) fn propagate_down_kept(
+    rig: &Rig,
+    keys: &mut [Vec<Key>],
+    node: usize,
+    shapes: &mut [Shape],
+) -> Result<(), EditError> {
     let mut queue = VecDeque::from([node]);
     while let Some(node) = queue.pop_front() {
         for (child, link) in children(rig, node) {
-            follow_parent(rig, keys, child, link)?;
+            follow_parent(rig, keys, child, link, shapes)?;
             queue.push_back(child);
         }
     }
@@ -64,35 +86,38 @@ fn children(rig: &Rig, node: usize) -> impl Iterator<Item = (usize, &Link)> {
         .filter_map(move |(i, link)| link.as_ref().filter(|l| l.parent == node).map(|l| (i, l)))
 }
 
-fn posed(rig: &Rig, keys: &[Vec<Key>], sweep: usize) -> Result<Sweep, EditError> {
-    Sweep::try_new(&keys[sweep], Some(rig.rest()[sweep].knots())).map_err(|source| EditError::Hierarchy {
+fn posed<'a>(rig: &Rig, keys: &[Vec<Key>], sweep: usize, shapes: &'a mut [Shape]) -> Result<&'a Sweep, EditError> {
+    shapes[sweep].sweep(&keys[sweep], rig.rest()[sweep].knots()).map_err(|source| EditError::Hierarchy {
         sweep: rig.sweeps()[sweep].name.clone(),
         source: Box::new(EditError::Degenerate(source)),
     })
 }
 
 /// Moves `child`'s keys to where its link puts them on its (posed) parent.
-fn follow_parent(rig: &Rig, keys: &mut [Vec<Key>], child: usize, link: &Link) -> Result<(), EditError> {
-    let parent = posed(rig, keys, link.parent)?;
+fn follow_parent(
+    rig: &Rig,
+    keys: &mut [Vec<Key>],
+    child: usize,
+    link: &Link,
+    shapes: &mut [Shape],
+) -> Result<(), EditError> {
+    let parent = posed(rig, keys, link.parent, shapes)?;
     let chain = &mut keys[child];
     let last = chain.len() - 1;
-    let first_motion = Motion::between(&chain[0], &link.first.key_on(&parent, &chain[0].radii));
+    let first_motion = Motion::between(&chain[0], &link.first.key_on(parent, &[]));
     match &link.last {
         None => {
             for key in chain.iter_mut() {
-                *key = first_motion.key(key);
+                first_motion.apply(key);
             }
         }
         Some(binding) => {
-            let last_motion = Motion::between(&chain[last], &binding.key_on(&parent, &chain[last].radii));
+            let last_motion = Motion::between(&chain[last], &binding.key_on(parent, &[]));
             let knots = rig.rest()[child].knots();
             for (key, &w) in chain.iter_mut().zip(knots) {
-                let (a, b) = (first_motion.key(key), last_motion.key(key));
-                *key = Key {
-                    center: a.center.lerp(b.center, w),
-                    rotation: a.rotation.slerp(b.rotation, w).normalize(),
-                    radii: key.radii.clone(),
-                };
+                let (a, b) = (first_motion.frame(key), last_motion.frame(key));
+                key.center = a.0.lerp(b.0, w);
+                key.rotation = a.1.slerp(b.1, w).normalize();
             }
         }
     }
@@ -111,17 +136,18 @@ fn hold_child(
     child: usize,
     link: &Link,
     controls: &Controls,
+    shapes: &mut [Shape],
 ) -> Result<(), EditError> {
-    let parent = posed(rig, keys, link.parent)?;
+    let parent = posed(rig, keys, link.parent, shapes)?;
     let chain = &keys[child];
-    let mut targets = vec![section_holding(&parent, &link.first, &chain[0])];
+    let mut targets = vec![section_holding(parent, &link.first, &chain[0])];
     if let Some(last) = &link.last {
-        targets.push(section_holding(&parent, last, &chain[chain.len() - 1]));
+        targets.push(section_holding(parent, last, &chain[chain.len() - 1]));
     }
     let knots = rig.rest()[link.parent].knots();
-    move_sections(&mut keys[link.parent], knots, &targets, controls).map_err(|source| EditError::Hierarchy {
-        sweep: rig.sweeps()[link.parent].name.clone(),
-        source: Box::new(source),
+    let shape = &mut shapes[link.parent];
+    move_sections_kept(&mut keys[link.parent], knots, &targets, controls, shape).map_err(|source| {
+        EditError::Hierarchy { sweep: rig.sweeps()[link.parent].name.clone(), source: Box::new(source) }
     })?;
     Ok(())
 }

@@ -31,7 +31,7 @@ pub fn move_key(keys: &mut [Key], index: usize, translation: DVec3, rotation: DQ
         KeyMode::Independent => index + 1,
     };
     for key in &mut keys[index..end] {
-        *key = motion.key(key);
+        motion.apply(key);
     }
 }
 

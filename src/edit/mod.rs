@@ -15,6 +15,7 @@ mod keys;
 mod posing;
 mod rigid;
 mod section;
+mod shapes;
 mod volume;
 
 pub use controls::Controls;

@@ -5,11 +5,12 @@ use glam::{DQuat, DVec3};
 
 use super::EditError;
 use super::controls::Controls;
-use super::drag::drag_point;
+use super::drag::drag_point_kept;
 use super::edits::Edit;
-use super::hierarchy::propagate;
+use super::hierarchy::propagate_kept;
 use super::keys::{move_key, scale_radii};
-use super::section::{SectionTarget, move_sections};
+use super::section::{SectionTarget, move_sections_kept};
+use super::shapes::{Shape, Shapes};
 use super::volume::{BoundMesh, VolumeRule, Volumes, apply_rule};
 use crate::bind::VertexBinding;
 use crate::rig::Rig;
@@ -28,13 +29,25 @@ pub struct Posing<'a> {
     /// Iteration limits and tolerances.
     pub controls: Controls,
     mesh: Option<BoundMesh<'a>>,
+    /// The sweeps last built from (recent) keys, kept from edit to edit: a memo, so an edit
+    /// rebuilds and measures only the sweeps it changes.
+    shapes: Shapes,
 }
 
 impl<'a> Posing<'a> {
     /// Starts from the rest keys of `rig`.
     pub fn new(rig: &'a Rig) -> Posing<'a> {
         let keys = rig.sweeps().iter().map(|sweep| sweep.keys.clone()).collect();
-        Posing { rig, keys, hierarchy: true, volume: VolumeRule::None, controls: Controls::default(), mesh: None }
+        let shapes = vec![Shape::default(); rig.sweeps().len()];
+        Posing {
+            rig,
+            keys,
+            hierarchy: true,
+            volume: VolumeRule::None,
+            controls: Controls::default(),
+            mesh: None,
+            shapes,
+        }
     }
 
     /// Continues from `keys`, a pose of the rig (e.g. loaded from a pose file, or saved before
@@ -83,19 +96,20 @@ impl<'a> Posing<'a> {
         let rig = self.rig;
         let sweep =
             rig.sweep_index(edit.sweep()).ok_or_else(|| EditError::UnknownSweep { sweep: edit.sweep().into() })?;
+        let shapes = &mut self.shapes;
         let before = match self.volume {
             VolumeRule::None => None,
-            _ => Some(Volumes::measure(rig, &self.keys, self.mesh.as_ref())?),
+            _ => Some(Volumes::measure_kept(rig, &self.keys, self.mesh.as_ref(), shapes)?),
         };
         let mut keys = self.keys.clone();
         let knots = rig.rest()[sweep].knots();
-        let rounds = apply_edit(edit, &mut keys[sweep], knots, &self.controls)?;
-        Sweep::try_new(&keys[sweep], Some(knots))?;
+        let rounds = apply_edit(edit, &mut keys[sweep], knots, &self.controls, &mut shapes[sweep])?;
+        shapes[sweep].sweep(&keys[sweep], knots)?;
         if self.hierarchy {
-            propagate(rig, &mut keys, sweep, &self.controls)?;
+            propagate_kept(rig, &mut keys, sweep, &self.controls, shapes)?;
         }
         if let Some(before) = &before {
-            apply_rule(self.volume, rig, &mut keys, sweep, before, self.mesh.as_ref())?;
+            apply_rule(self.volume, rig, &mut keys, sweep, before, self.mesh.as_ref(), shapes)?;
         }
         // Every sweep the edit reached is checked as rest keys are: finite, in range.
         for (keys, rest) in keys.iter().zip(rig.sweeps()) {
@@ -107,7 +121,13 @@ impl<'a> Posing<'a> {
 }
 
 /// Applies one edit to the keys of its sweep.
-fn apply_edit(edit: &Edit, keys: &mut [Key], knots: &[f64], controls: &Controls) -> Result<usize, EditError> {
+fn apply_edit(
+    edit: &Edit,
+    keys: &mut [Key],
+    knots: &[f64],
+    controls: &Controls,
+    shape: &mut Shape,
+) -> Result<usize, EditError> {
     let key_in_range = |key: usize| {
         if key < keys.len() {
             Ok(key)
@@ -141,17 +161,17 @@ fn apply_edit(edit: &Edit, keys: &mut [Key], knots: &[f64], controls: &Controls)
                 return Err(EditError::Invalid("\"keys\" must be at least 1".into()));
             }
             let point = VertexBinding { theta: *theta, t, d: *d, h: *h };
-            drag_point(keys, knots, point, vector(to, "to")?, *mode, *k, controls)
+            drag_point_kept(keys, knots, point, vector(to, "to")?, *mode, *k, controls, shape)
         }
         Edit::MoveSection { t, translate, rotate, .. } => {
             let t = parameter(*t)?;
-            let sweep = Sweep::try_new(keys, Some(knots))?;
+            let sweep = shape.sweep(keys, knots)?;
             let target = SectionTarget {
                 t,
                 center: sweep.center(t) + vector(translate, "translate")?,
                 rotation: (rotation(rotate)? * sweep.orientation(t)).normalize(),
             };
-            move_sections(keys, knots, &[target], controls)
+            move_sections_kept(keys, knots, &[target], controls, shape)
         }
     }
 }

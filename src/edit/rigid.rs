@@ -40,7 +40,19 @@ impl Motion {
 
     /// `key` moved by the motion (radii unchanged).
     pub fn key(&self, key: &Key) -> Key {
-        Key { center: self.point(key.center), rotation: (self.rotation * key.rotation).normalize(), ..key.clone() }
+        let mut moved = key.clone();
+        self.apply(&mut moved);
+        moved
+    }
+
+    /// Moves `key` by the motion in place (its radii are not touched, nor copied).
+    pub fn apply(&self, key: &mut Key) {
+        (key.center, key.rotation) = self.frame(key);
+    }
+
+    /// The center and rotation the motion gives `key`.
+    pub fn frame(&self, key: &Key) -> (DVec3, DQuat) {
+        (self.point(key.center), (self.rotation * key.rotation).normalize())
     }
 
     /// The fraction `w` ∈ [0, 1] of the motion, for the key at `at`: the rotation slerped from

@@ -12,7 +12,8 @@ use glam::{DQuat, DVec3};
 use super::EditError;
 use super::controls::Controls;
 use super::rigid::{Motion, angle_between, chord_length};
-use crate::sweep::{Key, Sweep};
+use super::shapes::Shape;
+use crate::sweep::Key;
 
 /// Where the cross-section at `t` should go.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -33,9 +34,21 @@ pub fn move_sections(
     targets: &[SectionTarget],
     controls: &Controls,
 ) -> Result<usize, EditError> {
+    move_sections_kept(keys, knots, targets, controls, &mut Shape::default())
+}
+
+/// [`move_sections`] with the sweep's memo `shape`: each round moves keys rigidly, so it costs
+/// time independent of the number of radii.
+pub(super) fn move_sections_kept(
+    keys: &mut [Key],
+    knots: &[f64],
+    targets: &[SectionTarget],
+    controls: &Controls,
+    shape: &mut Shape,
+) -> Result<usize, EditError> {
     let tolerance = controls.position_tolerance * chord_length(keys);
     for iteration in 0..=controls.max_iterations {
-        let sweep = Sweep::try_new(keys, Some(knots)).map_err(EditError::Degenerate)?;
+        let sweep = shape.sweep(keys, knots).map_err(EditError::Degenerate)?;
         let (remaining, angle) = targets.iter().fold((0.0f64, 0.0f64), |(distance, angle), target| {
             let frame = (sweep.center(target.t), sweep.orientation(target.t));
             (distance.max(frame.0.distance(target.center)), angle.max(angle_between(frame.1, target.rotation)))
@@ -47,7 +60,7 @@ pub fn move_sections(
             return Err(EditError::NotConverged { iterations: iteration, remaining, angle });
         }
         for target in targets {
-            let sweep = Sweep::try_new(keys, Some(knots)).map_err(EditError::Degenerate)?;
+            let sweep = shape.sweep(keys, knots).map_err(EditError::Degenerate)?;
             let (center, rotation) = (sweep.center(target.t), sweep.orientation(target.t));
             let motion = Motion::about(center, target.rotation * rotation.inverse(), target.center - center);
             let at = sweep.locate(target.t);
@@ -59,7 +72,7 @@ pub fn move_sections(
                 at.segment..at.segment + 2
             };
             for key in &mut keys[bracket] {
-                *key = motion.key(key);
+                motion.apply(key);
             }
         }
     }

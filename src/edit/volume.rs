@@ -10,12 +10,13 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
 use super::EditError;
-use super::hierarchy::propagate_down;
+use super::hierarchy::propagate_down_kept;
+use super::shapes::Shape;
 use crate::bind::MeshBindings;
 use crate::deform::deform_vertices;
 use crate::mesh::Mesh;
 use crate::rig::Rig;
-use crate::sweep::{Key, Sweep};
+use crate::sweep::Key;
 
 /// Which volumes an edit keeps.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ValueEnum)]
@@ -74,7 +75,18 @@ pub struct Volumes {
 impl Volumes {
     /// Measures `keys`.
     pub fn measure(rig: &Rig, keys: &[Vec<Key>], mesh: Option<&BoundMesh>) -> Result<Volumes, EditError> {
-        let sweeps = (0..keys.len()).map(|i| sweep_volume(rig, keys, i)).collect::<Result<_, _>>()?;
+        Volumes::measure_kept(rig, keys, mesh, &mut vec![Shape::default(); keys.len()])
+    }
+
+    /// [`Volumes::measure`] with the sweeps' memos `shapes`: a sweep unchanged since its last
+    /// volume costs nothing.
+    pub(super) fn measure_kept(
+        rig: &Rig,
+        keys: &[Vec<Key>],
+        mesh: Option<&BoundMesh>,
+        shapes: &mut [Shape],
+    ) -> Result<Volumes, EditError> {
+        let sweeps = (0..keys.len()).map(|i| sweep_volume(rig, keys, i, shapes)).collect::<Result<_, _>>()?;
         let mesh = mesh.map(|m| m.volume(rig, keys)).transpose()?;
         Ok(Volumes { sweeps, mesh })
     }
@@ -88,14 +100,15 @@ pub fn apply_rule(
     edited: usize,
     before: &Volumes,
     mesh: Option<&BoundMesh>,
+    shapes: &mut [Shape],
 ) -> Result<(), EditError> {
     if rule == VolumeRule::None || !is_handle(rig, edited) {
         return Ok(());
     }
     match rule {
         VolumeRule::None => Ok(()),
-        VolumeRule::Total => keep_total(rig, keys, edited, before),
-        VolumeRule::Ratio => keep_ratios(rig, keys, edited, before),
+        VolumeRule::Total => keep_total(rig, keys, edited, before, shapes),
+        VolumeRule::Ratio => keep_ratios(rig, keys, edited, before, shapes),
         VolumeRule::Mesh => keep_mesh(rig, keys, edited, before, mesh.ok_or(EditError::MeshNeeded)?),
     }
 }
@@ -110,8 +123,8 @@ fn absorbers(rig: &Rig, edited: usize) -> Vec<usize> {
     if others.is_empty() { vec![edited] } else { others }
 }
 
-fn sweep_volume(rig: &Rig, keys: &[Vec<Key>], sweep: usize) -> Result<f64, EditError> {
-    Ok(Sweep::try_new(&keys[sweep], Some(rig.rest()[sweep].knots()))?.volume())
+fn sweep_volume(rig: &Rig, keys: &[Vec<Key>], sweep: usize, shapes: &mut [Shape]) -> Result<f64, EditError> {
+    Ok(shapes[sweep].volume(&keys[sweep], rig.rest()[sweep].knots())?)
 }
 
 fn scale(keys: &mut [Key], factor: f64) {
@@ -123,13 +136,21 @@ fn scale(keys: &mut [Key], factor: f64) {
 }
 
 /// Rescales `sweep` to volume `target` and re-attaches its descendants.
-fn rescale_to(rig: &Rig, keys: &mut [Vec<Key>], sweep: usize, target: f64) -> Result<(), EditError> {
-    let volume = sweep_volume(rig, keys, sweep)?;
+fn rescale_to(
+    rig: &Rig,
+    keys: &mut [Vec<Key>],
+    sweep: usize,
+    target: f64,
+    shapes: &mut [Shape],
+) -> Result<(), EditError> {
+    let volume = sweep_volume(rig, keys, sweep, shapes)?;
     if !(target > 0.0 && volume > 0.0 && target.is_finite()) {
         return Err(EditError::VolumeUnreachable { sweep: rig.sweeps()[sweep].name.clone(), target });
     }
-    scale(&mut keys[sweep], (target / volume).sqrt());
-    propagate_down(rig, keys, sweep)
+    let factor = (target / volume).sqrt();
+    scale(&mut keys[sweep], factor);
+    shapes[sweep].scale_radii(&keys[sweep], factor);
+    propagate_down_kept(rig, keys, sweep, shapes)
 }
 
 /// Repeats `round` (which returns the largest relative error left) until it is within tolerance.
@@ -147,16 +168,22 @@ fn until_converged(mut round: impl FnMut() -> Result<f64, EditError>) -> Result<
     }
 }
 
-fn keep_total(rig: &Rig, keys: &mut [Vec<Key>], edited: usize, before: &Volumes) -> Result<(), EditError> {
+fn keep_total(
+    rig: &Rig,
+    keys: &mut [Vec<Key>],
+    edited: usize,
+    before: &Volumes,
+    shapes: &mut [Shape],
+) -> Result<(), EditError> {
     let absorbers = absorbers(rig, edited);
     let alone = absorbers == [edited];
     until_converged(|| {
-        let delta = if alone { 0.0 } else { sweep_volume(rig, keys, edited)? - before.sweeps[edited] };
+        let delta = if alone { 0.0 } else { sweep_volume(rig, keys, edited, shapes)? - before.sweeps[edited] };
         let mut worst = 0.0f64;
         for &a in &absorbers {
             let target = before.sweeps[a] - delta / absorbers.len() as f64;
-            worst = worst.max(((sweep_volume(rig, keys, a)? - target) / target).abs());
-            rescale_to(rig, keys, a, target)?;
+            worst = worst.max(((sweep_volume(rig, keys, a, shapes)? - target) / target).abs());
+            rescale_to(rig, keys, a, target, shapes)?;
         }
         Ok(worst)
     })
@@ -164,18 +191,25 @@ fn keep_total(rig: &Rig, keys: &mut [Vec<Key>], edited: usize, before: &Volumes)
 
 /// Each (child, parent) pair of handles keeps the ratio of its volumes before the edit,
 /// rescaling outward from the edited sweep: a child to its parent, a parent to its child.
-fn keep_ratios(rig: &Rig, keys: &mut [Vec<Key>], edited: usize, before: &Volumes) -> Result<(), EditError> {
+fn keep_ratios(
+    rig: &Rig,
+    keys: &mut [Vec<Key>],
+    edited: usize,
+    before: &Volumes,
+    shapes: &mut [Shape],
+) -> Result<(), EditError> {
     let order = outward_pairs(rig, edited);
     until_converged(|| {
         let mut worst = 0.0f64;
         for &(child, parent, rescale_child) in &order {
             let ratio = before.sweeps[child] / before.sweeps[parent];
-            let (child_volume, parent_volume) = (sweep_volume(rig, keys, child)?, sweep_volume(rig, keys, parent)?);
+            let (child_volume, parent_volume) =
+                (sweep_volume(rig, keys, child, shapes)?, sweep_volume(rig, keys, parent, shapes)?);
             worst = worst.max(((child_volume / parent_volume - ratio) / ratio).abs());
             if rescale_child {
-                rescale_to(rig, keys, child, parent_volume * ratio)?;
+                rescale_to(rig, keys, child, parent_volume * ratio, shapes)?;
             } else {
-                rescale_to(rig, keys, parent, child_volume / ratio)?;
+                rescale_to(rig, keys, parent, child_volume / ratio, shapes)?;
             }
         }
         Ok(worst)
@@ -231,7 +265,7 @@ fn keep_mesh(
         let mut scaled = start.clone();
         for &a in &absorbers {
             scale(&mut scaled[a], f);
-            propagate_down(rig, &mut scaled, a)?;
+            super::hierarchy::propagate_down(rig, &mut scaled, a)?;
         }
         let volume = mesh.volume(rig, &scaled)?;
         Ok((scaled, volume - target))

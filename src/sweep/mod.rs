@@ -23,7 +23,10 @@ pub mod periodic_spline;
 pub mod plane_quintic;
 pub mod quadrature;
 pub mod radius;
+mod reshape;
 mod volume;
+
+use std::sync::Arc;
 
 use glam::{DQuat, DVec3};
 
@@ -61,7 +64,9 @@ pub struct Segment {
 pub struct Sweep {
     knots: Vec<f64>,
     segments: Vec<Segment>,
-    radius: RadiusField,
+    /// Shared with the sweeps rebuilt from it by [`Sweep::try_with_axis`], whose keys have the
+    /// same radii.
+    radius: Arc<RadiusField>,
 }
 
 impl Sweep {
@@ -97,20 +102,9 @@ impl Sweep {
     }
 
     fn from_valid(keys: &[Key], knots: Vec<f64>) -> Sweep {
-        let centers: Vec<DVec3> = keys.iter().map(|key| key.center).collect();
-        let rotations: Vec<DQuat> = keys.iter().map(|key| key.rotation.normalize()).collect();
-        let segments = center_curve(&knots, &centers)
-            .into_iter()
-            .enumerate()
-            .map(|(k, curve)| Segment {
-                t0: knots[k],
-                t1: knots[k + 1],
-                curve,
-                orientation: OrientationPiece::new(rotations[k], rotations[k + 1]),
-            })
-            .collect();
+        let segments = axis_segments(keys, &knots);
         let radii: Vec<&[f64]> = keys.iter().map(|key| key.radii.as_slice()).collect();
-        let radius = RadiusField::new(&knots, &radii);
+        let radius = Arc::new(RadiusField::new(&knots, &radii));
         Sweep { knots, segments, radius }
     }
 
@@ -195,54 +189,91 @@ impl Sweep {
     }
 }
 
+/// The knot intervals of C(t) (the natural cubic spline through the centers) and R(t) (the
+/// normalized linear interpolation of the rotations) through `keys` at `knots`.
+fn axis_segments(keys: &[Key], knots: &[f64]) -> Vec<Segment> {
+    let centers: Vec<DVec3> = keys.iter().map(|key| key.center).collect();
+    let rotations: Vec<DQuat> = keys.iter().map(|key| key.rotation.normalize()).collect();
+    center_curve(knots, &centers)
+        .into_iter()
+        .enumerate()
+        .map(|(k, curve)| Segment {
+            t0: knots[k],
+            t1: knots[k + 1],
+            curve,
+            orientation: OrientationPiece::new(rotations[k], rotations[k + 1]),
+        })
+        .collect()
+}
+
 /// Checks keys as [`Sweep::try_new`] documents; every number within
 /// [`MAX_RIG_COORDINATE`](crate::limits::MAX_RIG_COORDINATE), so that every value the sweep
 /// evaluates to is finite.
 fn validate_keys(keys: &[Key]) -> Result<(), SweepError> {
-    use crate::limits::MAX_RIG_COORDINATE;
+    validate_count(keys)?;
+    let samples = keys[0].radii.len();
+    for (index, key) in keys.iter().enumerate() {
+        validate_frame(index, key)?;
+        validate_radii(index, key, samples)?;
+    }
+    Ok(())
+}
+
+/// At least 2 and at most [`MAX_KEYS_PER_SWEEP`](crate::limits::MAX_KEYS_PER_SWEEP) keys.
+fn validate_count(keys: &[Key]) -> Result<(), SweepError> {
     if keys.len() < 2 {
         return Err(SweepError::TooFewKeys { count: keys.len() });
     }
     if keys.len() > crate::limits::MAX_KEYS_PER_SWEEP {
         return Err(SweepError::TooManyKeys { count: keys.len() });
     }
-    let samples = keys[0].radii.len();
-    for (key, Key { center, rotation, radii }) in keys.iter().enumerate() {
-        if !center.is_finite() {
-            return Err(SweepError::NonFinite { key, field: "center" });
+    Ok(())
+}
+
+/// Key `key`'s center and rotation: finite, in range, a usable quaternion.
+fn validate_frame(key: usize, Key { center, rotation, .. }: &Key) -> Result<(), SweepError> {
+    use crate::limits::MAX_RIG_COORDINATE;
+    if !center.is_finite() {
+        return Err(SweepError::NonFinite { key, field: "center" });
+    }
+    if let Some(&value) = center.to_array().iter().find(|c| c.abs() > MAX_RIG_COORDINATE) {
+        return Err(SweepError::CenterOutOfRange { key, value });
+    }
+    if !rotation.is_finite() {
+        return Err(SweepError::NonFinite { key, field: "rotation" });
+    }
+    let length_squared = rotation.length_squared();
+    if length_squared == 0.0 {
+        return Err(SweepError::ZeroRotation { key });
+    }
+    if !length_squared.is_normal() {
+        return Err(SweepError::RotationScale { key, length_squared });
+    }
+    Ok(())
+}
+
+/// Key `key`'s radii: `samples` of them (3 to [`MAX_RADII_PER_KEY`](crate::limits::MAX_RADII_PER_KEY)),
+/// each finite, non-negative and in range.
+fn validate_radii(key: usize, Key { radii, .. }: &Key, samples: usize) -> Result<(), SweepError> {
+    use crate::limits::MAX_RIG_COORDINATE;
+    if radii.len() < 3 {
+        return Err(SweepError::TooFewRadii { key, count: radii.len() });
+    }
+    if radii.len() > crate::limits::MAX_RADII_PER_KEY {
+        return Err(SweepError::TooManyRadii { key, count: radii.len() });
+    }
+    if radii.len() != samples {
+        return Err(SweepError::RadiusCountMismatch { key, expected: samples, found: radii.len() });
+    }
+    for (index, &value) in radii.iter().enumerate() {
+        if !value.is_finite() {
+            return Err(SweepError::NonFinite { key, field: "radius" });
         }
-        if let Some(&value) = center.to_array().iter().find(|c| c.abs() > MAX_RIG_COORDINATE) {
-            return Err(SweepError::CenterOutOfRange { key, value });
+        if value < 0.0 {
+            return Err(SweepError::NegativeRadius { key, index, value });
         }
-        if !rotation.is_finite() {
-            return Err(SweepError::NonFinite { key, field: "rotation" });
-        }
-        let length_squared = rotation.length_squared();
-        if length_squared == 0.0 {
-            return Err(SweepError::ZeroRotation { key });
-        }
-        if !length_squared.is_normal() {
-            return Err(SweepError::RotationScale { key, length_squared });
-        }
-        if radii.len() < 3 {
-            return Err(SweepError::TooFewRadii { key, count: radii.len() });
-        }
-        if radii.len() > crate::limits::MAX_RADII_PER_KEY {
-            return Err(SweepError::TooManyRadii { key, count: radii.len() });
-        }
-        if radii.len() != samples {
-            return Err(SweepError::RadiusCountMismatch { key, expected: samples, found: radii.len() });
-        }
-        for (index, &value) in radii.iter().enumerate() {
-            if !value.is_finite() {
-                return Err(SweepError::NonFinite { key, field: "radius" });
-            }
-            if value < 0.0 {
-                return Err(SweepError::NegativeRadius { key, index, value });
-            }
-            if value > MAX_RIG_COORDINATE {
-                return Err(SweepError::RadiusOutOfRange { key, index, value });
-            }
+        if value > MAX_RIG_COORDINATE {
+            return Err(SweepError::RadiusOutOfRange { key, index, value });
         }
     }
     Ok(())

@@ -86,6 +86,13 @@ impl RadiusField {
         self.samples
     }
 
+    /// r scaled by `factor`: the field of every ρ_ij multiplied by `factor`, up to rounding (the
+    /// spline is linear in the radii), without solving the splines again.
+    pub fn scaled(&self, factor: f64) -> RadiusField {
+        let patches = self.patches.iter().map(|patch| RadiusPatch { c: patch.c.map(|row| row.map(|c| c * factor)) });
+        RadiusField { samples: self.samples, patches: patches.collect() }
+    }
+
     /// The patch on knot interval `segment` and angular interval `j`.
     pub fn patch(&self, segment: usize, j: usize) -> &RadiusPatch {
         &self.patches[segment * self.samples + j]
@@ -133,6 +140,12 @@ impl AreaPolynomial {
         }
         let half_step = 0.5 * TAU / field.samples as f64;
         AreaPolynomial { a: a.map(|x| x * half_step) }
+    }
+
+    /// A of the radii scaled by `factor`: A scaled by factor² (up to rounding).
+    pub fn scaled(&self, factor: f64) -> AreaPolynomial {
+        let square = factor * factor;
+        AreaPolynomial { a: self.a.map(|x| x * square) }
     }
 
     /// A at local parameter `s`.

@@ -20,12 +20,23 @@ impl Sweep {
     /// normals along its travel, so a volume that cancels to near zero costs no more than any
     /// other: at most [`super::quadrature::MAX_DEPTH`] bisections per knot interval.
     pub fn volume(&self) -> f64 {
+        self.volume_with_areas(&self.area_polynomials())
+    }
+
+    /// A(t) of Eq. 1 on each knot interval: it depends on the radii alone, so a sweep rebuilt
+    /// by [`Sweep::try_with_axis`] has the same.
+    pub fn area_polynomials(&self) -> Vec<AreaPolynomial> {
+        (0..self.segments().len()).map(|k| AreaPolynomial::new(self.radius_field(), k)).collect()
+    }
+
+    /// [`Sweep::volume`] given `areas`, this sweep's [`Sweep::area_polynomials`]: the same
+    /// value, in time independent of the number of radii.
+    pub fn volume_with_areas(&self, areas: &[AreaPolynomial]) -> f64 {
         self.segments()
             .iter()
-            .enumerate()
-            .map(|(k, segment)| {
+            .zip(areas)
+            .map(|(segment, area)| {
                 let h = segment.t1 - segment.t0;
-                let area = AreaPolynomial::new(self.radius_field(), k);
                 let mut integrand = |s: f64| {
                     let normal = segment.orientation.value(s) * DVec3::Z;
                     area.value(s) * normal.dot(segment.curve.derivative(s))
