@@ -133,27 +133,31 @@ fn tube_rig(radius: &str) -> String {
 
 #[test]
 fn deform_refuses_a_ply_output_that_overflows_f32() {
+    // Poses cannot push a coordinate past f32 (rig coordinates and radii stay within 1e15), so
+    // the overflow comes from the input: an OBJ (which stores f64) vertex the rig does not own,
+    // at 1e39, written to a PLY of f32.
     let dir = tempfile::tempdir().unwrap();
     let square = [[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]];
-    let corners: Vec<f32> =
-        [0.0_f32, 2.0].iter().flat_map(|&z| square.iter().flat_map(move |p| [p[0], p[1], z])).collect();
-    let mut body = f32_bytes(&corners);
-    for face in [[0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]] {
-        body.push(4);
-        body.extend(face.iter().flat_map(|&i: &i32| i.to_le_bytes()));
+    let mut obj = String::new();
+    for z in [0.0, 2.0] {
+        for p in square {
+            obj.push_str(&format!("v {} {} {z}\n", p[0], p[1]));
+        }
     }
-    let header = format!("element vertex 8\n{XYZ}element face 4\nproperty list uchar int vertex_indices\n");
-    fs::write(dir.path().join("in.ply"), binary_ply(&header, &body)).unwrap();
-    fs::write(dir.path().join("rig.json"), tube_rig("1")).unwrap();
-    fs::write(dir.path().join("pose.json"), tube_rig("1e160")).unwrap();
-    let args = ["deform", "--mesh", "in.ply", "--rig", "rig.json", "--pose", "pose.json", "--out", "out.ply"];
+    obj.push_str("v 1e39 0 0\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n");
+    fs::write(dir.path().join("in.obj"), obj).unwrap();
+    let owned = |radius: &str| {
+        tube_rig(radius).replace(r#""vertices": "all""#, r#""vertices": {"indices": [0, 1, 2, 3, 4, 5, 6, 7]}"#)
+    };
+    fs::write(dir.path().join("rig.json"), owned("1")).unwrap();
+    fs::write(dir.path().join("pose.json"), owned("2")).unwrap();
+    let args = ["deform", "--mesh", "in.obj", "--rig", "rig.json", "--pose", "pose.json", "--out", "out.ply"];
     let output = common::sweepffd(dir.path()).args(args).args(["--backend", "cpu"]).output().unwrap();
     let stderr = String::from_utf8(output.stderr).unwrap();
     assert_eq!(output.status.code(), Some(1), "{stderr}");
-    assert!(
-        stderr.starts_with("error: out.ply: vertex 0 has the coordinate ")
-            && stderr.ends_with(", which does not fit in the f32 this format stores; nothing was written\n"),
-        "{stderr}"
+    assert_eq!(
+        stderr,
+        "error: out.ply: vertex 8 has the coordinate 1e39, which does not fit in the f32 this format stores; nothing was written\n"
     );
     assert!(!dir.path().join("out.ply").exists());
     let mut names: Vec<PathBuf> = fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().path()).collect();
