@@ -28,7 +28,7 @@ fn band_main(
     }
     let band = bands[i];
     // At weight 0 against the rest position the vertex keeps the rest position written at bind time.
-    if (band.cell == UNBOUND && band.weight == 0.0) {
+    if (band.cell == UNOWNED && band.weight == 0.0) {
         return;
     }
     let binding = bindings[band.vertex];
@@ -40,7 +40,7 @@ fn band_main(
     let rest_offset = rotate(frame.turn, local);
     let own = sweep_influence(cells[cell], frame, binding.s, binding.phi, rest_offset);
     var second = Influence(rest_center, vec4<f32>(0.0, 0.0, 0.0, 1.0), rest_offset);
-    if (band.cell != UNBOUND) {
+    if (band.cell != UNOWNED) {
         let at = unpack_s_phi(band.s_phi);
         let other = rest_cells[band.cell];
         let offset = rest_center + rest_offset - curve_at(other, at.x);

@@ -24,8 +24,8 @@ fn band_flags_main(
     let flag = flags[i];
     let v = flag.vertex & ~(BAND_FLAG | KEEPS_REST);
     let cell = bindings[v].cell;
-    // An unbound vertex is in no band (UNBOUND has BAND_FLAG set already and stays as it is).
-    if (cell == UNBOUND) {
+    // An unbound vertex is in no band (UNOWNED has BAND_FLAG set already and stays as it is).
+    if (cell == UNOWNED) {
         return;
     }
     bindings[v].cell = (cell & ~BAND_FLAG) | (flag.vertex & BAND_FLAG);

@@ -1,5 +1,5 @@
 // Packs the bind kernel's bindings of band vertices to their neighbouring sweeps into the band
-// records' second influence: the cell (UNBOUND: the rest position) and (s, phi) as two unorm16.
+// records' second influence: the cell (UNOWNED: the rest position) and (s, phi) as two unorm16.
 // Composed after layout.wgsl. Twin: src/cpu/band_pack.rs.
 
 @group(0) @binding(0) var<uniform> params: DispatchParams;

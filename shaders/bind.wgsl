@@ -9,7 +9,7 @@
 @group(0) @binding(0) var<uniform> params: DispatchParams;
 @group(0) @binding(2) var<storage, read> bind_segments: array<BindSegment>;
 @group(0) @binding(3) var<storage, read> sweeps: array<SweepInfo>;
-// The owning sweep of each vertex, or UNBOUND.
+// The owning sweep of each vertex, or UNOWNED.
 @group(0) @binding(4) var<storage, read> owners: array<u32>;
 // Rest positions, tightly packed xyz.
 @group(0) @binding(5) var<storage, read> positions: array<f32>;
@@ -187,8 +187,8 @@ fn bind_main(
         return;
     }
     let flagged_owner = owners[i];
-    if (flagged_owner == UNBOUND) {
-        bindings[i] = GpuBinding(UNBOUND, 0.0, 0.0, 0.0, 0.0);
+    if (flagged_owner == UNOWNED) {
+        bindings[i] = GpuBinding(UNOWNED, 0.0, 0.0, 0.0, 0.0);
         return;
     }
     let band = flagged_owner & BAND_FLAG;

@@ -20,7 +20,7 @@ fn deform_main(
     }
     let binding = bindings[i];
     // Unbound vertices keep their rest position; vertices in falloff bands (BAND_FLAG, which
-    // UNBOUND also has) are moved by the band kernel.
+    // UNOWNED also has) are moved by the band kernel.
     if (binding.cell >= BAND_FLAG) {
         return;
     }

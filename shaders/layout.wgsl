@@ -2,7 +2,7 @@
 // Twin: src/coeffs/layout.rs (sizes and member offsets are checked against it by a test).
 
 const WORKGROUP_SIZE: u32 = 128u;
-const UNBOUND: u32 = 0xffffffffu;
+const UNOWNED: u32 = 0xffffffffu;
 // Set in a binding's cell (and a bind kernel owner) for a vertex in a falloff band.
 const BAND_FLAG: u32 = 0x80000000u;
 // Set in a BandFlag's vertex for a vertex that keeps its rest position in the new bands.
@@ -42,7 +42,7 @@ struct BindSegment {
     _pad: f32,
 }
 
-// A vertex's binding: its radius cell (or UNBOUND), local (s, phi) in that cell, d and h.
+// A vertex's binding: its radius cell (or UNOWNED), local (s, phi) in that cell, d and h.
 struct GpuBinding {
     cell: u32,
     s: f32,
@@ -52,7 +52,7 @@ struct GpuBinding {
 }
 
 // A vertex in a falloff band: its vertex (relative to the dispatch's first), weight w, and second
-// influence: UNBOUND (the rest position) or a neighbouring sweep's cell with (s, phi) as two
+// influence: UNOWNED (the rest position) or a neighbouring sweep's cell with (s, phi) as two
 // unorm16 (s low).
 struct BandRecord {
     vertex: u32,

@@ -9,7 +9,7 @@
 mod common;
 
 use glam::{DVec3, Vec3};
-use sweepffd::coeffs::{GpuBinding, SweepCoefficients, UNBOUND};
+use sweepffd::coeffs::{GpuBinding, SweepCoefficients, UNOWNED};
 use sweepffd::cpu;
 use sweepffd::gpu::{BindingSource, GpuDeformer};
 use sweepffd::mesh::Mesh;
@@ -44,8 +44,8 @@ fn check(name: &str, mesh: &Mesh, rig: &Rig) {
     let twin_bindings = cpu::bind::bind_to(rest, &owners, &rest_f32);
     let (mut worst_dt, mut worst_at) = (0.0, 0);
     for (i, (gpu, twin)) in gpu_bindings.iter().zip(&twin_bindings).enumerate() {
-        assert_eq!(gpu.cell == UNBOUND, twin.cell == UNBOUND, "{name}: vertex {i} bound on one side only");
-        if gpu.cell == UNBOUND {
+        assert_eq!(gpu.cell == UNOWNED, twin.cell == UNOWNED, "{name}: vertex {i} bound on one side only");
+        if gpu.cell == UNOWNED {
             continue;
         }
         let t = |b: &GpuBinding| coefficients.reference_binding(rest, b).params.t;

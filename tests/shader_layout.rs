@@ -6,7 +6,7 @@ use std::mem::{offset_of, size_of};
 
 use sweepffd::coeffs::{
     BAND_FLAG, BandFlag, BandRecord, BindSegment, CellCoeffs, DispatchParams, GpuBinding, Joint, KEEPS_REST,
-    SkinInfluence, SweepInfo, UNBOUND, UNIFORM_CELL_CAPACITY, WORKGROUP_SIZE,
+    SkinInfluence, SweepInfo, UNIFORM_CELL_CAPACITY, UNOWNED, WORKGROUP_SIZE,
 };
 use sweepffd::gpu::shaders;
 use sweepffd::normals::{FAN_INDEX, FAN_START};
@@ -101,7 +101,7 @@ fn shared_constants_have_the_rust_values() {
     for (name, source, _) in shaders::ALL {
         let module = parse(name, source);
         assert_eq!(u32_constant(&module, "UNIFORM_CELL_CAPACITY"), Some(UNIFORM_CELL_CAPACITY), "{name}");
-        assert_eq!(u32_constant(&module, "UNBOUND"), Some(UNBOUND), "{name}");
+        assert_eq!(u32_constant(&module, "UNOWNED"), Some(UNOWNED), "{name}");
         assert_eq!(u32_constant(&module, "BAND_FLAG"), Some(BAND_FLAG), "{name}");
         assert_eq!(u32_constant(&module, "KEEPS_REST"), Some(KEEPS_REST), "{name}");
     }

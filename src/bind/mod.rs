@@ -24,8 +24,9 @@ use crate::sweep::{AxisPoint, Sweep};
 
 pub use band::{BandBinding, MeshBindings};
 
-/// Marks a vertex that no sweep owns; it stays where it is.
-pub const UNOWNED: u32 = u32::MAX;
+/// Marks a vertex that no sweep owns; it stays where it is. One name for the f64 path, the
+/// GPU buffers and the owner lists.
+pub use crate::coeffs::UNOWNED;
 
 /// The binding parameters of one vertex to one sweep (Eq. 2 extended by h).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

@@ -3,8 +3,8 @@
 
 use std::f64::consts::TAU;
 
-use super::{BAND_FLAG, BandRecord, GpuBinding, SweepCoefficients, UNBOUND};
-use crate::bind::{BandBinding, Binding, MeshBindings, UNOWNED, VertexBinding};
+use super::{BAND_FLAG, BandRecord, GpuBinding, SweepCoefficients, UNOWNED};
+use crate::bind::{BandBinding, Binding, MeshBindings, VertexBinding};
 use crate::cpu::band_pack::band_pack_vertex;
 use crate::sweep::Sweep;
 use crate::sweep::radius::angular_cell;
@@ -14,8 +14,8 @@ impl SweepCoefficients {
     /// f64. `rest` are the sweeps these coefficients were built from.
     pub fn reference_binding(&self, rest: &[Sweep], binding: &GpuBinding) -> Binding {
         let binding =
-            &GpuBinding { cell: if binding.cell == UNBOUND { UNBOUND } else { binding.cell & !BAND_FLAG }, ..*binding };
-        let Some((sweep, info)) = (binding.cell != UNBOUND)
+            &GpuBinding { cell: if binding.cell == UNOWNED { UNOWNED } else { binding.cell & !BAND_FLAG }, ..*binding };
+        let Some((sweep, info)) = (binding.cell != UNOWNED)
             .then(|| {
                 self.sweeps.iter().enumerate().find(|(_, info)| {
                     (info.first_cell..info.first_cell + info.segment_count * info.samples).contains(&binding.cell)
@@ -66,7 +66,7 @@ impl SweepCoefficients {
     /// The GPU form of a reference binding, in f32.
     pub fn gpu_binding(&self, rest: &[Sweep], binding: &Binding) -> GpuBinding {
         if binding.sweep == UNOWNED {
-            return GpuBinding { cell: UNBOUND, s: 0.0, phi: 0.0, d: 0.0, h: 0.0 };
+            return GpuBinding { cell: UNOWNED, s: 0.0, phi: 0.0, d: 0.0, h: 0.0 };
         }
         let info = self.sweeps[binding.sweep as usize];
         let at = rest[binding.sweep as usize].locate(binding.params.t);
@@ -104,7 +104,7 @@ mod tests {
             assert!((back.params.d - reference.params.d).abs() < 1e-7);
         }
         let unowned = coefficients.gpu_binding(rest, &Binding::UNOWNED);
-        assert_eq!(unowned.cell, UNBOUND);
+        assert_eq!(unowned.cell, UNOWNED);
         assert_eq!(coefficients.reference_binding(rest, &unowned), Binding::UNOWNED);
     }
 }

@@ -10,8 +10,9 @@ use bytemuck::{Pod, Zeroable};
 /// Threads per workgroup of every compute kernel; the shaders' `@workgroup_size` must match.
 pub const WORKGROUP_SIZE: u32 = 128;
 
-/// `GpuBinding::cell` of a vertex that no sweep owns; the deform kernel leaves it in place.
-pub const UNBOUND: u32 = u32::MAX;
+/// Marks a vertex that no sweep owns, as an owner index or a `GpuBinding::cell`; the kernels
+/// leave it in place.
+pub const UNOWNED: u32 = u32::MAX;
 
 /// Set in `GpuBinding::cell` (and in the owner given to the bind kernel) for a vertex in a
 /// falloff band: the deform kernel leaves it to the band kernel, which reads its cell as
@@ -97,7 +98,7 @@ pub struct BindSegment {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuBinding {
-    /// Global cell index, or [`UNBOUND`]; with [`BAND_FLAG`] set for a vertex in a falloff band.
+    /// Global cell index, or [`UNOWNED`]; with [`BAND_FLAG`] set for a vertex in a falloff band.
     pub cell: u32,
     /// Local axis parameter s ∈ [0, 1] in the cell's knot interval.
     pub s: f32,
@@ -112,7 +113,7 @@ pub struct GpuBinding {
 /// A vertex in a falloff band, for the band kernel: its weight and its second influence. 16
 /// bytes, only for vertices with w < 1.
 ///
-/// The second influence is the rest position (`cell` = [`UNBOUND`]) or a neighbouring sweep's
+/// The second influence is the rest position (`cell` = [`UNOWNED`]) or a neighbouring sweep's
 /// frame at the vertex: the cell and local (s, φ) of the vertex's binding to that sweep, as
 /// unorm16 (s in the low half). The band kernel rebuilds the vertex's rest position from its own
 /// binding and takes its offset in that frame, so d and h of the second binding need no storage;
@@ -125,7 +126,7 @@ pub struct BandRecord {
     pub vertex: u32,
     /// w ∈ [0, 1): the share of its own sweep's deformation it follows.
     pub weight: f32,
-    /// The second influence's global cell, or [`UNBOUND`] for the rest position.
+    /// The second influence's global cell, or [`UNOWNED`] for the rest position.
     pub cell: u32,
     /// The second influence's (s, φ) packed as two unorm16, s in bits 0..16.
     pub s_phi: u32,

@@ -18,7 +18,7 @@ use glam::{DQuat, DVec3};
 
 pub use layout::{
     BAND_FLAG, BandFlag, BandRecord, BindSegment, CellCoeffs, DispatchParams, GpuBinding, Joint, KEEPS_REST,
-    SkinInfluence, SweepInfo, UNBOUND, UNIFORM_CELL_CAPACITY, WORKGROUP_SIZE,
+    SkinInfluence, SweepInfo, UNIFORM_CELL_CAPACITY, UNOWNED, WORKGROUP_SIZE,
 };
 
 use crate::sweep::Sweep;

@@ -6,7 +6,7 @@ use glam::{Vec2, Vec3, Vec4};
 
 use super::blend::{Influence, blend, rest_frame, sweep_influence};
 use super::sweep_eval::{curve_at, rotate};
-use crate::coeffs::{BAND_FLAG, BandRecord, CellCoeffs, GpuBinding, UNBOUND};
+use crate::coeffs::{BAND_FLAG, BandRecord, CellCoeffs, GpuBinding, UNOWNED};
 
 /// (s, φ) of a band record's second influence, from two unorm16.
 pub fn unpack_s_phi(packed: u32) -> Vec2 {
@@ -22,7 +22,7 @@ pub fn band_vertex(
     bindings: &[GpuBinding],
     band: &BandRecord,
 ) -> Option<Vec3> {
-    if band.cell == UNBOUND && band.weight == 0.0 {
+    if band.cell == UNOWNED && band.weight == 0.0 {
         return None;
     }
     let binding = &bindings[band.vertex as usize];
@@ -34,7 +34,7 @@ pub fn band_vertex(
     let rest_offset = rotate(frame.turn, local);
     let own = sweep_influence(&cells[cell], &frame, binding.s, binding.phi, rest_offset);
     let mut second = Influence { center: rest_center, turn: Vec4::new(0.0, 0.0, 0.0, 1.0), offset: rest_offset };
-    if band.cell != UNBOUND {
+    if band.cell != UNOWNED {
         let at = unpack_s_phi(band.s_phi);
         let other = &rest_cells[band.cell as usize];
         let offset = rest_center + rest_offset - curve_at(other, at.x);

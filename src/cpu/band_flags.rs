@@ -3,14 +3,14 @@
 //! writes the rest position of a vertex that keeps it in the new bands ([`KEEPS_REST`]: w = 0
 //! against the rest position), which the band kernel never writes.
 
-use crate::coeffs::{BAND_FLAG, BandFlag, GpuBinding, KEEPS_REST, UNBOUND};
+use crate::coeffs::{BAND_FLAG, BandFlag, GpuBinding, KEEPS_REST, UNOWNED};
 
 /// One invocation of the kernel: applies `flag` to the dispatch's `bindings` and `positions`
 /// (tightly packed xyz, indexed like `bindings`). An unbound vertex is left as it is.
 pub fn band_flags_vertex(flag: &BandFlag, bindings: &mut [GpuBinding], positions: &mut [f32]) {
     let v = (flag.vertex & !(BAND_FLAG | KEEPS_REST)) as usize;
     let cell = bindings[v].cell;
-    if cell == UNBOUND {
+    if cell == UNOWNED {
         return;
     }
     bindings[v].cell = (cell & !BAND_FLAG) | (flag.vertex & BAND_FLAG);
@@ -59,10 +59,10 @@ mod tests {
 
     #[test]
     fn an_unbound_vertex_is_left_alone() {
-        let mut bindings = vec![binding(UNBOUND)];
+        let mut bindings = vec![binding(UNOWNED)];
         let mut positions = vec![9.0; 3];
         band_flags_vertex(&BandFlag { vertex: KEEPS_REST, x: 1.0, y: 2.0, z: 3.0 }, &mut bindings, &mut positions);
-        assert_eq!(bindings[0].cell, UNBOUND);
+        assert_eq!(bindings[0].cell, UNOWNED);
         assert_eq!(positions, vec![9.0; 3]);
     }
 }

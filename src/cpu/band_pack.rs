@@ -1,5 +1,5 @@
 //! Twin of `shaders/band_pack.wgsl`: the band records' second influences from the bindings of
-//! band vertices to their neighbouring sweeps: the cell ([`UNBOUND`](crate::coeffs::UNBOUND):
+//! band vertices to their neighbouring sweeps: the cell ([`UNOWNED`](crate::coeffs::UNOWNED):
 //! the rest position) and (s, φ) as two unorm16.
 
 use crate::coeffs::{BandRecord, GpuBinding};

@@ -12,7 +12,7 @@ use super::angle::angle_of;
 use super::position;
 use super::sweep_eval::{curve_at, quat_at, radius_at, rotate_inverse};
 use crate::coeffs::{
-    BAND_FLAG, BindSegment, CellCoeffs, GpuBinding, SweepCoefficients, SweepInfo, UNBOUND, bind_segments,
+    BAND_FLAG, BindSegment, CellCoeffs, GpuBinding, SweepCoefficients, SweepInfo, UNOWNED, bind_segments,
 };
 use crate::sweep::Sweep;
 
@@ -184,10 +184,10 @@ fn roots_on_segment(inputs: &BindInputs, k: u32, cell: u32, v: Vec3, nearest: &m
 }
 
 /// One invocation of the kernel: the binding of vertex `v` owned by sweep `flagged_owner` (or
-/// [`UNBOUND`]); a [`BAND_FLAG`] on the owner (a vertex in a falloff band) is kept in the cell.
+/// [`UNOWNED`]); a [`BAND_FLAG`] on the owner (a vertex in a falloff band) is kept in the cell.
 pub fn bind_vertex(inputs: &BindInputs, flagged_owner: u32, v: Vec3) -> GpuBinding {
-    if flagged_owner == UNBOUND {
-        return GpuBinding { cell: UNBOUND, s: 0.0, phi: 0.0, d: 0.0, h: 0.0 };
+    if flagged_owner == UNOWNED {
+        return GpuBinding { cell: UNOWNED, s: 0.0, phi: 0.0, d: 0.0, h: 0.0 };
     }
     let band = flagged_owner & BAND_FLAG;
     let owner = flagged_owner & !BAND_FLAG;

@@ -11,7 +11,7 @@ use crate::coeffs::{BAND_FLAG, CellCoeffs, GpuBinding};
 /// keeps its rest position) or in a falloff band (and is moved by [`super::band`]).
 pub fn deform_vertex(cells: &[CellCoeffs], binding: &GpuBinding) -> Option<Vec3> {
     // Unbound vertices keep their rest position; vertices in falloff bands (BAND_FLAG, which
-    // UNBOUND also has) are moved by the band kernel.
+    // UNOWNED also has) are moved by the band kernel.
     if binding.cell >= BAND_FLAG {
         return None;
     }

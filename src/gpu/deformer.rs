@@ -20,7 +20,7 @@ use super::normals_pass::NormalsStage;
 use super::readback::{read_bytes, wait};
 use super::{GpuContext, GpuError};
 use crate::bind::falloff::BandWeight;
-use crate::coeffs::{BAND_FLAG, BandRecord, DispatchParams, GpuBinding, SweepCoefficients, UNBOUND};
+use crate::coeffs::{BAND_FLAG, BandRecord, DispatchParams, GpuBinding, SweepCoefficients, UNOWNED};
 use crate::mesh::Faces;
 use crate::sweep::Sweep;
 
@@ -31,7 +31,7 @@ const STORAGE_BUFFERS_NEEDED: u32 = 6;
 #[derive(Clone, Copy, Debug)]
 pub enum BindingSource<'a> {
     /// Bind on the GPU: `owners[i]` is the index of the sweep owning vertex i, or
-    /// [`UNBOUND`](crate::coeffs::UNBOUND); `bands` are the falloff weights
+    /// [`UNOWNED`](crate::coeffs::UNOWNED); `bands` are the falloff weights
     /// ([`crate::bind::falloff::band_weights`], empty without falloff), sorted by vertex. Band
     /// vertices that fade into a neighbouring sweep are bound to it on the GPU too.
     Bind { owners: &'a [u32], bands: &'a [BandWeight] },
@@ -215,11 +215,11 @@ impl GpuDeformer {
         });
         let (members, bound): (Vec<BandMember>, Vec<bool>) = match bindings {
             BindingSource::Bind { owners, bands } => {
-                (bands.iter().map(BandMember::of_weight).collect(), owners.iter().map(|&o| o != UNBOUND).collect())
+                (bands.iter().map(BandMember::of_weight).collect(), owners.iter().map(|&o| o != UNOWNED).collect())
             }
             BindingSource::Precomputed { bindings, bands } => (
                 bands.iter().map(BandMember::of_record).collect(),
-                bindings.iter().map(|b| b.cell != UNBOUND).collect(),
+                bindings.iter().map(|b| b.cell != UNOWNED).collect(),
             ),
         };
         let rebanding = Rebanding::new(rest, binder, members, &bound);
@@ -408,7 +408,7 @@ impl GpuDeformer {
 }
 
 /// Fails unless `weights` are sorted by vertex, each vertex `bound` (owned by a sweep), each
-/// weight in [0, 1) and each neighbour one of the rig's `sweeps` or [`UNBOUND`] (the rest
+/// weight in [0, 1) and each neighbour one of the rig's `sweeps` or [`UNOWNED`] (the rest
 /// position).
 fn check_weights(weights: &[BandWeight], sweeps: usize, bound: impl Fn(usize) -> bool) -> Result<(), GpuError> {
     let band = |b: &BandWeight| (b.vertex, b.weight, b.neighbour);
@@ -418,7 +418,7 @@ fn check_weights(weights: &[BandWeight], sweeps: usize, bound: impl Fn(usize) ->
 
 /// Whether `bands`, each seen as (vertex, weight, second influence), are sorted by vertex, each
 /// vertex `bound`, each weight in [0, 1) and each second influence below `seconds` or
-/// [`UNBOUND`] (the rest position).
+/// [`UNOWNED`] (the rest position).
 fn check_bands<B>(
     bands: &[B],
     band: impl Fn(&B) -> (u32, f64, u32),
@@ -428,7 +428,7 @@ fn check_bands<B>(
     let ordered = bands.windows(2).all(|pair| band(&pair[0]).0 < band(&pair[1]).0);
     let valid = |b: &B| {
         let (vertex, weight, second) = band(b);
-        bound(vertex as usize) && (0.0..1.0).contains(&weight) && (second == UNBOUND || (second as usize) < seconds)
+        bound(vertex as usize) && (0.0..1.0).contains(&weight) && (second == UNOWNED || (second as usize) < seconds)
     };
     if ordered && bands.iter().all(valid) { Ok(()) } else { Err(()) }
 }
@@ -437,7 +437,7 @@ fn check_input(rest: &[Sweep], positions: &[DVec3], bindings: &BindingSource) ->
     if positions.is_empty() {
         return Err(GpuError::Input("the mesh has no vertices".into()));
     }
-    if positions.len() >= UNBOUND as usize {
+    if positions.len() >= UNOWNED as usize {
         return Err(GpuError::Input(format!("{} vertices are more than the GPU path indexes", positions.len())));
     }
     if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
@@ -448,21 +448,21 @@ fn check_input(rest: &[Sweep], positions: &[DVec3], bindings: &BindingSource) ->
             if owners.len() != positions.len() {
                 return Err(GpuError::Input(format!("{} owners for {} vertices", owners.len(), positions.len())));
             }
-            if let Some(i) = owners.iter().position(|&o| o != UNBOUND && o as usize >= rest.len()) {
+            if let Some(i) = owners.iter().position(|&o| o != UNOWNED && o as usize >= rest.len()) {
                 return Err(GpuError::Input(format!(
                     "vertex {i} is owned by sweep {}, but the rig has {}",
                     owners[i],
                     rest.len()
                 )));
             }
-            check_weights(bands, rest.len(), |v| owners.get(v).is_some_and(|&o| o != UNBOUND))?;
+            check_weights(bands, rest.len(), |v| owners.get(v).is_some_and(|&o| o != UNOWNED))?;
         }
         BindingSource::Precomputed { bindings, bands } => {
             if bindings.len() != positions.len() {
                 return Err(GpuError::Input(format!("{} bindings for {} vertices", bindings.len(), positions.len())));
             }
             let cells: usize = rest.iter().map(|s| s.segments().len() * s.radius_samples()).sum();
-            if let Some(i) = bindings.iter().position(|b| b.cell != UNBOUND && (b.cell & !BAND_FLAG) as usize >= cells)
+            if let Some(i) = bindings.iter().position(|b| b.cell != UNOWNED && (b.cell & !BAND_FLAG) as usize >= cells)
             {
                 return Err(GpuError::Input(format!(
                     "binding {i} refers to radius cell {} of {cells}",
@@ -470,7 +470,7 @@ fn check_input(rest: &[Sweep], positions: &[DVec3], bindings: &BindingSource) ->
                 )));
             }
             let band = |b: &BandRecord| (b.vertex, b.weight as f64, b.cell);
-            let bound = |v: usize| bindings.get(v).is_some_and(|b| b.cell != UNBOUND);
+            let bound = |v: usize| bindings.get(v).is_some_and(|b| b.cell != UNOWNED);
             check_bands(bands, band, cells, bound)
                 .map_err(|()| GpuError::Input("the band records are not sorted, bound and in range".into()))?;
         }

@@ -18,7 +18,7 @@ use super::super::kernels::{self, Kernel};
 use super::super::readback::wait;
 use super::{DeformChunk, GpuDeformer, check_weights};
 use crate::bind::falloff::BandWeight;
-use crate::coeffs::{BAND_FLAG, BandFlag, BandRecord, DispatchParams, KEEPS_REST, UNBOUND};
+use crate::coeffs::{BAND_FLAG, BandFlag, BandRecord, DispatchParams, KEEPS_REST, UNOWNED};
 use crate::sweep::Sweep;
 use wgpu::util::DeviceExt;
 
@@ -35,12 +35,12 @@ pub(super) struct BandMember {
 impl BandMember {
     /// The member of a falloff weight.
     pub(super) fn of_weight(weight: &BandWeight) -> BandMember {
-        BandMember { vertex: weight.vertex, keeps_rest: weight.neighbour == UNBOUND && weight.weight as f32 == 0.0 }
+        BandMember { vertex: weight.vertex, keeps_rest: weight.neighbour == UNOWNED && weight.weight as f32 == 0.0 }
     }
 
     /// The member of a band record (vertex global).
     pub(super) fn of_record(record: &BandRecord) -> BandMember {
-        BandMember { vertex: record.vertex, keeps_rest: record.cell == UNBOUND && record.weight == 0.0 }
+        BandMember { vertex: record.vertex, keeps_rest: record.cell == UNOWNED && record.weight == 0.0 }
     }
 }
 
@@ -249,7 +249,7 @@ mod tests {
     #[test]
     fn leaving_entering_and_staying_vertices() {
         let old = [member(1, false), member(3, false), member(5, true)];
-        let new = [weight(3, 0.4, 0), weight(5, 0.0, UNBOUND), weight(6, 0.7, UNBOUND)];
+        let new = [weight(3, 0.4, 0), weight(5, 0.0, UNOWNED), weight(6, 0.7, UNOWNED)];
         let changes = flag_changes(&old, &new, &rest());
         // 1 leaves, 3 and 5 stay as they were, 6 enters moving (w > 0).
         assert_eq!(
@@ -266,7 +266,7 @@ mod tests {
         // 2 enters at w = 0 against the rest; 4 stays but now fades to the rest at w = 0 (it was
         // fading into sweep 1); 7 is at w = 0 against sweep 1, which moves it.
         let old = [member(4, false)];
-        let new = [weight(2, 0.0, UNBOUND), weight(4, 0.0, UNBOUND), weight(7, 0.0, 1)];
+        let new = [weight(2, 0.0, UNOWNED), weight(4, 0.0, UNOWNED), weight(7, 0.0, 1)];
         let changes = flag_changes(&old, &new, &rest());
         let back = |v: u32| BandFlag { vertex: v | BAND_FLAG | KEEPS_REST, x: v as f32, y: 0.5, z: -1.0 };
         assert_eq!(changes, vec![back(2), back(4), BandFlag { vertex: 7 | BAND_FLAG, ..Default::default() }]);
@@ -274,13 +274,13 @@ mod tests {
 
     #[test]
     fn a_weight_that_rounds_to_zero_in_f32_keeps_the_rest_position_as_the_kernel_does() {
-        assert!(BandMember::of_weight(&weight(0, 1e-50, UNBOUND)).keeps_rest);
-        assert!(!BandMember::of_weight(&weight(0, 1e-30, UNBOUND)).keeps_rest);
+        assert!(BandMember::of_weight(&weight(0, 1e-50, UNOWNED)).keeps_rest);
+        assert!(!BandMember::of_weight(&weight(0, 1e-30, UNOWNED)).keeps_rest);
     }
 
     #[test]
     fn same_bands_change_nothing_and_no_bands_clear_every_flag() {
-        let new = [weight(2, 0.0, UNBOUND), weight(4, 0.5, 0)];
+        let new = [weight(2, 0.0, UNOWNED), weight(4, 0.5, 0)];
         let old: Vec<BandMember> = new.iter().map(BandMember::of_weight).collect();
         assert!(flag_changes(&old, &new, &rest()).is_empty());
         let cleared = flag_changes(&old, &[], &rest());
