@@ -39,6 +39,7 @@
 //! # }
 //! ```
 
+#[cfg(feature = "cli")]
 pub mod bench;
 pub mod bind;
 pub mod coeffs;
@@ -50,9 +51,20 @@ pub mod gpu;
 pub mod limits;
 pub mod mesh;
 pub mod normals;
+pub mod parallel;
+#[cfg(feature = "render")]
 pub mod render;
 pub mod rig;
 pub mod sweep;
 pub mod synthetic;
 #[cfg(feature = "viewer")]
 pub mod view;
+
+// What an embedder's frame loop names, and the two crates whose versions it must match.
+pub use coeffs::UNOWNED;
+pub use glam;
+pub use gpu::{BindingSource, GpuContext, GpuDeformer, GpuError};
+pub use mesh::{Faces, Mesh};
+pub use rig::{Rig, RigError, RigSweep};
+pub use sweep::{Key, Sweep};
+pub use wgpu;

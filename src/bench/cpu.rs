@@ -83,7 +83,7 @@ impl CpuBench {
         let n_f = n as f64;
         BenchReport {
             backend: "cpu",
-            adapter: format!("{} threads", rayon::current_num_threads()),
+            adapter: format!("{} threads", crate::parallel::thread_count()),
             n,
             bind_verts_per_s: n_f / bind,
             deform_verts_per_s: n_f / deform,

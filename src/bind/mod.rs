@@ -11,13 +11,12 @@
 
 pub mod band;
 pub mod falloff;
-pub mod file;
 pub mod quintic;
 
 use std::f64::consts::TAU;
 
+use crate::parallel::prelude::*;
 use glam::DVec3;
-use rayon::prelude::*;
 
 use crate::sweep::plane_quintic::PlaneQuintic;
 use crate::sweep::{AxisPoint, Sweep};

@@ -9,12 +9,27 @@ use sweepffd::bench::{BenchReport, BenchScene, CpuBench, FalloffKind, GpuBench, 
 use sweepffd::mesh::Mesh;
 use sweepffd::rig::Rig;
 
+/// The arguments of `sweepffd bench`.
+#[derive(Debug, clap::Args)]
 pub struct Args {
+    /// Vertices of the synthetic tube to measure, 770 to 33554432 (ignored with --mesh and
+    /// --rig); rounded down to a whole tube, 256·k + 2 vertices, with a note.
+    #[arg(long, default_value_t = 1_000_000)]
     pub vertices: usize,
+    /// Measure this mesh instead of a synthetic tube (needs --rig).
+    #[arg(long)]
     pub mesh: Option<PathBuf>,
+    /// The rest rig of --mesh.
+    #[arg(long)]
     pub rig: Option<PathBuf>,
+    /// Where to measure.
+    #[arg(long, value_enum, default_value_t = Backend::Auto)]
     pub backend: Backend,
+    /// Timed runs per figure (each figure is their median), 1 to 10000.
+    #[arg(long, default_value_t = 10)]
     pub runs: usize,
+    /// Print one JSON line.
+    #[arg(long)]
     pub json: bool,
 }
 

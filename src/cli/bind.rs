@@ -1,6 +1,6 @@
 //! `sweepffd bind`: bind every owned vertex and save the bindings file.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use super::CliResult;
@@ -8,11 +8,28 @@ use super::backend::{Backend, resolve};
 use super::progress::vertex_bar;
 use sweepffd::bind::MeshBindings;
 use sweepffd::bind::band::bind_bands;
-use sweepffd::bind::file::BindingsFile;
 use sweepffd::coeffs::SweepCoefficients;
 use sweepffd::gpu::{BindingSource, GpuContext, GpuDeformer, GpuError};
 use sweepffd::mesh::Mesh;
 use sweepffd::rig::Rig;
+use sweepffd::rig::bindings_file::BindingsFile;
+
+/// The arguments of `sweepffd bind`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// The mesh (.obj, .ply, .off, .gltf or .glb).
+    #[arg(long)]
+    pub mesh: PathBuf,
+    /// The rest rig (JSON).
+    #[arg(long)]
+    pub rig: PathBuf,
+    /// Where to write the bindings file.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Where to bind: the GPU kernels, the CPU, or the GPU when one is available.
+    #[arg(long, value_enum, default_value_t = Backend::Auto)]
+    pub backend: Backend,
+}
 
 /// A mesh, its rig and the owning sweep of each vertex.
 pub struct Inputs {
@@ -51,9 +68,10 @@ pub fn bind_with_progress(inputs: &Inputs, quiet: bool) -> MeshBindings {
     bindings
 }
 
-pub fn run(mesh_path: &Path, rig_path: &Path, out: &Path, backend: Backend, quiet: bool) -> CliResult {
-    let inputs = load_inputs(mesh_path, rig_path)?;
-    let context = resolve(backend, quiet)?;
+pub fn run(args: &Args, quiet: bool) -> CliResult {
+    let out = &args.out;
+    let inputs = load_inputs(&args.mesh, &args.rig)?;
+    let context = resolve(args.backend, quiet)?;
     let start = Instant::now();
     let bindings = match &context {
         Some(context) => bind_on_gpu(context, &inputs)?,

@@ -8,20 +8,34 @@ use glam::{DVec3, Vec3};
 use super::CliResult;
 use super::backend::{Backend, resolve};
 use super::bind::{Inputs, bind_with_progress, load_inputs};
-use sweepffd::bind::file::BindingsFile;
 use sweepffd::bind::{MeshBindings, UNOWNED};
 use sweepffd::coeffs::SweepCoefficients;
 use sweepffd::deform::deform_vertices;
 use sweepffd::gpu::{BindingSource, GpuContext, GpuDeformer, GpuError};
 use sweepffd::mesh::Format;
+use sweepffd::rig::bindings_file::BindingsFile;
 use sweepffd::sweep::Sweep;
 
+/// The arguments of `sweepffd deform`.
+#[derive(Debug, clap::Args)]
 pub struct Args {
+    /// The mesh (.obj, .ply, .off, .gltf or .glb).
+    #[arg(long)]
     pub mesh: PathBuf,
+    /// The rest rig (JSON).
+    #[arg(long)]
     pub rig: PathBuf,
+    /// The pose: a rig file with the same sweeps and key counts.
+    #[arg(long)]
     pub pose: PathBuf,
+    /// Where to write the deformed mesh (.obj, .ply, .off, .gltf or .glb).
+    #[arg(long)]
     pub out: PathBuf,
+    /// Bindings saved by `sweepffd bind` for this mesh and rig (otherwise binds anew).
+    #[arg(long)]
     pub bindings: Option<PathBuf>,
+    /// Where to bind and deform: the GPU kernels, the CPU, or the GPU when one is available.
+    #[arg(long, value_enum, default_value_t = Backend::Auto)]
     pub backend: Backend,
 }
 

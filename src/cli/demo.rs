@@ -1,7 +1,7 @@
 //! `sweepffd demo`: a self-contained tour. Builds a tube and a five-key rig, bends, twists and
 //! tapers it, and writes the rest mesh, the deformed mesh, the rig and the pose.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use std::io::Write;
@@ -13,7 +13,16 @@ use sweepffd::deform::deform_vertices;
 use sweepffd::mesh::write_atomically;
 use sweepffd::synthetic::{BendTwistTaper, Tube, tube_rig};
 
-pub fn run(out: &Path, quiet: bool) -> CliResult {
+/// The arguments of `sweepffd demo`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Folder for the demo's files.
+    #[arg(long, default_value = "sweepffd-demo")]
+    pub out: PathBuf,
+}
+
+pub fn run(args: &Args, quiet: bool) -> CliResult {
+    let out = args.out.as_path();
     std::fs::create_dir_all(out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
     let tube = Tube { rings: 160, around: 96, length: 4.0, radius: 0.5 };
     let mesh = tube.mesh();

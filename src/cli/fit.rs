@@ -11,24 +11,84 @@ use sweepffd::fit::{DEFAULT_FALLOFF_FRACTION, Fit, FitOptions, fit};
 use sweepffd::mesh::{Mesh, write_atomically};
 use sweepffd::rig::{FORMAT, LinkKind, ParentLink, Rig, RigDocument, VERSION, VertexSelection};
 
+/// How a fitted sweep hangs from its parent (§5).
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+pub enum LinkKindArg {
+    /// The first key is bound to the parent.
+    Branch,
+    /// The first and last keys are bound to the parent.
+    Loop,
+}
+
+impl From<LinkKindArg> for LinkKind {
+    fn from(kind: LinkKindArg) -> LinkKind {
+        match kind {
+            LinkKindArg::Branch => LinkKind::Branch,
+            LinkKindArg::Loop => LinkKind::Loop,
+        }
+    }
+}
+
+/// The arguments of `sweepffd fit`.
+#[derive(Debug, clap::Args)]
 pub struct Args {
+    /// The mesh (.obj or .ply).
+    #[arg(long)]
     pub mesh: PathBuf,
+    /// A face group of the mesh that makes up the part; repeat for several.
+    #[arg(long = "group")]
     pub groups: Vec<String>,
+    /// A file of the part's zero-based vertex indices (JSON array, or separated by spaces or commas).
+    #[arg(long)]
     pub indices: Option<PathBuf>,
+    /// First guess at the axis, a polyline "x0,y0,z0;x1,y1,z1;..." (default: the part's principal axis).
+    #[arg(long, allow_hyphen_values = true)]
     pub axis: Option<String>,
-    pub options: FitOptions,
+    /// Keys placed along the axis before any is inserted.
+    #[arg(long, default_value_t = 6)]
+    pub keys: usize,
+    /// Radii M sampled per key.
+    #[arg(long, default_value_t = 32)]
+    pub radii: usize,
+    /// The most keys insertion may reach.
+    #[arg(long, default_value_t = 24)]
+    pub max_keys: usize,
+    /// A knot interval whose RMS |d| exceeds this fraction of the mean radius gets a key inserted.
+    #[arg(long, default_value_t = 0.05)]
+    pub tolerance: f64,
+    /// Falloff width W in mesh units over which the sweep's deformation fades at the part's boundary; 0: a hard boundary (default: 0.3 of the part's length).
+    #[arg(long, allow_negative_numbers = true)]
+    pub falloff: Option<f64>,
+    /// The sweep's name (default: the groups joined by "+", or the indices file's stem).
+    #[arg(long)]
     pub name: Option<String>,
+    /// Hang the sweep from this sweep of the rig (--append-to) in the hierarchy.
+    #[arg(long)]
     pub parent: Option<String>,
-    pub kind: LinkKind,
+    /// How the sweep hangs from --parent.
+    #[arg(long, value_enum, default_value_t = LinkKindArg::Branch)]
+    pub kind: LinkKindArg,
+    /// Where to write the rig.
+    #[arg(long)]
     pub out: PathBuf,
+    /// Add the sweep to this rig's sweeps instead of starting a new rig (may equal --out).
+    #[arg(long)]
     pub append_to: Option<PathBuf>,
+}
+
+impl Args {
+    /// The fit options of the arguments (the axis is parsed separately).
+    fn options(&self) -> FitOptions {
+        let Args { keys, radii, max_keys, tolerance, falloff, .. } = *self;
+        FitOptions { axis: None, keys, radii, max_keys, tolerance, falloff }
+    }
 }
 
 pub fn run(args: &Args, quiet: bool) -> CliResult {
     let mesh = Mesh::load(&args.mesh)?;
     let (selection, vertices) = select(&mesh, args)?;
     let name = args.name.clone().unwrap_or_else(|| default_name(args));
-    let mut options = args.options.clone();
+    let mut options = args.options();
     if let Some(axis) = &args.axis {
         options.axis = Some(parse_axis(axis)?);
     }
@@ -45,7 +105,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
         let file = args.append_to.as_deref().unwrap_or(&args.out).display();
         return Err(format!("{file}: the rig already has a sweep named {name:?}; choose another with --name").into());
     }
-    let parent = args.parent.clone().map(|sweep| ParentLink { sweep, kind: args.kind });
+    let parent = args.parent.clone().map(|sweep| ParentLink { sweep, kind: args.kind.into() });
     document.sweeps.push(fitted.sweep_document(name.clone(), selection, parent));
     // The written rig must load and own the mesh's vertices without conflict.
     let rig = Rig::from_document(&document, args.append_to.clone())?;

@@ -5,15 +5,28 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use super::CliResult;
-use sweepffd::edit::{BoundMesh, Posing, VolumeRule, parse_edits};
+use super::volume_rule::VolumeArg;
+use sweepffd::edit::{BoundMesh, Posing, parse_edits};
 use sweepffd::mesh::{Mesh, write_atomically};
 use sweepffd::rig::Rig;
 
+/// The arguments of `sweepffd pose`.
+#[derive(Debug, clap::Args)]
 pub struct Args {
+    /// The rest rig (JSON).
+    #[arg(long)]
     pub rig: PathBuf,
+    /// The edits (JSON array), applied in order.
+    #[arg(long)]
     pub edits: PathBuf,
+    /// Where to write the pose (a rig file `deform` takes as --pose).
+    #[arg(long)]
     pub out: PathBuf,
-    pub volume: VolumeRule,
+    /// Which volumes each edit keeps.
+    #[arg(long, value_enum, default_value_t = VolumeArg::None)]
+    pub volume: VolumeArg,
+    /// The closed mesh whose enclosed volume `--volume mesh` keeps.
+    #[arg(long)]
     pub mesh: Option<PathBuf>,
 }
 
@@ -24,12 +37,12 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     let edits = parse_edits(&text).map_err(|e| format!("{}: not a valid edits file: {e}", args.edits.display()))?;
     let mesh = match (&args.mesh, args.volume) {
         (Some(path), _) => Some((Mesh::load(path)?, path)),
-        (None, VolumeRule::Mesh) => return Err("--volume mesh needs --mesh".into()),
+        (None, VolumeArg::Mesh) => return Err("--volume mesh needs --mesh".into()),
         (None, _) => None,
     };
     let bindings;
     let mut posing = Posing::new(&rig);
-    posing.volume = args.volume;
+    posing.volume = args.volume.into();
     if let Some((mesh, path)) = &mesh {
         let owners = rig.owners(mesh, &path.display().to_string())?;
         bindings = rig.bind_mesh(mesh, &owners, &|_| {});

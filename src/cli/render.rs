@@ -13,14 +13,33 @@ use sweepffd::mesh::Mesh;
 use sweepffd::render::{CLAY, Renderer, Scene, SweepStyle, ViewAngles, add_sweeps, save_png, union_bounds};
 use sweepffd::sweep::Sweep;
 
+/// The arguments of `sweepffd render`.
+#[derive(Debug, clap::Args)]
 pub struct Args {
+    /// The mesh (.obj or .ply).
+    #[arg(long)]
     pub mesh: PathBuf,
+    /// The rest rig (JSON); needed by --pose and --show-sweeps.
+    #[arg(long)]
     pub rig: Option<PathBuf>,
+    /// Draw the mesh deformed by this pose of the rig (bound and deformed on the CPU).
+    #[arg(long)]
     pub pose: Option<PathBuf>,
+    /// Draw the control sweeps as translucent surfaces with a dark ring at each key.
+    #[arg(long)]
     pub show_sweeps: bool,
+    /// Picture size WIDTHxHEIGHT in pixels (each panel's with --compare).
+    #[arg(long, default_value = "800x600", value_parser = parse_size)]
     pub size: (u32, u32),
-    pub view: ViewAngles,
+    /// Camera AZIMUTH,ELEVATION in degrees: azimuth around +Y from +Z towards +X, elevation
+    /// above the XZ plane (Y is up).
+    #[arg(long, default_value = "30,20", value_parser = parse_view, allow_hyphen_values = true)]
+    pub view: sweepffd::render::ViewAngles,
+    /// Draw rest (left) and pose (right) side by side, one camera, picture width 2×WIDTH.
+    #[arg(long)]
     pub compare: bool,
+    /// Where to write the picture (.png).
+    #[arg(long)]
     pub out: PathBuf,
 }
 

@@ -1,11 +1,22 @@
 //! `sweepffd volume`: each sweep's volume by Eq. 1, as JSON on stdout.
 
-use std::path::Path;
+use std::path::PathBuf;
 
 use serde::Serialize;
 
 use super::CliResult;
 use sweepffd::rig::Rig;
+
+/// The arguments of `sweepffd volume`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// The rig (JSON).
+    #[arg(long)]
+    pub rig: PathBuf,
+    /// Measure this pose of the rig instead of its rest keys.
+    #[arg(long)]
+    pub pose: Option<PathBuf>,
+}
 
 #[derive(Serialize)]
 struct Report<'a> {
@@ -19,9 +30,9 @@ struct SweepVolume<'a> {
     volume: f64,
 }
 
-pub fn run(rig_path: &Path, pose: Option<&Path>) -> CliResult {
-    let rig = Rig::load(rig_path)?;
-    let sweeps = match pose {
+pub fn run(args: &Args) -> CliResult {
+    let rig = Rig::load(&args.rig)?;
+    let sweeps = match &args.pose {
         Some(pose) => rig.load_pose(pose)?,
         None => rig.rest().to_vec(),
     };
@@ -32,12 +43,16 @@ pub fn run(rig_path: &Path, pose: Option<&Path>) -> CliResult {
         .map(|(sweep, surface)| SweepVolume { name: &sweep.name, volume: surface.volume() })
         .collect();
     if let Some(bad) = volumes.iter().find(|v| !v.volume.is_finite()) {
-        let file = pose.unwrap_or(rig_path).display();
+        let file = args.pose.as_ref().unwrap_or(&args.rig).display();
         return Err(format!("{file}: sweep {:?}: the volume (Eq. 1) is not a finite number", bad.name).into());
     }
     let total: f64 = volumes.iter().map(|v| v.volume).sum();
     if !total.is_finite() {
-        return Err(format!("{}: the total volume is not a finite number", pose.unwrap_or(rig_path).display()).into());
+        return Err(format!(
+            "{}: the total volume is not a finite number",
+            args.pose.as_ref().unwrap_or(&args.rig).display()
+        )
+        .into());
     }
     println!("{}", serde_json::to_string(&Report { sweeps: volumes, total })?);
     Ok(())

@@ -5,8 +5,8 @@
 
 use std::f32::consts::TAU;
 
+use crate::parallel::prelude::*;
 use glam::{Vec3, Vec4, Vec4Swizzles};
-use rayon::prelude::*;
 
 use super::angle::angle_of;
 use super::position;

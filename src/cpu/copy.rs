@@ -1,7 +1,7 @@
 //! Twin of `shaders/copy.wgsl`, the benchmark's memory-ceiling kernel: reads each binding,
 //! writes three floats derived from it.
 
-use rayon::prelude::*;
+use crate::parallel::prelude::*;
 
 use crate::coeffs::GpuBinding;
 

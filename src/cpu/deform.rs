@@ -1,8 +1,8 @@
 //! Twin of `shaders/deform.wgsl`: Eq. 2, extended by h, for every bound vertex, in f32:
 //! v = C(t) + R(t)·((r(θ,t) + d)·cos θ, (r(θ,t) + d)·sin θ, h).
 
+use crate::parallel::prelude::*;
 use glam::Vec3;
-use rayon::prelude::*;
 
 use super::sweep_eval::{curve_at, direction_at, quat_at, radius_at, rotate};
 use crate::coeffs::{BAND_FLAG, CellCoeffs, GpuBinding};

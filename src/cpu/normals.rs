@@ -2,8 +2,8 @@
 //! (p_j − p_i) × (p_k − p_i) over the incident triangles (i, j, k) of each vertex, read from its
 //! fans of one-ring neighbours.
 
+use crate::parallel::prelude::*;
 use glam::Vec3;
-use rayon::prelude::*;
 
 use super::position;
 use crate::normals::{FAN_INDEX, FAN_START, NormalAdjacency};

@@ -1,8 +1,8 @@
 //! Twin of `shaders/skinning.wgsl`, the benchmark's four-influence linear-blend-skinning
 //! baseline: p′ = Σ_k w_k·M_k·(p, 1).
 
+use crate::parallel::prelude::*;
 use glam::{Vec3, Vec4};
-use rayon::prelude::*;
 
 use super::position;
 use crate::coeffs::{Joint, SkinInfluence};

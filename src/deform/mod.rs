@@ -12,8 +12,8 @@
 
 pub mod blend;
 
+use crate::parallel::prelude::*;
 use glam::DVec3;
-use rayon::prelude::*;
 
 use crate::bind::{BandBinding, Binding, MeshBindings, UNOWNED, VertexBinding};
 use crate::sweep::Sweep;

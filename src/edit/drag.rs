@@ -10,6 +10,7 @@
 //! whole repeats until v is within tolerance of v′.
 
 use glam::{DQuat, DVec3};
+#[cfg(feature = "json")]
 use serde::{Deserialize, Serialize};
 
 use super::EditError;
@@ -20,8 +21,9 @@ use crate::bind::VertexBinding;
 use crate::sweep::Key;
 
 /// Which parts of the difference a drag applies.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "json", derive(Serialize, Deserialize))]
+#[cfg_attr(feature = "json", serde(rename_all = "lowercase"))]
 pub enum DragMode {
     /// Linear and angular parts (Fig. 9b).
     #[default]

@@ -7,25 +7,27 @@
 //!  {"op": "move_section", "sweep": "neck", "t": 0.5, "translate": [0.1, 0, 0], "rotate": [0, 0, 0, 1]}]
 //! ```
 
+#[cfg(feature = "json")]
 use serde::{Deserialize, Serialize};
 
-use super::drag::{DEFAULT_DRAG_KEYS, DragMode};
+use super::drag::DragMode;
 use super::keys::KeyMode;
 
 /// One edit of a pose.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "op", rename_all = "snake_case", deny_unknown_fields)]
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "json", derive(Serialize, Deserialize))]
+#[cfg_attr(feature = "json", serde(tag = "op", rename_all = "snake_case", deny_unknown_fields))]
 pub enum Edit {
     /// Rotates key `key` by `rotate` about its center, then translates it by `translate` (world
     /// coordinates); `local`: the keys after it follow, `independent`: it moves alone.
     MoveKey {
         sweep: String,
         key: usize,
-        #[serde(default)]
+        #[cfg_attr(feature = "json", serde(default))]
         translate: [f64; 3],
-        #[serde(default = "identity")]
+        #[cfg_attr(feature = "json", serde(default = "identity"))]
         rotate: [f64; 4],
-        #[serde(default)]
+        #[cfg_attr(feature = "json", serde(default))]
         mode: KeyMode,
     },
     /// Scales the radii of key `key` by `factor`, or with `theta_range` [a, b] a smooth bump
@@ -34,7 +36,7 @@ pub enum Edit {
         sweep: String,
         key: usize,
         factor: f64,
-        #[serde(default)]
+        #[cfg_attr(feature = "json", serde(default))]
         theta_range: Option<[f64; 2]>,
     },
     /// Drags the point (θ, t, d, h) to `to` by editing up to `keys` keys below it: the surface
@@ -43,33 +45,35 @@ pub enum Edit {
         sweep: String,
         theta: f64,
         t: f64,
-        #[serde(default)]
+        #[cfg_attr(feature = "json", serde(default))]
         d: f64,
-        #[serde(default)]
+        #[cfg_attr(feature = "json", serde(default))]
         h: f64,
         to: [f64; 3],
-        #[serde(default)]
+        #[cfg_attr(feature = "json", serde(default))]
         mode: DragMode,
-        #[serde(default = "default_drag_keys")]
+        #[cfg_attr(feature = "json", serde(default = "default_drag_keys"))]
         keys: usize,
     },
     /// Moves the cross-section at t by `translate` and turns it by `rotate` (about its center).
     MoveSection {
         sweep: String,
         t: f64,
-        #[serde(default)]
+        #[cfg_attr(feature = "json", serde(default))]
         translate: [f64; 3],
-        #[serde(default = "identity")]
+        #[cfg_attr(feature = "json", serde(default = "identity"))]
         rotate: [f64; 4],
     },
 }
 
+#[cfg(feature = "json")]
 fn identity() -> [f64; 4] {
     [0.0, 0.0, 0.0, 1.0]
 }
 
+#[cfg(feature = "json")]
 fn default_drag_keys() -> usize {
-    DEFAULT_DRAG_KEYS
+    super::drag::DEFAULT_DRAG_KEYS
 }
 
 impl Edit {
@@ -94,6 +98,7 @@ impl Edit {
     }
 }
 
+#[cfg(feature = "json")]
 /// The edits file's text (pretty JSON and a newline), or, since JSON would write a non-finite
 /// number as `null`, the first edit holding one: `edit 3 (drag_point on "arm"): to[1] is inf,
 /// not a finite number`.
@@ -112,6 +117,7 @@ pub fn edits_to_json(edits: &[Edit]) -> Result<String, String> {
     Ok(text)
 }
 
+#[cfg(feature = "json")]
 impl Edit {
     /// Every number of the edit with its field name as in the file.
     fn numbers(&self) -> Vec<(String, f64)> {
@@ -141,6 +147,7 @@ impl Edit {
     }
 }
 
+#[cfg(feature = "json")]
 /// Parses an edits file's text: a list of at most [`crate::limits::MAX_EDITS`] edits, refused
 /// while read.
 pub fn parse_edits(text: &str) -> Result<Vec<Edit>, serde_json::Error> {
@@ -164,7 +171,7 @@ mod tests {
             h: 0.0,
             to,
             mode: DragMode::default(),
-            keys: DEFAULT_DRAG_KEYS,
+            keys: super::super::drag::DEFAULT_DRAG_KEYS,
         };
         let scale = Edit::ScaleRadii { sweep: "arm".into(), key: 1, factor: 2.0, theta_range: None };
         let good = [scale.clone(), drag([1.0, 2.0, 3.0])];

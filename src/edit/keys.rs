@@ -4,14 +4,16 @@
 use std::f64::consts::TAU;
 
 use glam::{DQuat, DVec3};
+#[cfg(feature = "json")]
 use serde::{Deserialize, Serialize};
 
 use super::rigid::Motion;
 use crate::sweep::Key;
 
 /// How a key move affects the keys after it.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "json", derive(Serialize, Deserialize))]
+#[cfg_attr(feature = "json", serde(rename_all = "lowercase"))]
 pub enum KeyMode {
     /// Edits the key's local transform T_{i−1,i}: keys i+1..n keep theirs, so they move with it
     /// (their T_{0,k} change).

@@ -20,7 +20,9 @@ mod volume;
 
 pub use controls::Controls;
 pub use drag::{DEFAULT_DRAG_KEYS, DragMode, drag_point};
-pub use edits::{Edit, edits_to_json, parse_edits};
+pub use edits::Edit;
+#[cfg(feature = "json")]
+pub use edits::{edits_to_json, parse_edits};
 pub use error::EditError;
 pub use hierarchy::{propagate, propagate_down};
 pub use keys::{KeyMode, move_key, scale_radii};

@@ -5,8 +5,8 @@
 //! keys its children hang from, so the rules re-run the downward propagation and repeat until
 //! every target holds (to 1e-9 relative). Virtual sweeps (which own no vertices) take no part.
 
-use clap::ValueEnum;
 use glam::DVec3;
+#[cfg(feature = "json")]
 use serde::{Deserialize, Serialize};
 
 use super::EditError;
@@ -19,8 +19,9 @@ use crate::rig::Rig;
 use crate::sweep::Key;
 
 /// Which volumes an edit keeps.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ValueEnum)]
-#[serde(rename_all = "lowercase")]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "json", derive(Serialize, Deserialize))]
+#[cfg_attr(feature = "json", serde(rename_all = "lowercase"))]
 pub enum VolumeRule {
     /// Volumes follow the edit.
     #[default]

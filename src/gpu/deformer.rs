@@ -387,11 +387,13 @@ impl GpuDeformer {
     }
 
     /// Each deform dispatch's vertex range and binding buffer.
+    #[cfg(feature = "cli")]
     pub(crate) fn binding_chunks(&self) -> impl Iterator<Item = (&Range<u32>, &wgpu::Buffer)> {
         self.chunks.iter().map(|chunk| (&chunk.range, &chunk.bindings))
     }
 
     /// The per-frame cell record buffer.
+    #[cfg(feature = "cli")]
     pub(crate) fn cells(&self) -> &wgpu::Buffer {
         &self.cells
     }

@@ -4,12 +4,17 @@
 //! for OBJ and OFF, text formats, the line at fault; numbers of vertices and faces are written
 //! the way the file writes them (1-based in OBJ, zero-based in PLY, OFF and glTF).
 
-use std::path::{Path, PathBuf};
+#[cfg(feature = "formats")]
+use std::path::Path;
+use std::path::PathBuf;
 
 use thiserror::Error;
 
+#[cfg(feature = "formats")]
 use super::gltf::GltfDataError;
+#[cfg(feature = "formats")]
 use super::off::OffLineError;
+#[cfg(feature = "formats")]
 use super::ply::PlyHeaderError;
 use crate::limits;
 
@@ -64,6 +69,7 @@ pub enum MeshError {
     },
     /// A line of an OFF file cannot be understood.
     #[error("{}:{line}: {problem}", path.display())]
+    #[cfg(feature = "formats")]
     Off {
         /// The file as given.
         path: PathBuf,
@@ -82,6 +88,7 @@ pub enum MeshError {
     },
     /// The data of a glTF file do not form a mesh this crate reads.
     #[error("{}: {problem}", path.display())]
+    #[cfg(feature = "formats")]
     GltfData {
         /// The file as given.
         path: PathBuf,
@@ -98,6 +105,7 @@ pub enum MeshError {
     },
     /// A line of a PLY header declares something this reader refuses (see [`PlyHeaderError`]).
     #[error("{}:{line}: {problem}", path.display())]
+    #[cfg(feature = "formats")]
     PlyHeader {
         /// The file as given.
         path: PathBuf,
@@ -137,6 +145,7 @@ pub enum MeshError {
         super::obj::write::Coordinate(*value),
         if value.is_finite() { "which does not fit in the f32 this format stores" } else { "which is not finite" }
     )]
+    #[cfg(feature = "formats")]
     Unwritable {
         /// The output file as given.
         path: PathBuf,
@@ -236,6 +245,7 @@ impl Limited {
     }
 
     /// `Err` with `count` when it is over the limit.
+    #[cfg_attr(not(feature = "formats"), allow(dead_code, reason = "the file readers check their counts"))]
     pub(crate) fn check(self, count: u64) -> Result<(), LimitError> {
         if count > self.limit() as u64 { Err(LimitError { limited: self, count }) } else { Ok(()) }
     }
@@ -358,6 +368,7 @@ pub enum MeshDataError {
     },
 }
 
+#[cfg(feature = "formats")]
 impl MeshError {
     /// Wraps an I/O error met while reading `path`.
     pub(crate) fn read(path: &Path, source: std::io::Error) -> Self {

@@ -70,6 +70,7 @@ impl Faces {
     /// [`MAX_FACE_CORNERS`](crate::limits::MAX_FACE_CORNERS) corners, at most
     /// [`MAX_FACES`](crate::limits::MAX_FACES) faces, and at most as many triangles once
     /// fan-triangulated (a face of n ≥ 3 corners gives n − 2). On error the faces are unchanged.
+    #[cfg_attr(not(feature = "formats"), allow(dead_code, reason = "the file readers push faces"))]
     pub(crate) fn push_within_limits(&mut self, face: &[u32]) -> Result<(), LimitError> {
         Limited::FaceCorners.check(face.len() as u64)?;
         Limited::Faces.check(self.len() as u64 + 1)?;

@@ -24,14 +24,21 @@ mod atomic;
 mod bounds;
 mod error;
 mod faces;
+#[cfg(feature = "formats")]
 mod format;
+#[cfg(feature = "formats")]
 mod gltf;
 mod groups;
+#[cfg(feature = "formats")]
 mod load;
+#[cfg(feature = "formats")]
 mod obj;
+#[cfg(feature = "formats")]
 mod off;
 mod parts;
+#[cfg(feature = "formats")]
 mod ply;
+#[cfg(feature = "formats")]
 mod save;
 mod source;
 mod subdivide;
@@ -41,9 +48,13 @@ use glam::DVec3;
 
 pub use atomic::{exit_removing_temporaries, write_atomically};
 pub use error::{LimitError, Limited, MeshDataError, MeshError, ObjLineError};
+#[cfg(feature = "formats")]
 pub use format::Format;
+#[cfg(feature = "formats")]
 pub use gltf::GltfDataError;
+#[cfg(feature = "formats")]
 pub use off::OffLineError;
+#[cfg(feature = "formats")]
 pub use ply::PlyHeaderError;
 pub use subdivide::{Parents, Subdivision, SubdivisionError};
 
@@ -80,5 +91,6 @@ pub struct Mesh {
     /// Named face groups in order of first appearance.
     pub groups: Vec<FaceGroup>,
     /// The file the mesh was read from, for faithful saving.
+    #[cfg_attr(not(feature = "formats"), expect(dead_code, reason = "only the file readers and writers use it"))]
     source: Source,
 }

@@ -5,9 +5,12 @@ use std::fmt;
 use std::sync::Arc;
 
 use glam::DVec3;
+#[cfg(feature = "formats")]
 use ply_rs_bw::ply::{DefaultElement, Ply};
 
+#[cfg(feature = "formats")]
 use super::gltf::GltfFile;
+#[cfg(feature = "formats")]
 use super::off::OffFile;
 use super::{FaceGroup, Faces, Mesh};
 
@@ -18,16 +21,21 @@ pub(crate) enum Source {
     #[default]
     Code,
     /// Read from an OBJ file: its bytes.
+    #[cfg(feature = "formats")]
     Obj(Arc<Original<Vec<u8>>>),
     /// Read from a PLY file: its header and every element, as parsed.
+    #[cfg(feature = "formats")]
     Ply(Arc<Original<Ply<DefaultElement>>>),
     /// Read from an OFF file: its bytes and where each vertex's coordinates lie.
+    #[cfg(feature = "formats")]
     Off(Arc<Original<OffFile>>),
     /// Read from a glTF or GLB file: its JSON, its buffers and where each vertex came from.
+    #[cfg(feature = "formats")]
     Gltf(Arc<Original<GltfFile>>),
 }
 
 /// A file as read, with the mesh data it gave.
+#[cfg_attr(not(feature = "formats"), expect(dead_code, reason = "only the file readers and writers use it"))]
 pub(crate) struct Original<F> {
     /// The file, in whatever form its faithful writer needs.
     pub file: F,
@@ -39,6 +47,7 @@ pub(crate) struct Original<F> {
     pub groups: Vec<FaceGroup>,
 }
 
+#[cfg_attr(not(feature = "formats"), expect(dead_code, reason = "only the file readers and writers use it"))]
 impl<F> Original<F> {
     /// Wraps `file` with a copy of the mesh data read from it.
     pub fn new(file: F, mesh: &Mesh) -> Arc<Self> {
@@ -61,9 +70,13 @@ impl fmt::Debug for Source {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Source::Code => f.write_str("Code"),
+            #[cfg(feature = "formats")]
             Source::Obj(o) => write!(f, "Obj({} bytes)", o.file.len()),
+            #[cfg(feature = "formats")]
             Source::Ply(p) => write!(f, "Ply({:?})", p.file.header.encoding),
+            #[cfg(feature = "formats")]
             Source::Off(o) => write!(f, "Off({} bytes)", o.file.bytes.len()),
+            #[cfg(feature = "formats")]
             Source::Gltf(g) => write!(f, "Gltf({} buffers)", g.file.buffers.len()),
         }
     }

@@ -8,8 +8,8 @@
 //! (and no float atomics) are needed on the GPU. The f32 twin of the GPU kernel is
 //! [`crate::cpu::normals`].
 
+use crate::parallel::prelude::*;
 use glam::DVec3;
-use rayon::prelude::*;
 
 use crate::mesh::Faces;
 

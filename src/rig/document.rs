@@ -10,8 +10,10 @@
 //! ```
 
 use glam::{DQuat, DVec3};
+#[cfg(feature = "json")]
 use serde::{Deserialize, Serialize};
 
+#[cfg(feature = "json")]
 use super::bounded;
 use crate::sweep::Key;
 
@@ -21,8 +23,9 @@ pub const FORMAT: &str = "sweepffd-rig";
 pub const VERSION: u32 = 1;
 
 /// A whole rig or pose file.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "json", derive(Serialize, Deserialize))]
+#[cfg_attr(feature = "json", serde(deny_unknown_fields))]
 pub struct RigDocument {
     /// Always [`FORMAT`].
     pub format: String,
@@ -30,36 +33,41 @@ pub struct RigDocument {
     pub version: u32,
     /// The sweeps, in order; a vertex binds to the sweep that owns it. At most
     /// [`crate::limits::MAX_SWEEPS`], refused while read.
-    #[serde(deserialize_with = "bounded::sweeps")]
+    #[cfg_attr(feature = "json", serde(deserialize_with = "bounded::sweeps"))]
     pub sweeps: Vec<SweepDocument>,
 }
 
 /// One sweep of a rig file.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "json", derive(Serialize, Deserialize))]
+#[cfg_attr(feature = "json", serde(deny_unknown_fields))]
 pub struct SweepDocument {
     /// Unique within the rig; poses match sweeps by name.
     pub name: String,
     /// Which vertices the sweep owns; absent: none.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "json", serde(default, skip_serializing_if = "Option::is_none"))]
     pub vertices: Option<VertexSelection>,
     /// The key cross-sections, at least two, at most [`crate::limits::MAX_KEYS_PER_SWEEP`].
-    #[serde(deserialize_with = "bounded::keys")]
+    #[cfg_attr(feature = "json", serde(deserialize_with = "bounded::keys"))]
     pub keys: Vec<KeyDocument>,
     /// Knots u_i, one per key, from 0 to 1, increasing; absent: chord length of the centers.
-    #[serde(default, skip_serializing_if = "Option::is_none", deserialize_with = "bounded::knots")]
+    #[cfg_attr(
+        feature = "json",
+        serde(default, skip_serializing_if = "Option::is_none", deserialize_with = "bounded::knots")
+    )]
     pub knots: Option<Vec<f64>>,
     /// The sweep this one hangs from in the hierarchy (§5); absent: a root.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "json", serde(default, skip_serializing_if = "Option::is_none"))]
     pub parent: Option<ParentLink>,
     /// Falloff width W in mesh units (≥ 0); absent or 0: a hard boundary.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "json", serde(default, skip_serializing_if = "Option::is_none"))]
     pub falloff: Option<f64>,
 }
 
 /// `"parent": {"sweep": "body", "kind": "branch"}`: a sweep's place in the hierarchy (§5).
-#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Clone, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "json", derive(Serialize, Deserialize))]
+#[cfg_attr(feature = "json", serde(deny_unknown_fields))]
 pub struct ParentLink {
     /// The parent sweep's name.
     pub sweep: String,
@@ -68,8 +76,9 @@ pub struct ParentLink {
 }
 
 /// How a child sweep's keys are bound to cross-sections of its parent (§5, Fig. 11).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "json", derive(Serialize, Deserialize))]
+#[cfg_attr(feature = "json", serde(rename_all = "lowercase"))]
 pub enum LinkKind {
     /// The first key is bound (the teapot's spout).
     Branch,
@@ -78,27 +87,29 @@ pub enum LinkKind {
 }
 
 /// The vertices a sweep owns: `"all"`, `{"groups": [...]}` or `{"indices": [...]}`.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "json", derive(Serialize, Deserialize))]
+#[cfg_attr(feature = "json", serde(rename_all = "lowercase"))]
 pub enum VertexSelection {
     /// Every vertex of the mesh.
     All,
     /// The vertices of the faces of these OBJ groups (or objects).
     Groups(Vec<String>),
     /// These zero-based vertex indices, in file order.
-    Indices(#[serde(deserialize_with = "bounded::indices")] Vec<u32>),
+    Indices(#[cfg_attr(feature = "json", serde(deserialize_with = "bounded::indices"))] Vec<u32>),
 }
 
 /// One key cross-section in a rig file.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "json", derive(Serialize, Deserialize))]
+#[cfg_attr(feature = "json", serde(deny_unknown_fields))]
 pub struct KeyDocument {
     /// Center p_i.
     pub center: [f64; 3],
     /// Orientation q_i as `[x, y, z, w]`; normalized on load.
     pub rotation: [f64; 4],
     /// Radii ρ_ij at θ_j = 2πj/M; at most [`crate::limits::MAX_RADII_PER_KEY`].
-    #[serde(deserialize_with = "bounded::radii")]
+    #[cfg_attr(feature = "json", serde(deserialize_with = "bounded::radii"))]
     pub radii: Vec<f64>,
 }
 
@@ -119,11 +130,13 @@ impl From<&Key> for KeyDocument {
 }
 
 impl RigDocument {
+    #[cfg(feature = "json")]
     /// Parses a rig or pose file's text (format and version are checked by the rig loader).
     pub fn parse(text: &str) -> Result<RigDocument, serde_json::Error> {
         serde_json::from_str(text)
     }
 
+    #[cfg(feature = "json")]
     /// The file's text: pretty JSON, one key per line. JSON has no infinities: a non-finite
     /// number would be written as `null`, so a writer of user data calls
     /// [`RigDocument::try_to_json`] instead.
@@ -133,6 +146,7 @@ impl RigDocument {
         text
     }
 
+    #[cfg(feature = "json")]
     /// [`RigDocument::to_json`], or an error naming `file` (the file to be written), the sweep,
     /// the key and the field of the first number that is not finite.
     pub fn try_to_json(&self, file: &std::path::Path) -> Result<String, super::RigError> {
@@ -140,6 +154,7 @@ impl RigDocument {
         Ok(self.to_json())
     }
 
+    #[cfg(feature = "json")]
     /// Fails on the first number of a key, a knot or a falloff that is not finite.
     fn check_finite(&self) -> Result<(), super::RigErrorKind> {
         for sweep in &self.sweeps {

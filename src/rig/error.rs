@@ -38,6 +38,7 @@ impl RigError {
 pub enum RigErrorKind {
     #[error("cannot read the file: {0}")]
     Io(#[from] std::io::Error),
+    #[cfg(feature = "json")]
     #[error("not a valid rig file: {0}")]
     Json(#[from] serde_json::Error),
     #[error("\"format\" is {found:?}, expected \"sweepffd-rig\"")]

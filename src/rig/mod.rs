@@ -8,6 +8,9 @@
 //! i+1 stays between them.
 
 mod binding;
+#[cfg(feature = "json")]
+pub mod bindings_file;
+#[cfg(feature = "json")]
 pub(crate) mod bounded;
 mod document;
 mod error;
@@ -56,6 +59,7 @@ impl Rig {
         Rig::build(sweeps, None)
     }
 
+    #[cfg(feature = "json")]
     /// Reads and validates a rig file. Errors name the file, sweep and key at fault.
     pub fn load(path: &Path) -> Result<Rig, RigError> {
         let file = Some(path.to_path_buf());
@@ -171,6 +175,7 @@ impl Rig {
         self.pose_named(keys.iter().zip(&self.sweeps).map(|(k, s)| (s.name.as_str(), k.as_slice())), None)
     }
 
+    #[cfg(feature = "json")]
     /// Reads a pose file and returns the posed sweep surfaces in rig order. Errors name the
     /// pose file, sweep and key at fault.
     pub fn load_pose(&self, path: &Path) -> Result<Vec<Sweep>, RigError> {
@@ -224,6 +229,7 @@ impl Rig {
     }
 }
 
+#[cfg(feature = "json")]
 impl RigDocument {
     /// Reads and parses a rig or pose file without validating it (see [`Rig::from_document`]);
     /// errors name the file.
@@ -232,6 +238,7 @@ impl RigDocument {
     }
 }
 
+#[cfg(feature = "json")]
 fn read_document(path: &Path) -> Result<RigDocument, RigError> {
     let file = Some(path.to_path_buf());
     let text = crate::limits::read_input_text(path).map_err(|e| RigError::new(file.clone(), RigErrorKind::Io(e)))?;

@@ -28,7 +28,7 @@ use std::path::{Path, PathBuf};
 use glam::DVec3;
 use thiserror::Error;
 
-use super::{BandBinding, Binding, MeshBindings, UNOWNED, VertexBinding};
+use crate::bind::{BandBinding, Binding, MeshBindings, UNOWNED, VertexBinding};
 use crate::rig::Rig;
 
 const MAGIC: &[u8; 8] = b"SFFDBIND";
