@@ -614,6 +614,74 @@ fn unmoved_instances_of_one_position_accessor_still_write() {
     assert_eq!(names, [dir.path().join("in.glb"), out]);
 }
 
+/// The triangle with vertex 2 at y = 4e6, drawn by two nodes with the local transforms
+/// `first` and `second`.
+fn far_vertex_instances(first: Value, second: Value) -> Vec<u8> {
+    let (mut document, mut data) = triangle();
+    data[24..36].copy_from_slice(&f32_bytes(&[0.0, 4.0e6, 0.0]));
+    document["accessors"][0]["max"] = json!([1.0, 4.0e6, 0.0]);
+    let node = |extra: Value| {
+        let mut node = json!({"mesh": 0});
+        node.as_object_mut().unwrap().extend(extra.as_object().unwrap().clone());
+        node
+    };
+    document["nodes"] = json!([node(first), node(second)]);
+    document["scenes"] = json!([{"nodes": [0, 1]}]);
+    glb(&document, &data)
+}
+
+#[test]
+fn one_far_element_does_not_let_instances_moved_apart_through() {
+    // Issue 12 (fuzz/regressions/write_round_trip/fuzz_instanced_mutated.glb): the allowed
+    // disagreement was 4 f32 ulps of the accessor's largest coordinate, for every element, so
+    // one far element (here 4e6: 1.9 local units) let a later instance that moved apart by a
+    // fraction of a unit be written, and it read back where the first one was written.
+    let dir = tempfile::tempdir().unwrap();
+    let bytes = far_vertex_instances(json!({"translation": [0.0, 0.0, 2.0]}), json!({"scale": [2.0, 2.0, 2.0]}));
+    let mesh = load(dir.path(), "in.glb", &bytes).unwrap();
+    assert_eq!(mesh.positions[5], DVec3::new(0.0, 8.0e6, 0.0), "the far vertex, second instance");
+    // A world translation d is d locally under node 0 but d / 2 under node 1 (scaled by 2).
+    let shift = DVec3::new(0.5, 0.25, -1.0);
+    let moved: Vec<DVec3> = mesh.positions.iter().map(|&p| p + shift).collect();
+    for name in ["apart.glb", "apart.gltf"] {
+        let out = dir.path().join(name);
+        let error = mesh.save(&out, &moved).err().map(|e| e.to_string());
+        let expected = format!(
+            "cannot write {}: mesh 0: nodes 0 and 1 draw POSITION accessor 0 but moved it differently (vertex 3, \
+             element 0 of the accessor); a glTF file shares one POSITION accessor between these nodes, so it cannot \
+             hold both: write another format (.obj, .ply, .off), which keeps each instance's vertices",
+            out.display()
+        );
+        assert_eq!(error, Some(expected), "{name}");
+        assert!(!out.exists());
+    }
+    // Moved alike, the far element stays writable: a translation under translated nodes, and
+    // a turn about z under nodes turned about z and scaled uniformly (their local motion is
+    // the same turn), whose stored coordinates are rounded to f32.
+    let bytes = far_vertex_instances(json!({"translation": [0.0, 0.0, 2.0]}), json!({"translation": [5.0, 0.0, 0.0]}));
+    let mesh = load(dir.path(), "alike.glb", &bytes).unwrap();
+    let moved: Vec<DVec3> = mesh.positions.iter().map(|&p| p + shift).collect();
+    let out = dir.path().join("translated.glb");
+    mesh.save(&out, &moved).unwrap();
+    reads_back(&out, &moved);
+    let bytes = far_vertex_instances(
+        json!({"rotation": [0.0, 0.0, 0.2588190, 0.9659258]}),
+        json!({"rotation": [0.0, 0.0, -0.6087614, 0.7933533], "scale": [2.0, 2.0, 2.0]}),
+    );
+    let mesh = load(dir.path(), "turned.glb", &bytes).unwrap();
+    for degrees in [1.0f64, 17.0, 30.0, 123.0, 271.5] {
+        let turn = glam::DQuat::from_rotation_z(degrees.to_radians());
+        let moved: Vec<DVec3> = mesh.positions.iter().map(|&p| turn * p).collect();
+        let out = dir.path().join(format!("turned{degrees}.glb"));
+        mesh.save(&out, &moved).unwrap_or_else(|e| panic!("turned by {degrees}°: {e}"));
+        let read = Mesh::load(&out).unwrap();
+        for (vertex, (a, b)) in read.positions.iter().zip(&moved).enumerate() {
+            let error = (*a - *b).abs().max_element();
+            assert!(error <= 2.0 * f64::from(f32::EPSILON) * b.length(), "vertex {vertex}: {a} for {b}");
+        }
+    }
+}
+
 /// Runs `sweepffd fit --mesh <name> --out rig.json` on `bytes` in a fresh folder, with
 /// `RUST_BACKTRACE=1`, expecting failure; returns stderr.
 fn fit_fails(name: &str, bytes: &[u8]) -> String {

@@ -17,12 +17,13 @@ use crate::mesh::source::Original;
 /// instance (any coordinate differs bit for bit from the positions as read) are mapped back
 /// through the inverse of the node's world matrix and stored as f32 in place; the others keep
 /// their bytes. Every later instance of the accessor must agree with what is stored
-/// ([`check_instances`]): a glTF file cannot hold instances of one accessor deformed apart. The accessor's `min`/`max` are recomputed. A sparse accessor
-/// (or one without a buffer view) that moved is made dense: its elements go to a new buffer
-/// and buffer view, and `sparse` is removed. Then, for each primitive with a dense float
-/// NORMAL, the vertices of triangles that touch a moved vertex get the area-weighted normal of
-/// the primitive's triangles at the new positions ([`normals`]). With no vertex moved the
-/// document and buffers are written as read (JSON re-serialized, buffers embedded).
+/// ([`check_instances`]): a glTF file cannot hold instances of one accessor deformed apart.
+/// The accessor's `min`/`max` are recomputed. A sparse accessor (or one without a buffer
+/// view) that moved is made dense: its elements go to a new buffer and buffer view, and
+/// `sparse` is removed. Then, for each primitive with a dense float NORMAL, the vertices of
+/// triangles that touch a moved vertex get the area-weighted normal of the primitive's
+/// triangles at the new positions ([`normals`]). With no vertex moved the document and
+/// buffers are written as read (JSON re-serialized, buffers embedded).
 ///
 /// # Errors
 ///
@@ -149,20 +150,24 @@ fn to_local(block: &Block, old: &[DVec3], new: &[DVec3], moved: &mut [bool]) -> 
 /// back through its own world matrix `M_b`.
 ///
 /// Element `i` of a later instance is in local space `q = M_b⁻¹·p_i` (its new mesh position
-/// `p_i`; an unmoved element is exactly its value as read), and must lie within
+/// `p_i`; an unmoved element is exactly its value as read), and each coordinate `k` must lie
+/// within
 ///
-/// `4·ε₃₂·m + f32::MIN_POSITIVE + 64·ε₆₄·(|M_a⁻¹|·|p_a| + |M_b⁻¹|·|p_b|)`
+/// `ε₃₂·|w_k| + f32::MIN_POSITIVE + 64·ε₆₄·(|M_a⁻¹|·|p_a| + |M_b⁻¹|·|p_b|)_k`
 ///
-/// of the stored `w`, per coordinate, where `m` is the largest stored coordinate magnitude of
-/// the accessor. The reasoning: two instances that moved alike have the same exact local
-/// position; the stored `w` is within half an f32 ulp (≤ ½·ε₃₂·m) of the first one's, or a
-/// subnormal away when it underflows; and each computed `q` carries the f64 rounding of the
-/// inverse and its product, bounded by a few ε₆₄ of the magnitudes summed in it (`|M⁻¹|` the
-/// entrywise absolute matrix, the translation included). So instances that moved alike pass
-/// with a margin of 8 (×4 for f32, ×16 for f64), and instances deformed differently by more
-/// than a few f32 ulps of the accessor's extent are refused. Rigid instances left unmoved, or
-/// moved by one world motion that commutes with both node matrices (a translation under
-/// translated nodes), agree.
+/// of the stored `w`, where `w_k` is that coordinate of that element as stored. The
+/// reasoning: two instances that moved alike have the same exact local position; the stored
+/// `w_k` is the f32 rounding of the first one's, within half an ulp of it (≤ ½·ε₃₂·|w_k|
+/// for a normal float, less than `f32::MIN_POSITIVE` when it underflows); and each computed
+/// `q` carries the f64 rounding of the inverse and its product, bounded by a few ε₆₄ of the
+/// magnitudes summed in it (`|M⁻¹|` the entrywise absolute matrix, the translation included).
+/// So instances that moved alike pass with a margin of 2 on the f32 rounding and 16 on the
+/// f64 one, and a later instance is written only when it reads back within about one f32 ulp
+/// of its own local coordinates. The bound is per element and per coordinate: one far
+/// element (or one large coordinate) does not widen what the others may disagree by.
+/// Rigid instances left unmoved, or moved by one world motion that commutes with both node
+/// matrices (a translation under translated nodes, a turn about an axis both nodes turn
+/// about), agree.
 ///
 /// # Errors
 ///
@@ -182,14 +187,13 @@ fn check_instances(
         }
         let first = &file.blocks[a];
         let stored = new_local.get(a).and_then(Option::as_ref).unwrap_or(&first.local);
-        let m = stored.iter().flatten().fold(0f32, |m, c| m.max(c.abs()));
-        let rounding = 4.0 * f64::from(f32::EPSILON) * f64::from(m) + f64::from(f32::MIN_POSITIVE);
         let (inverse_a, inverse_b) = (inverse(first)?, inverse(b)?);
         for (i, w) in stored.iter().enumerate() {
             let (_, error_a) = exact_local(first, &inverse_a, original, positions, i);
             let (q, error_b) = exact_local(b, &inverse_b, original, positions, i);
-            let tolerance = DVec3::splat(rounding) + 64.0 * f64::EPSILON * (error_a + error_b);
             let w = DVec3::from_array(w.map(f64::from));
+            let rounding = f64::from(f32::EPSILON) * w.abs() + DVec3::splat(f64::from(f32::MIN_POSITIVE));
+            let tolerance = rounding + 64.0 * f64::EPSILON * (error_a + error_b);
             if (q - w).abs().cmpgt(tolerance).any() {
                 return Err(disagreement(first, b, b.first + i));
             }
