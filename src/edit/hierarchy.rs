@@ -122,8 +122,8 @@ fn follow_parent(
         }
     }
     // A parent far out can carry its child beyond the representable: fail here, naming the
-    // child and its key, rather than later on a non-finite pose.
-    Sweep::validate(chain).map_err(|source| EditError::Hierarchy {
+    // child and its key, rather than later on a non-finite pose. The radii did not move.
+    Sweep::validate_frames(chain).map_err(|source| EditError::Hierarchy {
         sweep: rig.sweeps()[child].name.clone(),
         source: Box::new(EditError::Degenerate(source)),
     })
