@@ -106,11 +106,7 @@ fn follow_parent(
     let last = chain.len() - 1;
     let first_motion = Motion::between(&chain[0], &link.first.key_on(parent, &[]));
     match &link.last {
-        None => {
-            for key in chain.iter_mut() {
-                first_motion.apply(key);
-            }
-        }
+        None => shapes[child].move_rigidly(chain, &first_motion),
         Some(binding) => {
             let last_motion = Motion::between(&chain[last], &binding.key_on(parent, &[]));
             let knots = rig.rest()[child].knots();

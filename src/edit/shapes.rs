@@ -16,10 +16,11 @@
 //! rebuilt ([`Shape::scale_radii`]), in time independent of the radii (r keeps one factor,
 //! [`RadiusField::scaled`](crate::sweep::radius::RadiusField::scaled)), and the volume of Eq. 1
 //! scales with A. Such a sweep is rebuilt from its keys after [`MAX_SCALED`] scalings, so that
-//! it stays within 10⁻¹⁴ relative of the keys' radii, which are rounded at every rescale.
+//! it stays within 10⁻¹³ relative of the keys' radii, which are rounded at every rescale.
 
 use glam::{DQuat, DVec3};
 
+use super::rigid::Motion;
 use crate::sweep::radius::AreaPolynomial;
 use crate::sweep::{Key, Sweep, SweepError};
 
@@ -41,9 +42,9 @@ struct Kept {
 }
 
 /// The most scalings of a kept radius function before it is rebuilt: each rounds the keys'
-/// radii by about 1 ulp (1.1·10⁻¹⁶) relative, so 64 stay under 10⁻¹⁴, and the rebuild costs
-/// 1/64 of one per scaling.
-const MAX_SCALED: usize = 64;
+/// radii, and the field's one factor, by at most ½ ulp (1.1·10⁻¹⁶) relative, so 512 keep the
+/// two within 10⁻¹³ of each other, and the rebuild costs 1/512 of one per scaling.
+const MAX_SCALED: usize = 512;
 
 impl Shape {
     /// The sweep through `keys` at `knots`, as [`Sweep::try_new`] builds it. A memo is for one
@@ -89,6 +90,27 @@ impl Shape {
             self.kept = Some(Kept { frames: frames(keys), sweep: rebuilt, areas, volume: None, scaled });
         }
         Ok(self.kept.as_mut().expect("kept above"))
+    }
+
+    /// Moves every key of `keys` by `motion` (radii unchanged). When the memo holds the sweep of
+    /// `keys` before the move, it rebuilds C(t) and R(t) at once and keeps the volume: Eq. 1 is
+    /// invariant under a rigid motion of the whole sweep (A(t) is unchanged, N(t) and C′(t)
+    /// turn together), so a child carried by its parent (§5) costs no quadrature. The kept
+    /// volume differs from one integrated afresh by the quadrature's error, under 10⁻¹².
+    pub fn move_rigidly(&mut self, keys: &mut [Key], motion: &Motion) {
+        let before = self.kept.as_ref().is_some_and(|kept| same_frames(&kept.frames, keys));
+        for key in keys.iter_mut() {
+            motion.apply(key);
+        }
+        let Some(kept) = self.kept.as_mut().filter(|_| before) else { return };
+        match kept.sweep.try_with_axis(keys) {
+            Ok(sweep) => {
+                kept.sweep = sweep;
+                kept.frames = frames(keys);
+            }
+            // The caller's check of the frames reports it.
+            Err(_) => self.kept = None,
+        }
     }
 
     /// Notes that every radius of the sweep's keys was multiplied by `factor` (a volume rule's
