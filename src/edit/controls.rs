@@ -8,10 +8,10 @@
 /// `max_iterations` × (edited keys + 1) times, a cross-section move `max_iterations` ×
 /// (targets + 1) times, and a volume rule runs at most 21 rounds of rescaling and downward
 /// propagation, each volume (Eq. 1) taking at most 2⁸ quadrature leaves per knot interval.
-/// A rebuild after a rigid move keeps the radius function and costs time linear in the keys
-/// (beyond comparing the radii); one after a change of radii is linear in keys × radii, and a
-/// volume rule's uniform rescale scales the kept radius function instead (see `shapes`), so
-/// the whole is linear in the rig's size.
+/// A rebuild after a rigid move keeps the radius function and costs time linear in the keys;
+/// one after a change of radii is linear in keys × radii, and a volume rule's uniform rescale
+/// keeps the radius function with one more scale factor (see `shapes`), so that beyond one
+/// pass over the rescaled radii the whole is linear in the rig's keys.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Controls {
     /// Rounds before an edit is reported as not converging. Default 50.

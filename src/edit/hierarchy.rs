@@ -106,11 +106,7 @@ fn follow_parent(
     let last = chain.len() - 1;
     let first_motion = Motion::between(&chain[0], &link.first.key_on(parent, &[]));
     match &link.last {
-        None => {
-            for key in chain.iter_mut() {
-                first_motion.apply(key);
-            }
-        }
+        None => shapes[child].move_rigidly(chain, &first_motion),
         Some(binding) => {
             let last_motion = Motion::between(&chain[last], &binding.key_on(parent, &[]));
             let knots = rig.rest()[child].knots();
@@ -122,8 +118,8 @@ fn follow_parent(
         }
     }
     // A parent far out can carry its child beyond the representable: fail here, naming the
-    // child and its key, rather than later on a non-finite pose.
-    Sweep::validate(chain).map_err(|source| EditError::Hierarchy {
+    // child and its key, rather than later on a non-finite pose. The radii did not move.
+    Sweep::validate_frames(chain).map_err(|source| EditError::Hierarchy {
         sweep: rig.sweeps()[child].name.clone(),
         source: Box::new(EditError::Degenerate(source)),
     })

@@ -67,6 +67,7 @@ impl<'a> Posing<'a> {
             )));
         }
         self.keys = keys;
+        self.shapes.iter_mut().for_each(Shape::forget);
         Ok(self)
     }
 
@@ -93,6 +94,15 @@ impl<'a> Posing<'a> {
     /// Applies `edit`, then the hierarchy and the volume rule. Returns the rounds the edit's own
     /// iteration took (0 for the direct edits). On error nothing changes.
     pub fn apply(&mut self, edit: &Edit) -> Result<usize, EditError> {
+        let result = self.try_apply(edit);
+        if result.is_err() {
+            // The memos followed the edit's keys, which are dropped.
+            self.shapes.iter_mut().for_each(Shape::forget);
+        }
+        result
+    }
+
+    fn try_apply(&mut self, edit: &Edit) -> Result<usize, EditError> {
         let rig = self.rig;
         let sweep =
             rig.sweep_index(edit.sweep()).ok_or_else(|| EditError::UnknownSweep { sweep: edit.sweep().into() })?;
@@ -111,9 +121,11 @@ impl<'a> Posing<'a> {
         if let Some(before) = &before {
             apply_rule(self.volume, rig, &mut keys, sweep, before, self.mesh.as_ref(), shapes)?;
         }
-        // Every sweep the edit reached is checked as rest keys are: finite, in range.
-        for (keys, rest) in keys.iter().zip(rig.sweeps()) {
-            Sweep::validate(keys).map_err(|source| EditError::Sweep { sweep: rest.name.clone(), source })?;
+        // Every sweep the edit reached is checked as rest keys are: finite, in range. The radii
+        // of a kept sweep are those it was built from, checked then (or rescaled and checked).
+        for ((keys, rest), shape) in keys.iter().zip(rig.sweeps()).zip(shapes.iter()) {
+            let checked = if shape.checked_radii() { Sweep::validate_frames(keys) } else { Sweep::validate(keys) };
+            checked.map_err(|source| EditError::Sweep { sweep: rest.name.clone(), source })?;
         }
         self.keys = keys;
         Ok(rounds)
@@ -150,6 +162,7 @@ fn apply_edit(
                 return Err(EditError::Invalid("\"theta_range\" must hold two finite angles".into()));
             }
             scale_radii(&mut keys[key], *factor, theta_range.map(|[a, b]| (a, b)));
+            shape.forget();
             Ok(0)
         }
         Edit::DragPoint { theta, t, d, h, to, mode, keys: k, .. } => {

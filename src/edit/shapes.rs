@@ -1,17 +1,26 @@
 //! The posed sweeps of the keys being edited, kept between the rebuilds of an edit: a memo, so
-//! that its results are exactly those of building every sweep afresh.
+//! that its results are those of building every sweep afresh (bit for bit after rigid moves, up
+//! to rounding after rescales).
 //!
 //! The controls (§4), the hierarchy (§5) and the volume rules rebuild a sweep after every step,
-//! and most steps move keys rigidly. A kept sweep whose keys still have the radii it was built
-//! from is rebuilt by [`Sweep::try_with_axis`] (C(t) and R(t) only, linear in the keys), and
-//! its volume (Eq. 1) reuses the area polynomials A(t), so such a step costs time independent
-//! of the number of radii, beyond comparing them.
+//! and most steps move keys rigidly. A kept sweep whose keys moved is rebuilt by
+//! [`Sweep::try_with_axis`] (C(t) and R(t) only, linear in the keys), and its volume (Eq. 1)
+//! reuses the area polynomials A(t), so such a step costs time independent of the number of
+//! radii.
+//!
+//! The memo compares the keys' frames (centers and rotations), not their radii: whoever
+//! changes radii says so, by [`Shape::forget`] or [`Shape::scale_radii`]. Within `edit` the
+//! radii change in two places only: a `scale_radii` edit and a volume rule's rescale.
 //!
 //! A volume rule rescales whole sweeps: there the kept r(θ, t) and A(t) are scaled instead of
-//! rebuilt ([`Shape::scale_radii`]), exact up to rounding, and the volume of Eq. 1 scales with A.
-//! Such a sweep is rebuilt from its keys after [`MAX_SCALED`] scalings, so the rounding it
-//! carries stays under 10⁻¹³ relative.
+//! rebuilt ([`Shape::scale_radii`]), in time independent of the radii (r keeps one factor,
+//! [`RadiusField::scaled`](crate::sweep::radius::RadiusField::scaled)), and the volume of Eq. 1
+//! scales with A. Such a sweep is rebuilt from its keys after [`MAX_SCALED`] scalings, so that
+//! it stays within 10⁻¹³ relative of the keys' radii, which are rounded at every rescale.
 
+use glam::{DQuat, DVec3};
+
+use super::rigid::Motion;
 use crate::sweep::radius::AreaPolynomial;
 use crate::sweep::{Key, Sweep, SweepError};
 
@@ -23,8 +32,8 @@ pub struct Shape {
 
 #[derive(Clone, Debug)]
 struct Kept {
-    /// The keys the sweep was built from.
-    keys: Vec<Key>,
+    /// The frames of the keys the sweep was built from.
+    frames: Vec<(DVec3, DQuat)>,
     sweep: Sweep,
     areas: Option<Vec<AreaPolynomial>>,
     volume: Option<f64>,
@@ -32,14 +41,15 @@ struct Kept {
     scaled: usize,
 }
 
-/// The most scalings of a kept radius function before it is rebuilt: each adds a rounding of
-/// about 1 ulp (1.1·10⁻¹⁶) relative to r and A, so 64 stay under 10⁻¹⁴, and the rebuild costs
-/// 1/64 of one per scaling.
-const MAX_SCALED: usize = 64;
+/// The most scalings of a kept radius function before it is rebuilt: each rounds the keys'
+/// radii, and the field's one factor, by at most ½ ulp (1.1·10⁻¹⁶) relative, so 512 keep the
+/// two within 10⁻¹³ of each other, and the rebuild costs 1/512 of one per scaling.
+const MAX_SCALED: usize = 512;
 
 impl Shape {
     /// The sweep through `keys` at `knots`, as [`Sweep::try_new`] builds it. A memo is for one
-    /// sweep: `knots` must be the same on every call.
+    /// sweep: `knots` must be the same on every call, and `keys` must have the radii of the
+    /// last call unless the memo was told otherwise.
     pub fn sweep(&mut self, keys: &[Key], knots: &[f64]) -> Result<&Sweep, SweepError> {
         Ok(&self.update(keys, knots)?.sweep)
     }
@@ -54,42 +64,62 @@ impl Shape {
         Ok(kept.volume.expect("set above"))
     }
 
+    /// Forgets the sweep: the keys' radii changed, so the next call rebuilds it from them.
+    pub fn forget(&mut self) {
+        self.kept = None;
+    }
+
+    /// Whether a sweep is kept: then the keys' radii are those it was built from (or scaled
+    /// to), which were valid, and only their frames need checking.
+    pub fn checked_radii(&self) -> bool {
+        self.kept.is_some()
+    }
+
     fn update(&mut self, keys: &[Key], knots: &[f64]) -> Result<&mut Kept, SweepError> {
-        let (same_frames, same_radii) = match &self.kept {
-            Some(kept) => (same_frames(&kept.keys, keys), same_radii(&kept.keys, keys)),
-            None => (false, false),
-        };
-        if !(same_frames && same_radii) {
+        let same_frames = self.kept.as_ref().is_some_and(|kept| same_frames(&kept.frames, keys));
+        if !same_frames {
             let rebuilt = match &self.kept {
-                Some(kept) if same_radii => kept.sweep.try_with_axis(keys),
-                _ => Sweep::try_new(keys, Some(knots)),
+                Some(kept) => kept.sweep.try_with_axis(keys),
+                None => Sweep::try_new(keys, Some(knots)),
             };
             let rebuilt = rebuilt.inspect_err(|_| self.kept = None)?;
             let (areas, scaled) = match self.kept.take() {
-                Some(kept) if same_radii => (kept.areas, kept.scaled),
-                _ => (None, 0),
+                Some(kept) => (kept.areas, kept.scaled),
+                None => (None, 0),
             };
-            self.kept = Some(Kept { keys: keys.to_vec(), sweep: rebuilt, areas, volume: None, scaled });
+            self.kept = Some(Kept { frames: frames(keys), sweep: rebuilt, areas, volume: None, scaled });
         }
         Ok(self.kept.as_mut().expect("kept above"))
     }
-}
 
-impl Shape {
-    /// Notes that `keys` are the kept keys with every radius multiplied by `factor` (a volume
-    /// rule's uniform rescale, §5): r(θ, t) is scaled by `factor`, and A(t) and the volume (Eq. 1)
-    /// by factor², in time linear in the radii but without solving the splines again. Forgets the sweep instead when `keys` are not that, when the scaled
-    /// radii are invalid (so that rebuilding reports them), or after [`MAX_SCALED`] scalings.
-    pub fn scale_radii(&mut self, keys: &[Key], factor: f64) {
+    /// Moves every key of `keys` by `motion` (radii unchanged). When the memo holds the sweep of
+    /// `keys` before the move, it rebuilds C(t) and R(t) at once and keeps the volume: Eq. 1 is
+    /// invariant under a rigid motion of the whole sweep (A(t) is unchanged, N(t) and C′(t)
+    /// turn together), so a child carried by its parent (§5) costs no quadrature. The kept
+    /// volume differs from one integrated afresh by the quadrature's error, under 10⁻¹².
+    pub fn move_rigidly(&mut self, keys: &mut [Key], motion: &Motion) {
+        let before = self.kept.as_ref().is_some_and(|kept| same_frames(&kept.frames, keys));
+        for key in keys.iter_mut() {
+            motion.apply(key);
+        }
+        let Some(kept) = self.kept.as_mut().filter(|_| before) else { return };
+        match kept.sweep.try_with_axis(keys) {
+            Ok(sweep) => {
+                kept.sweep = sweep;
+                kept.frames = frames(keys);
+            }
+            // The caller's check of the frames reports it.
+            Err(_) => self.kept = None,
+        }
+    }
+
+    /// Notes that every radius of the sweep's keys was multiplied by `factor` (a volume rule's
+    /// uniform rescale, §5): r(θ, t) is scaled by `factor`, and A(t) and the volume (Eq. 1) by
+    /// factor², in time linear in the keys. Forgets the sweep instead after [`MAX_SCALED`]
+    /// scalings, or when `radii_valid` is false (so that rebuilding reports the radii).
+    pub fn scale_radii(&mut self, factor: f64, radii_valid: bool) {
         let Some(kept) = &mut self.kept else { return };
-        let scaled_by = |a: &Key, b: &Key| {
-            a.radii.len() == b.radii.len()
-                && a.radii.iter().zip(&b.radii).all(|(x, y)| (x * factor).to_bits() == y.to_bits())
-        };
-        let follows = kept.keys.len() == keys.len()
-            && same_frames(&kept.keys, keys)
-            && kept.keys.iter().zip(keys).all(|(a, b)| scaled_by(a, b));
-        if !follows || kept.scaled + 1 >= MAX_SCALED || Sweep::validate(keys).is_err() {
+        if !radii_valid || kept.scaled + 1 >= MAX_SCALED {
             self.kept = None;
             return;
         }
@@ -99,27 +129,22 @@ impl Shape {
         // the quadrature's 1e-12, whose subdivision the scaling leaves alone).
         kept.volume = kept.volume.map(|volume| volume * (factor * factor));
         kept.scaled += 1;
-        for (kept, key) in kept.keys.iter_mut().zip(keys) {
-            kept.radii.copy_from_slice(&key.radii);
-        }
     }
 }
 
-/// Whether `a` and `b` have the same centers and rotations, bit for bit (so that a rebuilt
-/// sweep would be bit for bit the kept one).
-fn same_frames(a: &[Key], b: &[Key]) -> bool {
-    let bits = |key: &Key| {
-        let [x, y, z] = key.center.to_array();
-        let [qx, qy, qz, qw] = key.rotation.to_array();
-        [x, y, z, qx, qy, qz, qw].map(f64::to_bits)
-    };
-    a.len() == b.len() && a.iter().zip(b).all(|(a, b)| bits(a) == bits(b))
+fn frames(keys: &[Key]) -> Vec<(DVec3, DQuat)> {
+    keys.iter().map(|key| (key.center, key.rotation)).collect()
 }
 
-/// Whether `a` and `b` have the same radii, bit for bit.
-fn same_radii(a: &[Key], b: &[Key]) -> bool {
-    let same = |a: &[f64], b: &[f64]| a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits());
-    a.len() == b.len() && a.iter().zip(b).all(|(a, b)| same(&a.radii, &b.radii))
+/// Whether `keys` have the centers and rotations `frames`, bit for bit (so that a rebuilt
+/// sweep would be bit for bit the kept one).
+fn same_frames(frames: &[(DVec3, DQuat)], keys: &[Key]) -> bool {
+    let bits = |(center, rotation): (DVec3, DQuat)| {
+        let [x, y, z] = center.to_array();
+        let [qx, qy, qz, qw] = rotation.to_array();
+        [x, y, z, qx, qy, qz, qw].map(f64::to_bits)
+    };
+    frames.len() == keys.len() && frames.iter().zip(keys).all(|(&a, b)| bits(a) == bits((b.center, b.rotation)))
 }
 
 /// The memos of every sweep of a rig.

@@ -110,7 +110,12 @@ pub fn apply_rule(
         VolumeRule::None => Ok(()),
         VolumeRule::Total => keep_total(rig, keys, edited, before, shapes),
         VolumeRule::Ratio => keep_ratios(rig, keys, edited, before, shapes),
-        VolumeRule::Mesh => keep_mesh(rig, keys, edited, before, mesh.ok_or(EditError::MeshNeeded)?),
+        VolumeRule::Mesh => {
+            keep_mesh(rig, keys, edited, before, mesh.ok_or(EditError::MeshNeeded)?)?;
+            // The mesh rule rescales copies of the keys, not through the memos.
+            shapes.iter_mut().for_each(Shape::forget);
+            Ok(())
+        }
     }
 }
 
@@ -136,6 +141,20 @@ fn scale(keys: &mut [Key], factor: f64) {
     }
 }
 
+/// [`scale`], returning whether every scaled radius is still finite and within
+/// [`MAX_RIG_COORDINATE`](crate::limits::MAX_RIG_COORDINATE) (the radii were valid before, and
+/// `factor` is positive, so none is negative): one pass over the radii.
+fn scale_checked(keys: &mut [Key], factor: f64) -> bool {
+    let mut largest = 0.0f64;
+    for key in keys {
+        for radius in &mut key.radii {
+            *radius *= factor;
+            largest = largest.max(*radius);
+        }
+    }
+    largest <= crate::limits::MAX_RIG_COORDINATE
+}
+
 /// Rescales `sweep` to volume `target` and re-attaches its descendants.
 fn rescale_to(
     rig: &Rig,
@@ -149,8 +168,8 @@ fn rescale_to(
         return Err(EditError::VolumeUnreachable { sweep: rig.sweeps()[sweep].name.clone(), target });
     }
     let factor = (target / volume).sqrt();
-    scale(&mut keys[sweep], factor);
-    shapes[sweep].scale_radii(&keys[sweep], factor);
+    let valid = scale_checked(&mut keys[sweep], factor);
+    shapes[sweep].scale_radii(factor, valid);
     propagate_down_kept(rig, keys, sweep, shapes)
 }
 

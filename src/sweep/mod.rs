@@ -101,6 +101,13 @@ impl Sweep {
         validate_keys(keys)
     }
 
+    /// Checks the count, centers and rotations of `keys` as [`Sweep::try_new`] does, not their
+    /// radii: for keys moved rigidly from keys already checked.
+    pub fn validate_frames(keys: &[Key]) -> Result<(), SweepError> {
+        validate_count(keys)?;
+        keys.iter().enumerate().try_for_each(|(index, key)| validate_frame(index, key))
+    }
+
     fn from_valid(keys: &[Key], knots: Vec<f64>) -> Sweep {
         let segments = axis_segments(keys, &knots);
         let radii: Vec<&[f64]> = keys.iter().map(|key| key.radii.as_slice()).collect();

@@ -7,6 +7,7 @@
 //! `φ = (θ − θ_j)/(2π/M)`, both in [0, 1].
 
 use std::f64::consts::TAU;
+use std::sync::Arc;
 
 use super::natural_spline::NaturalSplineSystem;
 use super::periodic_spline::PeriodicSplineSystem;
@@ -37,11 +38,15 @@ pub fn angular_cell(theta: f64, samples: usize) -> (usize, f64) {
     (j, x - j as f64)
 }
 
-/// All radius patches of one sweep, knot interval by knot interval.
+/// All radius patches of one sweep, knot interval by knot interval, times one scale factor:
+/// r = scale · Σ c·s^p·φ^q, so that a uniform rescale of the radii (§5) costs no time.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RadiusField {
     samples: usize,
-    patches: Vec<RadiusPatch>,
+    /// The patches as built, shared with the fields scaled from them.
+    patches: Arc<Vec<RadiusPatch>>,
+    /// The factor every coefficient is multiplied by when read (1 as built).
+    scale: f64,
 }
 
 impl RadiusField {
@@ -78,7 +83,7 @@ impl RadiusField {
                 }
             }
         }
-        RadiusField { samples, patches }
+        RadiusField { samples, patches: Arc::new(patches), scale: 1.0 }
     }
 
     /// M, the number of radii per key.
@@ -87,15 +92,22 @@ impl RadiusField {
     }
 
     /// r scaled by `factor`: the field of every ρ_ij multiplied by `factor`, up to rounding (the
-    /// spline is linear in the radii), without solving the splines again.
+    /// spline is linear in the radii), in constant time: the patches are shared and the scale
+    /// factor multiplied.
     pub fn scaled(&self, factor: f64) -> RadiusField {
-        let patches = self.patches.iter().map(|patch| RadiusPatch { c: patch.c.map(|row| row.map(|c| c * factor)) });
-        RadiusField { samples: self.samples, patches: patches.collect() }
+        RadiusField { samples: self.samples, patches: Arc::clone(&self.patches), scale: self.scale * factor }
     }
 
-    /// The patch on knot interval `segment` and angular interval `j`.
-    pub fn patch(&self, segment: usize, j: usize) -> &RadiusPatch {
-        &self.patches[segment * self.samples + j]
+    /// The patch on knot interval `segment` and angular interval `j`, its coefficients times
+    /// the field's scale factor.
+    pub fn patch(&self, segment: usize, j: usize) -> RadiusPatch {
+        let patch = self.patches[segment * self.samples + j];
+        if self.scale == 1.0 {
+            patch
+        } else {
+            let scale = self.scale;
+            RadiusPatch { c: patch.c.map(|row| row.map(|c| c * scale)) }
+        }
     }
 
     /// r(θ, t) on knot interval `segment` at local parameter `s`.
