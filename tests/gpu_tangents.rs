@@ -66,13 +66,15 @@ fn worst_angle(a: &[[f32; 4]], b: &[[f32; 4]]) -> (f64, usize) {
     a.iter().zip(b).map(|(x, y)| angle(*x, *y)).enumerate().fold((0.0, 0), |w, (i, e)| if e > w.0 { (e, i) } else { w })
 }
 
+/// What the GPU returns: rest normals, deformed normals (xyz) and deformed tangents (xyzw).
+struct GpuRun {
+    rest_normals: Vec<f32>,
+    normals: Vec<f32>,
+    tangents: Vec<[f32; 4]>,
+}
+
 /// The GPU's rest normals, deformed normals and deformed tangents of `mesh` posed by `keys`.
-fn gpu_run(
-    rig: &Rig,
-    mesh: &Mesh,
-    tangents: &[[f32; 4]],
-    keys: &[Vec<Key>],
-) -> Option<(Vec<f32>, Vec<f32>, Vec<[f32; 4]>)> {
+fn gpu_run(rig: &Rig, mesh: &Mesh, tangents: &[[f32; 4]], keys: &[Vec<Key>]) -> Option<GpuRun> {
     let context = common::gpu()?;
     let owners = rig.owners(mesh, "tube").unwrap();
     let bindings = BindingSource::Bind { owners: &owners, bands: &[] };
@@ -80,7 +82,8 @@ fn gpu_run(
         GpuDeformer::with_tangents(context, rig.rest(), &mesh.positions, bindings, &mesh.faces, tangents).unwrap();
     let rest_normals = deformer.read_normals().unwrap().unwrap();
     deformer.deform(&rig.pose(keys).unwrap()).unwrap();
-    Some((rest_normals, deformer.read_normals().unwrap().unwrap(), deformer.read_tangents().unwrap().unwrap()))
+    let normals = deformer.read_normals().unwrap().unwrap();
+    Some(GpuRun { rest_normals, normals, tangents: deformer.read_tangents().unwrap().unwrap() })
 }
 
 fn to_dvec3(flat: &[f32]) -> Vec<DVec3> {
@@ -89,7 +92,9 @@ fn to_dvec3(flat: &[f32]) -> Vec<DVec3> {
 
 fn check_against_twin(name: &str, rig: &Rig, mesh: &Mesh) {
     let tangents = rest_tangents(mesh);
-    let Some((rest_normals, normals, gpu)) = gpu_run(rig, mesh, &tangents, &POSE.keys(rig)) else { return };
+    let Some(GpuRun { rest_normals, normals, tangents: gpu }) = gpu_run(rig, mesh, &tangents, &POSE.keys(rig)) else {
+        return;
+    };
     let mut twin = vec![[0.0; 4]; gpu.len()];
     cpu::tangents::tangents(&rest_normals, &normals, &tangents, &mut twin);
     let (worst, at) = worst_angle(&gpu, &twin);
@@ -148,7 +153,7 @@ fn turning_the_tube_about_its_axis_turns_the_wall_tangents_with_it() {
             s.keys.iter().map(|k| Key { center: turn * k.center, rotation: turn * k.rotation, ..k.clone() }).collect()
         })
         .collect();
-    let Some((_, normals, gpu)) = gpu_run(&rig, &mesh, &tangents, &keys) else { return };
+    let Some(GpuRun { normals, tangents: gpu, .. }) = gpu_run(&rig, &mesh, &tangents, &keys) else { return };
     // Wall vertices between the end rings have radial rest normals: the minimal rotation taking
     // them to the turned normals is the turn itself.
     let (mut worst, mut at) = (0.0, 0);

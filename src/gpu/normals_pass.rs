@@ -223,3 +223,52 @@ impl NormalsPlan<'_> {
         Ok(dispatches)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SMALL: ChunkLimits =
+        ChunkLimits { max_binding: 1024, max_buffer: u32::MAX as u64, offset_alignment: 256, max_workgroups: 65535 };
+
+    /// Checks that `chunks` cover `vertices` in order, each within the limits of [`list_chunks`].
+    fn check(vertices: &[u32], stride: u64, entries: impl Fn(u32) -> u64, chunks: &[ListChunk]) {
+        assert_eq!(chunks.first().map(|c| c.items.start), Some(0));
+        assert_eq!(chunks.last().map(|c| c.items.end), Some(vertices.len()));
+        for pair in chunks.windows(2) {
+            assert_eq!(pair[0].items.end, pair[1].items.start);
+        }
+        for chunk in chunks {
+            let list = &vertices[chunk.items.clone()];
+            assert!(list.iter().all(|v| chunk.span.contains(v)), "{chunk:?}");
+            assert_eq!(chunk.span.start as u64 * stride % 256, 0, "{chunk:?}");
+            assert!(chunk.span.len() as u64 * stride <= 1024, "{chunk:?}");
+            assert!((list.len() + 1) * 4 <= 1024, "{chunk:?}");
+            assert!(list.iter().map(|&v| entries(v)).sum::<u64>() * 4 <= 1024, "{chunk:?}");
+        }
+    }
+
+    #[test]
+    fn sparse_lists_split_by_the_span_of_their_windows() {
+        let vertices: Vec<u32> = (0..2000).filter(|v| v % 7 == 0 || (500..560).contains(v)).collect();
+        for stride in [12, 16] {
+            let chunks = list_chunks(&vertices, stride, |_| 0, &SMALL).unwrap();
+            assert!(chunks.len() > 1);
+            check(&vertices, stride, |_| 0, &chunks);
+        }
+    }
+
+    #[test]
+    fn dense_rows_split_by_their_adjacency_entries() {
+        let vertices: Vec<u32> = (0..300).collect();
+        let entries = |v: u32| (v % 9) as u64;
+        let chunks = list_chunks(&vertices, 12, entries, &SMALL).unwrap();
+        check(&vertices, 12, entries, &chunks);
+    }
+
+    #[test]
+    fn empty_list_has_no_chunk_and_an_oversized_row_none() {
+        assert_eq!(list_chunks(&[], 12, |_| 0, &SMALL), Some(Vec::new()));
+        assert_eq!(list_chunks(&[3], 12, |_| 1000, &SMALL), None);
+    }
+}
