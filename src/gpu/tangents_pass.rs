@@ -151,3 +151,89 @@ impl TangentPlan<'_> {
         Ok(dispatches)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    //! Both stages on three instances of one tube, the second and third moved differently in
+    //! the first sweep-owned half: each instance's normals and tangents match the twins'.
+    //! Without a GPU adapter the test passes with a notice (unless `SWEEPFFD_REQUIRE_GPU=1`).
+
+    use glam::{DVec3, Vec3};
+
+    use super::*;
+    use crate::gpu::{GpuContext, read_bytes};
+    use crate::normals::{NormalAdjacency, dirty_vertices};
+    use crate::synthetic::Tube;
+
+    #[test]
+    fn three_instances_each_get_their_own_normals_and_tangents() {
+        let context = match GpuContext::new() {
+            Ok(context) => context,
+            Err(e) if std::env::var("SWEEPFFD_REQUIRE_GPU").is_ok_and(|v| v == "1") => panic!("no GPU: {e}"),
+            Err(e) => return eprintln!("skipping GPU test: {e}"),
+        };
+        let device = &context.device;
+        let mesh = Tube { rings: 12, around: 10, length: 2.0, radius: 0.5 }.mesh();
+        let n = mesh.positions.len();
+        let moves: Vec<bool> = mesh.positions.iter().map(|p| p.z > 1.0).collect();
+        let instance = |k: usize| -> Vec<f32> {
+            let bend = |p: DVec3| if p.z > 1.0 { p + DVec3::new(0.3 * k as f64 * (p.z - 1.0), 0.0, 0.0) } else { p };
+            crate::cpu::packed(&mesh.positions.iter().map(|&p| bend(p)).collect::<Vec<_>>())
+        };
+        let rest_tangents: Vec<[f32; 4]> =
+            mesh.positions.iter().map(|p| Vec3::new(-p.y as f32, p.x as f32, 0.1).extend(1.0).to_array()).collect();
+        let positions = device.create_buffer(&wgpu::BufferDescriptor {
+            label: None,
+            size: 3 * n as u64 * POSITION_STRIDE,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let rest: Vec<f32> = (0..3).flat_map(|_| instance(0)).collect();
+        context.queue.write_buffer(&positions, 0, bytemuck::cast_slice(&rest));
+        let limits = ChunkLimits::of(&device.limits());
+        let mut encoder = device.create_command_encoder(&Default::default());
+        let normals =
+            NormalsStage::new(device, &mut encoder, &mesh.faces, &positions, n as u32, 3, &moves, &limits).unwrap();
+        let tangents = TangentStage::new(device, &mut encoder, &rest_tangents, &normals, n as u32, 3, &limits).unwrap();
+        context.queue.submit([encoder.finish()]);
+        // The frame: the instances' own positions, then the per-frame dispatches.
+        let posed: Vec<f32> = (0..3).flat_map(instance).collect();
+        context.queue.write_buffer(&positions, 0, bytemuck::cast_slice(&posed));
+        let mut encoder = device.create_command_encoder(&Default::default());
+        {
+            let mut pass = encoder.begin_compute_pass(&Default::default());
+            pass.set_pipeline(&normals.kernel.pipeline);
+            for (group, grid) in &normals.dispatches {
+                pass.set_bind_group(0, group, &[]);
+                pass.dispatch_workgroups(grid.0, grid.1, 1);
+            }
+            tangents.encode(&mut pass);
+        }
+        context.queue.submit([encoder.finish()]);
+        let gpu_normals: Vec<f32> =
+            bytemuck::pod_collect_to_vec(&read_bytes(&context, &normals.buffer, 0, 3 * n as u64 * 12).unwrap());
+        let gpu_tangents: Vec<[f32; 4]> =
+            bytemuck::pod_collect_to_vec(&read_bytes(&context, tangents.buffer(), 0, 3 * n as u64 * 16).unwrap());
+
+        let adjacency = NormalAdjacency::new(&mesh.faces, n);
+        assert_eq!(normals.dirty.len(), 3 * dirty_vertices(&adjacency, |v| moves[v]).len());
+        let mut rest_normals = vec![0.0; 3 * n];
+        crate::cpu::normals::normals(&instance(0), &adjacency, &mut rest_normals);
+        for k in 0..3 {
+            let mut twin_normals = vec![0.0; 3 * n];
+            crate::cpu::normals::normals(&instance(k), &adjacency, &mut twin_normals);
+            let mut twin_tangents = vec![[0.0; 4]; n];
+            crate::cpu::tangents::tangents(&rest_normals, &twin_normals, &rest_tangents, &mut twin_tangents);
+            for v in 0..n {
+                let g = k * n + v;
+                let normal = Vec3::from_slice(&gpu_normals[3 * g..3 * g + 3]);
+                let error = (normal - Vec3::from_slice(&twin_normals[3 * v..3 * v + 3])).length();
+                assert!(error < 1e-5, "instance {k}, vertex {v}: normal {normal} off by {error}");
+                let error = (glam::Vec4::from(gpu_tangents[g]) - glam::Vec4::from(twin_tangents[v])).length();
+                assert!(error < 1e-5, "instance {k}, vertex {v}: tangent {:?} off by {error}", gpu_tangents[g]);
+            }
+        }
+        let moved = (0..n).filter(|&v| gpu_normals[3 * (2 * n + v)] != gpu_normals[3 * v]).count();
+        assert!(moved > 0, "the instances' normals do not differ: the test would prove nothing");
+    }
+}
