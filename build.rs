@@ -25,6 +25,7 @@ const KERNELS: &[(&str, &[&str])] = &[
     ("normals_two_windows", &["layout.wgsl", "normals.wgsl", "positions_two_windows.wgsl"]),
     ("copy", &["layout.wgsl", "copy.wgsl"]),
     ("skinning", &["layout.wgsl", "skinning.wgsl"]),
+    ("tangents", &["layout.wgsl", "tangents.wgsl"]),
 ];
 
 /// The render shaders in `shaders/render/`, each one self-contained file.

@@ -1,7 +1,9 @@
 // Area-weighted vertex normals of the deformed mesh: for vertex i, the normalized sum of
 // (p_j - p_i) x (p_k - p_i) over its incident triangles (i, j, k), gathered per vertex from its
 // precomputed fans of one-ring neighbours (consecutive entries make a triangle; an entry with
-// FAN_START begins a new fan), so no atomics are needed.
+// FAN_START begins a new fan), so no atomics are needed. Only the listed vertices are computed:
+// all of them once at rest, then per frame those with a moving vertex in their one-ring
+// (src/normals/dirty.rs); the others keep their rest normal.
 // Composed after layout.wgsl and positions_one_window.wgsl or positions_two_windows.wgsl (which
 // define position(v)). Twin: src/cpu/normals.rs.
 
@@ -11,14 +13,17 @@
 // positions fit one binding binds the same window twice and reads only the first).
 @group(0) @binding(1) var<storage, read> positions_low: array<f32>;
 @group(0) @binding(2) var<storage, read> positions_high: array<f32>;
-// This chunk's rows: vertex first_vertex + l has fan entries offsets[l] .. offsets[l + 1].
-@group(0) @binding(3) var<storage, read> offsets: array<u32>;
-@group(0) @binding(4) var<storage, read> fans: array<u32>;
+// This chunk's vertices (global indices, ascending) and their rows: vertices[l] has fan
+// entries offsets[l] .. offsets[l + 1].
+@group(0) @binding(3) var<storage, read> vertices: array<u32>;
+@group(0) @binding(4) var<storage, read> offsets: array<u32>;
+@group(0) @binding(5) var<storage, read> fans: array<u32>;
 
 const FAN_START: u32 = 0x80000000u;
 const FAN_INDEX: u32 = 0x7fffffffu;
-// This chunk's window of the normals buffer, tightly packed xyz.
-@group(0) @binding(5) var<storage, read_write> normals: array<f32>;
+// This chunk's window of the normals buffer, tightly packed xyz, from vertex
+// params.first_vertex.
+@group(0) @binding(6) var<storage, read_write> normals: array<f32>;
 
 @compute @workgroup_size(WORKGROUP_SIZE)
 fn normals_main(
@@ -30,7 +35,8 @@ fn normals_main(
     if (l >= params.vertex_count) {
         return;
     }
-    let p = position(params.first_vertex + l);
+    let v = vertices[l];
+    let p = position(v);
     var sum = vec3<f32>(0.0);
     var previous = vec3<f32>(0.0);
     for (var c = offsets[l]; c < offsets[l + 1u]; c++) {
@@ -46,7 +52,8 @@ fn normals_main(
     if (length2 > 0.0) {
         n = sum * inverseSqrt(length2);
     }
-    normals[3u * l] = n.x;
-    normals[3u * l + 1u] = n.y;
-    normals[3u * l + 2u] = n.z;
+    let o = v - params.first_vertex;
+    normals[3u * o] = n.x;
+    normals[3u * o + 1u] = n.y;
+    normals[3u * o + 2u] = n.z;
 }

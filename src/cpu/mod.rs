@@ -1,7 +1,8 @@
 //! CPU twins of the WGSL kernels: f32 code that mirrors `shaders/*.wgsl` statement by
 //! statement, file for file (`shaders/bind.wgsl` ↔ [`bind`], `shaders/deform.wgsl` ↔
 //! [`deform`], `shaders/band.wgsl` ↔ [`band`], `shaders/band_pack.wgsl` ↔ [`band_pack`],
-//! `shaders/band_flags.wgsl` ↔ [`band_flags`], `shaders/normals.wgsl` ↔ [`normals`], and the shared `shaders/sweep_eval.wgsl` ↔
+//! `shaders/band_flags.wgsl` ↔ [`band_flags`], `shaders/normals.wgsl` ↔ [`normals`],
+//! `shaders/tangents.wgsl` ↔ [`tangents`], and the shared `shaders/sweep_eval.wgsl` ↔
 //! [`sweep_eval`], `shaders/angle.wgsl` ↔ [`angle`], `shaders/blend.wgsl` ↔ [`blend`]; the
 //! benchmark baselines `shaders/copy.wgsl` ↔ [`copy`],
 //! `shaders/skinning.wgsl` ↔ [`skinning`]).
@@ -22,6 +23,7 @@ pub mod deform;
 pub mod normals;
 pub mod skinning;
 pub mod sweep_eval;
+pub mod tangents;
 
 use glam::{DVec3, Vec3};
 

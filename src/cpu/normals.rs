@@ -1,6 +1,7 @@
 //! Twin of `shaders/normals.wgsl`: area-weighted vertex normals in f32, the normalized sum of
 //! (p_j − p_i) × (p_k − p_i) over the incident triangles (i, j, k) of each vertex, read from its
-//! fans of one-ring neighbours.
+//! fans of one-ring neighbours, for every vertex ([`normals`]) or only listed ones
+//! ([`normals_of`], the kernel's dispatch over the vertices whose one-ring moves).
 
 use crate::parallel::prelude::*;
 use glam::Vec3;
@@ -9,7 +10,8 @@ use super::position;
 use crate::normals::{FAN_INDEX, FAN_START, NormalAdjacency};
 
 /// One invocation of the kernel: the unit normal of vertex `i`, or zero if its triangles have
-/// no area. (The kernel reads positions through two windows; here one slice holds them all.)
+/// no area. (The kernel reads positions through two windows and the rows of its listed
+/// vertices only; here one slice holds all positions and `offsets` all rows.)
 pub fn vertex_normal(positions: &[f32], offsets: &[u32], fans: &[u32], i: usize) -> Vec3 {
     let p = position(positions, i);
     let mut sum = Vec3::ZERO;
@@ -36,4 +38,16 @@ pub fn normals(positions: &[f32], adjacency: &NormalAdjacency, normals: &mut [f3
     normals.par_chunks_mut(3).enumerate().for_each(|(i, out)| {
         out.copy_from_slice(&vertex_normal(positions, &adjacency.offsets, &adjacency.fans, i).to_array());
     });
+}
+
+/// The invocations of the kernel over `vertices`: writes the normals of those vertices into
+/// `normals` (tightly packed xyz, one per vertex of `positions`); the others are left alone.
+pub fn normals_of(positions: &[f32], adjacency: &NormalAdjacency, vertices: &[u32], normals: &mut [f32]) {
+    let computed: Vec<Vec3> = vertices
+        .par_iter()
+        .map(|&v| vertex_normal(positions, &adjacency.offsets, &adjacency.fans, v as usize))
+        .collect();
+    for (&v, n) in vertices.iter().zip(computed) {
+        normals[3 * v as usize..3 * v as usize + 3].copy_from_slice(&n.to_array());
+    }
 }

@@ -18,6 +18,7 @@ use super::chunks::{ChunkLimits, dispatch_grid, uniform_chunks};
 use super::kernels::{self, DeformVariant, Kernel};
 use super::normals_pass::NormalsStage;
 use super::readback::{read_bytes, wait};
+use super::tangents_pass::{TANGENT_STRIDE, TangentStage};
 use super::{GpuContext, GpuError};
 use crate::bind::falloff::BandWeight;
 use crate::coeffs::{BAND_FLAG, BandRecord, DispatchParams, GpuBinding, SweepCoefficients, UNOWNED};
@@ -92,6 +93,7 @@ pub struct GpuDeformer {
     bands: Option<BandStage>,
     rebanding: Rebanding,
     normals: Option<NormalsStage>,
+    tangents: Option<TangentStage>,
 }
 
 /// One dispatch of the deform kernel.
@@ -140,6 +142,32 @@ impl GpuDeformer {
         positions: &[DVec3],
         bindings: BindingSource,
         faces: Option<&Faces>,
+    ) -> Result<GpuDeformer, GpuError> {
+        GpuDeformer::build(context, rest, positions, bindings, faces.map(|f| (f, None)))
+    }
+
+    /// [`new`](GpuDeformer::new) with faces and the host's rest tangents (f32 xyzw per vertex,
+    /// w = ±1 the handedness, as glTF stores them): also keeps the deformed tangents
+    /// ([`tangents`](GpuDeformer::tangents)), each rest tangent turned by the minimal rotation
+    /// of its vertex's normal, made orthogonal to the deformed normal and normalized
+    /// ([`crate::normals::tangents`]).
+    pub fn with_tangents(
+        context: &GpuContext,
+        rest: &[Sweep],
+        positions: &[DVec3],
+        bindings: BindingSource,
+        faces: &Faces,
+        rest_tangents: &[[f32; 4]],
+    ) -> Result<GpuDeformer, GpuError> {
+        GpuDeformer::build(context, rest, positions, bindings, Some((faces, Some(rest_tangents))))
+    }
+
+    fn build(
+        context: &GpuContext,
+        rest: &[Sweep],
+        positions: &[DVec3],
+        bindings: BindingSource,
+        faces: Option<(&Faces, Option<&[[f32; 4]]>)>,
     ) -> Result<GpuDeformer, GpuError> {
         check_input(rest, positions, &bindings)?;
         let device = &context.device;
@@ -223,9 +251,23 @@ impl GpuDeformer {
             ),
         };
         let rebanding = Rebanding::new(rest, binder, members, &bound);
-        let normals = match faces {
-            Some(faces) => Some(NormalsStage::new(device, faces, &positions_buffer, vertex_count, &limits)?),
-            None => None,
+        // The rest normals (and tangents) are recorded now; per frame only those that can change.
+        let (normals, tangents) = match faces {
+            Some((faces, rest_tangents)) => {
+                let n = NormalsStage::new(
+                    device,
+                    &mut encoder,
+                    faces,
+                    &positions_buffer,
+                    vertex_count,
+                    1,
+                    &bound,
+                    &limits,
+                )?;
+                let t = rest_tangents.map(|t| TangentStage::new(device, &mut encoder, t, &n, vertex_count, 1, &limits));
+                (Some(n), t.transpose()?)
+            }
+            None => (None, None),
         };
         let deformer = GpuDeformer {
             context: context.clone(),
@@ -241,9 +283,8 @@ impl GpuDeformer {
             bands,
             rebanding,
             normals,
+            tangents,
         };
-        // Normals of the rest mesh, so the buffer is meaningful before the first pose.
-        deformer.encode_normals_pass(&mut encoder, None);
         context.queue.submit([encoder.finish()]);
         let validation_error = pollster::block_on(validation.pop());
         let memory_error = pollster::block_on(out_of_memory.pop());
@@ -269,6 +310,13 @@ impl GpuDeformer {
     /// was given faces; usage `VERTEX | STORAGE | COPY_SRC`.
     pub fn normals(&self) -> Option<&wgpu::Buffer> {
         self.normals.as_ref().map(|n| &n.buffer)
+    }
+
+    /// The unit tangents of the deformed mesh, f32 xyzw (16 bytes a vertex, w the rest
+    /// tangent's), if the deformer was made [`with_tangents`](GpuDeformer::with_tangents);
+    /// usage `VERTEX | STORAGE | COPY_SRC`.
+    pub fn tangents(&self) -> Option<&wgpu::Buffer> {
+        self.tangents.as_ref().map(TangentStage::buffer)
     }
 
     /// Number of deform dispatches (1 unless the mesh exceeds a device limit).
@@ -312,7 +360,9 @@ impl GpuDeformer {
         }
     }
 
-    /// Records the normals pass alone (nothing without faces), optionally with timestamps.
+    /// Records the normals pass alone (nothing without faces), then the tangents if any, optionally
+    /// with timestamps. Only the vertices with a sweep-owned vertex in their one-ring are
+    /// recomputed; the others keep the normals (and tangents) computed at creation.
     pub fn encode_normals_pass(
         &self,
         encoder: &mut wgpu::CommandEncoder,
@@ -327,6 +377,9 @@ impl GpuDeformer {
         for (group, grid) in &normals.dispatches {
             pass.set_bind_group(0, group, &[]);
             pass.dispatch_workgroups(grid.0, grid.1, 1);
+        }
+        if let Some(tangents) = &self.tangents {
+            tangents.encode(&mut pass);
         }
     }
 
@@ -354,6 +407,16 @@ impl GpuDeformer {
             return Ok(None);
         };
         let bytes = read_bytes(&self.context, &normals.buffer, 0, self.vertex_count as u64 * POSITION_STRIDE)?;
+        Ok(Some(bytemuck::pod_collect_to_vec(&bytes)))
+    }
+
+    /// Copies the tangents back to the CPU (blocking), f32 xyzw per vertex, or `None` without
+    /// rest tangents.
+    pub fn read_tangents(&self) -> Result<Option<Vec<[f32; 4]>>, GpuError> {
+        let Some(tangents) = &self.tangents else {
+            return Ok(None);
+        };
+        let bytes = read_bytes(&self.context, tangents.buffer(), 0, self.vertex_count as u64 * TANGENT_STRIDE)?;
         Ok(Some(bytemuck::pod_collect_to_vec(&bytes)))
     }
 

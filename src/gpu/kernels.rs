@@ -155,11 +155,11 @@ pub fn band_flags(device: &wgpu::Device) -> Kernel {
     )
 }
 
-/// `shaders/normals.wgsl`: params, positions (two windows), offsets, fans (read); normals
-/// (written). `two_windows` when the positions do not fit one storage binding.
+/// `shaders/normals.wgsl`: params, positions (two windows), vertices, offsets, fans (read);
+/// normals (written). `two_windows` when the positions do not fit one storage binding.
 pub fn normals(device: &wgpu::Device, two_windows: bool) -> Kernel {
     let source = if two_windows { shaders::NORMALS_TWO_WINDOWS } else { shaders::NORMALS_ONE_WINDOW };
-    let slots = [Uniform, Read, Read, Read, Read, ReadWrite];
+    let slots = [Uniform, Read, Read, Read, Read, Read, ReadWrite];
     Kernel::new(device, "sweepffd normals", source, "normals_main", &slots)
 }
 
@@ -173,4 +173,11 @@ pub fn copy(device: &wgpu::Device) -> Kernel {
 pub fn skinning(device: &wgpu::Device) -> Kernel {
     let slots = [Uniform, Uniform, Read, Read, ReadWrite];
     Kernel::new(device, "sweepffd skinning baseline", shaders::SKINNING, "skinning_main", &slots)
+}
+
+/// `shaders/tangents.wgsl`: params, vertices, rest normals, normals, rest tangents (read);
+/// tangents (written).
+pub fn tangents(device: &wgpu::Device) -> Kernel {
+    let slots = [Uniform, Read, Read, Read, Read, ReadWrite];
+    Kernel::new(device, "sweepffd tangents", shaders::TANGENTS, "tangents_main", &slots)
 }

@@ -1,7 +1,7 @@
 //! The GPU engine: binding (§3) and Eq. 2 in WGSL compute shaders on wgpu, with the output
 //! buffers ready for the host application to draw.
 //!
-//! Data flow: rig → sweep → sweep coefficients → **bind → deform → normals** (on the GPU) →
+//! Data flow: rig → sweep → sweep coefficients → **bind → deform → normals → tangents** (on the GPU) →
 //! output buffers.
 //!
 //! The kernels in `shaders/` have CPU twins in [`crate::cpu`]; tests prove the GPU agrees with
@@ -18,6 +18,7 @@ pub mod kernels;
 mod normals_pass;
 mod readback;
 pub mod shaders;
+mod tangents_pass;
 
 pub use bands::BAND_STRIDE;
 pub use buffers::{BINDING_STRIDE, POSITION_STRIDE};
@@ -27,3 +28,4 @@ pub use deformer::{BindingSource, GpuDeformer};
 pub use error::GpuError;
 pub use kernels::DeformVariant;
 pub use readback::{read_bytes, read_staging, wait};
+pub use tangents_pass::TANGENT_STRIDE;

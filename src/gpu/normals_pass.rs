@@ -1,99 +1,274 @@
 //! The normals pass: area-weighted vertex normals of the deformed mesh, gathered per vertex
 //! from its incident triangles (`shaders/normals.wgsl`), in chunks that respect the device's
 //! binding limits.
+//!
+//! Every normal is computed once at creation, from the rest positions; per frame the pass
+//! recomputes only the vertices with a vertex in their one-ring that a sweep owns
+//! ([`dirty_vertices`]): the others cannot move, so their rest normals stay exact (to the bit:
+//! the kernel and its inputs are the same). The stage serves `instances` copies of one mesh laid
+//! out one after another in the position and normal buffers: instance k's vertex v is at
+//! `k · vertex_count + v`.
+
+use std::ops::Range;
 
 use wgpu::util::DeviceExt;
 
 use super::GpuError;
 use super::buffers::{POSITION_STRIDE, check_fits, params_buffer, window};
-use super::chunks::{ChunkLimits, dispatch_grid, normal_chunks};
+use super::chunks::{ChunkLimits, dispatch_grid};
 use super::kernels::{self, Kernel};
 use crate::coeffs::DispatchParams;
 use crate::mesh::Faces;
-use crate::normals::NormalAdjacency;
+use crate::normals::{FAN_INDEX, FAN_START, NormalAdjacency, dirty_vertices, instanced};
 
-/// The normals pass: its kernel, output buffer and dispatches.
+/// One dispatch: its bind group and workgroup grid.
+pub(crate) type Dispatch = (wgpu::BindGroup, (u32, u32));
+
+/// A run of an ascending vertex list dispatched at once: `items` index the list, and `span` is
+/// the window of the per-vertex buffers it reads and writes (starting on an aligned vertex,
+/// ending after its last vertex).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) struct ListChunk {
+    pub(crate) items: Range<usize>,
+    pub(crate) span: Range<u32>,
+}
+
+/// Splits `vertices` (ascending) into consecutive chunks such that in each, the window `span`
+/// of a per-vertex stream of `stride` bytes, the chunk's list (4 bytes an entry), its rows of
+/// offsets (one more) and its `row_entries` adjacency entries (4 bytes each) each fit one
+/// binding, with `span` starting on an offset aligned for any stride that is a multiple of 4.
+/// `None` if a single vertex does not fit.
+pub(crate) fn list_chunks(
+    vertices: &[u32],
+    stride: u64,
+    row_entries: impl Fn(u32) -> u64,
+    limits: &ChunkLimits,
+) -> Option<Vec<ListChunk>> {
+    let granule = (limits.offset_alignment / 4).max(1) as u32;
+    let budget = limits.max_binding.min(limits.max_buffer);
+    let mut chunks = Vec::new();
+    let mut a = 0;
+    while a < vertices.len() {
+        let lo = vertices[a] / granule * granule;
+        let (mut b, mut entries) = (a, 0u64);
+        while b < vertices.len() {
+            let more = entries + row_entries(vertices[b]);
+            let fits = (vertices[b] - lo + 1) as u64 * stride <= budget
+                && (b - a + 2) as u64 * 4 <= budget
+                && more * 4 <= budget;
+            if !fits {
+                break;
+            }
+            entries = more;
+            b += 1;
+        }
+        if b == a {
+            return None;
+        }
+        chunks.push(ListChunk { items: a..b, span: lo..vertices[b - 1] + 1 });
+        a = b;
+    }
+    Some(chunks)
+}
+
+/// A storage buffer holding `bytes` (one unused word if empty: a binding may not be empty).
+pub(crate) fn storage_init(device: &wgpu::Device, label: &str, words: &[u32]) -> wgpu::Buffer {
+    let words: &[u32] = if words.is_empty() { &[0] } else { words };
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(label),
+        contents: bytemuck::cast_slice(words),
+        usage: wgpu::BufferUsages::STORAGE,
+    })
+}
+
+/// Records `dispatches` of `kernel` into a compute pass of their own named `label`.
+pub(crate) fn record(encoder: &mut wgpu::CommandEncoder, label: &str, kernel: &Kernel, dispatches: &[Dispatch]) {
+    let mut pass =
+        encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some(label), timestamp_writes: None });
+    pass.set_pipeline(&kernel.pipeline);
+    for (group, grid) in dispatches {
+        pass.set_bind_group(0, group, &[]);
+        pass.dispatch_workgroups(grid.0, grid.1, 1);
+    }
+}
+
+/// The normals pass: its kernel, output buffer and per-frame dispatches over the vertices whose
+/// one-ring moves.
 #[derive(Debug)]
 pub(crate) struct NormalsStage {
     pub(crate) kernel: Kernel,
     pub(crate) buffer: wgpu::Buffer,
-    pub(crate) dispatches: Vec<(wgpu::BindGroup, (u32, u32))>,
+    /// The per-frame dispatches, over [`dirty`](Self::dirty).
+    pub(crate) dispatches: Vec<Dispatch>,
+    /// The vertices (all instances) recomputed per frame, ascending.
+    pub(crate) dirty: Vec<u32>,
+}
+
+/// What the normal dispatches of one stage share.
+struct NormalsPlan<'a> {
+    kernel: &'a Kernel,
+    adjacency: &'a NormalAdjacency,
+    vertex_count: u32,
+    low: wgpu::BindingResource<'a>,
+    high: wgpu::BindingResource<'a>,
+    split: u32,
+    normals: &'a wgpu::Buffer,
+    limits: &'a ChunkLimits,
 }
 
 impl NormalsStage {
+    /// Plans the normals of `instances` copies of the mesh of `faces` over `vertex_count`
+    /// vertices each, read from `positions`; `moves[v]` says whether vertex v of the mesh can
+    /// move (a sweep owns it). Records the pass over every vertex (the rest normals) into
+    /// `encoder`; the stage's own dispatches then cover only the vertices whose normal can change.
+    #[expect(clippy::too_many_arguments, reason = "the stage's inputs, each used once")]
     pub(crate) fn new(
         device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
         faces: &Faces,
         positions: &wgpu::Buffer,
         vertex_count: u32,
+        instances: u32,
+        moves: &[bool],
         limits: &ChunkLimits,
     ) -> Result<NormalsStage, GpuError> {
+        let total = vertex_count as u64 * instances.max(1) as u64;
+        if total > FAN_INDEX as u64 {
+            return Err(GpuError::Input(format!("{total} vertices in all instances are more than the normals index")));
+        }
+        let total = total as u32;
         let adjacency = NormalAdjacency::new(faces, vertex_count as usize);
-        let entry_bytes = size_of::<u32>() as u64;
-        let chunks = normal_chunks(&adjacency.offsets, entry_bytes, limits).ok_or_else(|| {
-            GpuError::Input("a vertex has more incident triangles than one storage binding holds".into())
-        })?;
         // Positions are read at any index, through two windows of at most one binding each; the
         // second starts at a multiple of 64 vertices (768 bytes), aligned for any device.
-        let split =
-            (limits.max_binding.min(limits.max_buffer) / POSITION_STRIDE / 64 * 64).min(vertex_count as u64) as u32;
+        let split = (limits.max_binding.min(limits.max_buffer) / POSITION_STRIDE / 64 * 64).min(total as u64) as u32;
         check_fits(
             "the normals' second position window",
-            (vertex_count - split) as u64 * POSITION_STRIDE,
+            (total - split) as u64 * POSITION_STRIDE,
             limits.max_binding,
         )?;
-        let low = window(positions, &(0..split.max(1)), POSITION_STRIDE);
-        let high =
-            if split < vertex_count { window(positions, &(split..vertex_count), POSITION_STRIDE) } else { low.clone() };
         let buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("sweepffd normals"),
-            size: vertex_count as u64 * POSITION_STRIDE,
+            size: total as u64 * POSITION_STRIDE,
             usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
-        let kernel = kernels::normals(device, split < vertex_count);
+        let kernel = kernels::normals(device, split < total);
+        let plan = NormalsPlan {
+            kernel: &kernel,
+            adjacency: &adjacency,
+            vertex_count,
+            low: window(positions, &(0..split.max(1)), POSITION_STRIDE),
+            high: if split < total {
+                window(positions, &(split..total), POSITION_STRIDE)
+            } else {
+                window(positions, &(0..split.max(1)), POSITION_STRIDE)
+            },
+            split,
+            normals: &buffer,
+            limits,
+        };
+        let every: Vec<u32> = (0..total).collect();
+        record(encoder, "sweepffd rest normals", &kernel, &plan.dispatches(device, &every)?);
+        let dirty = instanced(&dirty_vertices(&adjacency, |v| moves[v]), vertex_count, instances.max(1));
+        let dispatches = plan.dispatches(device, &dirty)?;
+        Ok(NormalsStage { kernel, buffer, dispatches, dirty })
+    }
+}
+
+impl NormalsPlan<'_> {
+    /// The dispatches computing the normals of `vertices` (ascending, over all instances).
+    fn dispatches(&self, device: &wgpu::Device, vertices: &[u32]) -> Result<Vec<Dispatch>, GpuError> {
+        let n = self.vertex_count;
+        let row = |g: u32| self.adjacency.fans_of((g % n) as usize).len() as u64;
+        let chunks = list_chunks(vertices, POSITION_STRIDE, row, self.limits).ok_or_else(|| {
+            GpuError::Input("a vertex has more incident triangles than one storage binding holds".into())
+        })?;
         let dispatches = chunks
             .iter()
-            .map(|range| {
-                let first = adjacency.offsets[range.start as usize];
-                let offsets: Vec<u32> =
-                    adjacency.offsets[range.start as usize..=range.end as usize].iter().map(|o| o - first).collect();
-                let fans = &adjacency.fans[first as usize..adjacency.offsets[range.end as usize] as usize];
-                // A binding may not be empty: a chunk without triangles gets one unused entry.
-                let fans: &[u32] = if fans.is_empty() { &[0] } else { fans };
-                let storage = |label, bytes: &[u8]| {
-                    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                        label: Some(label),
-                        contents: bytes,
-                        usage: wgpu::BufferUsages::STORAGE,
-                    })
-                };
-                let offsets = storage("sweepffd normal offsets", bytemuck::cast_slice(&offsets));
-                let fans = storage("sweepffd normal fans", bytemuck::cast_slice(fans));
+            .map(|chunk| {
+                let list = &vertices[chunk.items.clone()];
+                let (mut offsets, mut fans) = (vec![0u32], Vec::new());
+                for &g in list {
+                    // Instance k's copy of a fan entry is the same neighbour in instance k.
+                    let base = g / n * n;
+                    let entries = self.adjacency.fans_of((g % n) as usize);
+                    fans.extend(entries.iter().map(|&e| ((e & FAN_INDEX) + base) | (e & FAN_START)));
+                    offsets.push(fans.len() as u32);
+                }
                 let params = params_buffer(
                     device,
                     DispatchParams {
-                        vertex_count: range.len() as u32,
-                        first_vertex: range.start,
-                        window_split: split,
+                        vertex_count: list.len() as u32,
+                        first_vertex: chunk.span.start,
+                        window_split: self.split,
                         _pad: 0,
                     },
                 );
-                let group = kernel.bind_group(
+                let group = self.kernel.bind_group(
                     device,
                     "sweepffd normals",
                     &[
                         params.as_entire_binding(),
-                        low.clone(),
-                        high.clone(),
-                        offsets.as_entire_binding(),
-                        fans.as_entire_binding(),
-                        window(&buffer, range, POSITION_STRIDE),
+                        self.low.clone(),
+                        self.high.clone(),
+                        storage_init(device, "sweepffd normal vertices", list).as_entire_binding(),
+                        storage_init(device, "sweepffd normal offsets", &offsets).as_entire_binding(),
+                        storage_init(device, "sweepffd normal fans", &fans).as_entire_binding(),
+                        window(self.normals, &chunk.span, POSITION_STRIDE),
                     ],
                 );
-                (group, dispatch_grid(range.len() as u32, limits))
+                (group, dispatch_grid(list.len() as u32, self.limits))
             })
             .collect();
-        Ok(NormalsStage { kernel, buffer, dispatches })
+        Ok(dispatches)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SMALL: ChunkLimits =
+        ChunkLimits { max_binding: 1024, max_buffer: u32::MAX as u64, offset_alignment: 256, max_workgroups: 65535 };
+
+    /// Checks that `chunks` cover `vertices` in order, each within the limits of [`list_chunks`].
+    fn check(vertices: &[u32], stride: u64, entries: impl Fn(u32) -> u64, chunks: &[ListChunk]) {
+        assert_eq!(chunks.first().map(|c| c.items.start), Some(0));
+        assert_eq!(chunks.last().map(|c| c.items.end), Some(vertices.len()));
+        for pair in chunks.windows(2) {
+            assert_eq!(pair[0].items.end, pair[1].items.start);
+        }
+        for chunk in chunks {
+            let list = &vertices[chunk.items.clone()];
+            assert!(list.iter().all(|v| chunk.span.contains(v)), "{chunk:?}");
+            assert_eq!(chunk.span.start as u64 * stride % 256, 0, "{chunk:?}");
+            assert!(chunk.span.len() as u64 * stride <= 1024, "{chunk:?}");
+            assert!((list.len() + 1) * 4 <= 1024, "{chunk:?}");
+            assert!(list.iter().map(|&v| entries(v)).sum::<u64>() * 4 <= 1024, "{chunk:?}");
+        }
+    }
+
+    #[test]
+    fn sparse_lists_split_by_the_span_of_their_windows() {
+        let vertices: Vec<u32> = (0..2000).filter(|v| v % 7 == 0 || (500..560).contains(v)).collect();
+        for stride in [12, 16] {
+            let chunks = list_chunks(&vertices, stride, |_| 0, &SMALL).unwrap();
+            assert!(chunks.len() > 1);
+            check(&vertices, stride, |_| 0, &chunks);
+        }
+    }
+
+    #[test]
+    fn dense_rows_split_by_their_adjacency_entries() {
+        let vertices: Vec<u32> = (0..300).collect();
+        let entries = |v: u32| (v % 9) as u64;
+        let chunks = list_chunks(&vertices, 12, entries, &SMALL).unwrap();
+        check(&vertices, 12, entries, &chunks);
+    }
+
+    #[test]
+    fn empty_list_has_no_chunk_and_an_oversized_row_none() {
+        assert_eq!(list_chunks(&[], 12, |_| 0, &SMALL), Some(Vec::new()));
+        assert_eq!(list_chunks(&[3], 12, |_| 1000, &SMALL), None);
     }
 }

@@ -34,9 +34,12 @@ pub const COPY: &str = include_str!(concat!(env!("OUT_DIR"), "/copy.wgsl"));
 /// Benchmark baseline, four-influence linear-blend skinning: `shaders/skinning.wgsl`,
 /// `skinning_main`.
 pub const SKINNING: &str = include_str!(concat!(env!("OUT_DIR"), "/skinning.wgsl"));
+/// Deformed tangents, the rest tangents turned with the normals: `shaders/tangents.wgsl`,
+/// entry point `tangents_main`.
+pub const TANGENTS: &str = include_str!(concat!(env!("OUT_DIR"), "/tangents.wgsl"));
 
 /// Every kernel as (name, composed source, entry point).
-pub const ALL: [(&str, &str, &str); 11] = [
+pub const ALL: [(&str, &str, &str); 12] = [
     ("bind", BIND, "bind_main"),
     ("deform_uniform", DEFORM_UNIFORM, "deform_main"),
     ("deform_storage", DEFORM_STORAGE, "deform_main"),
@@ -48,4 +51,5 @@ pub const ALL: [(&str, &str, &str); 11] = [
     ("normals_two_windows", NORMALS_TWO_WINDOWS, "normals_main"),
     ("copy", COPY, "copy_main"),
     ("skinning", SKINNING, "skinning_main"),
+    ("tangents", TANGENTS, "tangents_main"),
 ];

@@ -7,11 +7,19 @@
 //! The adjacency is built once per mesh; every vertex then gathers its own sum, so no atomics
 //! (and no float atomics) are needed on the GPU. The f32 twin of the GPU kernel is
 //! [`crate::cpu::normals`].
+//!
+//! Only vertices with a moving vertex in their one-ring need new normals per pose
+//! ([`dirty_vertices`]); [`tangents`] turns rest tangents with the normals.
 
 use crate::parallel::prelude::*;
 use glam::DVec3;
 
 use crate::mesh::Faces;
+
+mod dirty;
+pub mod tangents;
+
+pub use dirty::{dirty_vertices, instanced};
 
 /// Marks the first neighbour of a fan in [`NormalAdjacency::fans`].
 pub const FAN_START: u32 = 1 << 31;
