@@ -4,7 +4,7 @@
 //! of the f64 reference, [`crate::normals::tangents`].
 
 use glam::{Vec3, Vec4};
-use rayon::prelude::*;
+use crate::parallel::prelude::*;
 
 use super::position;
 

@@ -24,7 +24,7 @@
 //! - n zero: v is only normalized (zero stays zero).
 
 use glam::{DQuat, DVec3, DVec4};
-use rayon::prelude::*;
+use crate::parallel::prelude::*;
 
 /// 1 + n₀ · n at or below which the normals count as opposite (angle within about 0.014 rad of
 /// π) and the half turn replaces the minimal rotation, in both precisions.
