@@ -66,9 +66,11 @@ pub fn deformed_tangent(rest_normal: DVec3, normal: DVec3, rest_tangent: DVec4) 
     t.extend(rest_tangent.w)
 }
 
-/// [`deformed_tangent`] of every vertex, in parallel.
+/// [`deformed_tangent`] of every vertex (in parallel with the feature `parallel`); the three
+/// slices are read up to the shortest.
 pub fn deformed_tangents(rest_normals: &[DVec3], normals: &[DVec3], rest_tangents: &[DVec4]) -> Vec<DVec4> {
-    (rest_normals, normals, rest_tangents).into_par_iter().map(|(&n0, &n, &t)| deformed_tangent(n0, n, t)).collect()
+    let count = rest_normals.len().min(normals.len()).min(rest_tangents.len());
+    (0..count).into_par_iter().map(|i| deformed_tangent(rest_normals[i], normals[i], rest_tangents[i])).collect()
 }
 
 #[cfg(test)]
