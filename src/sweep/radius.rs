@@ -40,8 +40,8 @@ pub fn angular_cell(theta: f64, samples: usize) -> (usize, f64) {
 /// All radius patches of one sweep, knot interval by knot interval.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RadiusField {
-    samples: usize,
-    patches: Vec<RadiusPatch>,
+    pub(super) samples: usize,
+    pub(super) patches: Vec<RadiusPatch>,
 }
 
 impl RadiusField {
