@@ -86,7 +86,9 @@ fn scene() -> (sweepffd::mesh::Mesh, Rig, Vec<Vec<Vec<Key>>>) {
     let tube = Tube::with_vertex_count(4_000, 4.0, 0.5);
     let rig = split_tube_rig(&tube, 4, 16, 0.0);
     let frames = (0..6)
-        .map(|f| BendTwistTaper { bend: 0.2 * f as f64, twist: 0.1 * f as f64, taper: 1.0 - 0.05 * f as f64 }.keys(&rig))
+        .map(|f| {
+            BendTwistTaper { bend: 0.2 * f as f64, twist: 0.1 * f as f64, taper: 1.0 - 0.05 * f as f64 }.keys(&rig)
+        })
         .collect();
     (tube.mesh(), rig, frames)
 }
@@ -144,7 +146,8 @@ impl Baseline {
             device.create_buffer(&wgpu::BufferDescriptor { label: None, size, usage, mapped_at_creation: false })
         };
         let uniform = buffer(256, wgpu::BufferUsages::UNIFORM);
-        let storage = [256, 256, scratch_bytes].map(|size| buffer(size, wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST));
+        let storage = [256, 256, scratch_bytes]
+            .map(|size| buffer(size, wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST));
         let entries: Vec<wgpu::BindGroupEntry> = std::iter::once(&uniform)
             .chain(&storage)
             .enumerate()
@@ -162,8 +165,8 @@ impl Baseline {
     /// One pass per `(label, dispatches)`, each dispatch after its own `set_bind_group`.
     fn encode(&self, encoder: &mut wgpu::CommandEncoder, passes: &[(&str, usize)]) {
         for &(label, dispatches) in passes {
-            let mut pass = encoder
-                .begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some(label), timestamp_writes: None });
+            let mut pass =
+                encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some(label), timestamp_writes: None });
             pass.set_pipeline(&self.pipeline);
             for _ in 0..dispatches {
                 pass.set_bind_group(0, &self.group, &[]);
@@ -182,7 +185,8 @@ fn frames_on(context: &GpuContext) {
     let adjacency = NormalAdjacency::new(&mesh.faces, mesh.positions.len());
     let normal_dispatches = normal_chunks(&adjacency.offsets, 4, deformer.limits()).unwrap().len();
     let passes = [("sweepffd deform", deformer.chunk_count()), ("sweepffd normals", normal_dispatches)];
-    let cell_bytes = vec![0u8; SweepCoefficients::new(rig.rest()).cells.len() * size_of::<sweepffd::coeffs::CellCoeffs>()];
+    let cell_bytes =
+        vec![0u8; SweepCoefficients::new(rig.rest()).cells.len() * size_of::<sweepffd::coeffs::CellCoeffs>()];
     let baseline = Baseline::new(&context.device, cell_bytes.len() as u64);
     let mut posed = rig.pose_buffer();
     let new_encoder = || context.device.create_command_encoder(&Default::default());

@@ -107,6 +107,25 @@ impl FrameBench {
         Ok(seconds)
     }
 
+    /// The same frame with the posed sweeps made anew by [`Rig::pose`] instead of
+    /// [`Rig::pose_into`]: the baseline of the saving.
+    pub fn time_frame_posing_anew(&mut self, frame: u64) -> Result<f64, GpuError> {
+        let mut encoder = self
+            .context
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd frame") });
+        let start = Instant::now();
+        let posed = self.scene.rig.pose(&self.scene.keys).map_err(|e| GpuError::Input(e.to_string()))?;
+        self.deformer.set_pose(&posed)?;
+        self.deformer.encode(&mut encoder);
+        let seconds = start.elapsed().as_secs_f64();
+        self.context.queue.submit([encoder.finish()]);
+        if frame % FRAMES_PER_WAIT as u64 == FRAMES_PER_WAIT as u64 - 1 {
+            wait(&self.context)?;
+        }
+        Ok(seconds)
+    }
+
     /// [`median_host_frame_ms`] of the scene.
     pub fn median_ms(&mut self, frames: usize) -> Result<f64, GpuError> {
         let scene = &self.scene;

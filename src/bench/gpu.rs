@@ -228,7 +228,8 @@ impl GpuBench {
             }
         }
         let (rig, keys) = (&self.scene.rig, &self.scene.keys);
-        let frame_cpu = super::median_host_frame_ms(&self.context, &mut self.deformer, rig, keys, super::FRAME_CPU_FRAMES)?;
+        let frame_cpu =
+            super::median_host_frame_ms(&self.context, &mut self.deformer, rig, keys, super::FRAME_CPU_FRAMES)?;
         let readback = median_of(1, runs, || self.time_readback())?;
         let device_bytes = self.deformer.device_bytes();
         let column = |f: fn(&Round) -> f64| median(&mut rounds.iter().map(f).collect::<Vec<_>>());

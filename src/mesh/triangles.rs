@@ -12,7 +12,7 @@ impl Faces {
     /// check them where the faces meet their positions.
     pub fn from_triangles(indices: &[u32]) -> Result<Faces, MeshDataError> {
         let malformed = |reason| Err(MeshDataError::MalformedFaces { reason });
-        if indices.len() % 3 != 0 {
+        if !indices.len().is_multiple_of(3) {
             return malformed("the triangle list's length is not a multiple of 3");
         }
         if u32::try_from(indices.len()).is_err() {

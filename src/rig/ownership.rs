@@ -32,7 +32,12 @@ impl Rig {
     ///
     /// Unlike [`Rig::owners`] it cannot check that no falloff is wider than the mesh (it has no
     /// positions); a falloff that wide covers every part.
-    pub fn owners_of(&self, vertex_count: usize, groups: &[(&str, &[u32])], mesh_name: &str) -> Result<Vec<u32>, RigError> {
+    pub fn owners_of(
+        &self,
+        vertex_count: usize,
+        groups: &[(&str, &[u32])],
+        mesh_name: &str,
+    ) -> Result<Vec<u32>, RigError> {
         let fail = |kind| RigError::new(self.file.clone(), kind);
         let mut owners = vec![UNOWNED; vertex_count];
         for (s, sweep) in self.sweeps.iter().enumerate() {

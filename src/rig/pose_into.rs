@@ -55,7 +55,8 @@ impl Rig {
     /// nothing here: as for `pose`, the keys given are the keys posed, children included.
     pub fn pose_into<K: AsRef<[Key]>>(&self, keys: &[K], out: &mut PoseBuffer) -> Result<(), RigError> {
         for index in 0..self.sweeps.len() {
-            self.check_pose_keys(index, keys.get(index).map(AsRef::as_ref)).map_err(|kind| RigError::new(None, kind))?;
+            self.check_pose_keys(index, keys.get(index).map(AsRef::as_ref))
+                .map_err(|kind| RigError::new(None, kind))?;
         }
         out.sweeps.truncate(self.rest.len());
         for rest in &self.rest[out.sweeps.len()..] {
