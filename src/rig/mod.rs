@@ -173,6 +173,8 @@ impl Rig {
 
     /// The posed sweep surfaces for `keys[i]` on sweep i (rest knots), checked against the rest
     /// rig: same number of sweeps, keys and radii.
+    /// A frame loop poses into storage made once instead: [`Rig::pose_into`], bit for bit the
+    /// same sweeps without allocating.
     pub fn pose(&self, keys: &[Vec<Key>]) -> Result<Vec<Sweep>, RigError> {
         self.pose_named(keys.iter().zip(&self.sweeps).map(|(k, s)| (s.name.as_str(), k.as_slice())), None)
     }
