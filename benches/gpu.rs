@@ -2,12 +2,16 @@
 //! linear-blend-skinning baselines measured on the same device in the same run. Kernel times
 //! come from timestamp queries (wall-clock where the device has none).
 //!
+//! `frame_cpu` is the host's share of a frame on a 36k-vertex tube bound to two sweeps
+//! (`Rig::pose_into`, `set_pose`, `encode`; the target is 0.1 ms), against `pose` — the same
+//! frame with the sweeps made anew by `Rig::pose` — measured in the same run.
+//!
 //! `cargo bench --bench gpu`; without a GPU adapter the benches print why and measure nothing.
 
 use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use sweepffd::bench::{BenchScene, GpuBench};
+use sweepffd::bench::{BenchScene, FrameBench, GpuBench};
 use sweepffd::gpu::{GpuContext, GpuError};
 
 /// Criterion's closure for a kernel timed by `measure`: the sum of `iterations` GPU timings.
@@ -44,5 +48,30 @@ fn gpu(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, gpu);
+/// The host's share of a frame, with `Rig::pose_into` and, as the baseline, with `Rig::pose`.
+fn frame_cpu(c: &mut Criterion) {
+    let context = match GpuContext::new() {
+        Ok(context) => context,
+        Err(error) => {
+            eprintln!("skipping the frame_cpu bench: {error}");
+            return;
+        }
+    };
+    let context = &context;
+    let mut group = c.benchmark_group("frame_cpu");
+    let scene = FrameBench::two_sweep_tube(36_000);
+    let n = scene.vertex_count();
+    let mut bench = FrameBench::new(context, scene).expect("the frame bench sets up");
+    group.bench_function(BenchmarkId::new("pose_into", n), |b| {
+        b.iter_custom(|i| (0..i).map(|f| Duration::from_secs_f64(bench.time_frame(f).expect("a frame runs"))).sum())
+    });
+    group.bench_function(BenchmarkId::new("pose", n), |b| {
+        b.iter_custom(|i| {
+            (0..i).map(|f| Duration::from_secs_f64(bench.time_frame_posing_anew(f).expect("a frame runs"))).sum()
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, frame_cpu, gpu);
 criterion_main!(benches);

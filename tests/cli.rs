@@ -479,6 +479,9 @@ fn bench_prints_one_json_line_with_every_figure() {
         if backend == "gpu" {
             assert_eq!(report["device_bytes_per_vertex"].as_f64(), Some(32.0));
             assert!(report["readback_ms"].as_f64().is_some_and(|ms| ms > 0.0));
+            assert!(report["frame_cpu_ms"].as_f64().is_some_and(|ms| ms > 0.0));
+        } else {
+            assert!(report["frame_cpu_ms"].is_null());
         }
     }
 }

@@ -92,6 +92,7 @@ impl CpuBench {
             deform_over_copy: column(|r| r.deform / r.copy),
             deform_over_lbs: column(|r| r.deform / r.lbs),
             frame_ms: frame * 1e3,
+            frame_cpu_ms: None,
             normals_ms: 0.0,
             readback_ms: None,
             device_bytes_per_vertex: None,

@@ -227,6 +227,9 @@ impl GpuBench {
                 rounds.push(times);
             }
         }
+        let (rig, keys) = (&self.scene.rig, &self.scene.keys);
+        let frame_cpu =
+            super::median_host_frame_ms(&self.context, &mut self.deformer, rig, keys, super::FRAME_CPU_FRAMES)?;
         let readback = median_of(1, runs, || self.time_readback())?;
         let device_bytes = self.deformer.device_bytes();
         let column = |f: fn(&Round) -> f64| median(&mut rounds.iter().map(f).collect::<Vec<_>>());
@@ -257,6 +260,7 @@ impl GpuBench {
             deform_over_copy: column(|r| r.deform / r.copy),
             deform_over_lbs: column(|r| r.deform / r.lbs),
             frame_ms: column(|r| r.frame) * 1e3,
+            frame_cpu_ms: Some(frame_cpu),
             normals_ms: column(|r| r.normals) * 1e3,
             readback_ms: Some(readback * 1e3),
             device_bytes_per_vertex: Some(device_bytes as f64 / n),

@@ -7,6 +7,7 @@
 //! timestamp queries where the device supports them, wall-clock otherwise.
 
 mod cpu;
+mod frame;
 mod gpu;
 mod scene;
 mod size;
@@ -16,6 +17,7 @@ mod timer;
 use serde::Serialize;
 
 pub use cpu::CpuBench;
+pub use frame::{FRAME_CPU_FRAMES, FRAME_WARMUP, FrameBench, host_frame_seconds, median_host_frame_ms};
 pub use gpu::GpuBench;
 pub use scene::{BAND_FRACTION, BenchScene, FalloffKind};
 pub use size::{BenchSizeError, MIN_BENCH_VERTICES, check_runs, tube_vertex_count};
@@ -46,6 +48,10 @@ pub struct BenchReport {
     /// One frame: the rig posed from keys, its coefficients, their upload and the deform
     /// dispatch, waited for, no readback; milliseconds.
     pub frame_ms: f64,
+    /// The host's share of a frame: `Rig::pose_into`, `GpuDeformer::set_pose` and
+    /// `GpuDeformer::encode` (deform and normals passes) into an encoder made before, median
+    /// of [`FRAME_CPU_FRAMES`] frames, milliseconds (`null` on the CPU backend).
+    pub frame_cpu_ms: Option<f64>,
     /// The normals pass over the deformed mesh, milliseconds (0 on the CPU backend, which does
     /// not compute normals).
     pub normals_ms: f64,

@@ -80,6 +80,9 @@ fn print_table(r: &BenchReport) {
     println!("  copy      {}   (baseline: the deform kernel's bytes)", rate(r.copy_verts_per_s));
     println!("  skinning  {}   (baseline: 4-influence linear-blend skinning)", rate(r.lbs_verts_per_s));
     println!("  frame     {:>10.3} ms (pose to coefficients, upload, deform)", r.frame_ms);
+    if let Some(ms) = r.frame_cpu_ms {
+        println!("  frame CPU {ms:>10.4} ms (host: pose_into, set_pose, encode)");
+    }
     if r.backend == "gpu" {
         println!("  normals   {:>10.3} ms (area-weighted vertex normals of the deformed mesh)", r.normals_ms);
     }

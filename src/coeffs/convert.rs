@@ -1,9 +1,26 @@
-//! Converting bindings between the reference form (sweep, t, θ, d, h) of [`crate::bind`] and
-//! the GPU form (cell, s, φ, d, h) of [`GpuBinding`], for a rig's rest sweeps.
+//! Converting bindings between the reference form of [`crate::bind`] (f64, per sweep: θ, t,
+//! d, h) and the GPU form of [`crate::coeffs::layout`] (f32, per radius cell: s, φ, d, h), for
+//! a rig's rest sweeps. Every conversion between the two lives here.
+//!
+//! Data flow: rig → sweep → **sweep coefficients** → bind → deform → normals → output.
+//!
+//! One vocabulary, two precisions:
+//!
+//! | reference (f64, [`crate::bind`]) | GPU (f32, [`crate::coeffs`]) | reference → GPU | GPU → reference |
+//! | --- | --- | --- | --- |
+//! | [`VertexBinding`] (θ, t, d, h) inside a [`Binding`] (sweep, params) | [`GpuBinding`] (cell, s, φ, d, h) | [`SweepCoefficients::gpu_binding`] | [`SweepCoefficients::reference_binding`] |
+//! | [`Binding::UNOWNED`] | `GpuBinding { cell: UNOWNED, .. }` | the same | the same |
+//! | [`BandBinding`] (vertex, w, second binding) | [`BandRecord`] (vertex, w, second cell, packed s, φ) | [`SweepCoefficients::band_record`] | none: the record drops the second binding's d and h (see [`BandRecord`]) |
+//! | [`BandWeight`] (vertex, w, neighbour), before binding | a [`BandRecord`] the GPU binds | [`BandRecord::unbound`] | none |
+//! | [`MeshBindings`] (vertices, bands) | `(Vec<GpuBinding>, Vec<BandRecord>)`, [`BAND_FLAG`] on band vertices | [`SweepCoefficients::gpu_mesh_bindings`] | per vertex by `reference_binding`; the bands are bound again in f64 |
+//!
+//! The cell of (sweep i, knot interval k, angular interval j) is
+//! `first_cell(i) + k·M_i + j`; t = u_k + s·(u_{k+1} − u_k) and θ = (j + φ)·2π/M_i.
 
 use std::f64::consts::TAU;
 
 use super::{BAND_FLAG, BandRecord, GpuBinding, SweepCoefficients, UNOWNED};
+use crate::bind::falloff::BandWeight;
 use crate::bind::{BandBinding, Binding, MeshBindings, VertexBinding};
 use crate::cpu::band_pack::band_pack_vertex;
 use crate::sweep::Sweep;
@@ -78,6 +95,15 @@ impl SweepCoefficients {
             d: binding.params.d as f32,
             h: binding.params.h as f32,
         }
+    }
+}
+
+impl BandRecord {
+    /// The record of a band vertex before the GPU binds its second influence: its weight w in
+    /// f32, its vertex made relative to `first_vertex` (its dispatch's), cell and (s, φ) 0 until
+    /// the band-pack kernel fills them.
+    pub fn unbound(weight: &BandWeight, first_vertex: u32) -> BandRecord {
+        BandRecord { vertex: weight.vertex - first_vertex, weight: weight.weight as f32, cell: 0, s_phi: 0 }
     }
 }
 

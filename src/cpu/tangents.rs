@@ -3,8 +3,8 @@
 //! orthogonal to n and normalized, w copied. The equation and the degenerate cases are those
 //! of the f64 reference, [`crate::normals::tangents`].
 
-use glam::{Vec3, Vec4};
 use crate::parallel::prelude::*;
+use glam::{Vec3, Vec4};
 
 use super::position;
 

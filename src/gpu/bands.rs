@@ -107,10 +107,9 @@ impl BandStage {
                 continue;
             }
             let records: Vec<BandRecord> = match source {
-                BandSource::Bind { weights, .. } => weights[start..next]
-                    .iter()
-                    .map(|w| BandRecord { vertex: w.vertex - range.start, weight: w.weight as f32, cell: 0, s_phi: 0 })
-                    .collect(),
+                BandSource::Bind { weights, .. } => {
+                    weights[start..next].iter().map(|w| BandRecord::unbound(w, range.start)).collect()
+                }
                 BandSource::Records(all) => {
                     all[start..next].iter().map(|r| BandRecord { vertex: r.vertex - range.start, ..*r }).collect()
                 }

@@ -42,6 +42,7 @@ mod ply;
 mod save;
 mod source;
 mod subdivide;
+mod triangles;
 mod volume;
 
 use glam::DVec3;
@@ -61,7 +62,8 @@ pub use subdivide::{Parents, Subdivision, SubdivisionError};
 use source::Source;
 
 /// Polygon faces as a flat index list: face `f` has the vertex indices
-/// `indices[offsets[f]..offsets[f + 1]]` (zero-based, into [`Mesh::positions`]).
+/// `indices[offsets[f]..offsets[f + 1]]` (zero-based, into [`Mesh::positions`]). An engine's
+/// `u32` triangle list becomes one by [`Faces::from_triangles`].
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Faces {
     /// `offsets.len() == face count + 1`, `offsets[0] == 0`.

@@ -23,8 +23,8 @@
 //!   [`any_perpendicular`]`(n)`, or zero if n is zero as well.
 //! - n zero: v is only normalized (zero stays zero).
 
-use glam::{DQuat, DVec3, DVec4};
 use crate::parallel::prelude::*;
+use glam::{DQuat, DVec3, DVec4};
 
 /// 1 + n₀ · n at or below which the normals count as opposite (angle within about 0.014 rad of
 /// π) and the half turn replaces the minimal rotation, in both precisions.

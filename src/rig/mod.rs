@@ -16,14 +16,16 @@ mod document;
 mod error;
 mod links;
 mod ownership;
+mod pose_into;
 
 use std::path::{Path, PathBuf};
 
 pub use document::{FORMAT, KeyDocument, LinkKind, ParentLink, RigDocument, SweepDocument, VERSION, VertexSelection};
 pub use error::{RigError, RigErrorKind};
 pub use links::{KeyBinding, Link};
+pub use pose_into::PoseBuffer;
 
-use crate::sweep::{Key, Sweep};
+use crate::sweep::{Key, Sweep, SweepSystems};
 
 /// One named sweep of a rig, as written in the rig file.
 #[derive(Clone, Debug, PartialEq)]
@@ -51,6 +53,9 @@ pub struct Rig {
     sweeps: Vec<RigSweep>,
     rest: Vec<Sweep>,
     links: Vec<Option<Link>>,
+    /// The factorized spline systems of each rest sweep's knots and radius count, which every
+    /// posed sweep shares ([`Rig::pose_into`]).
+    systems: Vec<SweepSystems>,
 }
 
 impl Rig {
@@ -105,7 +110,8 @@ impl Rig {
             })
             .collect::<Result<Vec<_>, _>>()?;
         let links = links::bind_links(&sweeps, &rest).map_err(fail)?;
-        Ok(Rig { file, sweeps, rest, links })
+        let systems = rest.iter().map(SweepSystems::of).collect();
+        Ok(Rig { file, sweeps, rest, links, systems })
     }
 
     /// The rig file this rig was read from, if any.
@@ -171,6 +177,8 @@ impl Rig {
 
     /// The posed sweep surfaces for `keys[i]` on sweep i (rest knots), checked against the rest
     /// rig: same number of sweeps, keys and radii.
+    /// A frame loop poses into storage made once instead: [`Rig::pose_into`], bit for bit the
+    /// same sweeps without allocating.
     pub fn pose(&self, keys: &[Vec<Key>]) -> Result<Vec<Sweep>, RigError> {
         self.pose_named(keys.iter().zip(&self.sweeps).map(|(k, s)| (s.name.as_str(), k.as_slice())), None)
     }
@@ -208,24 +216,32 @@ impl Rig {
         self.sweeps
             .iter()
             .zip(&self.rest)
-            .map(|(sweep, rest)| {
-                let name = sweep.name.clone();
-                let Some((_, keys)) = posed.clone().find(|(n, _)| *n == name) else {
-                    return Err(fail(RigErrorKind::PoseMissingSweep { sweep: name }));
+            .enumerate()
+            .map(|(index, (sweep, rest))| {
+                let Some((_, keys)) = posed.clone().find(|(n, _)| *n == sweep.name) else {
+                    return Err(fail(RigErrorKind::PoseMissingSweep { sweep: sweep.name.clone() }));
                 };
-                if keys.len() != sweep.keys.len() {
-                    let (expected, found) = (sweep.keys.len(), keys.len());
-                    return Err(fail(RigErrorKind::PoseKeyCount { sweep: name, expected, found }));
-                }
-                let expected = rest.radius_samples();
-                if let Some((key, k)) = keys.iter().enumerate().find(|(_, k)| k.radii.len() != expected) {
-                    let found = k.radii.len();
-                    return Err(fail(RigErrorKind::PoseRadiusCount { sweep: name, key, expected, found }));
-                }
+                self.check_pose_structure(index, keys).map_err(fail)?;
                 Sweep::try_new(keys, Some(rest.knots()))
-                    .map_err(|source| fail(RigErrorKind::Sweep { sweep: name, source }))
+                    .map_err(|source| fail(RigErrorKind::Sweep { sweep: sweep.name.clone(), source }))
             })
             .collect()
+    }
+
+    /// Fails unless `keys` have sweep `index`'s rest structure: as many keys, each with the
+    /// rest radius count M.
+    fn check_pose_structure(&self, index: usize, keys: &[Key]) -> Result<(), RigErrorKind> {
+        let (sweep, rest) = (&self.sweeps[index], &self.rest[index]);
+        if keys.len() != sweep.keys.len() {
+            let (expected, found) = (sweep.keys.len(), keys.len());
+            return Err(RigErrorKind::PoseKeyCount { sweep: sweep.name.clone(), expected, found });
+        }
+        let expected = rest.radius_samples();
+        if let Some((key, k)) = keys.iter().enumerate().find(|(_, k)| k.radii.len() != expected) {
+            let found = k.radii.len();
+            return Err(RigErrorKind::PoseRadiusCount { sweep: sweep.name.clone(), key, expected, found });
+        }
+        Ok(())
     }
 }
 

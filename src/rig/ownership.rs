@@ -1,51 +1,47 @@
 //! Which sweep owns which vertex: groups, index lists or all vertices; no vertex twice.
+//!
+//! [`Rig::owners_of`] resolves ownership from named vertex groups as an engine keeps them (a
+//! name and its vertex indices), without a [`Mesh`]; [`Rig::owners`] is the same for a mesh's
+//! face groups, plus the check that no falloff is wider than the mesh.
 
-use super::{Rig, RigError, RigErrorKind, VertexSelection};
+use super::{Rig, RigError, RigErrorKind, RigSweep, VertexSelection};
 use crate::bind::UNOWNED;
 use crate::mesh::Mesh;
 
 impl Rig {
     /// The owning sweep of every vertex of `mesh` (an index into [`Rig::sweeps`], or
-    /// [`UNOWNED`]). `mesh_name` names the mesh in errors: an unknown group, an index out of
-    /// range, a vertex claimed by two sweeps, or a falloff wider than the mesh.
+    /// [`UNOWNED`]), the groups being the vertices of its face groups
+    /// ([`Mesh::group_vertices`]). `mesh_name` names the mesh in errors: an unknown group, an
+    /// index out of range, a vertex claimed by two sweeps, or a falloff wider than the mesh.
     pub fn owners(&self, mesh: &Mesh, mesh_name: &str) -> Result<Vec<u32>, RigError> {
         self.check_falloffs_fit(mesh, mesh_name)?;
+        let groups: Vec<(&str, Vec<u32>)> = mesh
+            .groups
+            .iter()
+            .map(|group| (group.name.as_str(), mesh.group_vertices(&group.name).unwrap_or_default()))
+            .collect();
+        let groups: Vec<(&str, &[u32])> = groups.iter().map(|(name, vertices)| (*name, vertices.as_slice())).collect();
+        self.owners_of(mesh.positions.len(), &groups, mesh_name)
+    }
+
+    /// The owning sweep of each of `vertex_count` vertices (an index into [`Rig::sweeps`], or
+    /// [`UNOWNED`]), a sweep's [`VertexSelection::Groups`] looked up by name in `groups` (the
+    /// first of a name counts; indices in any order, repeats allowed). `mesh_name` names the
+    /// mesh in errors: an unknown group (listing `groups`), an index out of range, a vertex
+    /// claimed by two sweeps.
+    ///
+    /// Unlike [`Rig::owners`] it cannot check that no falloff is wider than the mesh (it has no
+    /// positions); a falloff that wide covers every part.
+    pub fn owners_of(
+        &self,
+        vertex_count: usize,
+        groups: &[(&str, &[u32])],
+        mesh_name: &str,
+    ) -> Result<Vec<u32>, RigError> {
         let fail = |kind| RigError::new(self.file.clone(), kind);
-        let count = mesh.positions.len();
-        let mut owners = vec![UNOWNED; count];
+        let mut owners = vec![UNOWNED; vertex_count];
         for (s, sweep) in self.sweeps.iter().enumerate() {
-            let claimed: Vec<u32> = match &sweep.vertices {
-                None => Vec::new(),
-                Some(VertexSelection::All) => (0..count as u32).collect(),
-                Some(VertexSelection::Indices(indices)) => {
-                    if let Some(&index) = indices.iter().find(|&&i| i as usize >= count) {
-                        let (sweep, mesh) = (sweep.name.clone(), mesh_name.to_string());
-                        return Err(fail(RigErrorKind::VertexOutOfRange { sweep, index, mesh, count }));
-                    }
-                    let mut indices = indices.clone();
-                    indices.sort_unstable();
-                    indices.dedup();
-                    indices
-                }
-                Some(VertexSelection::Groups(groups)) => {
-                    let mut vertices = Vec::new();
-                    for group in groups {
-                        let Some(members) = mesh.group_vertices(group) else {
-                            let available = mesh.groups.iter().map(|g| g.name.as_str()).collect::<Vec<_>>().join(", ");
-                            return Err(fail(RigErrorKind::UnknownGroup {
-                                sweep: sweep.name.clone(),
-                                group: group.clone(),
-                                mesh: mesh_name.to_string(),
-                                available: if available.is_empty() { "none".to_string() } else { available },
-                            }));
-                        };
-                        vertices.extend(members);
-                    }
-                    vertices.sort_unstable();
-                    vertices.dedup();
-                    vertices
-                }
-            };
+            let claimed = claimed_vertices(sweep, vertex_count, groups, mesh_name).map_err(fail)?;
             for vertex in claimed {
                 let owner = &mut owners[vertex as usize];
                 if *owner != UNOWNED {
@@ -60,4 +56,46 @@ impl Rig {
         }
         Ok(owners)
     }
+}
+
+/// The vertices `sweep` selects out of `count`, increasing and deduplicated.
+fn claimed_vertices(
+    sweep: &RigSweep,
+    count: usize,
+    groups: &[(&str, &[u32])],
+    mesh_name: &str,
+) -> Result<Vec<u32>, RigErrorKind> {
+    let out_of_range = |index: u32| RigErrorKind::VertexOutOfRange {
+        sweep: sweep.name.clone(),
+        index,
+        mesh: mesh_name.to_string(),
+        count,
+    };
+    let mut vertices = match &sweep.vertices {
+        None => return Ok(Vec::new()),
+        Some(VertexSelection::All) => return Ok((0..count as u32).collect()),
+        Some(VertexSelection::Indices(indices)) => indices.clone(),
+        Some(VertexSelection::Groups(names)) => {
+            let mut vertices = Vec::new();
+            for name in names {
+                let Some((_, members)) = groups.iter().find(|(group, _)| group == name) else {
+                    let available = groups.iter().map(|(group, _)| *group).collect::<Vec<_>>().join(", ");
+                    return Err(RigErrorKind::UnknownGroup {
+                        sweep: sweep.name.clone(),
+                        group: name.clone(),
+                        mesh: mesh_name.to_string(),
+                        available: if available.is_empty() { "none".to_string() } else { available },
+                    });
+                };
+                vertices.extend_from_slice(members);
+            }
+            vertices
+        }
+    };
+    if let Some(&index) = vertices.iter().find(|&&i| i as usize >= count) {
+        return Err(out_of_range(index));
+    }
+    vertices.sort_unstable();
+    vertices.dedup();
+    Ok(vertices)
 }

@@ -23,6 +23,7 @@ pub mod periodic_spline;
 pub mod plane_quintic;
 pub mod quadrature;
 pub mod radius;
+mod rebuild;
 mod reshape;
 mod volume;
 
@@ -32,6 +33,7 @@ use glam::{DQuat, DVec3};
 
 pub use error::SweepError;
 pub use key::Key;
+pub(crate) use rebuild::{RebuildScratch, SweepSystems};
 
 use curve::{CurvePiece, center_curve};
 use orientation::OrientationPiece;

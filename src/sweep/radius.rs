@@ -42,11 +42,11 @@ pub fn angular_cell(theta: f64, samples: usize) -> (usize, f64) {
 /// r = scale · Σ c·s^p·φ^q, so that a uniform rescale of the radii (§5) costs no time.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RadiusField {
-    samples: usize,
+    pub(super) samples: usize,
     /// The patches as built, shared with the fields scaled from them.
-    patches: Arc<Vec<RadiusPatch>>,
+    pub(super) patches: Arc<Vec<RadiusPatch>>,
     /// The factor every coefficient is multiplied by when read (1 as built).
-    scale: f64,
+    pub(super) scale: f64,
 }
 
 impl RadiusField {
