@@ -10,14 +10,16 @@
 //! [`GpuDeformer::set_bands`]: super::GpuDeformer::set_bands
 
 use std::ops::Range;
+use std::sync::Arc;
 
 use glam::DVec3;
 use wgpu::util::DeviceExt;
 
+use super::GpuContext;
 use super::binder::Binder;
 use super::buffers::{POSITION_STRIDE, empty_binding_buffer, params_buffer, upload_positions, window};
 use super::chunks::{ChunkLimits, dispatch_grid};
-use super::kernels::{self, DeformVariant, Kernel};
+use super::kernels::{DeformVariant, Kernel};
 use super::readback::read_bytes;
 use crate::bind::falloff::BandWeight;
 use crate::coeffs::{BandRecord, DispatchParams};
@@ -47,9 +49,10 @@ struct BandChunk {
 /// The band kernel and its per-chunk records.
 #[derive(Debug)]
 pub(crate) struct BandStage {
-    kernel: Kernel,
-    /// `shaders/band_pack.wgsl`, compiled the first time second influences are bound.
-    pack: Option<Kernel>,
+    kernel: Arc<Kernel>,
+    /// `shaders/band_pack.wgsl`, taken from the context's cache the first time second influences
+    /// are bound.
+    pack: Option<Arc<Kernel>>,
     rest_cells: wgpu::Buffer,
     chunks: Vec<BandChunk>,
 }
@@ -64,9 +67,9 @@ pub(crate) struct BandPlan<'a> {
 impl BandStage {
     /// The band kernel for cell records of `variant`, reading the rest rig's from `rest_cells`;
     /// no band records yet.
-    pub(crate) fn new(device: &wgpu::Device, variant: DeformVariant, rest_cells: &wgpu::Buffer) -> BandStage {
+    pub(crate) fn new(context: &GpuContext, variant: DeformVariant, rest_cells: &wgpu::Buffer) -> BandStage {
         BandStage {
-            kernel: kernels::band(device, variant),
+            kernel: context.kernels().band(&context.device, variant),
             pack: None,
             rest_cells: rest_cells.clone(),
             chunks: Vec::new(),
@@ -78,7 +81,7 @@ impl BandStage {
     /// into `encoder` (`binder` is needed for [`BandSource::Bind`]).
     pub(crate) fn set_records(
         &mut self,
-        device: &wgpu::Device,
+        context: &GpuContext,
         plan: BandPlan,
         chunks: &[(Range<u32>, &wgpu::Buffer)],
         source: BandSource,
@@ -94,8 +97,9 @@ impl BandStage {
             BandSource::Records(records) => records.len(),
         };
         if matches!(source, BandSource::Bind { .. }) && total > 0 && self.pack.is_none() {
-            self.pack = Some(kernels::band_pack(device));
+            self.pack = Some(context.kernels().band_pack(&context.device));
         }
+        let device = &context.device;
         self.chunks.clear();
         let mut next = 0usize;
         for (range, bindings) in chunks {

@@ -15,7 +15,7 @@ use super::buffers::{
     params_buffer, upload_positions, window,
 };
 use super::chunks::{ChunkLimits, dispatch_grid, uniform_chunks};
-use super::kernels::{self, DeformVariant, Kernel};
+use super::kernels::{DeformVariant, Kernel};
 use super::normals_pass::NormalsStage;
 use super::readback::{read_bytes, wait};
 use super::{GpuContext, GpuError};
@@ -80,7 +80,7 @@ pub enum BindingSource<'a> {
 pub struct GpuDeformer {
     context: GpuContext,
     limits: ChunkLimits,
-    kernel: Kernel,
+    kernel: std::sync::Arc<Kernel>,
     vertex_count: u32,
     positions: wgpu::Buffer,
     cells: wgpu::Buffer,
@@ -161,7 +161,7 @@ impl GpuDeformer {
         let variant = DeformVariant::for_cells(coefficients.cells.len(), &device_limits);
         let cells = cells_buffer(device, &coefficients, variant);
         let rest_cells = cells_buffer(device, &coefficients, variant);
-        let kernel = kernels::deform(device, variant);
+        let kernel = context.kernels().deform(device, variant);
         let mut encoder =
             device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd bind") });
         let binder = match bindings {
@@ -209,8 +209,8 @@ impl GpuDeformer {
             let plan = BandPlan { cells: &cells, positions: &positions_buffer, limits: &limits };
             let windows: Vec<(Range<u32>, &wgpu::Buffer)> =
                 chunks.iter().map(|chunk| (chunk.range.clone(), &chunk.bindings)).collect();
-            let mut stage = BandStage::new(device, variant, &rest_cells);
-            stage.set_records(device, plan, &windows, source, binder.as_ref(), &mut encoder);
+            let mut stage = BandStage::new(context, variant, &rest_cells);
+            stage.set_records(context, plan, &windows, source, binder.as_ref(), &mut encoder);
             stage
         });
         let (members, bound): (Vec<BandMember>, Vec<bool>) = match bindings {
@@ -224,7 +224,7 @@ impl GpuDeformer {
         };
         let rebanding = Rebanding::new(rest, binder, members, &bound);
         let normals = match faces {
-            Some(faces) => Some(NormalsStage::new(device, faces, &positions_buffer, vertex_count, &limits)?),
+            Some(faces) => Some(NormalsStage::new(context, faces, &positions_buffer, vertex_count, &limits)?),
             None => None,
         };
         let deformer = GpuDeformer {

@@ -1,4 +1,5 @@
-//! Compute pipelines and their bind group layouts, created once per deformer.
+//! Compute pipelines and their bind group layouts. The engine compiles each once per context
+//! (`kernel_cache.rs`); the functions here compile a fresh one.
 
 use std::borrow::Cow;
 

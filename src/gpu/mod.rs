@@ -14,6 +14,7 @@ mod chunks;
 mod context;
 pub(crate) mod deformer;
 mod error;
+mod kernel_cache;
 pub mod kernels;
 mod normals_pass;
 mod readback;

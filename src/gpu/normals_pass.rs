@@ -4,10 +4,12 @@
 
 use wgpu::util::DeviceExt;
 
-use super::GpuError;
+use std::sync::Arc;
+
 use super::buffers::{POSITION_STRIDE, check_fits, params_buffer, window};
 use super::chunks::{ChunkLimits, dispatch_grid, normal_chunks};
-use super::kernels::{self, Kernel};
+use super::kernels::Kernel;
+use super::{GpuContext, GpuError};
 use crate::coeffs::DispatchParams;
 use crate::mesh::Faces;
 use crate::normals::NormalAdjacency;
@@ -15,19 +17,20 @@ use crate::normals::NormalAdjacency;
 /// The normals pass: its kernel, output buffer and dispatches.
 #[derive(Debug)]
 pub(crate) struct NormalsStage {
-    pub(crate) kernel: Kernel,
+    pub(crate) kernel: Arc<Kernel>,
     pub(crate) buffer: wgpu::Buffer,
     pub(crate) dispatches: Vec<(wgpu::BindGroup, (u32, u32))>,
 }
 
 impl NormalsStage {
     pub(crate) fn new(
-        device: &wgpu::Device,
+        context: &GpuContext,
         faces: &Faces,
         positions: &wgpu::Buffer,
         vertex_count: u32,
         limits: &ChunkLimits,
     ) -> Result<NormalsStage, GpuError> {
+        let device = &context.device;
         let adjacency = NormalAdjacency::new(faces, vertex_count as usize);
         let entry_bytes = size_of::<u32>() as u64;
         let chunks = normal_chunks(&adjacency.offsets, entry_bytes, limits).ok_or_else(|| {
@@ -51,7 +54,7 @@ impl NormalsStage {
             usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
-        let kernel = kernels::normals(device, split < vertex_count);
+        let kernel = context.kernels().normals(device, split < vertex_count);
         let dispatches = chunks
             .iter()
             .map(|range| {

@@ -14,7 +14,7 @@ use super::super::bands::{BandPlan, BandSource, BandStage};
 use super::super::binder::Binder;
 use super::super::buffers::{POSITION_STRIDE, params_buffer, window};
 use super::super::chunks::dispatch_grid;
-use super::super::kernels::{self, Kernel};
+use super::super::kernels::Kernel;
 use super::super::readback::wait;
 use super::{DeformChunk, GpuDeformer, check_weights};
 use crate::bind::falloff::BandWeight;
@@ -51,7 +51,7 @@ impl BandMember {
 pub(super) struct Rebanding {
     rest: Vec<Sweep>,
     binder: Option<Binder>,
-    flags: Option<Kernel>,
+    flags: Option<std::sync::Arc<Kernel>>,
     members: Vec<BandMember>,
     bound: Vec<u64>,
 }
@@ -165,12 +165,12 @@ impl GpuDeformer {
             self.rebanding.binder = Some(Binder::new(&self.context, rest, &self.coefficients, &self.rest_cells));
         }
         if !weights.is_empty() || self.bands.is_some() {
-            let stage = self.bands.get_or_insert_with(|| BandStage::new(&device, self.variant, &self.rest_cells));
+            let stage = self.bands.get_or_insert_with(|| BandStage::new(&self.context, self.variant, &self.rest_cells));
             let plan = BandPlan { cells: &self.cells, positions: &self.positions, limits: &self.limits };
             let windows: Vec<(Range<u32>, &wgpu::Buffer)> =
                 self.chunks.iter().map(|chunk| (chunk.range.clone(), &chunk.bindings)).collect();
             let source = BandSource::Bind { weights, positions: rest };
-            stage.set_records(&device, plan, &windows, source, self.rebanding.binder.as_ref(), &mut encoder);
+            stage.set_records(&self.context, plan, &windows, source, self.rebanding.binder.as_ref(), &mut encoder);
         }
         self.context.queue.submit([encoder.finish()]);
         let validation_error = pollster::block_on(validation.pop());
@@ -189,7 +189,8 @@ impl GpuDeformer {
             return;
         }
         let device = &self.context.device;
-        let kernel = self.rebanding.flags.get_or_insert_with(|| kernels::band_flags(device));
+        let kernels = self.context.kernels();
+        let kernel = self.rebanding.flags.get_or_insert_with(|| kernels.band_flags(device));
         let dispatches: Vec<(wgpu::BindGroup, (u32, u32))> = self
             .chunks
             .iter()
