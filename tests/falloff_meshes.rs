@@ -227,7 +227,7 @@ fn gpu_matches_reference(name: &str, mesh: &Mesh, rig: &Rig) {
     let mut reference = vec![DVec3::ZERO; mesh.positions.len()];
     deform_vertices(rig.rest(), &posed, &bindings, &mesh.positions, &mut reference);
     let source = BindingSource::Bind { owners: &owners, bands: &weights };
-    let mut deformer = GpuDeformer::new(context, rig.rest(), &mesh.positions, source, Some(&mesh.faces)).unwrap();
+    let mut deformer = common::deformer(context, rig.rest(), &mesh.positions, source, Some(&mesh.faces)).unwrap();
     deformer.deform(&posed).unwrap();
     let gpu = deformer.read_positions().unwrap();
     let reference = cpu::packed(&reference);

@@ -6,7 +6,7 @@ mod common;
 
 use std::time::Instant;
 
-use sweepffd::gpu::{BindingSource, GpuContext, GpuDeformer};
+use sweepffd::gpu::{BindingSource, DeformerDescriptor, GpuContext, GpuDeformer};
 use sweepffd::synthetic::{Tube, tube_rig};
 
 /// Milliseconds to build a 2,000-vertex tube's deformer (with normals) on `context`.
@@ -16,7 +16,7 @@ fn build_ms(context: &GpuContext) -> f64 {
     let owners = rig.owners(&mesh, "tube").unwrap();
     let start = Instant::now();
     let source = BindingSource::Bind { owners: &owners, bands: &[] };
-    let deformer = GpuDeformer::new(context, rig.rest(), &mesh.positions, source, Some(&mesh.faces)).unwrap();
+    let deformer = common::deformer(context, rig.rest(), &mesh.positions, source, Some(&mesh.faces)).unwrap();
     let ms = start.elapsed().as_secs_f64() * 1e3;
     drop(deformer);
     ms
@@ -53,4 +53,38 @@ fn construction_time_with_and_without_shared_pipelines() {
     let (fresh, shared) = (median(fresh), median(shared));
     println!("2k-vertex deformer construction: {fresh:.1} ms compiling its pipelines, {shared:.1} ms sharing them");
     assert!(shared < fresh, "sharing the pipelines made construction slower: {shared} ms vs {fresh} ms");
+}
+
+#[test]
+fn the_async_constructor_builds_the_same_bindings_without_waiting() {
+    let Some(context) = common::gpu() else { return };
+    let tube = Tube::with_vertex_count(2_000, 4.0, 0.5);
+    let (mesh, rig) = (tube.mesh(), tube_rig(&tube, 8, 16));
+    let owners = rig.owners(&mesh, "tube").unwrap();
+    let positions = sweepffd::gpu::rest_positions(&mesh.positions);
+    let descriptor =
+        DeformerDescriptor::new(rig.rest(), &positions, BindingSource::Bind { owners: &owners, bands: &[] });
+    let blocking = GpuDeformer::new(context, &descriptor).unwrap();
+    let deformer = pollster::block_on(GpuDeformer::new_async(context, &descriptor)).unwrap();
+    assert_eq!(deformer.read_bindings().unwrap(), blocking.read_bindings().unwrap());
+}
+
+#[test]
+fn a_triangle_list_past_the_vertices_or_not_in_threes_is_refused() {
+    let Some(context) = common::gpu() else { return };
+    let tube = Tube::with_vertex_count(2_000, 4.0, 0.5);
+    let (mesh, rig) = (tube.mesh(), tube_rig(&tube, 8, 16));
+    let owners = rig.owners(&mesh, "tube").unwrap();
+    let positions = sweepffd::gpu::rest_positions(&mesh.positions);
+    let descriptor =
+        DeformerDescriptor::new(rig.rest(), &positions, BindingSource::Bind { owners: &owners, bands: &[] });
+    let past = [0, 1, positions.len() as u32];
+    let error = GpuDeformer::new(context, &descriptor.with_triangles(&past)).unwrap_err();
+    assert!(error.to_string().contains("refers to vertex"), "{error}");
+    let error = GpuDeformer::new(context, &descriptor.with_triangles(&[0, 1])).unwrap_err();
+    assert!(error.to_string().contains("multiple of 3"), "{error}");
+    let mut nan = positions.clone();
+    nan[7][1] = f32::NAN;
+    let error = GpuDeformer::new(context, &DeformerDescriptor { positions: &nan, ..descriptor }).unwrap_err();
+    assert!(error.to_string().contains("vertex 7"), "{error}");
 }

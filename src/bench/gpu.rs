@@ -11,7 +11,8 @@ use crate::coeffs::{BAND_FLAG, DispatchParams, SweepCoefficients};
 use crate::gpu::binder::Binder;
 use crate::gpu::buffers::{params_buffer, window};
 use crate::gpu::{
-    BindingSource, GpuContext, GpuDeformer, GpuError, POSITION_STRIDE, dispatch_grid, kernels, uniform_chunks, wait,
+    BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, GpuError, POSITION_STRIDE, dispatch_grid, kernels,
+    uniform_chunks, wait,
 };
 
 /// Runs before the timed ones.
@@ -45,7 +46,10 @@ impl GpuBench {
         let rest = scene.rig.rest();
         let bands = scene.rig.band_weights(&scene.mesh, &scene.owners);
         let source = BindingSource::Bind { owners: &scene.owners, bands: &bands };
-        let deformer = GpuDeformer::new(context, rest, &scene.mesh.positions, source, Some(&scene.mesh.faces))?;
+        let positions = crate::gpu::rest_positions(&scene.mesh.positions);
+        let triangles: Vec<u32> = scene.mesh.faces.triangles().flatten().collect();
+        let deformer =
+            GpuDeformer::new(context, &DeformerDescriptor::new(rest, &positions, source).with_triangles(&triangles))?;
         let mut flagged_owners = scene.owners.clone();
         for band in &bands {
             flagged_owners[band.vertex as usize] |= BAND_FLAG;
@@ -54,7 +58,9 @@ impl GpuBench {
         for (kind, variant) in &scene.with_falloff {
             let bands = variant.rig.band_weights(&variant.mesh, &variant.owners);
             let source = BindingSource::Bind { owners: &variant.owners, bands: &bands };
-            let mut deformer = GpuDeformer::new(context, variant.rig.rest(), &variant.mesh.positions, source, None)?;
+            let positions = crate::gpu::rest_positions(&variant.mesh.positions);
+            let mut deformer =
+                GpuDeformer::new(context, &DeformerDescriptor::new(variant.rig.rest(), &positions, source))?;
             deformer.set_pose(&variant.posed)?;
             falloff.push((*kind, deformer));
         }

@@ -12,7 +12,6 @@
 use std::ops::Range;
 use std::sync::Arc;
 
-use glam::DVec3;
 use wgpu::util::DeviceExt;
 
 use super::GpuContext;
@@ -31,7 +30,7 @@ pub const BAND_STRIDE: u64 = size_of::<BandRecord>() as u64;
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum BandSource<'a> {
     /// Weights from the CPU; the second influences are bound on the GPU from `positions`.
-    Bind { weights: &'a [BandWeight], positions: &'a [DVec3] },
+    Bind { weights: &'a [BandWeight], positions: &'a [[f32; 3]] },
     /// Finished records, vertices global.
     Records(&'a [BandRecord]),
 }
@@ -199,12 +198,12 @@ fn bind_second_influences(
     binder: &Binder,
     pack: &Kernel,
     weights: &[BandWeight],
-    positions: &[DVec3],
+    positions: &[[f32; 3]],
     records: &wgpu::Buffer,
     limits: &ChunkLimits,
     encoder: &mut wgpu::CommandEncoder,
 ) {
-    let compact: Vec<DVec3> = weights.iter().map(|w| positions[w.vertex as usize]).collect();
+    let compact: Vec<[f32; 3]> = weights.iter().map(|w| positions[w.vertex as usize]).collect();
     let owners: Vec<u32> = weights.iter().map(|w| w.neighbour).collect();
     let compact_positions = upload_positions(device, &compact);
     // At most one deform chunk's vertices: their bindings fit one binding by construction.

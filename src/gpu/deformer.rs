@@ -1,12 +1,14 @@
 //! [`GpuDeformer`]: binding and Eq. 2 on the GPU, with the output position (and normal) buffer
 //! ready to be drawn by the host application.
 
+mod descriptor;
 mod set_bands;
+
+pub use descriptor::DeformerDescriptor;
 
 use std::ops::Range;
 
-use glam::DVec3;
-
+use self::descriptor::triangle_faces;
 use self::set_bands::{BandMember, Rebanding};
 use super::bands::{BandPlan, BandSource, BandStage};
 use super::binder::Binder;
@@ -21,7 +23,6 @@ use super::readback::{read_bytes, wait};
 use super::{GpuContext, GpuError};
 use crate::bind::falloff::BandWeight;
 use crate::coeffs::{BAND_FLAG, BandRecord, DispatchParams, GpuBinding, SweepCoefficients, UNOWNED};
-use crate::mesh::Faces;
 use crate::sweep::Sweep;
 
 /// Storage buffers the bind kernel uses in one stage, the most of any kernel.
@@ -60,12 +61,15 @@ pub enum BindingSource<'a> {
 /// # fn frame_loop(context: &sweepffd::gpu::GpuContext, rig: &sweepffd::rig::Rig,
 /// #     mesh: &sweepffd::mesh::Mesh, poses: &[Vec<Vec<sweepffd::sweep::Key>>])
 /// #     -> Result<(), Box<dyn std::error::Error>> {
-/// use sweepffd::gpu::{BindingSource, GpuDeformer};
+/// use sweepffd::gpu::{BindingSource, DeformerDescriptor, GpuDeformer};
 ///
 /// let owners = rig.owners(mesh, "mesh")?;
 /// let bands = rig.band_weights(mesh, &owners); // empty without falloff
 /// let bindings = BindingSource::Bind { owners: &owners, bands: &bands };
-/// let mut deformer = GpuDeformer::new(context, rig.rest(), &mesh.positions, bindings, Some(&mesh.faces))?;
+/// let rest = sweepffd::gpu::rest_positions(&mesh.positions);
+/// let triangles: Vec<u32> = mesh.faces.triangles().flatten().collect();
+/// let descriptor = DeformerDescriptor::new(rig.rest(), &rest, bindings).with_triangles(&triangles);
+/// let mut deformer = GpuDeformer::new(context, &descriptor)?;
 /// for keys in poses {
 ///     let posed = rig.pose(keys)?; // f64 sweeps on the CPU: a few keys, not millions of vertices
 ///     deformer.set_pose(&posed)?; // uploads a few KB of coefficients
@@ -131,17 +135,23 @@ impl DeformChunk {
 }
 
 impl GpuDeformer {
-    /// Uploads `positions` (rest, one per vertex) and the rest sweeps, and binds every vertex
-    /// (on the GPU for [`BindingSource::Bind`]). With `faces`, also keeps area-weighted vertex
-    /// normals of the deformed mesh. Blocks until the GPU is done; wgpu errors are returned.
-    pub fn new(
-        context: &GpuContext,
-        rest: &[Sweep],
-        positions: &[DVec3],
-        bindings: BindingSource,
-        faces: Option<&Faces>,
-    ) -> Result<GpuDeformer, GpuError> {
-        check_input(rest, positions, &bindings)?;
+    /// Uploads the descriptor's rest positions and sweeps, and binds every vertex (on the GPU
+    /// for [`BindingSource::Bind`]); with triangles, also keeps area-weighted vertex normals of
+    /// the deformed mesh. Blocks until the GPU is done ([`new_async`](GpuDeformer::new_async)
+    /// does not); input errors and wgpu errors are returned.
+    pub fn new(context: &GpuContext, descriptor: &DeformerDescriptor) -> Result<GpuDeformer, GpuError> {
+        let deformer = pollster::block_on(GpuDeformer::new_async(context, descriptor))?;
+        wait(context)?;
+        Ok(deformer)
+    }
+
+    /// [`new`](GpuDeformer::new) without blocking the host thread: records and submits the
+    /// binding, then awaits only wgpu's error scopes, never the GPU. The deformer can be encoded
+    /// at once; its first frame runs after the binding on the queue.
+    pub async fn new_async(context: &GpuContext, descriptor: &DeformerDescriptor<'_>) -> Result<GpuDeformer, GpuError> {
+        descriptor.check()?;
+        let DeformerDescriptor { rest, positions, bindings, triangles } = *descriptor;
+        let faces = triangles.map(triangle_faces);
         let device = &context.device;
         let device_limits = device.limits();
         if device_limits.max_storage_buffers_per_shader_stage < STORAGE_BUFFERS_NEEDED {
@@ -224,7 +234,7 @@ impl GpuDeformer {
         };
         let rebanding = Rebanding::new(rest, binder, members, &bound);
         let normals = match faces {
-            Some(faces) => Some(NormalsStage::new(context, faces, &positions_buffer, vertex_count, &limits)?),
+            Some(faces) => Some(NormalsStage::new(context, &faces, &positions_buffer, vertex_count, &limits)?),
             None => None,
         };
         let deformer = GpuDeformer {
@@ -245,12 +255,13 @@ impl GpuDeformer {
         // Normals of the rest mesh, so the buffer is meaningful before the first pose.
         deformer.encode_normals_pass(&mut encoder, None);
         context.queue.submit([encoder.finish()]);
-        let validation_error = pollster::block_on(validation.pop());
-        let memory_error = pollster::block_on(out_of_memory.pop());
+        // Both scopes are popped on this thread before either is awaited: wgpu's error scopes
+        // belong to the thread that pushed them.
+        let (validation, out_of_memory) = (validation.pop(), out_of_memory.pop());
+        let (validation_error, memory_error) = (validation.await, out_of_memory.await);
         if let Some(error) = validation_error.or(memory_error) {
             return Err(error.into());
         }
-        wait(context)?;
         Ok(deformer)
     }
 
@@ -410,7 +421,11 @@ impl GpuDeformer {
 /// Fails unless `weights` are sorted by vertex, each vertex `bound` (owned by a sweep), each
 /// weight in [0, 1) and each neighbour one of the rig's `sweeps` or [`UNOWNED`] (the rest
 /// position).
-fn check_weights(weights: &[BandWeight], sweeps: usize, bound: impl Fn(usize) -> bool) -> Result<(), GpuError> {
+pub(super) fn check_weights(
+    weights: &[BandWeight],
+    sweeps: usize,
+    bound: impl Fn(usize) -> bool,
+) -> Result<(), GpuError> {
     let band = |b: &BandWeight| (b.vertex, b.weight, b.neighbour);
     check_bands(weights, band, sweeps, bound)
         .map_err(|()| GpuError::Input("the falloff bands are not sorted, owned and in range".into()))
@@ -419,7 +434,7 @@ fn check_weights(weights: &[BandWeight], sweeps: usize, bound: impl Fn(usize) ->
 /// Whether `bands`, each seen as (vertex, weight, second influence), are sorted by vertex, each
 /// vertex `bound`, each weight in [0, 1) and each second influence below `seconds` or
 /// [`UNOWNED`] (the rest position).
-fn check_bands<B>(
+pub(super) fn check_bands<B>(
     bands: &[B],
     band: impl Fn(&B) -> (u32, f64, u32),
     seconds: usize,
@@ -431,49 +446,4 @@ fn check_bands<B>(
         bound(vertex as usize) && (0.0..1.0).contains(&weight) && (second == UNOWNED || (second as usize) < seconds)
     };
     if ordered && bands.iter().all(valid) { Ok(()) } else { Err(()) }
-}
-
-fn check_input(rest: &[Sweep], positions: &[DVec3], bindings: &BindingSource) -> Result<(), GpuError> {
-    if positions.is_empty() {
-        return Err(GpuError::Input("the mesh has no vertices".into()));
-    }
-    if positions.len() >= UNOWNED as usize {
-        return Err(GpuError::Input(format!("{} vertices are more than the GPU path indexes", positions.len())));
-    }
-    if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
-        return Err(GpuError::Input(format!("vertex {i} has a non-finite position")));
-    }
-    match bindings {
-        BindingSource::Bind { owners, bands } => {
-            if owners.len() != positions.len() {
-                return Err(GpuError::Input(format!("{} owners for {} vertices", owners.len(), positions.len())));
-            }
-            if let Some(i) = owners.iter().position(|&o| o != UNOWNED && o as usize >= rest.len()) {
-                return Err(GpuError::Input(format!(
-                    "vertex {i} is owned by sweep {}, but the rig has {}",
-                    owners[i],
-                    rest.len()
-                )));
-            }
-            check_weights(bands, rest.len(), |v| owners.get(v).is_some_and(|&o| o != UNOWNED))?;
-        }
-        BindingSource::Precomputed { bindings, bands } => {
-            if bindings.len() != positions.len() {
-                return Err(GpuError::Input(format!("{} bindings for {} vertices", bindings.len(), positions.len())));
-            }
-            let cells: usize = rest.iter().map(|s| s.segments().len() * s.radius_samples()).sum();
-            if let Some(i) = bindings.iter().position(|b| b.cell != UNOWNED && (b.cell & !BAND_FLAG) as usize >= cells)
-            {
-                return Err(GpuError::Input(format!(
-                    "binding {i} refers to radius cell {} of {cells}",
-                    bindings[i].cell
-                )));
-            }
-            let band = |b: &BandRecord| (b.vertex, b.weight as f64, b.cell);
-            let bound = |v: usize| bindings.get(v).is_some_and(|b| b.cell != UNOWNED);
-            check_bands(bands, band, cells, bound)
-                .map_err(|()| GpuError::Input("the band records are not sorted, bound and in range".into()))?;
-        }
-    }
-    Ok(())
 }

@@ -7,8 +7,6 @@
 
 use std::ops::Range;
 
-use glam::DVec3;
-
 use super::super::GpuError;
 use super::super::bands::{BandPlan, BandSource, BandStage};
 use super::super::binder::Binder;
@@ -78,12 +76,12 @@ impl Rebanding {
 /// (or was not in `old`) also gets [`KEEPS_REST`] and its f32 rest position from `rest`, since the
 /// deform and band kernels may have moved it. A vertex in both that needs no rest position is
 /// unchanged. Each vertex appears at most once, so the kernel's writes never race.
-pub(super) fn flag_changes(old: &[BandMember], new: &[BandWeight], rest: &[DVec3]) -> Vec<BandFlag> {
+pub(super) fn flag_changes(old: &[BandMember], new: &[BandWeight], rest: &[[f32; 3]]) -> Vec<BandFlag> {
     let enter = |member: BandMember| {
         let mut flag = BandFlag { vertex: member.vertex | BAND_FLAG, ..Default::default() };
         if member.keeps_rest {
-            let p = rest[member.vertex as usize].as_vec3();
-            flag = BandFlag { vertex: flag.vertex | KEEPS_REST, x: p.x, y: p.y, z: p.z };
+            let [x, y, z] = rest[member.vertex as usize];
+            flag = BandFlag { vertex: flag.vertex | KEEPS_REST, x, y, z };
         }
         flag
     };
@@ -133,13 +131,13 @@ impl GpuDeformer {
     /// moves them again), and writes the rest position of those that now keep it; the band
     /// records are rebuilt and the second influences bound by the bind kernel, as
     /// [`new`](GpuDeformer::new) does. `rest` are the rest positions the deformer was built
-    /// with (only the band vertices' are read and uploaded).
+    /// with, f32 (only the band vertices' are read and uploaded).
     ///
     /// The result equals a deformer built with `weights` from the next
     /// [`encode`](GpuDeformer::encode) on; nothing changes per frame. Blocks until the GPU is
     /// done. Fails, changing nothing, on weights that are not sorted, owned and in range, or on
     /// `rest` of another length; wgpu errors are returned.
-    pub fn set_bands(&mut self, rest: &[DVec3], weights: &[BandWeight]) -> Result<(), GpuError> {
+    pub fn set_bands(&mut self, rest: &[[f32; 3]], weights: &[BandWeight]) -> Result<(), GpuError> {
         if rest.len() != self.vertex_count as usize {
             return Err(GpuError::Input(format!(
                 "{} rest positions for a deformer of {} vertices",
@@ -148,7 +146,7 @@ impl GpuDeformer {
             )));
         }
         check_weights(weights, self.coefficients.sweeps.len(), |v| self.rebanding.is_bound(v))?;
-        if let Some(w) = weights.iter().find(|w| !rest[w.vertex as usize].is_finite()) {
+        if let Some(w) = weights.iter().find(|w| !rest[w.vertex as usize].iter().all(|c| c.is_finite())) {
             return Err(GpuError::Input(format!("vertex {} has a non-finite position", w.vertex)));
         }
         let device = self.context.device.clone();
@@ -243,8 +241,8 @@ mod tests {
         BandMember { vertex, keeps_rest }
     }
 
-    fn rest() -> Vec<DVec3> {
-        (0..8).map(|i| DVec3::new(i as f64, 0.5, -1.0)).collect()
+    fn rest() -> Vec<[f32; 3]> {
+        (0..8).map(|i| [i as f32, 0.5, -1.0]).collect()
     }
 
     #[test]
