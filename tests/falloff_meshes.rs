@@ -11,7 +11,7 @@ use sweepffd::deform::deform_vertices;
 use sweepffd::edit::{Edit, KeyMode, Posing};
 use sweepffd::fit::attached::reversed;
 use sweepffd::fit::{FitOptions, fit, largest_connected};
-use sweepffd::gpu::{BindingSource, GpuDeformer};
+use sweepffd::gpu::BindingSource;
 use sweepffd::mesh::Mesh;
 use sweepffd::rig::{Rig, RigSweep, VertexSelection};
 use sweepffd::sweep::Key;

@@ -16,8 +16,9 @@ use wgpu::util::DeviceExt;
 
 use super::GpuContext;
 use super::binder::Binder;
-use super::buffers::{POSITION_STRIDE, empty_binding_buffer, params_buffer, upload_positions, window};
+use super::buffers::{empty_binding_buffer, params_buffer, upload_positions};
 use super::chunks::{ChunkLimits, dispatch_grid};
+use super::deformer::instances::{CellSlots, InstanceDispatch, PositionTargets, View};
 use super::kernels::{DeformVariant, Kernel};
 use super::readback::read_bytes;
 use crate::bind::falloff::BandWeight;
@@ -41,8 +42,7 @@ struct BandChunk {
     first_vertex: u32,
     count: u32,
     records: wgpu::Buffer,
-    group: wgpu::BindGroup,
-    grid: (u32, u32),
+    dispatches: Vec<InstanceDispatch>,
 }
 
 /// The band kernel and its per-chunk records.
@@ -58,8 +58,8 @@ pub(crate) struct BandStage {
 
 /// The deformer's buffers the band dispatches bind.
 pub(crate) struct BandPlan<'a> {
-    pub cells: &'a wgpu::Buffer,
-    pub positions: &'a wgpu::Buffer,
+    pub cells: &'a CellSlots,
+    pub targets: &'a PositionTargets,
     pub limits: &'a ChunkLimits,
 }
 
@@ -136,33 +136,43 @@ impl BandStage {
                 );
             }
             let count = (next - start) as u32;
-            let params = params_buffer(device, DispatchParams { vertex_count: count, ..Default::default() });
-            let group = self.kernel.bind_group(
+            let (kernel, rest_cells) = (&self.kernel, &self.rest_cells);
+            let dispatches = InstanceDispatch::plan(
                 device,
-                "sweepffd band",
-                &[
-                    params.as_entire_binding(),
-                    plan.cells.as_entire_binding(),
-                    bindings.as_entire_binding(),
-                    window(plan.positions, range, POSITION_STRIDE),
-                    self.rest_cells.as_entire_binding(),
-                    buffer.as_entire_binding(),
-                ],
+                plan.cells,
+                plan.targets,
+                range,
+                count,
+                plan.limits,
+                |params, cells, out| {
+                    kernel.bind_group(
+                        device,
+                        "sweepffd band",
+                        &[
+                            params.as_entire_binding(),
+                            cells,
+                            bindings.as_entire_binding(),
+                            out,
+                            rest_cells.as_entire_binding(),
+                            buffer.as_entire_binding(),
+                        ],
+                    )
+                },
             );
-            let grid = dispatch_grid(count, plan.limits);
-            self.chunks.push(BandChunk { first_vertex: range.start, count, records: buffer, group, grid });
+            self.chunks.push(BandChunk { first_vertex: range.start, count, records: buffer, dispatches });
         }
     }
 
     /// Records the band dispatches into a compute pass, after the deform dispatches.
-    pub(crate) fn encode(&self, pass: &mut wgpu::ComputePass) {
+    pub(crate) fn encode(&self, pass: &mut wgpu::ComputePass, view: View) {
         if self.chunks.is_empty() {
             return;
         }
         pass.set_pipeline(&self.kernel.pipeline);
         for chunk in &self.chunks {
-            pass.set_bind_group(0, &chunk.group, &[]);
-            pass.dispatch_workgroups(chunk.grid.0, chunk.grid.1, 1);
+            for dispatch in &chunk.dispatches {
+                dispatch.encode(pass, view);
+            }
         }
     }
 

@@ -2,27 +2,31 @@
 //! ready to be drawn by the host application.
 
 mod descriptor;
+pub(crate) mod instances;
 mod set_bands;
 
 pub use descriptor::DeformerDescriptor;
+pub use instances::INSTANCE_ALIGNMENT;
 
 use std::ops::Range;
+use std::sync::Arc;
 
 use self::descriptor::triangle_faces;
+use self::instances::{CellSlots, InstanceDispatch, PositionTargets, View};
 use self::set_bands::{BandMember, Rebanding};
 use super::bands::{BandPlan, BandSource, BandStage};
 use super::binder::Binder;
 use super::buffers::{
     BINDING_STRIDE, POSITION_STRIDE, binding_buffer_with, cells_buffer, check_fits, empty_binding_buffer,
-    params_buffer, upload_positions, window,
+    upload_positions,
 };
-use super::chunks::{ChunkLimits, dispatch_grid, uniform_chunks};
+use super::chunks::{ChunkLimits, uniform_chunks};
 use super::kernels::{DeformVariant, Kernel};
 use super::normals_pass::NormalsStage;
 use super::readback::{read_bytes, wait};
 use super::{GpuContext, GpuError};
 use crate::bind::falloff::BandWeight;
-use crate::coeffs::{BAND_FLAG, BandRecord, DispatchParams, GpuBinding, SweepCoefficients, UNOWNED};
+use crate::coeffs::{BAND_FLAG, BandRecord, CellCoeffs, GpuBinding, SweepCoefficients, UNOWNED};
 use crate::sweep::Sweep;
 
 /// Storage buffers the bind kernel uses in one stage, the most of any kernel.
@@ -42,13 +46,14 @@ pub enum BindingSource<'a> {
     Precomputed { bindings: &'a [GpuBinding], bands: &'a [BandRecord] },
 }
 
-/// Deforms one mesh on the GPU by poses of one rig.
+/// Deforms one mesh on the GPU by poses of one rig (Eq. 2), as one or many instances.
 ///
 /// Construction uploads the rest positions (once) and binds every owned vertex on the GPU; the
-/// bindings stay on the GPU. Each frame, [`set_pose`](GpuDeformer::set_pose) turns the posed
-/// sweeps into a few KB of coefficients and uploads only those, and
-/// [`encode`](GpuDeformer::encode) records the deform (and normals) dispatches into the
-/// application's command encoder: no allocation, pipeline or bind-group creation, no vertex
+/// bindings stay on the GPU and are shared by every instance. Each frame,
+/// [`set_pose`](GpuDeformer::set_pose) turns an instance's posed sweeps into a few KB of
+/// coefficients on the host, and [`encode`](GpuDeformer::encode) uploads every instance's (one
+/// `queue.write_buffer`, into the next pose slot) and records the deform (and normals)
+/// dispatches into the application's command encoder, every instance in one deform dispatch: no allocation, pipeline or bind-group creation, no vertex
 /// upload per frame. The [`positions`](GpuDeformer::positions) buffer (and
 /// [`normals`](GpuDeformer::normals)) has `VERTEX | STORAGE` usage: draw it directly as a
 /// `Float32x3` vertex attribute. Reading it back is a separate, explicit call. New falloff
@@ -72,9 +77,9 @@ pub enum BindingSource<'a> {
 /// let mut deformer = GpuDeformer::new(context, &descriptor)?;
 /// for keys in poses {
 ///     let posed = rig.pose(keys)?; // f64 sweeps on the CPU: a few keys, not millions of vertices
-///     deformer.set_pose(&posed)?; // uploads a few KB of coefficients
+///     deformer.set_pose(0, &posed)?; // a few KB of coefficients, uploaded by encode
 ///     let mut encoder = context.device.create_command_encoder(&Default::default());
-///     deformer.encode(&mut encoder); // deform + normals dispatches
+///     deformer.encode(&mut encoder); // upload, deform + normals dispatches
 ///     // ... record the render pass that draws deformer.positions() and deformer.normals() ...
 ///     context.queue.submit([encoder.finish()]);
 /// }
@@ -84,10 +89,13 @@ pub enum BindingSource<'a> {
 pub struct GpuDeformer {
     context: GpuContext,
     limits: ChunkLimits,
-    kernel: std::sync::Arc<Kernel>,
+    kernel: Arc<Kernel>,
     vertex_count: u32,
-    positions: wgpu::Buffer,
-    cells: wgpu::Buffer,
+    targets: PositionTargets,
+    cells: CellSlots,
+    /// Every instance's cell records, instance i at i × the rig's cell count: the next encode
+    /// writes them into the next pose slot.
+    poses: Vec<CellCoeffs>,
     coefficients: SweepCoefficients,
     variant: DeformVariant,
     /// The rest rig's cell records, which binding and the band kernel read.
@@ -96,41 +104,41 @@ pub struct GpuDeformer {
     bands: Option<BandStage>,
     rebanding: Rebanding,
     normals: Option<NormalsStage>,
+    /// The pose slot the next encode writes and binds.
+    next_slot: u32,
+    /// The position buffer holding the latest positions.
+    current: usize,
 }
 
-/// One dispatch of the deform kernel.
+/// The deform dispatches of one chunk of vertices (one per instance group).
 #[derive(Debug)]
 struct DeformChunk {
     range: Range<u32>,
     bindings: wgpu::Buffer,
-    group: wgpu::BindGroup,
-    grid: (u32, u32),
+    dispatches: Vec<InstanceDispatch>,
 }
 
 impl DeformChunk {
-    /// The deform dispatch of the vertices in `range`, whose bindings are in `bindings`.
+    /// The deform dispatches of the vertices in `range`, whose bindings are in `bindings`, for
+    /// every instance, pose slot and position buffer.
     fn new(
         device: &wgpu::Device,
         kernel: &Kernel,
         range: Range<u32>,
         bindings: wgpu::Buffer,
-        cells: &wgpu::Buffer,
-        positions: &wgpu::Buffer,
+        cells: &CellSlots,
+        targets: &PositionTargets,
         limits: &ChunkLimits,
     ) -> DeformChunk {
-        let params = params_buffer(device, DispatchParams { vertex_count: range.len() as u32, ..Default::default() });
-        let group = kernel.bind_group(
-            device,
-            "sweepffd deform",
-            &[
-                params.as_entire_binding(),
-                cells.as_entire_binding(),
-                bindings.as_entire_binding(),
-                window(positions, &range, POSITION_STRIDE),
-            ],
-        );
-        let grid = dispatch_grid(range.len() as u32, limits);
-        DeformChunk { range, bindings, group, grid }
+        let count = range.len() as u32;
+        let dispatches = InstanceDispatch::plan(device, cells, targets, &range, count, limits, |params, cells, out| {
+            kernel.bind_group(
+                device,
+                "sweepffd deform",
+                &[params.as_entire_binding(), cells, bindings.as_entire_binding(), out],
+            )
+        });
+        DeformChunk { range, bindings, dispatches }
     }
 }
 
@@ -150,7 +158,8 @@ impl GpuDeformer {
     /// at once; its first frame runs after the binding on the queue.
     pub async fn new_async(context: &GpuContext, descriptor: &DeformerDescriptor<'_>) -> Result<GpuDeformer, GpuError> {
         descriptor.check()?;
-        let DeformerDescriptor { rest, positions, bindings, triangles } = *descriptor;
+        let DeformerDescriptor { rest, positions, bindings, triangles, instances, pose_slots, previous_positions } =
+            *descriptor;
         let faces = triangles.map(triangle_faces);
         let device = &context.device;
         let device_limits = device.limits();
@@ -162,14 +171,21 @@ impl GpuDeformer {
         }
         let limits = ChunkLimits::of(&device_limits);
         let vertex_count = positions.len() as u32;
-        check_fits("the position buffer", vertex_count as u64 * POSITION_STRIDE, limits.max_buffer)?;
+        let ranges = uniform_chunks(vertex_count, BINDING_STRIDE, &limits);
+        let max_chunk = ranges.iter().map(|r| r.len() as u32).max().unwrap_or(0);
+        let mut targets = PositionTargets::plan(vertex_count, instances, max_chunk, &limits);
+        check_fits("the position buffer", targets.bytes(), limits.max_buffer)?;
 
         let out_of_memory = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
         let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let coefficients = SweepCoefficients::new(rest);
-        let positions_buffer = upload_positions(device, positions);
-        let variant = DeformVariant::for_cells(coefficients.cells.len(), &device_limits);
-        let cells = cells_buffer(device, &coefficients, variant);
+        let image = targets.rest_image(positions);
+        targets.buffers =
+            (0..if previous_positions { 2 } else { 1 }).map(|_| upload_positions(device, &image)).collect();
+        drop(image);
+        let total_cells = coefficients.cells.len() * instances as usize;
+        let variant = DeformVariant::for_cells(total_cells, &device_limits);
+        let cells = CellSlots::new(device, &coefficients.cells, instances, variant, pose_slots);
         let rest_cells = cells_buffer(device, &coefficients, variant);
         let kernel = context.kernels().deform(device, variant);
         let mut encoder =
@@ -182,7 +198,7 @@ impl GpuDeformer {
             BindingSource::Bind { bands, .. } => bands.iter().map(|b| b.vertex).collect(),
             BindingSource::Precomputed { bands, .. } => bands.iter().map(|b| b.vertex).collect(),
         };
-        let chunks: Vec<DeformChunk> = uniform_chunks(vertex_count, BINDING_STRIDE, &limits)
+        let chunks: Vec<DeformChunk> = ranges
             .into_iter()
             .map(|range| {
                 let (start, end) = (range.start as usize, range.end as usize);
@@ -197,7 +213,9 @@ impl GpuDeformer {
                             owners[v as usize - start] |= BAND_FLAG;
                         }
                         let binder = binder.as_ref().expect("made for BindingSource::Bind");
-                        binder.encode(&mut encoder, &range, &owners, &positions_buffer, &buffer, &limits, None);
+                        // Instance 0 of the first position buffer holds the rest positions.
+                        let rest_positions = &targets.buffers[0];
+                        binder.encode(&mut encoder, &range, &owners, rest_positions, &buffer, &limits, None);
                         buffer
                     }
                     BindingSource::Precomputed { bindings: all, .. } => {
@@ -208,7 +226,7 @@ impl GpuDeformer {
                         binding_buffer_with(device, &chunk)
                     }
                 };
-                DeformChunk::new(device, &kernel, range, bindings_buffer, &cells, &positions_buffer, &limits)
+                DeformChunk::new(device, &kernel, range, bindings_buffer, &cells, &targets, &limits)
             })
             .collect();
         let bands = (!band_vertices.is_empty()).then(|| {
@@ -216,7 +234,7 @@ impl GpuDeformer {
                 BindingSource::Bind { bands, .. } => BandSource::Bind { weights: bands, positions },
                 BindingSource::Precomputed { bands, .. } => BandSource::Records(bands),
             };
-            let plan = BandPlan { cells: &cells, positions: &positions_buffer, limits: &limits };
+            let plan = BandPlan { cells: &cells, targets: &targets, limits: &limits };
             let windows: Vec<(Range<u32>, &wgpu::Buffer)> =
                 chunks.iter().map(|chunk| (chunk.range.clone(), &chunk.bindings)).collect();
             let mut stage = BandStage::new(context, variant, &rest_cells);
@@ -234,16 +252,21 @@ impl GpuDeformer {
         };
         let rebanding = Rebanding::new(rest, binder, members, &bound);
         let normals = match faces {
-            Some(faces) => Some(NormalsStage::new(context, &faces, &positions_buffer, vertex_count, &limits)?),
+            Some(faces) => {
+                let offsets: Vec<u64> = (0..instances).map(|i| targets.instance_offset(i)).collect();
+                Some(NormalsStage::new(context, &faces, &targets.buffers, &offsets, vertex_count, &limits)?)
+            }
             None => None,
         };
+        let poses = (0..instances).flat_map(|_| coefficients.cells.iter().copied()).collect();
         let deformer = GpuDeformer {
             context: context.clone(),
             limits,
             kernel,
             vertex_count,
-            positions: positions_buffer,
+            targets,
             cells,
+            poses,
             coefficients,
             variant,
             rest_cells,
@@ -251,6 +274,8 @@ impl GpuDeformer {
             bands,
             rebanding,
             normals,
+            next_slot: 0,
+            current: 0,
         };
         // Normals of the rest mesh, so the buffer is meaningful before the first pose.
         deformer.encode_normals_pass(&mut encoder, None);
@@ -270,60 +295,118 @@ impl GpuDeformer {
         self.vertex_count
     }
 
-    /// The deformed positions, tightly packed f32 xyz (12 bytes a vertex); usage
-    /// `VERTEX | STORAGE | COPY_SRC | COPY_DST`. Unbound vertices keep their rest position.
-    pub fn positions(&self) -> &wgpu::Buffer {
-        &self.positions
+    /// Number of instances: poses of the one bound mesh deformed together.
+    pub fn instance_count(&self) -> u32 {
+        self.targets.instances
     }
 
-    /// The unit vertex normals of the deformed mesh, tightly packed f32 xyz, if the deformer
-    /// was given faces; usage `VERTEX | STORAGE | COPY_SRC`.
+    /// Byte offset of instance `instance`'s positions (and normals) in [`positions`]
+    /// (and [`normals`]): `instance × stride × 12`, the stride being the vertex count for one
+    /// instance and the vertex count rounded up to a multiple of
+    /// [`INSTANCE_ALIGNMENT`](crate::gpu::INSTANCE_ALIGNMENT) (64) vertices for several, so
+    /// that every instance starts on an aligned offset.
+    ///
+    /// [`positions`]: GpuDeformer::positions
+    /// [`normals`]: GpuDeformer::normals
+    pub fn instance_offset(&self, instance: u32) -> u64 {
+        self.targets.instance_offset(instance)
+    }
+
+    /// The latest deformed positions (those of the last [`encode`](GpuDeformer::encode)),
+    /// tightly packed f32 xyz (12 bytes a vertex), instance i at
+    /// [`instance_offset(i)`](GpuDeformer::instance_offset); usage
+    /// `VERTEX | STORAGE | COPY_SRC | COPY_DST`. Unbound vertices keep their rest position. With
+    /// previous positions this is one of two buffers, alternating each encode.
+    pub fn positions(&self) -> &wgpu::Buffer {
+        &self.targets.buffers[self.current]
+    }
+
+    /// The positions of the encode before the last (the rest positions before two encodes),
+    /// laid out as [`positions`](GpuDeformer::positions): the other buffer of the ping-pong,
+    /// no copy made. `None` unless the descriptor asked for
+    /// [`with_previous_positions`](DeformerDescriptor::with_previous_positions).
+    pub fn previous_positions(&self) -> Option<&wgpu::Buffer> {
+        let parities = self.targets.buffers.len();
+        (parities == 2).then(|| &self.targets.buffers[1 - self.current])
+    }
+
+    /// The unit vertex normals of the deformed mesh (of the latest positions), tightly packed
+    /// f32 xyz, laid out as the positions, if the deformer was given triangles; usage
+    /// `VERTEX | STORAGE | COPY_SRC`.
     pub fn normals(&self) -> Option<&wgpu::Buffer> {
         self.normals.as_ref().map(|n| &n.buffer)
     }
 
     /// Number of deform dispatches (1 unless the mesh exceeds a device limit).
     pub fn chunk_count(&self) -> usize {
-        self.chunks.len()
+        self.chunks.iter().map(|chunk| chunk.dispatches.len()).sum()
     }
 
-    /// Turns posed sweeps into coefficients (in place, no allocation) and queues their upload:
-    /// a few KB. Fails if the sweeps lack the rest rig's structure.
-    pub fn set_pose(&mut self, posed: &[Sweep]) -> Result<(), GpuError> {
+    /// Number of pose slots: how many encodes of this deformer one queue submission may hold,
+    /// each with its own poses.
+    pub fn pose_slots(&self) -> u32 {
+        self.cells.count
+    }
+
+    /// Turns posed sweeps into the coefficients of instance `instance` (in place, no
+    /// allocation, no GPU call): the next [`encode`](GpuDeformer::encode) uploads every
+    /// instance's. Fails if the sweeps lack the rest rig's structure or the instance does not
+    /// exist.
+    pub fn set_pose(&mut self, instance: u32, posed: &[Sweep]) -> Result<(), GpuError> {
+        if instance >= self.targets.instances {
+            return Err(GpuError::Input(format!(
+                "instance {instance} of a deformer of {} instances",
+                self.targets.instances
+            )));
+        }
         self.coefficients.update(posed)?;
-        let bytes = bytemuck::cast_slice(&self.coefficients.cells);
-        self.context.queue.write_buffer(&self.cells, 0, bytes);
+        let n = self.coefficients.cells.len();
+        let at = instance as usize * n;
+        self.poses[at..at + n].copy_from_slice(&self.coefficients.cells);
         Ok(())
     }
 
-    /// Records the frame's work into `encoder`: the deform pass, then the normals pass if any.
-    pub fn encode(&self, encoder: &mut wgpu::CommandEncoder) {
+    /// Records the frame's work into `encoder`: the deform pass (every instance's poses
+    /// uploaded into the next pose slot, one `queue.write_buffer`; deform and band kernels over
+    /// every instance), then the normals pass if any. Afterwards
+    /// [`positions`](GpuDeformer::positions) is the buffer this frame writes.
+    pub fn encode(&mut self, encoder: &mut wgpu::CommandEncoder) {
         self.encode_deform_pass(encoder, None);
         self.encode_normals_pass(encoder, None);
     }
 
-    /// Records the deform pass alone (the deform kernel, then the band kernel for the vertices in
-    /// falloff bands), optionally writing timestamps around it.
+    /// Records the deform pass alone (as [`encode`](GpuDeformer::encode) does: upload into the
+    /// next pose slot, the deform kernel, then the band kernel for the vertices in falloff
+    /// bands), optionally writing timestamps around it.
     pub fn encode_deform_pass(
-        &self,
+        &mut self,
         encoder: &mut wgpu::CommandEncoder,
         timestamps: Option<wgpu::ComputePassTimestampWrites>,
     ) {
+        let slot = self.next_slot;
+        self.next_slot = (slot + 1) % self.cells.count;
+        let bytes = bytemuck::cast_slice(&self.poses);
+        self.context.queue.write_buffer(&self.cells.buffer, self.cells.offset(slot), bytes);
+        let parity = (self.current + 1) % self.targets.buffers.len();
+        self.current = parity;
+        let view = View { slot, parity };
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("sweepffd deform"),
             timestamp_writes: timestamps,
         });
         pass.set_pipeline(&self.kernel.pipeline);
         for chunk in &self.chunks {
-            pass.set_bind_group(0, &chunk.group, &[]);
-            pass.dispatch_workgroups(chunk.grid.0, chunk.grid.1, 1);
+            for dispatch in &chunk.dispatches {
+                dispatch.encode(&mut pass, view);
+            }
         }
         if let Some(bands) = &self.bands {
-            bands.encode(&mut pass);
+            bands.encode(&mut pass, view);
         }
     }
 
-    /// Records the normals pass alone (nothing without faces), optionally with timestamps.
+    /// Records the normals pass alone (nothing without triangles) over the latest positions,
+    /// optionally with timestamps.
     pub fn encode_normals_pass(
         &self,
         encoder: &mut wgpu::CommandEncoder,
@@ -335,15 +418,15 @@ impl GpuDeformer {
             timestamp_writes: timestamps,
         });
         pass.set_pipeline(&normals.kernel.pipeline);
-        for (group, grid) in &normals.dispatches {
+        for (group, grid) in &normals.dispatches[self.current] {
             pass.set_bind_group(0, group, &[]);
             pass.dispatch_workgroups(grid.0, grid.1, 1);
         }
     }
 
-    /// Convenience for tools: sets the pose, records and submits the frame's work.
+    /// Convenience for tools: sets the pose of instance 0, records and submits the frame's work.
     pub fn deform(&mut self, posed: &[Sweep]) -> Result<(), GpuError> {
-        self.set_pose(posed)?;
+        self.set_pose(0, posed)?;
         let mut encoder = self
             .context
             .device
@@ -353,19 +436,38 @@ impl GpuDeformer {
         self.context.check_alive()
     }
 
-    /// Copies the positions back to the CPU (blocking), tightly packed f32 xyz.
+    /// Copies instance 0's latest positions back to the CPU (blocking), tightly packed f32 xyz.
     pub fn read_positions(&self) -> Result<Vec<f32>, GpuError> {
-        let bytes = read_bytes(&self.context, &self.positions, 0, self.vertex_count as u64 * POSITION_STRIDE)?;
-        Ok(bytemuck::pod_collect_to_vec(&bytes))
+        self.read_instance(self.positions(), 0)
     }
 
-    /// Copies the normals back to the CPU (blocking), or `None` without faces.
+    /// Copies instance `instance`'s latest positions back to the CPU (blocking).
+    pub fn read_instance_positions(&self, instance: u32) -> Result<Vec<f32>, GpuError> {
+        self.read_instance(self.positions(), instance)
+    }
+
+    /// Copies instance `instance`'s previous positions back (blocking), if kept.
+    pub fn read_previous_positions(&self, instance: u32) -> Result<Option<Vec<f32>>, GpuError> {
+        self.previous_positions().map(|buffer| self.read_instance(buffer, instance)).transpose()
+    }
+
+    /// Copies instance 0's normals back to the CPU (blocking), or `None` without triangles.
     pub fn read_normals(&self) -> Result<Option<Vec<f32>>, GpuError> {
-        let Some(normals) = &self.normals else {
-            return Ok(None);
-        };
-        let bytes = read_bytes(&self.context, &normals.buffer, 0, self.vertex_count as u64 * POSITION_STRIDE)?;
-        Ok(Some(bytemuck::pod_collect_to_vec(&bytes)))
+        self.read_instance_normals(0)
+    }
+
+    /// Copies instance `instance`'s normals back (blocking), or `None` without triangles.
+    pub fn read_instance_normals(&self, instance: u32) -> Result<Option<Vec<f32>>, GpuError> {
+        self.normals.as_ref().map(|normals| self.read_instance(&normals.buffer, instance)).transpose()
+    }
+
+    fn read_instance(&self, buffer: &wgpu::Buffer, instance: u32) -> Result<Vec<f32>, GpuError> {
+        if instance >= self.targets.instances {
+            return Err(GpuError::Input(format!("instance {instance} of {}", self.targets.instances)));
+        }
+        let size = self.vertex_count as u64 * POSITION_STRIDE;
+        let bytes = read_bytes(&self.context, buffer, self.targets.instance_offset(instance), size)?;
+        Ok(bytemuck::pod_collect_to_vec(&bytes))
     }
 
     /// Copies the band records back to the CPU (blocking), vertices global; empty without
@@ -382,8 +484,9 @@ impl GpuDeformer {
     /// Device memory that grows with the mesh: bindings, positions and the falloff bands' records,
     /// bytes (normals and the rig's cell records excluded).
     pub fn device_bytes(&self) -> u64 {
-        let per_vertex = self.vertex_count as u64 * (BINDING_STRIDE + POSITION_STRIDE);
-        per_vertex + self.bands.as_ref().map_or(0, BandStage::device_bytes)
+        let bindings = self.vertex_count as u64 * BINDING_STRIDE;
+        let positions = self.targets.bytes() * self.targets.buffers.len() as u64;
+        bindings + positions + self.bands.as_ref().map_or(0, BandStage::device_bytes)
     }
 
     /// Copies the bindings back to the CPU (blocking), one per vertex; band vertices carry
@@ -402,9 +505,9 @@ impl GpuDeformer {
         self.chunks.iter().map(|chunk| (&chunk.range, &chunk.bindings))
     }
 
-    /// The per-frame cell record buffer.
-    pub(crate) fn cells(&self) -> &wgpu::Buffer {
-        &self.cells
+    /// The rest rig's cell records, as the bind kernel reads them.
+    pub(crate) fn rest_cells(&self) -> &wgpu::Buffer {
+        &self.rest_cells
     }
 
     /// The context the deformer runs on.

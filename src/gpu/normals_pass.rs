@@ -1,12 +1,13 @@
 //! The normals pass: area-weighted vertex normals of the deformed mesh, gathered per vertex
 //! from its incident triangles (`shaders/normals.wgsl`), in chunks that respect the device's
-//! binding limits.
+//! binding limits. With instances, each instance's normals are laid out like its positions
+//! (at the same byte offsets), one set of dispatches per instance and position buffer.
 
 use wgpu::util::DeviceExt;
 
 use std::sync::Arc;
 
-use super::buffers::{POSITION_STRIDE, check_fits, params_buffer, window};
+use super::buffers::{POSITION_STRIDE, check_fits, params_buffer};
 use super::chunks::{ChunkLimits, dispatch_grid, normal_chunks};
 use super::kernels::Kernel;
 use super::{GpuContext, GpuError};
@@ -14,19 +15,21 @@ use crate::coeffs::DispatchParams;
 use crate::mesh::Faces;
 use crate::normals::NormalAdjacency;
 
-/// The normals pass: its kernel, output buffer and dispatches.
+/// The normals pass: its kernel, output buffer and dispatches (`dispatches[p]` read position
+/// buffer p).
 #[derive(Debug)]
 pub(crate) struct NormalsStage {
     pub(crate) kernel: Arc<Kernel>,
     pub(crate) buffer: wgpu::Buffer,
-    pub(crate) dispatches: Vec<(wgpu::BindGroup, (u32, u32))>,
+    pub(crate) dispatches: Vec<Vec<(wgpu::BindGroup, (u32, u32))>>,
 }
 
 impl NormalsStage {
     pub(crate) fn new(
         context: &GpuContext,
         faces: &Faces,
-        positions: &wgpu::Buffer,
+        positions: &[wgpu::Buffer],
+        instance_offsets: &[u64],
         vertex_count: u32,
         limits: &ChunkLimits,
     ) -> Result<NormalsStage, GpuError> {
@@ -45,17 +48,15 @@ impl NormalsStage {
             (vertex_count - split) as u64 * POSITION_STRIDE,
             limits.max_binding,
         )?;
-        let low = window(positions, &(0..split.max(1)), POSITION_STRIDE);
-        let high =
-            if split < vertex_count { window(positions, &(split..vertex_count), POSITION_STRIDE) } else { low.clone() };
+        let last = instance_offsets.last().copied().unwrap_or(0);
         let buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("sweepffd normals"),
-            size: vertex_count as u64 * POSITION_STRIDE,
+            size: last + vertex_count as u64 * POSITION_STRIDE,
             usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
         let kernel = context.kernels().normals(device, split < vertex_count);
-        let dispatches = chunks
+        let tables: Vec<_> = chunks
             .iter()
             .map(|range| {
                 let first = adjacency.offsets[range.start as usize];
@@ -82,21 +83,49 @@ impl NormalsStage {
                         _pad: 0,
                     },
                 );
-                let group = kernel.bind_group(
-                    device,
-                    "sweepffd normals",
-                    &[
-                        params.as_entire_binding(),
-                        low.clone(),
-                        high.clone(),
-                        offsets.as_entire_binding(),
-                        fans.as_entire_binding(),
-                        window(&buffer, range, POSITION_STRIDE),
-                    ],
-                );
-                (group, dispatch_grid(range.len() as u32, limits))
+                (range.clone(), params, offsets, fans)
+            })
+            .collect();
+        let dispatches = positions
+            .iter()
+            .map(|positions| {
+                let mut dispatches = Vec::with_capacity(instance_offsets.len() * tables.len());
+                for &base in instance_offsets {
+                    let low = at(positions, base, split.max(1));
+                    let high = if split < vertex_count {
+                        at(positions, base + split as u64 * POSITION_STRIDE, vertex_count - split)
+                    } else {
+                        low.clone()
+                    };
+                    for (range, params, offsets, fans) in &tables {
+                        let first = base + range.start as u64 * POSITION_STRIDE;
+                        let group = kernel.bind_group(
+                            device,
+                            "sweepffd normals",
+                            &[
+                                params.as_entire_binding(),
+                                low.clone(),
+                                high.clone(),
+                                offsets.as_entire_binding(),
+                                fans.as_entire_binding(),
+                                at(&buffer, first, range.len() as u32),
+                            ],
+                        );
+                        dispatches.push((group, dispatch_grid(range.len() as u32, limits)));
+                    }
+                }
+                dispatches
             })
             .collect();
         Ok(NormalsStage { kernel, buffer, dispatches })
     }
+}
+
+/// The window of `vertices` positions (or normals) of `buffer` starting at byte `first`.
+fn at(buffer: &wgpu::Buffer, first: u64, vertices: u32) -> wgpu::BindingResource<'_> {
+    wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+        buffer,
+        offset: first,
+        size: wgpu::BufferSize::new(vertices as u64 * POSITION_STRIDE),
+    })
 }

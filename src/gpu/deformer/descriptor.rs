@@ -29,12 +29,27 @@ pub struct DeformerDescriptor<'a> {
     /// A triangle list (three vertex indices a triangle, each below the vertex count): with it
     /// the deformer also keeps area-weighted vertex normals of the deformed mesh.
     pub triangles: Option<&'a [u32]>,
+    /// Instances of the mesh (at least 1), each with its own pose, deformed in one dispatch.
+    pub instances: u32,
+    /// Encodes of the deformer one queue submission may hold, each with its own poses (at
+    /// least 1; each slot holds every instance's cell records).
+    pub pose_slots: u32,
+    /// Whether to keep the previous frame's positions (two position buffers, alternating).
+    pub previous_positions: bool,
 }
 
 impl<'a> DeformerDescriptor<'a> {
     /// A deformer of `positions` bound to the rig `rest` by `bindings`, without normals.
     pub fn new(rest: &'a [Sweep], positions: &'a [[f32; 3]], bindings: BindingSource<'a>) -> DeformerDescriptor<'a> {
-        DeformerDescriptor { rest, positions, bindings, triangles: None }
+        DeformerDescriptor {
+            rest,
+            positions,
+            bindings,
+            triangles: None,
+            instances: 1,
+            pose_slots: 2,
+            previous_positions: false,
+        }
     }
 
     /// The same, keeping the vertex normals of the triangles `triangles` (three indices each).
@@ -42,11 +57,32 @@ impl<'a> DeformerDescriptor<'a> {
         DeformerDescriptor { triangles: Some(triangles), ..self }
     }
 
+    /// The same with `instances` instances of the mesh.
+    pub fn with_instances(self, instances: u32) -> DeformerDescriptor<'a> {
+        DeformerDescriptor { instances, ..self }
+    }
+
+    /// The same with `pose_slots` pose slots (default 2).
+    pub fn with_pose_slots(self, pose_slots: u32) -> DeformerDescriptor<'a> {
+        DeformerDescriptor { pose_slots, ..self }
+    }
+
+    /// The same, keeping the previous frame's positions.
+    pub fn with_previous_positions(self) -> DeformerDescriptor<'a> {
+        DeformerDescriptor { previous_positions: true, ..self }
+    }
+
     /// `Err(Input)` naming the first problem: no vertices, too many, a non-finite position, owners
     /// or bindings of another length or out of the rig's range, falloff bands not sorted, bound and
     /// in range, a triangle list not a multiple of three or indexing past the vertices.
     pub(super) fn check(&self) -> Result<(), GpuError> {
         check_input(self.rest, self.positions, &self.bindings)?;
+        if self.instances == 0 || self.pose_slots == 0 {
+            return Err(GpuError::Input(format!(
+                "{} instances and {} pose slots: each needs at least one",
+                self.instances, self.pose_slots
+            )));
+        }
         if let Some(triangles) = self.triangles {
             if triangles.len() % 3 != 0 {
                 return Err(GpuError::Input(format!("{} triangle indices is not a multiple of 3", triangles.len())));

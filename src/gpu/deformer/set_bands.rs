@@ -10,7 +10,7 @@ use std::ops::Range;
 use super::super::GpuError;
 use super::super::bands::{BandPlan, BandSource, BandStage};
 use super::super::binder::Binder;
-use super::super::buffers::{POSITION_STRIDE, params_buffer, window};
+use super::super::buffers::params_buffer;
 use super::super::chunks::dispatch_grid;
 use super::super::kernels::Kernel;
 use super::super::readback::wait;
@@ -164,15 +164,16 @@ impl GpuDeformer {
         }
         if !weights.is_empty() || self.bands.is_some() {
             let stage = self.bands.get_or_insert_with(|| BandStage::new(&self.context, self.variant, &self.rest_cells));
-            let plan = BandPlan { cells: &self.cells, positions: &self.positions, limits: &self.limits };
+            let plan = BandPlan { cells: &self.cells, targets: &self.targets, limits: &self.limits };
             let windows: Vec<(Range<u32>, &wgpu::Buffer)> =
                 self.chunks.iter().map(|chunk| (chunk.range.clone(), &chunk.bindings)).collect();
             let source = BandSource::Bind { weights, positions: rest };
             stage.set_records(&self.context, plan, &windows, source, self.rebanding.binder.as_ref(), &mut encoder);
         }
         self.context.queue.submit([encoder.finish()]);
-        let validation_error = pollster::block_on(validation.pop());
-        let memory_error = pollster::block_on(out_of_memory.pop());
+        let (validation, out_of_memory) = (validation.pop(), out_of_memory.pop());
+        let validation_error = pollster::block_on(validation);
+        let memory_error = pollster::block_on(out_of_memory);
         if let Some(error) = validation_error.or(memory_error) {
             return Err(error.into());
         }
@@ -189,13 +190,18 @@ impl GpuDeformer {
         let device = &self.context.device;
         let kernels = self.context.kernels();
         let kernel = self.rebanding.flags.get_or_insert_with(|| kernels.band_flags(device));
+        let targets = &self.targets;
+        // The flags are set once per instance and position buffer (the same bits each time), so
+        // that every instance's rest positions are written to both buffers.
+        let views: Vec<(usize, u32)> =
+            (0..targets.buffers.len()).flat_map(|p| (0..targets.instances).map(move |i| (p, i))).collect();
         let dispatches: Vec<(wgpu::BindGroup, (u32, u32))> = self
             .chunks
             .iter()
-            .filter_map(|chunk: &DeformChunk| {
+            .flat_map(|chunk: &DeformChunk| {
                 let flags = changes_in(changes, &chunk.range);
                 if flags.is_empty() {
-                    return None;
+                    return Vec::new();
                 }
                 let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                     label: Some("sweepffd band flags"),
@@ -204,17 +210,23 @@ impl GpuDeformer {
                 });
                 let count = flags.len() as u32;
                 let params = params_buffer(device, DispatchParams { vertex_count: count, ..Default::default() });
-                let group = kernel.bind_group(
-                    device,
-                    "sweepffd band flags",
-                    &[
-                        params.as_entire_binding(),
-                        buffer.as_entire_binding(),
-                        chunk.bindings.as_entire_binding(),
-                        window(&self.positions, &chunk.range, POSITION_STRIDE),
-                    ],
-                );
-                Some((group, dispatch_grid(count, &self.limits)))
+                let grid = dispatch_grid(count, &self.limits);
+                views
+                    .iter()
+                    .map(|&(parity, instance)| {
+                        let group = kernel.bind_group(
+                            device,
+                            "sweepffd band flags",
+                            &[
+                                params.as_entire_binding(),
+                                buffer.as_entire_binding(),
+                                chunk.bindings.as_entire_binding(),
+                                targets.window(parity, &chunk.range, &(instance..instance + 1)),
+                            ],
+                        );
+                        (group, grid)
+                    })
+                    .collect()
             })
             .collect();
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
