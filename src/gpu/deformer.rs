@@ -1,16 +1,19 @@
 //! [`GpuDeformer`]: binding and Eq. 2 on the GPU, with the output position (and normal) buffer
 //! ready to be drawn by the host application.
 
+mod bounds;
 mod descriptor;
 pub(crate) mod instances;
 mod set_bands;
 
+pub use bounds::BOUNDS_STRIDE;
 pub use descriptor::DeformerDescriptor;
 pub use instances::INSTANCE_ALIGNMENT;
 
 use std::ops::Range;
 use std::sync::Arc;
 
+use self::bounds::BoundsStage;
 use self::descriptor::triangle_faces;
 use self::instances::{CellSlots, InstanceDispatch, PositionTargets, View};
 use self::set_bands::{BandMember, Rebanding};
@@ -104,6 +107,7 @@ pub struct GpuDeformer {
     bands: Option<BandStage>,
     rebanding: Rebanding,
     normals: Option<NormalsStage>,
+    bounds: Option<BoundsStage>,
     /// The pose slot the next encode writes and binds.
     next_slot: u32,
     /// The position buffer holding the latest positions.
@@ -158,8 +162,16 @@ impl GpuDeformer {
     /// at once; its first frame runs after the binding on the queue.
     pub async fn new_async(context: &GpuContext, descriptor: &DeformerDescriptor<'_>) -> Result<GpuDeformer, GpuError> {
         descriptor.check()?;
-        let DeformerDescriptor { rest, positions, bindings, triangles, instances, pose_slots, previous_positions } =
-            *descriptor;
+        let DeformerDescriptor {
+            rest,
+            positions,
+            bindings,
+            triangles,
+            instances,
+            pose_slots,
+            previous_positions,
+            bounds,
+        } = *descriptor;
         let faces = triangles.map(triangle_faces);
         let device = &context.device;
         let device_limits = device.limits();
@@ -258,6 +270,8 @@ impl GpuDeformer {
             }
             None => None,
         };
+        let ranges: Vec<Range<u32>> = chunks.iter().map(|chunk| chunk.range.clone()).collect();
+        let bounds = bounds.then(|| BoundsStage::new(context, &targets, &ranges, positions, &limits));
         let poses = (0..instances).flat_map(|_| coefficients.cells.iter().copied()).collect();
         let deformer = GpuDeformer {
             context: context.clone(),
@@ -274,6 +288,7 @@ impl GpuDeformer {
             bands,
             rebanding,
             normals,
+            bounds,
             next_slot: 0,
             current: 0,
         };
@@ -373,6 +388,30 @@ impl GpuDeformer {
     pub fn encode(&mut self, encoder: &mut wgpu::CommandEncoder) {
         self.encode_deform_pass(encoder, None);
         self.encode_normals_pass(encoder, None);
+        self.encode_bounds_pass(encoder);
+    }
+
+    /// Records the bounds pass alone (nothing without bounds) over the latest positions.
+    pub fn encode_bounds_pass(&self, encoder: &mut wgpu::CommandEncoder) {
+        if let Some(bounds) = &self.bounds {
+            bounds.encode(encoder, self.current);
+        }
+    }
+
+    /// Every instance's axis-aligned bounds of its latest positions, if the descriptor asked
+    /// for them: [`BOUNDS_STRIDE`] (32) bytes an instance, f32 min.x, min.y, min.z, 0, max.x,
+    /// max.y, max.z, 0, instance i at 32·i; usage `STORAGE | COPY_SRC | INDIRECT`. Written by
+    /// each [`encode`](GpuDeformer::encode) (its last pass); exact (the min and max of the
+    /// f32 positions, −0 counted below +0).
+    pub fn bounds(&self) -> Option<&wgpu::Buffer> {
+        self.bounds.as_ref().map(|b| &b.buffer)
+    }
+
+    /// Copies every instance's bounds back (blocking): `[min.xyz, 0, max.xyz, 0]` each.
+    pub fn read_bounds(&self) -> Result<Option<Vec<[f32; 8]>>, GpuError> {
+        let Some(bounds) = &self.bounds else { return Ok(None) };
+        let bytes = read_bytes(&self.context, &bounds.buffer, 0, bounds.buffer.size())?;
+        Ok(Some(bytemuck::pod_collect_to_vec(&bytes)))
     }
 
     /// Records the deform pass alone (as [`encode`](GpuDeformer::encode) does: upload into the

@@ -19,6 +19,8 @@ pub(crate) struct KernelCache {
     band_pack: Slot,
     band_flags: Slot,
     normals: [Slot; 2],
+    bounds: Slot,
+    bounds_finalize: Slot,
     /// Number of pipelines compiled so far.
     compiled: AtomicUsize,
 }
@@ -66,6 +68,16 @@ impl KernelCache {
     /// `shaders/normals.wgsl`, reading the positions through one or two windows.
     pub(crate) fn normals(&self, device: &wgpu::Device, two_windows: bool) -> Arc<Kernel> {
         self.get(&self.normals[two_windows as usize], || kernels::normals(device, two_windows))
+    }
+
+    /// `shaders/bounds.wgsl`.
+    pub(crate) fn bounds(&self, device: &wgpu::Device) -> Arc<Kernel> {
+        self.get(&self.bounds, || kernels::bounds(device))
+    }
+
+    /// `shaders/bounds_finalize.wgsl`.
+    pub(crate) fn bounds_finalize(&self, device: &wgpu::Device) -> Arc<Kernel> {
+        self.get(&self.bounds_finalize, || kernels::bounds_finalize(device))
     }
 
     /// Number of pipelines compiled on this cache so far.

@@ -164,6 +164,17 @@ pub fn normals(device: &wgpu::Device, two_windows: bool) -> Kernel {
     Kernel::new(device, "sweepffd normals", source, "normals_main", &slots)
 }
 
+/// `shaders/bounds.wgsl`: params, positions (read); extremes (atomic, written).
+pub fn bounds(device: &wgpu::Device) -> Kernel {
+    Kernel::new(device, "sweepffd bounds", shaders::BOUNDS, "bounds_main", &[Uniform, Read, ReadWrite])
+}
+
+/// `shaders/bounds_finalize.wgsl`: params, extremes (read); bounds (written).
+pub fn bounds_finalize(device: &wgpu::Device) -> Kernel {
+    let entry = "bounds_finalize_main";
+    Kernel::new(device, "sweepffd bounds finalize", shaders::BOUNDS_FINALIZE, entry, &[Uniform, Read, ReadWrite])
+}
+
 /// `shaders/copy.wgsl`: params, bindings (read); positions (written).
 pub fn copy(device: &wgpu::Device) -> Kernel {
     Kernel::new(device, "sweepffd copy baseline", shaders::COPY, "copy_main", &[Uniform, Read, ReadWrite])

@@ -36,6 +36,8 @@ pub struct DeformerDescriptor<'a> {
     pub pose_slots: u32,
     /// Whether to keep the previous frame's positions (two position buffers, alternating).
     pub previous_positions: bool,
+    /// Whether to compute every instance's bounds on the GPU each frame.
+    pub bounds: bool,
 }
 
 impl<'a> DeformerDescriptor<'a> {
@@ -49,6 +51,7 @@ impl<'a> DeformerDescriptor<'a> {
             instances: 1,
             pose_slots: 2,
             previous_positions: false,
+            bounds: false,
         }
     }
 
@@ -70,6 +73,11 @@ impl<'a> DeformerDescriptor<'a> {
     /// The same, keeping the previous frame's positions.
     pub fn with_previous_positions(self) -> DeformerDescriptor<'a> {
         DeformerDescriptor { previous_positions: true, ..self }
+    }
+
+    /// The same, computing every instance's bounds each frame.
+    pub fn with_bounds(self) -> DeformerDescriptor<'a> {
+        DeformerDescriptor { bounds: true, ..self }
     }
 
     /// `Err(Input)` naming the first problem: no vertices, too many, a non-finite position, owners
