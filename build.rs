@@ -23,6 +23,8 @@ const KERNELS: &[(&str, &[&str])] = &[
     ("band_flags", &["layout.wgsl", "band_flags.wgsl"]),
     ("normals_one_window", &["layout.wgsl", "normals.wgsl", "positions_one_window.wgsl"]),
     ("normals_two_windows", &["layout.wgsl", "normals.wgsl", "positions_two_windows.wgsl"]),
+    ("bounds", &["layout.wgsl", "bounds.wgsl"]),
+    ("bounds_finalize", &["layout.wgsl", "bounds_finalize.wgsl"]),
     ("copy", &["layout.wgsl", "copy.wgsl"]),
     ("skinning", &["layout.wgsl", "skinning.wgsl"]),
     ("tangents", &["layout.wgsl", "tangents.wgsl"]),

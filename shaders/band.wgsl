@@ -2,12 +2,14 @@
 // blended with its second influence's (blend.wgsl): the rest position, or a neighbouring sweep's
 // frame at the vertex. The deform kernel skips these vertices (BAND_FLAG); this kernel runs over
 // the band records of one dispatch's vertices only.
+// Every instance in one dispatch: workgroup layer z is instance params.first_instance + z, whose
+// posed cells start at (first_instance + z) * cells_per_instance (the rest cells are shared).
 // Composed after layout.wgsl, cells_*.wgsl (binding 1: the posed cells), rest_cells_*.wgsl
 // (binding 4: the rest cells), sweep_eval.wgsl and blend.wgsl. Twin: src/cpu/band.rs.
 
-@group(0) @binding(0) var<uniform> params: DispatchParams;
+@group(0) @binding(0) var<uniform> params: InstanceParams;
 @group(0) @binding(2) var<storage, read> bindings: array<GpuBinding>;
-// Tightly packed xyz; the window of the dispatch's vertices.
+// Tightly packed xyz, instance z at z * params.instance_stride floats into the window.
 @group(0) @binding(3) var<storage, read_write> positions: array<f32>;
 @group(0) @binding(5) var<storage, read> bands: array<BandRecord>;
 
@@ -38,16 +40,18 @@ fn band_main(
     let local = (frame.radius + binding.d) * frame.direction + vec3<f32>(0.0, 0.0, binding.h);
     let rest_center = curve_at(rest, binding.s);
     let rest_offset = rotate(frame.turn, local);
-    let own = sweep_influence(cells[cell], frame, binding.s, binding.phi, rest_offset);
+    let base = (params.first_instance + group.z) * params.cells_per_instance;
+    let own = sweep_influence(cells[base + cell], frame, binding.s, binding.phi, rest_offset);
     var second = Influence(rest_center, vec4<f32>(0.0, 0.0, 0.0, 1.0), rest_offset);
     if (band.cell != UNOWNED) {
         let at = unpack_s_phi(band.s_phi);
         let other = rest_cells[band.cell];
         let offset = rest_center + rest_offset - curve_at(other, at.x);
-        second = sweep_influence(cells[band.cell], rest_frame(other, at.x, at.y), at.x, at.y, offset);
+        second = sweep_influence(cells[base + band.cell], rest_frame(other, at.x, at.y), at.x, at.y, offset);
     }
     let p = blend(second, own, band.weight);
-    positions[3u * band.vertex] = p.x;
-    positions[3u * band.vertex + 1u] = p.y;
-    positions[3u * band.vertex + 2u] = p.z;
+    let o = group.z * params.instance_stride + 3u * band.vertex;
+    positions[o] = p.x;
+    positions[o + 1u] = p.y;
+    positions[o + 2u] = p.z;
 }

@@ -1,11 +1,14 @@
 // Deformation (paper Eq. 2, extended by the axial offset h) of every bound vertex:
 // v = C(t) + R(t) ((r(theta, t) + d) cos theta, (r(theta, t) + d) sin theta, h).
 // Composed after layout.wgsl, cells_uniform.wgsl or cells_storage.wgsl (binding 1: the cell
-// records) and sweep_eval.wgsl. Twin: src/cpu/deform.rs.
+// records) and sweep_eval.wgsl. Twin: src/cpu/deform.rs (run once per instance, with that
+// instance's cells).
+// Every instance in one dispatch: workgroup layer z is instance params.first_instance + z.
 
-@group(0) @binding(0) var<uniform> params: DispatchParams;
+@group(0) @binding(0) var<uniform> params: InstanceParams;
 @group(0) @binding(2) var<storage, read> bindings: array<GpuBinding>;
-// Tightly packed xyz; unbound vertices keep the rest position written at bind time.
+// Tightly packed xyz, instance z at z * params.instance_stride floats; unbound vertices keep the
+// rest position written at creation.
 @group(0) @binding(3) var<storage, read_write> positions: array<f32>;
 
 @compute @workgroup_size(WORKGROUP_SIZE)
@@ -24,12 +27,13 @@ fn deform_main(
     if (binding.cell >= BAND_FLAG) {
         return;
     }
-    let cell = cells[binding.cell];
+    let cell = cells[(params.first_instance + group.z) * params.cells_per_instance + binding.cell];
     let rho = radius_at(cell, binding.s, binding.phi) + binding.d;
     let direction = direction_at(cell, binding.phi);
     let local = vec3<f32>(rho * direction.x, rho * direction.y, binding.h);
     let p = curve_at(cell, binding.s) + rotate(quat_at(cell, binding.s), local);
-    positions[3u * i] = p.x;
-    positions[3u * i + 1u] = p.y;
-    positions[3u * i + 2u] = p.z;
+    let o = group.z * params.instance_stride + 3u * i;
+    positions[o] = p.x;
+    positions[o + 1u] = p.y;
+    positions[o + 2u] = p.z;
 }

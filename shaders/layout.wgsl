@@ -80,6 +80,16 @@ struct DispatchParams {
     _pad: u32,
 }
 
+// The deform and band kernels run over every instance at once, one workgroup layer z each:
+// instance first_instance + z reads its cells at (first_instance + z) * cells_per_instance and
+// writes its positions z * instance_stride floats into the dispatch's window.
+struct InstanceParams {
+    vertex_count: u32,
+    cells_per_instance: u32,
+    instance_stride: u32,
+    first_instance: u32,
+}
+
 // Linear-blend-skinning baseline: four joint indices and four unorm8 weights, packed in bytes.
 struct SkinInfluence {
     joints: u32,

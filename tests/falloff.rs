@@ -11,7 +11,7 @@ use sweepffd::bind::MeshBindings;
 use sweepffd::cpu;
 use sweepffd::deform::{deform_hard, deform_vertices};
 use sweepffd::edit::{Edit, KeyMode, Posing};
-use sweepffd::gpu::{BindingSource, GpuDeformer};
+use sweepffd::gpu::BindingSource;
 use sweepffd::mesh::Mesh;
 use sweepffd::rig::Rig;
 use sweepffd::sweep::Key;
@@ -215,7 +215,7 @@ fn twin_and_gpu_match_the_f64_reference_with_falloff() {
         let Some(context) = common::gpu() else { continue };
         let weights = rig.band_weights(&mesh, &owners);
         let source = BindingSource::Bind { owners: &owners, bands: &weights };
-        let mut deformer = GpuDeformer::new(context, rig.rest(), &mesh.positions, source, None).unwrap();
+        let mut deformer = common::deformer(context, rig.rest(), &mesh.positions, source, None).unwrap();
         assert_eq!(deformer.band_vertex_count(), bindings.bands.len());
         deformer.deform(&rig.pose(&keys).unwrap()).unwrap();
         let gpu = deformer.read_positions().unwrap();

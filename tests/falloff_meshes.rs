@@ -11,7 +11,7 @@ use sweepffd::deform::deform_vertices;
 use sweepffd::edit::{Edit, KeyMode, Posing};
 use sweepffd::fit::attached::reversed;
 use sweepffd::fit::{FitOptions, fit, largest_connected};
-use sweepffd::gpu::{BindingSource, GpuDeformer};
+use sweepffd::gpu::BindingSource;
 use sweepffd::mesh::Mesh;
 use sweepffd::rig::{Rig, RigSweep, VertexSelection};
 use sweepffd::sweep::Key;
@@ -227,7 +227,7 @@ fn gpu_matches_reference(name: &str, mesh: &Mesh, rig: &Rig) {
     let mut reference = vec![DVec3::ZERO; mesh.positions.len()];
     deform_vertices(rig.rest(), &posed, &bindings, &mesh.positions, &mut reference);
     let source = BindingSource::Bind { owners: &owners, bands: &weights };
-    let mut deformer = GpuDeformer::new(context, rig.rest(), &mesh.positions, source, Some(&mesh.faces)).unwrap();
+    let mut deformer = common::deformer(context, rig.rest(), &mesh.positions, source, Some(&mesh.faces)).unwrap();
     deformer.deform(&posed).unwrap();
     let gpu = deformer.read_positions().unwrap();
     let reference = cpu::packed(&reference);

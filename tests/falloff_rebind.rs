@@ -42,7 +42,7 @@ fn bound(context: &GpuContext, mesh: &Mesh, rig: &Rig) -> GpuDeformer {
     let owners = rig.owners(mesh, "tube").unwrap();
     let bands = rig.band_weights(mesh, &owners);
     let source = BindingSource::Bind { owners: &owners, bands: &bands };
-    GpuDeformer::new(context, rig.rest(), &mesh.positions, source, Some(&mesh.faces)).unwrap()
+    common::deformer(context, rig.rest(), &mesh.positions, source, Some(&mesh.faces)).unwrap()
 }
 
 /// Asserts that `rebound` deforms, binds and records bands as `fresh` does under `keys`.
@@ -90,7 +90,7 @@ fn new_falloff_widths_after_a_pose_match_a_deformer_built_with_them() {
         let owners = rig.owners(&mesh, "tube").unwrap();
         let weights = rig.band_weights(&mesh, &owners);
         assert!(!weights.is_empty());
-        rebound.set_bands(&mesh.positions, &weights).unwrap();
+        rebound.set_bands(&sweepffd::gpu::rest_positions(&mesh.positions), &weights).unwrap();
         let mut fresh = bound(context, &mesh, &rig);
         assert_same(name, &mesh, &rig, &keys, &mut rebound, &mut fresh);
         // The weight-0 vertices against the rest position hold the f32 rest position to the bit.
@@ -117,7 +117,7 @@ fn no_bands_is_the_hard_deformation() {
         let mut rebound = bound(context, &mesh, &rig);
         rebound.deform(&rig.pose(&keys).unwrap()).unwrap();
         assert!(rebound.band_vertex_count() > 0);
-        rebound.set_bands(&mesh.positions, &[]).unwrap();
+        rebound.set_bands(&sweepffd::gpu::rest_positions(&mesh.positions), &[]).unwrap();
         assert_eq!(rebound.band_vertex_count(), 0);
         assert!(rebound.read_bindings().unwrap().iter().all(|b| b.cell == u32::MAX || b.cell & BAND_FLAG == 0));
         let mut fresh = bound(context, &mesh, &hard);
@@ -135,11 +135,11 @@ fn precomputed_bindings_take_new_bands_too() {
     let (bindings, records) = (source.read_bindings().unwrap(), source.read_band_records().unwrap());
     let precomputed = BindingSource::Precomputed { bindings: &bindings, bands: &records };
     let mut rebound =
-        GpuDeformer::new(context, old_rig.rest(), &mesh.positions, precomputed, Some(&mesh.faces)).unwrap();
+        common::deformer(context, old_rig.rest(), &mesh.positions, precomputed, Some(&mesh.faces)).unwrap();
     let keys = swing(&rig, "upper");
     rebound.deform(&rig.pose(&keys).unwrap()).unwrap();
     let owners = rig.owners(&mesh, "tube").unwrap();
-    rebound.set_bands(&mesh.positions, &rig.band_weights(&mesh, &owners)).unwrap();
+    rebound.set_bands(&sweepffd::gpu::rest_positions(&mesh.positions), &rig.band_weights(&mesh, &owners)).unwrap();
     let mut fresh = bound(context, &mesh, &rig);
     assert_same("precomputed split tube 0.4 → 1.1", &mesh, &rig, &keys, &mut rebound, &mut fresh);
 }
@@ -161,10 +161,10 @@ fn bad_bands_are_refused_and_change_nothing() {
     let mut stranger = weights.clone();
     stranger[0].neighbour = 1;
     for (what, bad) in [("unsorted", unsorted), ("unowned", on_unowned), ("w = 1", heavy), ("no sweep 1", stranger)] {
-        let error = deformer.set_bands(&mesh.positions, &bad).unwrap_err();
+        let error = deformer.set_bands(&sweepffd::gpu::rest_positions(&mesh.positions), &bad).unwrap_err();
         assert!(error.to_string().contains("not sorted, owned and in range"), "{what}: {error}");
     }
-    let error = deformer.set_bands(&mesh.positions[1..], &weights).unwrap_err();
+    let error = deformer.set_bands(&sweepffd::gpu::rest_positions(&mesh.positions[1..]), &weights).unwrap_err();
     assert!(error.to_string().contains("rest positions"), "{error}");
     // The deformer still deforms as one built with the rig's bands.
     let keys = swing(&rig, "arm");

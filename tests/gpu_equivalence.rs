@@ -11,7 +11,7 @@ mod common;
 use glam::{DVec3, Vec3};
 use sweepffd::coeffs::{GpuBinding, SweepCoefficients, UNOWNED};
 use sweepffd::cpu;
-use sweepffd::gpu::{BindingSource, GpuDeformer};
+use sweepffd::gpu::BindingSource;
 use sweepffd::mesh::Mesh;
 use sweepffd::normals::{NormalAdjacency, vertex_normals};
 use sweepffd::rig::Rig;
@@ -30,7 +30,7 @@ fn check(name: &str, mesh: &Mesh, rig: &Rig) {
     let rest = rig.rest();
 
     // Binding: GPU vs twin.
-    let mut deformer = GpuDeformer::new(
+    let mut deformer = common::deformer(
         context,
         rest,
         &mesh.positions,
@@ -156,7 +156,7 @@ fn sixteen_million_vertices_on_the_gpu_match_the_twin() {
         // Past the 128 MiB storage binding of lavapipe, the deformer splits its dispatches.
         let owners = rig.owners(&mesh, "tube").unwrap();
         let source = BindingSource::Bind { owners: &owners, bands: &[] };
-        let deformer = GpuDeformer::new(context, rig.rest(), &mesh.positions, source, None).unwrap();
+        let deformer = common::deformer(context, rig.rest(), &mesh.positions, source, None).unwrap();
         let bytes = mesh.positions.len() as u64 * sweepffd::gpu::BINDING_STRIDE;
         if bytes > context.device.limits().max_storage_buffer_binding_size {
             assert!(deformer.chunk_count() > 1, "{bytes} bytes of bindings in one dispatch");

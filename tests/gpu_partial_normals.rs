@@ -11,7 +11,7 @@ mod common;
 use glam::{DQuat, DVec3, Vec3};
 use sweepffd::coeffs::{GpuBinding, UNOWNED};
 use sweepffd::cpu;
-use sweepffd::gpu::{BindingSource, GpuDeformer};
+use sweepffd::gpu::{BindingSource, DeformerDescriptor, GpuDeformer, rest_positions};
 use sweepffd::mesh::Mesh;
 use sweepffd::normals::{NormalAdjacency, dirty_vertices};
 use sweepffd::rig::{Rig, RigSweep, VertexSelection};
@@ -102,7 +102,10 @@ fn gpu_normals_over_the_dirty_vertices_equal_a_full_recomputation_to_the_bit() {
     let (mesh, rig) = top_owned_tube(2);
     let owners = rig.owners(&mesh, "tube").unwrap();
     let bindings = BindingSource::Bind { owners: &owners, bands: &[] };
-    let mut deformer = GpuDeformer::new(context, rig.rest(), &mesh.positions, bindings, Some(&mesh.faces)).unwrap();
+    let (positions, triangles) =
+        (rest_positions(&mesh.positions), mesh.faces.triangles().flatten().collect::<Vec<u32>>());
+    let descriptor = DeformerDescriptor::new(rig.rest(), &positions, bindings).with_triangles(&triangles);
+    let mut deformer = GpuDeformer::new(context, &descriptor).unwrap();
     let rest_normals = deformer.read_normals().unwrap().unwrap();
     deformer.deform(&rig.pose(&POSE.keys(&rig)).unwrap()).unwrap();
     let positions = deformer.read_positions().unwrap();
@@ -112,7 +115,10 @@ fn gpu_normals_over_the_dirty_vertices_equal_a_full_recomputation_to_the_bit() {
     let deformed: Vec<DVec3> = positions.chunks_exact(3).map(|p| Vec3::from_slice(p).as_dvec3()).collect();
     let unbound = vec![GpuBinding { cell: UNOWNED, ..Default::default() }; deformed.len()];
     let bindings = BindingSource::Precomputed { bindings: &unbound, bands: &[] };
-    let full = GpuDeformer::new(context, rig.rest(), &deformed, bindings, Some(&mesh.faces)).unwrap();
+    let deformed = rest_positions(&deformed);
+    let full =
+        GpuDeformer::new(context, &DeformerDescriptor::new(rig.rest(), &deformed, bindings).with_triangles(&triangles))
+            .unwrap();
     let full = full.read_normals().unwrap().unwrap();
     let difference = first_difference(&normals, &full);
     println!("GPU partial vs full normals: first difference {difference:?}");

@@ -11,7 +11,7 @@ mod common;
 use glam::{DQuat, DVec3, DVec4, Vec3, Vec4};
 use sweepffd::coeffs::UNOWNED;
 use sweepffd::cpu;
-use sweepffd::gpu::{BindingSource, GpuDeformer};
+use sweepffd::gpu::{BindingSource, DeformerDescriptor, GpuDeformer, rest_positions};
 use sweepffd::mesh::Mesh;
 use sweepffd::normals::tangents::deformed_tangents;
 use sweepffd::normals::{NormalAdjacency, vertex_normals};
@@ -78,12 +78,19 @@ fn gpu_run(rig: &Rig, mesh: &Mesh, tangents: &[[f32; 4]], keys: &[Vec<Key>]) -> 
     let context = common::gpu()?;
     let owners = rig.owners(mesh, "tube").unwrap();
     let bindings = BindingSource::Bind { owners: &owners, bands: &[] };
-    let mut deformer =
-        GpuDeformer::with_tangents(context, rig.rest(), &mesh.positions, bindings, &mesh.faces, tangents).unwrap();
+    let (positions, triangles) = (rest_positions(&mesh.positions), triangle_list(mesh));
+    let descriptor =
+        DeformerDescriptor::new(rig.rest(), &positions, bindings).with_triangles(&triangles).with_tangents(tangents);
+    let mut deformer = GpuDeformer::new(context, &descriptor).unwrap();
     let rest_normals = deformer.read_normals().unwrap().unwrap();
     deformer.deform(&rig.pose(keys).unwrap()).unwrap();
     let normals = deformer.read_normals().unwrap().unwrap();
     Some(GpuRun { rest_normals, normals, tangents: deformer.read_tangents().unwrap().unwrap() })
+}
+
+/// The mesh's triangles as an engine holds them: three u32 indices each.
+fn triangle_list(mesh: &Mesh) -> Vec<u32> {
+    mesh.faces.triangles().flatten().collect()
 }
 
 fn to_dvec3(flat: &[f32]) -> Vec<DVec3> {

@@ -5,8 +5,8 @@
 use std::mem::{offset_of, size_of};
 
 use sweepffd::coeffs::{
-    BAND_FLAG, BandFlag, BandRecord, BindSegment, CellCoeffs, DispatchParams, GpuBinding, Joint, KEEPS_REST,
-    SkinInfluence, SweepInfo, UNIFORM_CELL_CAPACITY, UNOWNED, WORKGROUP_SIZE,
+    BAND_FLAG, BandFlag, BandRecord, BindSegment, CellCoeffs, DispatchParams, GpuBinding, InstanceParams, Joint,
+    KEEPS_REST, SkinInfluence, SweepInfo, UNIFORM_CELL_CAPACITY, UNOWNED, WORKGROUP_SIZE,
 };
 use sweepffd::gpu::shaders;
 use sweepffd::normals::{FAN_INDEX, FAN_START};
@@ -29,6 +29,7 @@ fn rust_layouts() -> Vec<RustLayout> {
         layout!(BandRecord { vertex, weight, cell, s_phi }),
         layout!(BandFlag { vertex, x, y, z }),
         layout!(DispatchParams { vertex_count, first_vertex, window_split, _pad }),
+        layout!(InstanceParams { vertex_count, cells_per_instance, instance_stride, first_instance }),
         layout!(SkinInfluence { joints, weights }),
         layout!(Joint { rows }),
     ]
@@ -83,8 +84,8 @@ fn shared_structs_have_the_rust_layout() {
             checked += 1;
         }
     }
-    // layout.wgsl declares all nine structs and is part of every kernel.
-    assert_eq!(checked, 9 * shaders::ALL.len());
+    // layout.wgsl declares all ten structs and is part of every kernel.
+    assert_eq!(checked, 10 * shaders::ALL.len());
 }
 
 /// The value of the `u32` constant `name` in a kernel, if it declares it.

@@ -8,7 +8,7 @@
 use std::time::Instant;
 
 use super::{BenchScene, median};
-use crate::gpu::{BindingSource, GpuContext, GpuDeformer, GpuError, wait};
+use crate::gpu::{BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, GpuError, wait};
 use crate::rig::{PoseBuffer, Rig};
 use crate::sweep::Key;
 use crate::synthetic::{Tube, split_tube_rig};
@@ -33,7 +33,7 @@ pub fn host_frame_seconds(
         context.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd frame") });
     let start = Instant::now();
     rig.pose_into(keys, posed).map_err(|e| GpuError::Input(e.to_string()))?;
-    deformer.set_pose(posed)?;
+    deformer.set_pose(0, posed)?;
     deformer.encode(&mut encoder);
     let seconds = start.elapsed().as_secs_f64();
     context.queue.submit([encoder.finish()]);
@@ -86,8 +86,10 @@ impl FrameBench {
     pub fn new(context: &GpuContext, scene: BenchScene) -> Result<FrameBench, GpuError> {
         let bands = scene.rig.band_weights(&scene.mesh, &scene.owners);
         let source = BindingSource::Bind { owners: &scene.owners, bands: &bands };
-        let deformer =
-            GpuDeformer::new(context, scene.rig.rest(), &scene.mesh.positions, source, Some(&scene.mesh.faces))?;
+        let positions = crate::gpu::rest_positions(&scene.mesh.positions);
+        let triangles: Vec<u32> = scene.mesh.faces.triangles().flatten().collect();
+        let descriptor = DeformerDescriptor::new(scene.rig.rest(), &positions, source).with_triangles(&triangles);
+        let deformer = GpuDeformer::new(context, &descriptor)?;
         let posed = scene.rig.pose_buffer();
         Ok(FrameBench { context: context.clone(), scene, deformer, posed })
     }
@@ -116,7 +118,7 @@ impl FrameBench {
             .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd frame") });
         let start = Instant::now();
         let posed = self.scene.rig.pose(&self.scene.keys).map_err(|e| GpuError::Input(e.to_string()))?;
-        self.deformer.set_pose(&posed)?;
+        self.deformer.set_pose(0, &posed)?;
         self.deformer.encode(&mut encoder);
         let seconds = start.elapsed().as_secs_f64();
         self.context.queue.submit([encoder.finish()]);

@@ -11,7 +11,8 @@ use crate::coeffs::{BAND_FLAG, DispatchParams, SweepCoefficients};
 use crate::gpu::binder::Binder;
 use crate::gpu::buffers::{params_buffer, window};
 use crate::gpu::{
-    BindingSource, GpuContext, GpuDeformer, GpuError, POSITION_STRIDE, dispatch_grid, kernels, uniform_chunks, wait,
+    BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, GpuError, POSITION_STRIDE, dispatch_grid, kernels,
+    uniform_chunks, wait,
 };
 
 /// Runs before the timed ones.
@@ -45,7 +46,10 @@ impl GpuBench {
         let rest = scene.rig.rest();
         let bands = scene.rig.band_weights(&scene.mesh, &scene.owners);
         let source = BindingSource::Bind { owners: &scene.owners, bands: &bands };
-        let deformer = GpuDeformer::new(context, rest, &scene.mesh.positions, source, Some(&scene.mesh.faces))?;
+        let positions = crate::gpu::rest_positions(&scene.mesh.positions);
+        let triangles: Vec<u32> = scene.mesh.faces.triangles().flatten().collect();
+        let deformer =
+            GpuDeformer::new(context, &DeformerDescriptor::new(rest, &positions, source).with_triangles(&triangles))?;
         let mut flagged_owners = scene.owners.clone();
         for band in &bands {
             flagged_owners[band.vertex as usize] |= BAND_FLAG;
@@ -54,11 +58,13 @@ impl GpuBench {
         for (kind, variant) in &scene.with_falloff {
             let bands = variant.rig.band_weights(&variant.mesh, &variant.owners);
             let source = BindingSource::Bind { owners: &variant.owners, bands: &bands };
-            let mut deformer = GpuDeformer::new(context, variant.rig.rest(), &variant.mesh.positions, source, None)?;
-            deformer.set_pose(&variant.posed)?;
+            let positions = crate::gpu::rest_positions(&variant.mesh.positions);
+            let mut deformer =
+                GpuDeformer::new(context, &DeformerDescriptor::new(variant.rig.rest(), &positions, source))?;
+            deformer.set_pose(0, &variant.posed)?;
             falloff.push((*kind, deformer));
         }
-        let binder = Binder::new(context, rest, &SweepCoefficients::new(rest), deformer.cells());
+        let binder = Binder::new(context, rest, &SweepCoefficients::new(rest), deformer.rest_cells());
         let n = deformer.vertex_count();
         let scratch = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("sweepffd bench output"),
@@ -157,14 +163,18 @@ impl GpuBench {
 
     /// Seconds of the deform kernel alone, after the pose has been set.
     pub fn time_deform(&mut self) -> Result<f64, GpuError> {
-        self.deformer.set_pose(&self.scene.posed)?;
-        self.time(|encoder, timer| self.deformer.encode_deform_pass(encoder, timer.and_then(|t| t.writes(true, true))))
+        self.deformer.set_pose(0, &self.scene.posed)?;
+        time(&self.context, self.timer.as_ref(), |encoder, timer| {
+            self.deformer.encode_deform_pass(encoder, timer.and_then(|t| t.writes(true, true)))
+        })
     }
 
     /// Seconds of the deform pass of falloff comparison `i`.
-    pub fn time_falloff_deform(&self, i: usize) -> Result<f64, GpuError> {
-        let deformer = &self.falloff[i].1;
-        self.time(|encoder, timer| deformer.encode_deform_pass(encoder, timer.and_then(|t| t.writes(true, true))))
+    pub fn time_falloff_deform(&mut self, i: usize) -> Result<f64, GpuError> {
+        let deformer = &mut self.falloff[i].1;
+        time(&self.context, self.timer.as_ref(), |encoder, timer| {
+            deformer.encode_deform_pass(encoder, timer.and_then(|t| t.writes(true, true)))
+        })
     }
 
     /// Seconds of the copy baseline.
@@ -183,7 +193,7 @@ impl GpuBench {
     pub fn time_frame(&mut self) -> Result<f64, GpuError> {
         let start = Instant::now();
         let posed = self.scene.rig.pose(&self.scene.keys).map_err(|e| GpuError::Input(e.to_string()))?;
-        self.deformer.set_pose(&posed)?;
+        self.deformer.set_pose(0, &posed)?;
         let device = &self.context.device;
         let mut encoder =
             device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd frame") });
@@ -273,21 +283,30 @@ impl GpuBench {
     /// Records with `record`, submits, waits, and returns the timestamped seconds (wall-clock
     /// without timestamp queries).
     fn time(&self, record: impl FnOnce(&mut wgpu::CommandEncoder, Option<&GpuTimer>)) -> Result<f64, GpuError> {
-        let device = &self.context.device;
-        let mut encoder =
-            device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd bench") });
-        let start = Instant::now();
-        record(&mut encoder, self.timer.as_ref());
-        if let Some(timer) = &self.timer {
-            timer.resolve(&mut encoder);
-        }
-        self.context.queue.submit([encoder.finish()]);
-        wait(&self.context)?;
-        let wall = start.elapsed().as_secs_f64();
-        match &self.timer {
-            Some(timer) => timer.seconds(&self.context),
-            None => Ok(wall),
-        }
+        time(&self.context, self.timer.as_ref(), record)
+    }
+}
+
+/// Records with `record`, submits, waits, and returns the timestamped seconds (wall-clock
+/// without timestamp queries).
+fn time(
+    context: &GpuContext,
+    timer: Option<&GpuTimer>,
+    record: impl FnOnce(&mut wgpu::CommandEncoder, Option<&GpuTimer>),
+) -> Result<f64, GpuError> {
+    let device = &context.device;
+    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd bench") });
+    let start = Instant::now();
+    record(&mut encoder, timer);
+    if let Some(timer) = timer {
+        timer.resolve(&mut encoder);
+    }
+    context.queue.submit([encoder.finish()]);
+    wait(context)?;
+    let wall = start.elapsed().as_secs_f64();
+    match timer {
+        Some(timer) => timer.seconds(context),
+        None => Ok(wall),
     }
 }
 

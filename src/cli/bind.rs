@@ -9,7 +9,7 @@ use super::progress::vertex_bar;
 use sweepffd::bind::MeshBindings;
 use sweepffd::bind::band::bind_bands;
 use sweepffd::coeffs::SweepCoefficients;
-use sweepffd::gpu::{BindingSource, GpuContext, GpuDeformer, GpuError};
+use sweepffd::gpu::{BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, GpuError};
 use sweepffd::mesh::Mesh;
 use sweepffd::rig::Rig;
 use sweepffd::rig::bindings_file::BindingsFile;
@@ -52,7 +52,8 @@ pub fn bind_on_gpu(context: &GpuContext, inputs: &Inputs) -> Result<MeshBindings
     let rest = inputs.rig.rest();
     let weights = inputs.rig.band_weights(&inputs.mesh, &inputs.owners);
     let source = BindingSource::Bind { owners: &inputs.owners, bands: &weights };
-    let deformer = GpuDeformer::new(context, rest, &inputs.mesh.positions, source, None)?;
+    let positions = sweepffd::gpu::rest_positions(&inputs.mesh.positions);
+    let deformer = GpuDeformer::new(context, &DeformerDescriptor::new(rest, &positions, source))?;
     let coefficients = SweepCoefficients::new(rest);
     let vertices = deformer.read_bindings()?.iter().map(|b| coefficients.reference_binding(rest, b)).collect();
     Ok(MeshBindings { vertices, bands: bind_bands(rest, &inputs.mesh.positions, &weights) })

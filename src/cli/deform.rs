@@ -11,7 +11,7 @@ use super::bind::{Inputs, bind_with_progress, load_inputs};
 use sweepffd::bind::{MeshBindings, UNOWNED};
 use sweepffd::coeffs::SweepCoefficients;
 use sweepffd::deform::deform_vertices;
-use sweepffd::gpu::{BindingSource, GpuContext, GpuDeformer, GpuError};
+use sweepffd::gpu::{BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, GpuError};
 use sweepffd::mesh::Format;
 use sweepffd::rig::bindings_file::BindingsFile;
 use sweepffd::sweep::Sweep;
@@ -106,7 +106,8 @@ fn deform_on_gpu(
         Some((bindings, bands)) => BindingSource::Precomputed { bindings, bands },
         None => BindingSource::Bind { owners: &inputs.owners, bands: &weights },
     };
-    let mut deformer = GpuDeformer::new(context, rest, &inputs.mesh.positions, source, None)?;
+    let positions = sweepffd::gpu::rest_positions(&inputs.mesh.positions);
+    let mut deformer = GpuDeformer::new(context, &DeformerDescriptor::new(rest, &positions, source))?;
     deformer.deform(posed)?;
     let deformed = deformer.read_positions()?;
     let owners: Vec<u32> = match saved {

@@ -170,6 +170,23 @@ pub struct DispatchParams {
     pub _pad: u32,
 }
 
+/// Per-dispatch constants of the deform and band kernels, which run over every instance of a
+/// mesh at once (one workgroup layer z per instance): instance `first_instance + z` reads its
+/// cell records at `(first_instance + z) · cells_per_instance` and writes its positions
+/// `z · instance_stride` floats into the dispatch's window. 16 bytes.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Pod, Zeroable)]
+pub struct InstanceParams {
+    /// Number of vertices (band records for the band kernel) in this dispatch.
+    pub vertex_count: u32,
+    /// Cell records of one instance's pose.
+    pub cells_per_instance: u32,
+    /// Floats from one instance's positions to the next's (3 × the instance stride in vertices).
+    pub instance_stride: u32,
+    /// The instance of workgroup layer z = 0.
+    pub first_instance: u32,
+}
+
 /// One vertex's skinning influences for the linear-blend-skinning baseline: four joint
 /// indices and four weights, each packed as bytes (weights as unorm8, summing to 255). 8 bytes.
 #[repr(C)]
@@ -196,6 +213,7 @@ const _: () = assert!(size_of::<SweepInfo>() == 16);
 const _: () = assert!(size_of::<BindSegment>() == 96);
 const _: () = assert!(size_of::<GpuBinding>() == 20);
 const _: () = assert!(size_of::<DispatchParams>() == 16);
+const _: () = assert!(size_of::<InstanceParams>() == 16);
 const _: () = assert!(size_of::<BandRecord>() == 16);
 const _: () = assert!(size_of::<BandFlag>() == 16);
 const _: () = assert!(size_of::<SkinInfluence>() == 8);

@@ -18,6 +18,7 @@ pub mod band_flags;
 pub mod band_pack;
 pub mod bind;
 pub mod blend;
+pub mod bounds;
 pub mod copy;
 pub mod deform;
 pub mod normals;

@@ -10,14 +10,16 @@
 //! [`GpuDeformer::set_bands`]: super::GpuDeformer::set_bands
 
 use std::ops::Range;
+use std::sync::Arc;
 
-use glam::DVec3;
 use wgpu::util::DeviceExt;
 
+use super::GpuContext;
 use super::binder::Binder;
-use super::buffers::{POSITION_STRIDE, empty_binding_buffer, params_buffer, upload_positions, window};
+use super::buffers::{empty_binding_buffer, params_buffer, upload_positions};
 use super::chunks::{ChunkLimits, dispatch_grid};
-use super::kernels::{self, DeformVariant, Kernel};
+use super::deformer::instances::{CellSlots, InstanceDispatch, PositionTargets, View};
+use super::kernels::{DeformVariant, Kernel};
 use super::readback::read_bytes;
 use crate::bind::falloff::BandWeight;
 use crate::coeffs::{BandRecord, DispatchParams};
@@ -29,7 +31,7 @@ pub const BAND_STRIDE: u64 = size_of::<BandRecord>() as u64;
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum BandSource<'a> {
     /// Weights from the CPU; the second influences are bound on the GPU from `positions`.
-    Bind { weights: &'a [BandWeight], positions: &'a [DVec3] },
+    Bind { weights: &'a [BandWeight], positions: &'a [[f32; 3]] },
     /// Finished records, vertices global.
     Records(&'a [BandRecord]),
 }
@@ -40,33 +42,33 @@ struct BandChunk {
     first_vertex: u32,
     count: u32,
     records: wgpu::Buffer,
-    group: wgpu::BindGroup,
-    grid: (u32, u32),
+    dispatches: Vec<InstanceDispatch>,
 }
 
 /// The band kernel and its per-chunk records.
 #[derive(Debug)]
 pub(crate) struct BandStage {
-    kernel: Kernel,
-    /// `shaders/band_pack.wgsl`, compiled the first time second influences are bound.
-    pack: Option<Kernel>,
+    kernel: Arc<Kernel>,
+    /// `shaders/band_pack.wgsl`, taken from the context's cache the first time second influences
+    /// are bound.
+    pack: Option<Arc<Kernel>>,
     rest_cells: wgpu::Buffer,
     chunks: Vec<BandChunk>,
 }
 
 /// The deformer's buffers the band dispatches bind.
 pub(crate) struct BandPlan<'a> {
-    pub cells: &'a wgpu::Buffer,
-    pub positions: &'a wgpu::Buffer,
+    pub cells: &'a CellSlots,
+    pub targets: &'a PositionTargets,
     pub limits: &'a ChunkLimits,
 }
 
 impl BandStage {
     /// The band kernel for cell records of `variant`, reading the rest rig's from `rest_cells`;
     /// no band records yet.
-    pub(crate) fn new(device: &wgpu::Device, variant: DeformVariant, rest_cells: &wgpu::Buffer) -> BandStage {
+    pub(crate) fn new(context: &GpuContext, variant: DeformVariant, rest_cells: &wgpu::Buffer) -> BandStage {
         BandStage {
-            kernel: kernels::band(device, variant),
+            kernel: context.kernels().band(&context.device, variant),
             pack: None,
             rest_cells: rest_cells.clone(),
             chunks: Vec::new(),
@@ -78,7 +80,7 @@ impl BandStage {
     /// into `encoder` (`binder` is needed for [`BandSource::Bind`]).
     pub(crate) fn set_records(
         &mut self,
-        device: &wgpu::Device,
+        context: &GpuContext,
         plan: BandPlan,
         chunks: &[(Range<u32>, &wgpu::Buffer)],
         source: BandSource,
@@ -94,8 +96,9 @@ impl BandStage {
             BandSource::Records(records) => records.len(),
         };
         if matches!(source, BandSource::Bind { .. }) && total > 0 && self.pack.is_none() {
-            self.pack = Some(kernels::band_pack(device));
+            self.pack = Some(context.kernels().band_pack(&context.device));
         }
+        let device = &context.device;
         self.chunks.clear();
         let mut next = 0usize;
         for (range, bindings) in chunks {
@@ -132,33 +135,43 @@ impl BandStage {
                 );
             }
             let count = (next - start) as u32;
-            let params = params_buffer(device, DispatchParams { vertex_count: count, ..Default::default() });
-            let group = self.kernel.bind_group(
+            let (kernel, rest_cells) = (&self.kernel, &self.rest_cells);
+            let dispatches = InstanceDispatch::plan(
                 device,
-                "sweepffd band",
-                &[
-                    params.as_entire_binding(),
-                    plan.cells.as_entire_binding(),
-                    bindings.as_entire_binding(),
-                    window(plan.positions, range, POSITION_STRIDE),
-                    self.rest_cells.as_entire_binding(),
-                    buffer.as_entire_binding(),
-                ],
+                plan.cells,
+                plan.targets,
+                range,
+                count,
+                plan.limits,
+                |params, cells, out| {
+                    kernel.bind_group(
+                        device,
+                        "sweepffd band",
+                        &[
+                            params.as_entire_binding(),
+                            cells,
+                            bindings.as_entire_binding(),
+                            out,
+                            rest_cells.as_entire_binding(),
+                            buffer.as_entire_binding(),
+                        ],
+                    )
+                },
             );
-            let grid = dispatch_grid(count, plan.limits);
-            self.chunks.push(BandChunk { first_vertex: range.start, count, records: buffer, group, grid });
+            self.chunks.push(BandChunk { first_vertex: range.start, count, records: buffer, dispatches });
         }
     }
 
     /// Records the band dispatches into a compute pass, after the deform dispatches.
-    pub(crate) fn encode(&self, pass: &mut wgpu::ComputePass) {
+    pub(crate) fn encode(&self, pass: &mut wgpu::ComputePass, view: View) {
         if self.chunks.is_empty() {
             return;
         }
         pass.set_pipeline(&self.kernel.pipeline);
         for chunk in &self.chunks {
-            pass.set_bind_group(0, &chunk.group, &[]);
-            pass.dispatch_workgroups(chunk.grid.0, chunk.grid.1, 1);
+            for dispatch in &chunk.dispatches {
+                dispatch.encode(pass, view);
+            }
         }
     }
 
@@ -194,12 +207,12 @@ fn bind_second_influences(
     binder: &Binder,
     pack: &Kernel,
     weights: &[BandWeight],
-    positions: &[DVec3],
+    positions: &[[f32; 3]],
     records: &wgpu::Buffer,
     limits: &ChunkLimits,
     encoder: &mut wgpu::CommandEncoder,
 ) {
-    let compact: Vec<DVec3> = weights.iter().map(|w| positions[w.vertex as usize]).collect();
+    let compact: Vec<[f32; 3]> = weights.iter().map(|w| positions[w.vertex as usize]).collect();
     let owners: Vec<u32> = weights.iter().map(|w| w.neighbour).collect();
     let compact_positions = upload_positions(device, &compact);
     // At most one deform chunk's vertices: their bindings fit one binding by construction.

@@ -8,7 +8,7 @@ use wgpu::util::DeviceExt;
 use super::GpuContext;
 use super::buffers::{POSITION_STRIDE, params_buffer, window};
 use super::chunks::{ChunkLimits, dispatch_grid};
-use super::kernels::{self, Kernel};
+use super::kernels::Kernel;
 use crate::coeffs::{DispatchParams, SweepCoefficients, bind_segments};
 use crate::sweep::Sweep;
 
@@ -16,7 +16,7 @@ use crate::sweep::Sweep;
 /// bind the second influences of new falloff bands. `cells` must hold the rest rig's records.
 #[derive(Debug)]
 pub(crate) struct Binder {
-    kernel: Kernel,
+    kernel: std::sync::Arc<Kernel>,
     device: wgpu::Device,
     cells: wgpu::Buffer,
     bind_segments: wgpu::Buffer,
@@ -39,7 +39,7 @@ impl Binder {
             })
         };
         Binder {
-            kernel: kernels::bind(device),
+            kernel: context.kernels().bind(device),
             device: device.clone(),
             cells: cells.clone(),
             bind_segments: table("sweepffd bind segments", bytemuck::cast_slice(&bind_segments(rest))),

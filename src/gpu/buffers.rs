@@ -3,7 +3,6 @@
 
 use std::ops::Range;
 
-use glam::DVec3;
 use wgpu::util::DeviceExt;
 
 use super::GpuError;
@@ -39,11 +38,10 @@ pub(crate) fn params_buffer(device: &wgpu::Device, params: DispatchParams) -> wg
 }
 
 /// Rest positions, tightly packed f32, in the output buffer (unbound vertices keep them).
-pub(crate) fn upload_positions(device: &wgpu::Device, positions: &[DVec3]) -> wgpu::Buffer {
-    let rest = crate::cpu::packed(positions);
+pub(crate) fn upload_positions(device: &wgpu::Device, positions: &[[f32; 3]]) -> wgpu::Buffer {
     device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("sweepffd positions"),
-        contents: bytemuck::cast_slice(&rest),
+        contents: bytemuck::cast_slice(positions),
         usage: wgpu::BufferUsages::VERTEX
             | wgpu::BufferUsages::STORAGE
             | wgpu::BufferUsages::COPY_SRC

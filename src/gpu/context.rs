@@ -3,11 +3,13 @@
 use std::sync::{Arc, Mutex};
 
 use super::GpuError;
+use super::kernel_cache::KernelCache;
 
 /// A wgpu device and queue, with a description of the adapter behind them.
 ///
 /// Real-time applications pass their own device ([`GpuContext::from_device`]); tools and tests
-/// let the engine create one ([`GpuContext::new`]).
+/// let the engine create one ([`GpuContext::new`]). Clones share the device and its compiled
+/// pipelines: build every deformer from one context (or its clones) to compile each kernel once.
 #[derive(Clone, Debug)]
 pub struct GpuContext {
     /// The device every buffer and pipeline is created on.
@@ -17,6 +19,9 @@ pub struct GpuContext {
     /// The adapter's name, backend and driver.
     pub info: wgpu::AdapterInfo,
     lost: Arc<Mutex<Option<String>>>,
+    /// The device's pipelines, compiled once and shared by every deformer on this context and
+    /// its clones.
+    kernels: Arc<KernelCache>,
 }
 
 impl GpuContext {
@@ -56,12 +61,12 @@ impl GpuContext {
                 *lost = Some(format!("{reason:?}: {message}"));
             }
         });
-        Ok(GpuContext { device, queue, info, lost })
+        Ok(GpuContext { device, queue, info, lost, kernels: Arc::default() })
     }
 
     /// Wraps a host application's device and queue; `info` describes its adapter.
     pub fn from_device(device: wgpu::Device, queue: wgpu::Queue, info: wgpu::AdapterInfo) -> GpuContext {
-        GpuContext { device, queue, info, lost: Arc::new(Mutex::new(None)) }
+        GpuContext { device, queue, info, lost: Arc::new(Mutex::new(None)), kernels: Arc::default() }
     }
 
     /// `Err(DeviceLost)` if the device created by [`GpuContext::new`] has been lost.
@@ -70,6 +75,17 @@ impl GpuContext {
             Some(reason) => Err(GpuError::DeviceLost(reason)),
             None => Ok(()),
         }
+    }
+
+    /// The device's pipelines, compiled on first use.
+    pub(crate) fn kernels(&self) -> &KernelCache {
+        &self.kernels
+    }
+
+    /// Number of compute pipelines the engine has compiled on this context (and its clones):
+    /// each kernel and variant once, however many deformers are built.
+    pub fn compiled_pipelines(&self) -> usize {
+        self.kernels.compiled()
     }
 
     /// Whether timestamp queries are enabled on the device.

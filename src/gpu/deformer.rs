@@ -1,28 +1,36 @@
 //! [`GpuDeformer`]: binding and Eq. 2 on the GPU, with the output position (and normal) buffer
 //! ready to be drawn by the host application.
 
+mod bounds;
+mod descriptor;
+pub(crate) mod instances;
 mod set_bands;
 
+pub use bounds::BOUNDS_STRIDE;
+pub use descriptor::DeformerDescriptor;
+pub use instances::INSTANCE_ALIGNMENT;
+
 use std::ops::Range;
+use std::sync::Arc;
 
-use glam::DVec3;
-
+use self::bounds::BoundsStage;
+use self::descriptor::triangle_faces;
+use self::instances::{CellSlots, InstanceDispatch, PositionTargets, View};
 use self::set_bands::{BandMember, Rebanding};
 use super::bands::{BandPlan, BandSource, BandStage};
 use super::binder::Binder;
 use super::buffers::{
     BINDING_STRIDE, POSITION_STRIDE, binding_buffer_with, cells_buffer, check_fits, empty_binding_buffer,
-    params_buffer, upload_positions, window,
+    upload_positions,
 };
-use super::chunks::{ChunkLimits, dispatch_grid, uniform_chunks};
-use super::kernels::{self, DeformVariant, Kernel};
+use super::chunks::{ChunkLimits, uniform_chunks};
+use super::kernels::{DeformVariant, Kernel};
 use super::normals_pass::NormalsStage;
 use super::readback::{read_bytes, wait};
 use super::tangents_pass::{TANGENT_STRIDE, TangentStage};
 use super::{GpuContext, GpuError};
 use crate::bind::falloff::BandWeight;
-use crate::coeffs::{BAND_FLAG, BandRecord, DispatchParams, GpuBinding, SweepCoefficients, UNOWNED};
-use crate::mesh::Faces;
+use crate::coeffs::{BAND_FLAG, BandRecord, CellCoeffs, GpuBinding, SweepCoefficients, UNOWNED};
 use crate::sweep::Sweep;
 
 /// Storage buffers the bind kernel uses in one stage, the most of any kernel.
@@ -42,13 +50,14 @@ pub enum BindingSource<'a> {
     Precomputed { bindings: &'a [GpuBinding], bands: &'a [BandRecord] },
 }
 
-/// Deforms one mesh on the GPU by poses of one rig.
+/// Deforms one mesh on the GPU by poses of one rig (Eq. 2), as one or many instances.
 ///
 /// Construction uploads the rest positions (once) and binds every owned vertex on the GPU; the
-/// bindings stay on the GPU. Each frame, [`set_pose`](GpuDeformer::set_pose) turns the posed
-/// sweeps into a few KB of coefficients and uploads only those, and
-/// [`encode`](GpuDeformer::encode) records the deform (and normals) dispatches into the
-/// application's command encoder: no allocation, pipeline or bind-group creation, no vertex
+/// bindings stay on the GPU and are shared by every instance. Each frame,
+/// [`set_pose`](GpuDeformer::set_pose) turns an instance's posed sweeps into a few KB of
+/// coefficients on the host, and [`encode`](GpuDeformer::encode) uploads every instance's (one
+/// `queue.write_buffer`, into the next pose slot) and records the deform (and normals)
+/// dispatches into the application's command encoder, every instance in one deform dispatch: no allocation, pipeline or bind-group creation, no vertex
 /// upload per frame. The [`positions`](GpuDeformer::positions) buffer (and
 /// [`normals`](GpuDeformer::normals)) has `VERTEX | STORAGE` usage: draw it directly as a
 /// `Float32x3` vertex attribute. Reading it back is a separate, explicit call. New falloff
@@ -61,17 +70,20 @@ pub enum BindingSource<'a> {
 /// # fn frame_loop(context: &sweepffd::gpu::GpuContext, rig: &sweepffd::rig::Rig,
 /// #     mesh: &sweepffd::mesh::Mesh, poses: &[Vec<Vec<sweepffd::sweep::Key>>])
 /// #     -> Result<(), Box<dyn std::error::Error>> {
-/// use sweepffd::gpu::{BindingSource, GpuDeformer};
+/// use sweepffd::gpu::{BindingSource, DeformerDescriptor, GpuDeformer};
 ///
 /// let owners = rig.owners(mesh, "mesh")?;
 /// let bands = rig.band_weights(mesh, &owners); // empty without falloff
 /// let bindings = BindingSource::Bind { owners: &owners, bands: &bands };
-/// let mut deformer = GpuDeformer::new(context, rig.rest(), &mesh.positions, bindings, Some(&mesh.faces))?;
+/// let rest = sweepffd::gpu::rest_positions(&mesh.positions);
+/// let triangles: Vec<u32> = mesh.faces.triangles().flatten().collect();
+/// let descriptor = DeformerDescriptor::new(rig.rest(), &rest, bindings).with_triangles(&triangles);
+/// let mut deformer = GpuDeformer::new(context, &descriptor)?;
 /// for keys in poses {
 ///     let posed = rig.pose(keys)?; // f64 sweeps on the CPU: a few keys, not millions of vertices
-///     deformer.set_pose(&posed)?; // uploads a few KB of coefficients
+///     deformer.set_pose(0, &posed)?; // a few KB of coefficients, uploaded by encode
 ///     let mut encoder = context.device.create_command_encoder(&Default::default());
-///     deformer.encode(&mut encoder); // deform + normals dispatches
+///     deformer.encode(&mut encoder); // upload, deform + normals dispatches
 ///     // ... record the render pass that draws deformer.positions() and deformer.normals() ...
 ///     context.queue.submit([encoder.finish()]);
 /// }
@@ -81,10 +93,13 @@ pub enum BindingSource<'a> {
 pub struct GpuDeformer {
     context: GpuContext,
     limits: ChunkLimits,
-    kernel: Kernel,
+    kernel: Arc<Kernel>,
     vertex_count: u32,
-    positions: wgpu::Buffer,
-    cells: wgpu::Buffer,
+    targets: PositionTargets,
+    cells: CellSlots,
+    /// Every instance's cell records, instance i at i × the rig's cell count: the next encode
+    /// writes them into the next pose slot.
+    poses: Vec<CellCoeffs>,
     coefficients: SweepCoefficients,
     variant: DeformVariant,
     /// The rest rig's cell records, which binding and the band kernel read.
@@ -92,84 +107,77 @@ pub struct GpuDeformer {
     chunks: Vec<DeformChunk>,
     bands: Option<BandStage>,
     rebanding: Rebanding,
-    normals: Option<NormalsStage>,
-    tangents: Option<TangentStage>,
+    /// The normals stage of each position buffer (none without triangles).
+    normals: Vec<NormalsStage>,
+    /// The tangents stage of each position buffer (none without rest tangents).
+    tangents: Vec<TangentStage>,
+    bounds: Option<BoundsStage>,
+    /// The pose slot the next encode writes and binds.
+    next_slot: u32,
+    /// The position buffer holding the latest positions.
+    current: usize,
 }
 
-/// One dispatch of the deform kernel.
+/// The deform dispatches of one chunk of vertices (one per instance group).
 #[derive(Debug)]
 struct DeformChunk {
     range: Range<u32>,
     bindings: wgpu::Buffer,
-    group: wgpu::BindGroup,
-    grid: (u32, u32),
+    dispatches: Vec<InstanceDispatch>,
 }
 
 impl DeformChunk {
-    /// The deform dispatch of the vertices in `range`, whose bindings are in `bindings`.
+    /// The deform dispatches of the vertices in `range`, whose bindings are in `bindings`, for
+    /// every instance, pose slot and position buffer.
     fn new(
         device: &wgpu::Device,
         kernel: &Kernel,
         range: Range<u32>,
         bindings: wgpu::Buffer,
-        cells: &wgpu::Buffer,
-        positions: &wgpu::Buffer,
+        cells: &CellSlots,
+        targets: &PositionTargets,
         limits: &ChunkLimits,
     ) -> DeformChunk {
-        let params = params_buffer(device, DispatchParams { vertex_count: range.len() as u32, ..Default::default() });
-        let group = kernel.bind_group(
-            device,
-            "sweepffd deform",
-            &[
-                params.as_entire_binding(),
-                cells.as_entire_binding(),
-                bindings.as_entire_binding(),
-                window(positions, &range, POSITION_STRIDE),
-            ],
-        );
-        let grid = dispatch_grid(range.len() as u32, limits);
-        DeformChunk { range, bindings, group, grid }
+        let count = range.len() as u32;
+        let dispatches = InstanceDispatch::plan(device, cells, targets, &range, count, limits, |params, cells, out| {
+            kernel.bind_group(
+                device,
+                "sweepffd deform",
+                &[params.as_entire_binding(), cells, bindings.as_entire_binding(), out],
+            )
+        });
+        DeformChunk { range, bindings, dispatches }
     }
 }
 
 impl GpuDeformer {
-    /// Uploads `positions` (rest, one per vertex) and the rest sweeps, and binds every vertex
-    /// (on the GPU for [`BindingSource::Bind`]). With `faces`, also keeps area-weighted vertex
-    /// normals of the deformed mesh. Blocks until the GPU is done; wgpu errors are returned.
-    pub fn new(
-        context: &GpuContext,
-        rest: &[Sweep],
-        positions: &[DVec3],
-        bindings: BindingSource,
-        faces: Option<&Faces>,
-    ) -> Result<GpuDeformer, GpuError> {
-        GpuDeformer::build(context, rest, positions, bindings, faces.map(|f| (f, None)))
+    /// Uploads the descriptor's rest positions and sweeps, and binds every vertex (on the GPU
+    /// for [`BindingSource::Bind`]); with triangles, also keeps area-weighted vertex normals of
+    /// the deformed mesh. Blocks until the GPU is done ([`new_async`](GpuDeformer::new_async)
+    /// does not); input errors and wgpu errors are returned.
+    pub fn new(context: &GpuContext, descriptor: &DeformerDescriptor) -> Result<GpuDeformer, GpuError> {
+        let deformer = pollster::block_on(GpuDeformer::new_async(context, descriptor))?;
+        wait(context)?;
+        Ok(deformer)
     }
 
-    /// [`new`](GpuDeformer::new) with faces and the host's rest tangents (f32 xyzw per vertex,
-    /// w = ±1 the handedness, as glTF stores them): also keeps the deformed tangents
-    /// ([`tangents`](GpuDeformer::tangents)), each rest tangent turned by the minimal rotation
-    /// of its vertex's normal, made orthogonal to the deformed normal and normalized
-    /// ([`crate::normals::tangents`]).
-    pub fn with_tangents(
-        context: &GpuContext,
-        rest: &[Sweep],
-        positions: &[DVec3],
-        bindings: BindingSource,
-        faces: &Faces,
-        rest_tangents: &[[f32; 4]],
-    ) -> Result<GpuDeformer, GpuError> {
-        GpuDeformer::build(context, rest, positions, bindings, Some((faces, Some(rest_tangents))))
-    }
-
-    fn build(
-        context: &GpuContext,
-        rest: &[Sweep],
-        positions: &[DVec3],
-        bindings: BindingSource,
-        faces: Option<(&Faces, Option<&[[f32; 4]]>)>,
-    ) -> Result<GpuDeformer, GpuError> {
-        check_input(rest, positions, &bindings)?;
+    /// [`new`](GpuDeformer::new) without blocking the host thread: records and submits the
+    /// binding, then awaits only wgpu's error scopes, never the GPU. The deformer can be encoded
+    /// at once; its first frame runs after the binding on the queue.
+    pub async fn new_async(context: &GpuContext, descriptor: &DeformerDescriptor<'_>) -> Result<GpuDeformer, GpuError> {
+        descriptor.check()?;
+        let DeformerDescriptor {
+            rest,
+            positions,
+            bindings,
+            triangles,
+            instances,
+            pose_slots,
+            previous_positions,
+            bounds,
+            rest_tangents,
+        } = *descriptor;
+        let faces = triangles.map(triangle_faces);
         let device = &context.device;
         let device_limits = device.limits();
         if device_limits.max_storage_buffers_per_shader_stage < STORAGE_BUFFERS_NEEDED {
@@ -180,16 +188,23 @@ impl GpuDeformer {
         }
         let limits = ChunkLimits::of(&device_limits);
         let vertex_count = positions.len() as u32;
-        check_fits("the position buffer", vertex_count as u64 * POSITION_STRIDE, limits.max_buffer)?;
+        let ranges = uniform_chunks(vertex_count, BINDING_STRIDE, &limits);
+        let max_chunk = ranges.iter().map(|r| r.len() as u32).max().unwrap_or(0);
+        let mut targets = PositionTargets::plan(vertex_count, instances, max_chunk, &limits);
+        check_fits("the position buffer", targets.bytes(), limits.max_buffer)?;
 
         let out_of_memory = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
         let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let coefficients = SweepCoefficients::new(rest);
-        let positions_buffer = upload_positions(device, positions);
-        let variant = DeformVariant::for_cells(coefficients.cells.len(), &device_limits);
-        let cells = cells_buffer(device, &coefficients, variant);
+        let image = targets.rest_image(positions);
+        targets.buffers =
+            (0..if previous_positions { 2 } else { 1 }).map(|_| upload_positions(device, &image)).collect();
+        drop(image);
+        let total_cells = coefficients.cells.len() * instances as usize;
+        let variant = DeformVariant::for_cells(total_cells, &device_limits);
+        let cells = CellSlots::new(device, &coefficients.cells, instances, variant, pose_slots);
         let rest_cells = cells_buffer(device, &coefficients, variant);
-        let kernel = kernels::deform(device, variant);
+        let kernel = context.kernels().deform(device, variant);
         let mut encoder =
             device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd bind") });
         let binder = match bindings {
@@ -200,7 +215,7 @@ impl GpuDeformer {
             BindingSource::Bind { bands, .. } => bands.iter().map(|b| b.vertex).collect(),
             BindingSource::Precomputed { bands, .. } => bands.iter().map(|b| b.vertex).collect(),
         };
-        let chunks: Vec<DeformChunk> = uniform_chunks(vertex_count, BINDING_STRIDE, &limits)
+        let chunks: Vec<DeformChunk> = ranges
             .into_iter()
             .map(|range| {
                 let (start, end) = (range.start as usize, range.end as usize);
@@ -215,7 +230,9 @@ impl GpuDeformer {
                             owners[v as usize - start] |= BAND_FLAG;
                         }
                         let binder = binder.as_ref().expect("made for BindingSource::Bind");
-                        binder.encode(&mut encoder, &range, &owners, &positions_buffer, &buffer, &limits, None);
+                        // Instance 0 of the first position buffer holds the rest positions.
+                        let rest_positions = &targets.buffers[0];
+                        binder.encode(&mut encoder, &range, &owners, rest_positions, &buffer, &limits, None);
                         buffer
                     }
                     BindingSource::Precomputed { bindings: all, .. } => {
@@ -226,7 +243,7 @@ impl GpuDeformer {
                         binding_buffer_with(device, &chunk)
                     }
                 };
-                DeformChunk::new(device, &kernel, range, bindings_buffer, &cells, &positions_buffer, &limits)
+                DeformChunk::new(device, &kernel, range, bindings_buffer, &cells, &targets, &limits)
             })
             .collect();
         let bands = (!band_vertices.is_empty()).then(|| {
@@ -234,11 +251,11 @@ impl GpuDeformer {
                 BindingSource::Bind { bands, .. } => BandSource::Bind { weights: bands, positions },
                 BindingSource::Precomputed { bands, .. } => BandSource::Records(bands),
             };
-            let plan = BandPlan { cells: &cells, positions: &positions_buffer, limits: &limits };
+            let plan = BandPlan { cells: &cells, targets: &targets, limits: &limits };
             let windows: Vec<(Range<u32>, &wgpu::Buffer)> =
                 chunks.iter().map(|chunk| (chunk.range.clone(), &chunk.bindings)).collect();
-            let mut stage = BandStage::new(device, variant, &rest_cells);
-            stage.set_records(device, plan, &windows, source, binder.as_ref(), &mut encoder);
+            let mut stage = BandStage::new(context, variant, &rest_cells);
+            stage.set_records(context, plan, &windows, source, binder.as_ref(), &mut encoder);
             stage
         });
         let (members, bound): (Vec<BandMember>, Vec<bool>) = match bindings {
@@ -251,31 +268,33 @@ impl GpuDeformer {
             ),
         };
         let rebanding = Rebanding::new(rest, binder, members, &bound);
-        // The rest normals (and tangents) are recorded now; per frame only those that can change.
-        let (normals, tangents) = match faces {
-            Some((faces, rest_tangents)) => {
-                let n = NormalsStage::new(
-                    device,
-                    &mut encoder,
-                    faces,
-                    &positions_buffer,
-                    vertex_count,
-                    1,
-                    &bound,
-                    &limits,
-                )?;
-                let t = rest_tangents.map(|t| TangentStage::new(device, &mut encoder, t, &n, vertex_count, 1, &limits));
-                (Some(n), t.transpose()?)
+        // One normals (and tangents) stage per position buffer, each recording its rest pass now;
+        // per frame only the vertices whose one-ring can move are recomputed.
+        let mut normals = Vec::new();
+        let mut tangents = Vec::new();
+        if let Some(faces) = &faces {
+            for buffer in &targets.buffers {
+                let sizes = (vertex_count, targets.stride);
+                let stage = NormalsStage::new(context, &mut encoder, faces, buffer, sizes, instances, &bound, &limits)?;
+                if let Some(rest_tangents) = rest_tangents {
+                    let stage =
+                        TangentStage::new(context, &mut encoder, rest_tangents, &stage, sizes, instances, &limits)?;
+                    tangents.push(stage);
+                }
+                normals.push(stage);
             }
-            None => (None, None),
-        };
+        }
+        let ranges: Vec<Range<u32>> = chunks.iter().map(|chunk| chunk.range.clone()).collect();
+        let bounds = bounds.then(|| BoundsStage::new(context, &targets, &ranges, positions, &limits));
+        let poses = (0..instances).flat_map(|_| coefficients.cells.iter().copied()).collect();
         let deformer = GpuDeformer {
             context: context.clone(),
             limits,
             kernel,
             vertex_count,
-            positions: positions_buffer,
+            targets,
             cells,
+            poses,
             coefficients,
             variant,
             rest_cells,
@@ -284,14 +303,18 @@ impl GpuDeformer {
             rebanding,
             normals,
             tangents,
+            bounds,
+            next_slot: 0,
+            current: 0,
         };
         context.queue.submit([encoder.finish()]);
-        let validation_error = pollster::block_on(validation.pop());
-        let memory_error = pollster::block_on(out_of_memory.pop());
+        // Both scopes are popped on this thread before either is awaited: wgpu's error scopes
+        // belong to the thread that pushed them.
+        let (validation, out_of_memory) = (validation.pop(), out_of_memory.pop());
+        let (validation_error, memory_error) = (validation.await, out_of_memory.await);
         if let Some(error) = validation_error.or(memory_error) {
             return Err(error.into());
         }
-        wait(context)?;
         Ok(deformer)
     }
 
@@ -300,75 +323,155 @@ impl GpuDeformer {
         self.vertex_count
     }
 
-    /// The deformed positions, tightly packed f32 xyz (12 bytes a vertex); usage
-    /// `VERTEX | STORAGE | COPY_SRC | COPY_DST`. Unbound vertices keep their rest position.
+    /// Number of instances: poses of the one bound mesh deformed together.
+    pub fn instance_count(&self) -> u32 {
+        self.targets.instances
+    }
+
+    /// Byte offset of instance `instance`'s positions (and normals) in [`positions`]
+    /// (and [`normals`]): `instance × stride × 12`, the stride being the vertex count for one
+    /// instance and the vertex count rounded up to a multiple of
+    /// [`INSTANCE_ALIGNMENT`](crate::gpu::INSTANCE_ALIGNMENT) (64) vertices for several, so
+    /// that every instance starts on an aligned offset.
+    ///
+    /// [`positions`]: GpuDeformer::positions
+    /// [`normals`]: GpuDeformer::normals
+    pub fn instance_offset(&self, instance: u32) -> u64 {
+        self.targets.instance_offset(instance)
+    }
+
+    /// The latest deformed positions (those of the last [`encode`](GpuDeformer::encode)),
+    /// tightly packed f32 xyz (12 bytes a vertex), instance i at
+    /// [`instance_offset(i)`](GpuDeformer::instance_offset); usage
+    /// `VERTEX | STORAGE | COPY_SRC | COPY_DST`. Unbound vertices keep their rest position. With
+    /// previous positions this is one of two buffers, alternating each encode.
     pub fn positions(&self) -> &wgpu::Buffer {
-        &self.positions
+        &self.targets.buffers[self.current]
     }
 
-    /// The unit vertex normals of the deformed mesh, tightly packed f32 xyz, if the deformer
-    /// was given faces; usage `VERTEX | STORAGE | COPY_SRC`.
+    /// The positions of the encode before the last (the rest positions before two encodes),
+    /// laid out as [`positions`](GpuDeformer::positions): the other buffer of the ping-pong,
+    /// no copy made. `None` unless the descriptor asked for
+    /// [`with_previous_positions`](DeformerDescriptor::with_previous_positions).
+    pub fn previous_positions(&self) -> Option<&wgpu::Buffer> {
+        let parities = self.targets.buffers.len();
+        (parities == 2).then(|| &self.targets.buffers[1 - self.current])
+    }
+
+    /// The unit vertex normals of the deformed mesh (of the latest positions), tightly packed
+    /// f32 xyz, laid out as the positions, if the deformer was given triangles; usage
+    /// `VERTEX | STORAGE | COPY_SRC`.
     pub fn normals(&self) -> Option<&wgpu::Buffer> {
-        self.normals.as_ref().map(|n| &n.buffer)
-    }
-
-    /// The unit tangents of the deformed mesh, f32 xyzw (16 bytes a vertex, w the rest
-    /// tangent's), if the deformer was made [`with_tangents`](GpuDeformer::with_tangents);
-    /// usage `VERTEX | STORAGE | COPY_SRC`.
-    pub fn tangents(&self) -> Option<&wgpu::Buffer> {
-        self.tangents.as_ref().map(TangentStage::buffer)
+        self.normals.get(self.current).map(|n| &n.buffer)
     }
 
     /// Number of deform dispatches (1 unless the mesh exceeds a device limit).
     pub fn chunk_count(&self) -> usize {
-        self.chunks.len()
+        self.chunks.iter().map(|chunk| chunk.dispatches.len()).sum()
     }
 
-    /// Turns posed sweeps into coefficients (in place, no allocation) and queues their upload:
-    /// a few KB. Fails if the sweeps lack the rest rig's structure.
-    pub fn set_pose(&mut self, posed: &[Sweep]) -> Result<(), GpuError> {
+    /// Number of normals (and, with tangents, tangent) dispatches a frame records: over the
+    /// vertices whose one-ring can move only.
+    pub fn normals_dispatch_count(&self) -> usize {
+        let tangents = self.tangents.get(self.current).map_or(0, TangentStage::dispatch_count);
+        self.normals.get(self.current).map_or(0, |n| n.dispatches.len()) + tangents
+    }
+
+    /// Number of pose slots: how many encodes of this deformer one queue submission may hold,
+    /// each with its own poses.
+    pub fn pose_slots(&self) -> u32 {
+        self.cells.count
+    }
+
+    /// Turns posed sweeps into the coefficients of instance `instance` (in place, no
+    /// allocation, no GPU call): the next [`encode`](GpuDeformer::encode) uploads every
+    /// instance's. Fails if the sweeps lack the rest rig's structure or the instance does not
+    /// exist.
+    pub fn set_pose(&mut self, instance: u32, posed: &[Sweep]) -> Result<(), GpuError> {
+        if instance >= self.targets.instances {
+            return Err(GpuError::Input(format!(
+                "instance {instance} of a deformer of {} instances",
+                self.targets.instances
+            )));
+        }
         self.coefficients.update(posed)?;
-        let bytes = bytemuck::cast_slice(&self.coefficients.cells);
-        self.context.queue.write_buffer(&self.cells, 0, bytes);
+        let n = self.coefficients.cells.len();
+        let at = instance as usize * n;
+        self.poses[at..at + n].copy_from_slice(&self.coefficients.cells);
         Ok(())
     }
 
-    /// Records the frame's work into `encoder`: the deform pass, then the normals pass if any.
-    pub fn encode(&self, encoder: &mut wgpu::CommandEncoder) {
+    /// Records the frame's work into `encoder`: the deform pass (every instance's poses
+    /// uploaded into the next pose slot, one `queue.write_buffer`; deform and band kernels over
+    /// every instance), then the normals pass if any. Afterwards
+    /// [`positions`](GpuDeformer::positions) is the buffer this frame writes.
+    pub fn encode(&mut self, encoder: &mut wgpu::CommandEncoder) {
         self.encode_deform_pass(encoder, None);
         self.encode_normals_pass(encoder, None);
+        self.encode_bounds_pass(encoder);
     }
 
-    /// Records the deform pass alone (the deform kernel, then the band kernel for the vertices in
-    /// falloff bands), optionally writing timestamps around it.
+    /// Records the bounds pass alone (nothing without bounds) over the latest positions.
+    pub fn encode_bounds_pass(&self, encoder: &mut wgpu::CommandEncoder) {
+        if let Some(bounds) = &self.bounds {
+            bounds.encode(encoder, self.current);
+        }
+    }
+
+    /// Every instance's axis-aligned bounds of its latest positions, if the descriptor asked
+    /// for them: [`BOUNDS_STRIDE`] (32) bytes an instance, f32 min.x, min.y, min.z, 0, max.x,
+    /// max.y, max.z, 0, instance i at 32·i; usage `STORAGE | COPY_SRC | INDIRECT`. Written by
+    /// each [`encode`](GpuDeformer::encode) (its last pass); exact (the min and max of the
+    /// f32 positions, −0 counted below +0).
+    pub fn bounds(&self) -> Option<&wgpu::Buffer> {
+        self.bounds.as_ref().map(|b| &b.buffer)
+    }
+
+    /// Copies every instance's bounds back (blocking): `[min.xyz, 0, max.xyz, 0]` each.
+    pub fn read_bounds(&self) -> Result<Option<Vec<[f32; 8]>>, GpuError> {
+        let Some(bounds) = &self.bounds else { return Ok(None) };
+        let bytes = read_bytes(&self.context, &bounds.buffer, 0, bounds.buffer.size())?;
+        Ok(Some(bytemuck::pod_collect_to_vec(&bytes)))
+    }
+
+    /// Records the deform pass alone (as [`encode`](GpuDeformer::encode) does: upload into the
+    /// next pose slot, the deform kernel, then the band kernel for the vertices in falloff
+    /// bands), optionally writing timestamps around it.
     pub fn encode_deform_pass(
-        &self,
+        &mut self,
         encoder: &mut wgpu::CommandEncoder,
         timestamps: Option<wgpu::ComputePassTimestampWrites>,
     ) {
+        let slot = self.next_slot;
+        self.next_slot = (slot + 1) % self.cells.count;
+        let bytes = bytemuck::cast_slice(&self.poses);
+        self.context.queue.write_buffer(&self.cells.buffer, self.cells.offset(slot), bytes);
+        let parity = (self.current + 1) % self.targets.buffers.len();
+        self.current = parity;
+        let view = View { slot, parity };
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("sweepffd deform"),
             timestamp_writes: timestamps,
         });
         pass.set_pipeline(&self.kernel.pipeline);
         for chunk in &self.chunks {
-            pass.set_bind_group(0, &chunk.group, &[]);
-            pass.dispatch_workgroups(chunk.grid.0, chunk.grid.1, 1);
+            for dispatch in &chunk.dispatches {
+                dispatch.encode(&mut pass, view);
+            }
         }
         if let Some(bands) = &self.bands {
-            bands.encode(&mut pass);
+            bands.encode(&mut pass, view);
         }
     }
 
-    /// Records the normals pass alone (nothing without faces), then the tangents if any, optionally
-    /// with timestamps. Only the vertices with a sweep-owned vertex in their one-ring are
-    /// recomputed; the others keep the normals (and tangents) computed at creation.
+    /// Records the normals pass alone (nothing without triangles) over the latest positions,
+    /// optionally with timestamps.
     pub fn encode_normals_pass(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         timestamps: Option<wgpu::ComputePassTimestampWrites>,
     ) {
-        let Some(normals) = &self.normals else { return };
+        let Some(normals) = self.normals.get(self.current) else { return };
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("sweepffd normals"),
             timestamp_writes: timestamps,
@@ -378,14 +481,14 @@ impl GpuDeformer {
             pass.set_bind_group(0, group, &[]);
             pass.dispatch_workgroups(grid.0, grid.1, 1);
         }
-        if let Some(tangents) = &self.tangents {
+        if let Some(tangents) = self.tangents.get(self.current) {
             tangents.encode(&mut pass);
         }
     }
 
-    /// Convenience for tools: sets the pose, records and submits the frame's work.
+    /// Convenience for tools: sets the pose of instance 0, records and submits the frame's work.
     pub fn deform(&mut self, posed: &[Sweep]) -> Result<(), GpuError> {
-        self.set_pose(posed)?;
+        self.set_pose(0, posed)?;
         let mut encoder = self
             .context
             .device
@@ -395,29 +498,61 @@ impl GpuDeformer {
         self.context.check_alive()
     }
 
-    /// Copies the positions back to the CPU (blocking), tightly packed f32 xyz.
+    /// Copies instance 0's latest positions back to the CPU (blocking), tightly packed f32 xyz.
     pub fn read_positions(&self) -> Result<Vec<f32>, GpuError> {
-        let bytes = read_bytes(&self.context, &self.positions, 0, self.vertex_count as u64 * POSITION_STRIDE)?;
-        Ok(bytemuck::pod_collect_to_vec(&bytes))
+        self.read_instance(self.positions(), 0)
     }
 
-    /// Copies the normals back to the CPU (blocking), or `None` without faces.
-    pub fn read_normals(&self) -> Result<Option<Vec<f32>>, GpuError> {
-        let Some(normals) = &self.normals else {
-            return Ok(None);
-        };
-        let bytes = read_bytes(&self.context, &normals.buffer, 0, self.vertex_count as u64 * POSITION_STRIDE)?;
+    /// Copies instance `instance`'s latest positions back to the CPU (blocking).
+    pub fn read_instance_positions(&self, instance: u32) -> Result<Vec<f32>, GpuError> {
+        self.read_instance(self.positions(), instance)
+    }
+
+    /// Copies instance `instance`'s previous positions back (blocking), if kept.
+    pub fn read_previous_positions(&self, instance: u32) -> Result<Option<Vec<f32>>, GpuError> {
+        self.previous_positions().map(|buffer| self.read_instance(buffer, instance)).transpose()
+    }
+
+    /// The unit tangents of the deformed mesh (of the latest positions), f32 xyzw, 16 bytes a
+    /// vertex (w the rest tangent's), instance i at `instance_offset(i) / 12 × 16`, if the
+    /// descriptor had rest tangents; usage `VERTEX | STORAGE | COPY_SRC`.
+    pub fn tangents(&self) -> Option<&wgpu::Buffer> {
+        self.tangents.get(self.current).map(TangentStage::buffer)
+    }
+
+    /// Copies instance `instance`'s tangents back (blocking), or `None` without rest tangents.
+    pub fn read_instance_tangents(&self, instance: u32) -> Result<Option<Vec<[f32; 4]>>, GpuError> {
+        let Some(buffer) = self.tangents() else { return Ok(None) };
+        if instance >= self.targets.instances {
+            return Err(GpuError::Input(format!("instance {instance} of {}", self.targets.instances)));
+        }
+        let first = self.targets.instance_offset(instance) / POSITION_STRIDE * TANGENT_STRIDE;
+        let bytes = read_bytes(&self.context, buffer, first, self.vertex_count as u64 * TANGENT_STRIDE)?;
         Ok(Some(bytemuck::pod_collect_to_vec(&bytes)))
     }
 
-    /// Copies the tangents back to the CPU (blocking), f32 xyzw per vertex, or `None` without
-    /// rest tangents.
+    /// Copies instance 0's tangents back (blocking), or `None` without rest tangents.
     pub fn read_tangents(&self) -> Result<Option<Vec<[f32; 4]>>, GpuError> {
-        let Some(tangents) = &self.tangents else {
-            return Ok(None);
-        };
-        let bytes = read_bytes(&self.context, tangents.buffer(), 0, self.vertex_count as u64 * TANGENT_STRIDE)?;
-        Ok(Some(bytemuck::pod_collect_to_vec(&bytes)))
+        self.read_instance_tangents(0)
+    }
+
+    /// Copies instance 0's normals back to the CPU (blocking), or `None` without triangles.
+    pub fn read_normals(&self) -> Result<Option<Vec<f32>>, GpuError> {
+        self.read_instance_normals(0)
+    }
+
+    /// Copies instance `instance`'s normals back (blocking), or `None` without triangles.
+    pub fn read_instance_normals(&self, instance: u32) -> Result<Option<Vec<f32>>, GpuError> {
+        self.normals().map(|buffer| self.read_instance(buffer, instance)).transpose()
+    }
+
+    fn read_instance(&self, buffer: &wgpu::Buffer, instance: u32) -> Result<Vec<f32>, GpuError> {
+        if instance >= self.targets.instances {
+            return Err(GpuError::Input(format!("instance {instance} of {}", self.targets.instances)));
+        }
+        let size = self.vertex_count as u64 * POSITION_STRIDE;
+        let bytes = read_bytes(&self.context, buffer, self.targets.instance_offset(instance), size)?;
+        Ok(bytemuck::pod_collect_to_vec(&bytes))
     }
 
     /// Copies the band records back to the CPU (blocking), vertices global; empty without
@@ -434,8 +569,9 @@ impl GpuDeformer {
     /// Device memory that grows with the mesh: bindings, positions and the falloff bands' records,
     /// bytes (normals and the rig's cell records excluded).
     pub fn device_bytes(&self) -> u64 {
-        let per_vertex = self.vertex_count as u64 * (BINDING_STRIDE + POSITION_STRIDE);
-        per_vertex + self.bands.as_ref().map_or(0, BandStage::device_bytes)
+        let bindings = self.vertex_count as u64 * BINDING_STRIDE;
+        let positions = self.targets.bytes() * self.targets.buffers.len() as u64;
+        bindings + positions + self.bands.as_ref().map_or(0, BandStage::device_bytes)
     }
 
     /// Copies the bindings back to the CPU (blocking), one per vertex; band vertices carry
@@ -450,15 +586,13 @@ impl GpuDeformer {
     }
 
     /// Each deform dispatch's vertex range and binding buffer.
-    #[cfg(feature = "cli")]
     pub(crate) fn binding_chunks(&self) -> impl Iterator<Item = (&Range<u32>, &wgpu::Buffer)> {
         self.chunks.iter().map(|chunk| (&chunk.range, &chunk.bindings))
     }
 
-    /// The per-frame cell record buffer.
-    #[cfg(feature = "cli")]
-    pub(crate) fn cells(&self) -> &wgpu::Buffer {
-        &self.cells
+    /// The rest rig's cell records, as the bind kernel reads them.
+    pub(crate) fn rest_cells(&self) -> &wgpu::Buffer {
+        &self.rest_cells
     }
 
     /// The context the deformer runs on.
@@ -475,7 +609,11 @@ impl GpuDeformer {
 /// Fails unless `weights` are sorted by vertex, each vertex `bound` (owned by a sweep), each
 /// weight in [0, 1) and each neighbour one of the rig's `sweeps` or [`UNOWNED`] (the rest
 /// position).
-fn check_weights(weights: &[BandWeight], sweeps: usize, bound: impl Fn(usize) -> bool) -> Result<(), GpuError> {
+pub(super) fn check_weights(
+    weights: &[BandWeight],
+    sweeps: usize,
+    bound: impl Fn(usize) -> bool,
+) -> Result<(), GpuError> {
     let band = |b: &BandWeight| (b.vertex, b.weight, b.neighbour);
     check_bands(weights, band, sweeps, bound)
         .map_err(|()| GpuError::Input("the falloff bands are not sorted, owned and in range".into()))
@@ -484,7 +622,7 @@ fn check_weights(weights: &[BandWeight], sweeps: usize, bound: impl Fn(usize) ->
 /// Whether `bands`, each seen as (vertex, weight, second influence), are sorted by vertex, each
 /// vertex `bound`, each weight in [0, 1) and each second influence below `seconds` or
 /// [`UNOWNED`] (the rest position).
-fn check_bands<B>(
+pub(super) fn check_bands<B>(
     bands: &[B],
     band: impl Fn(&B) -> (u32, f64, u32),
     seconds: usize,
@@ -496,49 +634,4 @@ fn check_bands<B>(
         bound(vertex as usize) && (0.0..1.0).contains(&weight) && (second == UNOWNED || (second as usize) < seconds)
     };
     if ordered && bands.iter().all(valid) { Ok(()) } else { Err(()) }
-}
-
-fn check_input(rest: &[Sweep], positions: &[DVec3], bindings: &BindingSource) -> Result<(), GpuError> {
-    if positions.is_empty() {
-        return Err(GpuError::Input("the mesh has no vertices".into()));
-    }
-    if positions.len() >= UNOWNED as usize {
-        return Err(GpuError::Input(format!("{} vertices are more than the GPU path indexes", positions.len())));
-    }
-    if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
-        return Err(GpuError::Input(format!("vertex {i} has a non-finite position")));
-    }
-    match bindings {
-        BindingSource::Bind { owners, bands } => {
-            if owners.len() != positions.len() {
-                return Err(GpuError::Input(format!("{} owners for {} vertices", owners.len(), positions.len())));
-            }
-            if let Some(i) = owners.iter().position(|&o| o != UNOWNED && o as usize >= rest.len()) {
-                return Err(GpuError::Input(format!(
-                    "vertex {i} is owned by sweep {}, but the rig has {}",
-                    owners[i],
-                    rest.len()
-                )));
-            }
-            check_weights(bands, rest.len(), |v| owners.get(v).is_some_and(|&o| o != UNOWNED))?;
-        }
-        BindingSource::Precomputed { bindings, bands } => {
-            if bindings.len() != positions.len() {
-                return Err(GpuError::Input(format!("{} bindings for {} vertices", bindings.len(), positions.len())));
-            }
-            let cells: usize = rest.iter().map(|s| s.segments().len() * s.radius_samples()).sum();
-            if let Some(i) = bindings.iter().position(|b| b.cell != UNOWNED && (b.cell & !BAND_FLAG) as usize >= cells)
-            {
-                return Err(GpuError::Input(format!(
-                    "binding {i} refers to radius cell {} of {cells}",
-                    bindings[i].cell
-                )));
-            }
-            let band = |b: &BandRecord| (b.vertex, b.weight as f64, b.cell);
-            let bound = |v: usize| bindings.get(v).is_some_and(|b| b.cell != UNOWNED);
-            check_bands(bands, band, cells, bound)
-                .map_err(|()| GpuError::Input("the band records are not sorted, bound and in range".into()))?;
-        }
-    }
-    Ok(())
 }

@@ -1,4 +1,5 @@
-//! Compute pipelines and their bind group layouts, created once per deformer.
+//! Compute pipelines and their bind group layouts. The engine compiles each once per context
+//! (`kernel_cache.rs`); the functions here compile a fresh one.
 
 use std::borrow::Cow;
 
@@ -161,6 +162,17 @@ pub fn normals(device: &wgpu::Device, two_windows: bool) -> Kernel {
     let source = if two_windows { shaders::NORMALS_TWO_WINDOWS } else { shaders::NORMALS_ONE_WINDOW };
     let slots = [Uniform, Read, Read, Read, Read, Read, ReadWrite];
     Kernel::new(device, "sweepffd normals", source, "normals_main", &slots)
+}
+
+/// `shaders/bounds.wgsl`: params, positions (read); extremes (atomic, written).
+pub fn bounds(device: &wgpu::Device) -> Kernel {
+    Kernel::new(device, "sweepffd bounds", shaders::BOUNDS, "bounds_main", &[Uniform, Read, ReadWrite])
+}
+
+/// `shaders/bounds_finalize.wgsl`: params, extremes (read); bounds (written).
+pub fn bounds_finalize(device: &wgpu::Device) -> Kernel {
+    let entry = "bounds_finalize_main";
+    Kernel::new(device, "sweepffd bounds finalize", shaders::BOUNDS_FINALIZE, entry, &[Uniform, Read, ReadWrite])
 }
 
 /// `shaders/copy.wgsl`: params, bindings (read); positions (written).

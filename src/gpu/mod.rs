@@ -14,6 +14,7 @@ mod chunks;
 mod context;
 pub(crate) mod deformer;
 mod error;
+mod kernel_cache;
 pub mod kernels;
 mod normals_pass;
 mod readback;
@@ -24,8 +25,13 @@ pub use bands::BAND_STRIDE;
 pub use buffers::{BINDING_STRIDE, POSITION_STRIDE};
 pub use chunks::{ChunkLimits, dispatch_grid, normal_chunks, uniform_chunks};
 pub use context::GpuContext;
-pub use deformer::{BindingSource, GpuDeformer};
+pub use deformer::{BOUNDS_STRIDE, BindingSource, DeformerDescriptor, GpuDeformer, INSTANCE_ALIGNMENT};
 pub use error::GpuError;
 pub use kernels::DeformVariant;
 pub use readback::{read_bytes, read_staging, wait};
 pub use tangents_pass::TANGENT_STRIDE;
+
+/// f64 positions as the engine takes them: f32 xyz (rounded to nearest).
+pub fn rest_positions(positions: &[glam::DVec3]) -> Vec<[f32; 3]> {
+    positions.iter().map(|p| p.as_vec3().to_array()).collect()
+}

@@ -13,10 +13,12 @@ use std::ops::Range;
 
 use wgpu::util::DeviceExt;
 
-use super::GpuError;
+use std::sync::Arc;
+
 use super::buffers::{POSITION_STRIDE, check_fits, params_buffer, window};
 use super::chunks::{ChunkLimits, dispatch_grid};
-use super::kernels::{self, Kernel};
+use super::kernels::Kernel;
+use super::{GpuContext, GpuError};
 use crate::coeffs::DispatchParams;
 use crate::mesh::Faces;
 use crate::normals::{FAN_INDEX, FAN_START, NormalAdjacency, dirty_vertices, instanced};
@@ -96,7 +98,7 @@ pub(crate) fn record(encoder: &mut wgpu::CommandEncoder, label: &str, kernel: &K
 /// one-ring moves.
 #[derive(Debug)]
 pub(crate) struct NormalsStage {
-    pub(crate) kernel: Kernel,
+    pub(crate) kernel: Arc<Kernel>,
     pub(crate) buffer: wgpu::Buffer,
     /// The per-frame dispatches, over [`dirty`](Self::dirty).
     pub(crate) dispatches: Vec<Dispatch>,
@@ -108,7 +110,8 @@ pub(crate) struct NormalsStage {
 struct NormalsPlan<'a> {
     kernel: &'a Kernel,
     adjacency: &'a NormalAdjacency,
-    vertex_count: u32,
+    /// Vertices from one instance to the next.
+    stride: u32,
     low: wgpu::BindingResource<'a>,
     high: wgpu::BindingResource<'a>,
     split: u32,
@@ -118,21 +121,22 @@ struct NormalsPlan<'a> {
 
 impl NormalsStage {
     /// Plans the normals of `instances` copies of the mesh of `faces` over `vertex_count`
-    /// vertices each, read from `positions`; `moves[v]` says whether vertex v of the mesh can
-    /// move (a sweep owns it). Records the pass over every vertex (the rest normals) into
+    /// vertices each, `stride` vertices apart (instance k's vertex v at k · stride + v), read
+    /// from `positions`; `moves[v]` says whether vertex v of the mesh can move (a sweep owns it). Records the pass over every vertex (the rest normals) into
     /// `encoder`; the stage's own dispatches then cover only the vertices whose normal can change.
     #[expect(clippy::too_many_arguments, reason = "the stage's inputs, each used once")]
     pub(crate) fn new(
-        device: &wgpu::Device,
+        context: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
         faces: &Faces,
         positions: &wgpu::Buffer,
-        vertex_count: u32,
+        (vertex_count, stride): (u32, u32),
         instances: u32,
         moves: &[bool],
         limits: &ChunkLimits,
     ) -> Result<NormalsStage, GpuError> {
-        let total = vertex_count as u64 * instances.max(1) as u64;
+        let device = &context.device;
+        let total = (instances.max(1) as u64 - 1) * stride as u64 + vertex_count as u64;
         if total > FAN_INDEX as u64 {
             return Err(GpuError::Input(format!("{total} vertices in all instances are more than the normals index")));
         }
@@ -152,11 +156,11 @@ impl NormalsStage {
             usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
-        let kernel = kernels::normals(device, split < total);
+        let kernel = context.kernels().normals(device, split < total);
         let plan = NormalsPlan {
             kernel: &kernel,
             adjacency: &adjacency,
-            vertex_count,
+            stride,
             low: window(positions, &(0..split.max(1)), POSITION_STRIDE),
             high: if split < total {
                 window(positions, &(split..total), POSITION_STRIDE)
@@ -167,9 +171,9 @@ impl NormalsStage {
             normals: &buffer,
             limits,
         };
-        let every: Vec<u32> = (0..total).collect();
+        let every = instanced(&(0..vertex_count).collect::<Vec<u32>>(), stride, instances.max(1));
         record(encoder, "sweepffd rest normals", &kernel, &plan.dispatches(device, &every)?);
-        let dirty = instanced(&dirty_vertices(&adjacency, |v| moves[v]), vertex_count, instances.max(1));
+        let dirty = instanced(&dirty_vertices(&adjacency, |v| moves[v]), stride, instances.max(1));
         let dispatches = plan.dispatches(device, &dirty)?;
         Ok(NormalsStage { kernel, buffer, dispatches, dirty })
     }
@@ -178,7 +182,7 @@ impl NormalsStage {
 impl NormalsPlan<'_> {
     /// The dispatches computing the normals of `vertices` (ascending, over all instances).
     fn dispatches(&self, device: &wgpu::Device, vertices: &[u32]) -> Result<Vec<Dispatch>, GpuError> {
-        let n = self.vertex_count;
+        let n = self.stride;
         let row = |g: u32| self.adjacency.fans_of((g % n) as usize).len() as u64;
         let chunks = list_chunks(vertices, POSITION_STRIDE, row, self.limits).ok_or_else(|| {
             GpuError::Input("a vertex has more incident triangles than one storage binding holds".into())

@@ -29,6 +29,12 @@ pub const NORMALS_ONE_WINDOW: &str = include_str!(concat!(env!("OUT_DIR"), "/nor
 /// Area-weighted vertex normals reading the positions through two storage bindings:
 /// `shaders/normals.wgsl` with `shaders/positions_two_windows.wgsl`, entry point `normals_main`.
 pub const NORMALS_TWO_WINDOWS: &str = include_str!(concat!(env!("OUT_DIR"), "/normals_two_windows.wgsl"));
+/// Per-instance bounds of the deformed positions on ordered u32 encodings:
+/// `shaders/bounds.wgsl`, entry point `bounds_main`.
+pub const BOUNDS: &str = include_str!(concat!(env!("OUT_DIR"), "/bounds.wgsl"));
+/// The bounds decoded to f32 min.xyz, 0, max.xyz, 0: `shaders/bounds_finalize.wgsl`, entry point
+/// `bounds_finalize_main`.
+pub const BOUNDS_FINALIZE: &str = include_str!(concat!(env!("OUT_DIR"), "/bounds_finalize.wgsl"));
 /// Benchmark baseline moving the deform kernel's bytes: `shaders/copy.wgsl`, `copy_main`.
 pub const COPY: &str = include_str!(concat!(env!("OUT_DIR"), "/copy.wgsl"));
 /// Benchmark baseline, four-influence linear-blend skinning: `shaders/skinning.wgsl`,
@@ -39,7 +45,7 @@ pub const SKINNING: &str = include_str!(concat!(env!("OUT_DIR"), "/skinning.wgsl
 pub const TANGENTS: &str = include_str!(concat!(env!("OUT_DIR"), "/tangents.wgsl"));
 
 /// Every kernel as (name, composed source, entry point).
-pub const ALL: [(&str, &str, &str); 12] = [
+pub const ALL: [(&str, &str, &str); 14] = [
     ("bind", BIND, "bind_main"),
     ("deform_uniform", DEFORM_UNIFORM, "deform_main"),
     ("deform_storage", DEFORM_STORAGE, "deform_main"),
@@ -49,6 +55,8 @@ pub const ALL: [(&str, &str, &str); 12] = [
     ("band_flags", BAND_FLAGS, "band_flags_main"),
     ("normals_one_window", NORMALS_ONE_WINDOW, "normals_main"),
     ("normals_two_windows", NORMALS_TWO_WINDOWS, "normals_main"),
+    ("bounds", BOUNDS, "bounds_main"),
+    ("bounds_finalize", BOUNDS_FINALIZE, "bounds_finalize_main"),
     ("copy", COPY, "copy_main"),
     ("skinning", SKINNING, "skinning_main"),
     ("tangents", TANGENTS, "tangents_main"),

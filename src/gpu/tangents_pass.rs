@@ -9,12 +9,15 @@
 
 use wgpu::util::DeviceExt;
 
-use super::GpuError;
+use std::sync::Arc;
+
 use super::buffers::{POSITION_STRIDE, check_fits, params_buffer, window};
 use super::chunks::{ChunkLimits, dispatch_grid};
-use super::kernels::{self, Kernel};
+use super::kernels::Kernel;
 use super::normals_pass::{Dispatch, NormalsStage, list_chunks, record, storage_init};
+use super::{GpuContext, GpuError};
 use crate::coeffs::DispatchParams;
+use crate::normals::instanced;
 
 /// Bytes per vertex of the tangent buffers: f32 xyzw, tightly packed.
 pub const TANGENT_STRIDE: u64 = 16;
@@ -23,7 +26,7 @@ pub const TANGENT_STRIDE: u64 = 16;
 /// dispatches.
 #[derive(Debug)]
 pub(crate) struct TangentStage {
-    kernel: Kernel,
+    kernel: Arc<Kernel>,
     /// The output: f32 xyzw per vertex, `VERTEX | STORAGE | COPY_SRC`.
     buffer: wgpu::Buffer,
     /// The per-frame dispatches, over the normals stage's dirty vertices.
@@ -49,11 +52,11 @@ impl TangentStage {
     /// vertices. Fails on a tangent count other than `vertex_count`, a non-finite tangent, or
     /// buffers beyond the device's limits.
     pub(crate) fn new(
-        device: &wgpu::Device,
+        context: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
         rest_tangents: &[[f32; 4]],
         normals: &NormalsStage,
-        vertex_count: u32,
+        (vertex_count, stride): (u32, u32),
         instances: u32,
         limits: &ChunkLimits,
     ) -> Result<TangentStage, GpuError> {
@@ -63,7 +66,8 @@ impl TangentStage {
         if let Some(i) = rest_tangents.iter().position(|t| !t.iter().all(|c| c.is_finite())) {
             return Err(GpuError::Input(format!("rest tangent {i} is not finite")));
         }
-        let total = vertex_count as u64 * instances.max(1) as u64;
+        let device = &context.device;
+        let total = (instances.max(1) as u64 - 1) * stride as u64 + vertex_count as u64;
         check_fits("the tangent buffer", total * TANGENT_STRIDE, limits.max_buffer)?;
         let rest_normals = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("sweepffd rest normals"),
@@ -72,7 +76,11 @@ impl TangentStage {
             mapped_at_creation: false,
         });
         encoder.copy_buffer_to_buffer(&normals.buffer, 0, &rest_normals, 0, total * POSITION_STRIDE);
-        let every_instance: Vec<[f32; 4]> = (0..instances.max(1)).flat_map(|_| rest_tangents.iter().copied()).collect();
+        let mut every_instance = vec![[0.0f32; 4]; total as usize];
+        for k in 0..instances.max(1) as usize {
+            let first = k * stride as usize;
+            every_instance[first..first + vertex_count as usize].copy_from_slice(rest_tangents);
+        }
         let rest_tangents = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("sweepffd rest tangents"),
             contents: bytemuck::cast_slice(&every_instance),
@@ -84,7 +92,7 @@ impl TangentStage {
             usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
-        let kernel = kernels::tangents(device);
+        let kernel = context.kernels().tangents(device);
         let plan = TangentPlan {
             kernel: &kernel,
             rest_normals: &rest_normals,
@@ -93,7 +101,7 @@ impl TangentStage {
             tangents: &buffer,
             limits,
         };
-        let every: Vec<u32> = (0..total as u32).collect();
+        let every = instanced(&(0..vertex_count).collect::<Vec<u32>>(), stride, instances.max(1));
         record(encoder, "sweepffd rest tangents", &kernel, &plan.dispatches(device, &every)?);
         let dispatches = plan.dispatches(device, &normals.dirty)?;
         Ok(TangentStage { kernel, buffer, dispatches })
@@ -103,6 +111,11 @@ impl TangentStage {
     /// instance); usage `VERTEX | STORAGE | COPY_SRC`.
     pub(crate) fn buffer(&self) -> &wgpu::Buffer {
         &self.buffer
+    }
+
+    /// Number of per-frame dispatches.
+    pub(crate) fn dispatch_count(&self) -> usize {
+        self.dispatches.len()
     }
 
     /// Records the per-frame dispatches into `pass`, which must come after the normals pass's
@@ -192,9 +205,20 @@ mod tests {
         context.queue.write_buffer(&positions, 0, bytemuck::cast_slice(&rest));
         let limits = ChunkLimits::of(&device.limits());
         let mut encoder = device.create_command_encoder(&Default::default());
-        let normals =
-            NormalsStage::new(device, &mut encoder, &mesh.faces, &positions, n as u32, 3, &moves, &limits).unwrap();
-        let tangents = TangentStage::new(device, &mut encoder, &rest_tangents, &normals, n as u32, 3, &limits).unwrap();
+        let normals = NormalsStage::new(
+            &context,
+            &mut encoder,
+            &mesh.faces,
+            &positions,
+            (n as u32, n as u32),
+            3,
+            &moves,
+            &limits,
+        )
+        .unwrap();
+        let tangents =
+            TangentStage::new(&context, &mut encoder, &rest_tangents, &normals, (n as u32, n as u32), 3, &limits)
+                .unwrap();
         context.queue.submit([encoder.finish()]);
         // The frame: the instances' own positions, then the per-frame dispatches.
         let posed: Vec<f32> = (0..3).flat_map(instance).collect();

@@ -162,7 +162,9 @@ impl App {
         if let Some(running) = &mut self.running {
             if let Some(deformer) = running.mesh.deformer() {
                 let (positions, bands) = (&self.model.mesh.positions, &self.model.bands);
-                deformer.set_bands(positions, bands).map_err(|e| ViewError::Gpu(e.to_string()))?;
+                deformer
+                    .set_bands(&crate::gpu::rest_positions(positions), bands)
+                    .map_err(|e| ViewError::Gpu(e.to_string()))?;
             }
             running.mesh.weights_changed();
         }

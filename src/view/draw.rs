@@ -9,7 +9,7 @@ use wgpu::util::DeviceExt;
 
 use super::ViewError;
 use crate::bind::falloff::BandWeight;
-use crate::gpu::{BindingSource, GpuContext, GpuDeformer};
+use crate::gpu::{BindingSource, DeformerDescriptor, GpuContext, GpuDeformer};
 use crate::mesh::Mesh;
 use crate::normals::{NormalAdjacency, vertex_normals};
 use crate::render::{BACKGROUND, Layer, Pipelines, Scene, ViewUniform};
@@ -57,8 +57,10 @@ impl MeshDraw {
         let source = match rig {
             Some((rig, owners, bands)) => {
                 let bindings = BindingSource::Bind { owners, bands };
-                let deformer = GpuDeformer::new(context, rig.rest(), &mesh.positions, bindings, Some(&mesh.faces))
-                    .map_err(|e| ViewError::Gpu(e.to_string()))?;
+                let positions = crate::gpu::rest_positions(&mesh.positions);
+                let triangles: Vec<u32> = mesh.faces.triangles().flatten().collect();
+                let descriptor = DeformerDescriptor::new(rig.rest(), &positions, bindings).with_triangles(&triangles);
+                let deformer = GpuDeformer::new(context, &descriptor).map_err(|e| ViewError::Gpu(e.to_string()))?;
                 MeshSource::Deformed(Box::new(deformer))
             }
             None => {

@@ -74,7 +74,7 @@ impl App {
             None => Vec::new(),
         };
         if let Some(deformer) = running.mesh.deformer().filter(|_| self.pose_changed) {
-            deformer.set_pose(&posed).map_err(|e| ViewError::Gpu(e.to_string()))?;
+            deformer.set_pose(0, &posed).map_err(|e| ViewError::Gpu(e.to_string()))?;
         }
         let mut scene = Scene::new();
         if self.panel.sweeps != SweepDisplay::Hidden {

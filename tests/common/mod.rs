@@ -172,3 +172,20 @@ mod twin;
 pub use teapot::{keys_through, teapot_rig};
 #[allow(unused_imports, reason = "each test binary uses a different subset of the helpers")]
 pub use twin::twin_positions;
+
+/// A GPU deformer of f64 `positions` (converted to f32) with the normals of `faces` if given.
+pub fn deformer(
+    context: &sweepffd::gpu::GpuContext,
+    rest: &[sweepffd::sweep::Sweep],
+    positions: &[DVec3],
+    bindings: sweepffd::gpu::BindingSource,
+    faces: Option<&sweepffd::mesh::Faces>,
+) -> Result<sweepffd::gpu::GpuDeformer, sweepffd::gpu::GpuError> {
+    let positions = sweepffd::gpu::rest_positions(positions);
+    let triangles: Option<Vec<u32>> = faces.map(|faces| faces.triangles().flatten().collect());
+    let mut descriptor = sweepffd::gpu::DeformerDescriptor::new(rest, &positions, bindings);
+    if let Some(triangles) = &triangles {
+        descriptor = descriptor.with_triangles(triangles);
+    }
+    sweepffd::gpu::GpuDeformer::new(context, &descriptor)
+}

@@ -7,14 +7,12 @@
 
 use std::ops::Range;
 
-use glam::DVec3;
-
 use super::super::GpuError;
 use super::super::bands::{BandPlan, BandSource, BandStage};
 use super::super::binder::Binder;
-use super::super::buffers::{POSITION_STRIDE, params_buffer, window};
+use super::super::buffers::params_buffer;
 use super::super::chunks::dispatch_grid;
-use super::super::kernels::{self, Kernel};
+use super::super::kernels::Kernel;
 use super::super::readback::wait;
 use super::{DeformChunk, GpuDeformer, check_weights};
 use crate::bind::falloff::BandWeight;
@@ -51,7 +49,7 @@ impl BandMember {
 pub(super) struct Rebanding {
     rest: Vec<Sweep>,
     binder: Option<Binder>,
-    flags: Option<Kernel>,
+    flags: Option<std::sync::Arc<Kernel>>,
     members: Vec<BandMember>,
     bound: Vec<u64>,
 }
@@ -78,12 +76,12 @@ impl Rebanding {
 /// (or was not in `old`) also gets [`KEEPS_REST`] and its f32 rest position from `rest`, since the
 /// deform and band kernels may have moved it. A vertex in both that needs no rest position is
 /// unchanged. Each vertex appears at most once, so the kernel's writes never race.
-pub(super) fn flag_changes(old: &[BandMember], new: &[BandWeight], rest: &[DVec3]) -> Vec<BandFlag> {
+pub(super) fn flag_changes(old: &[BandMember], new: &[BandWeight], rest: &[[f32; 3]]) -> Vec<BandFlag> {
     let enter = |member: BandMember| {
         let mut flag = BandFlag { vertex: member.vertex | BAND_FLAG, ..Default::default() };
         if member.keeps_rest {
-            let p = rest[member.vertex as usize].as_vec3();
-            flag = BandFlag { vertex: flag.vertex | KEEPS_REST, x: p.x, y: p.y, z: p.z };
+            let [x, y, z] = rest[member.vertex as usize];
+            flag = BandFlag { vertex: flag.vertex | KEEPS_REST, x, y, z };
         }
         flag
     };
@@ -133,13 +131,13 @@ impl GpuDeformer {
     /// moves them again), and writes the rest position of those that now keep it; the band
     /// records are rebuilt and the second influences bound by the bind kernel, as
     /// [`new`](GpuDeformer::new) does. `rest` are the rest positions the deformer was built
-    /// with (only the band vertices' are read and uploaded).
+    /// with, f32 (only the band vertices' are read and uploaded).
     ///
     /// The result equals a deformer built with `weights` from the next
     /// [`encode`](GpuDeformer::encode) on; nothing changes per frame. Blocks until the GPU is
     /// done. Fails, changing nothing, on weights that are not sorted, owned and in range, or on
     /// `rest` of another length; wgpu errors are returned.
-    pub fn set_bands(&mut self, rest: &[DVec3], weights: &[BandWeight]) -> Result<(), GpuError> {
+    pub fn set_bands(&mut self, rest: &[[f32; 3]], weights: &[BandWeight]) -> Result<(), GpuError> {
         if rest.len() != self.vertex_count as usize {
             return Err(GpuError::Input(format!(
                 "{} rest positions for a deformer of {} vertices",
@@ -148,7 +146,7 @@ impl GpuDeformer {
             )));
         }
         check_weights(weights, self.coefficients.sweeps.len(), |v| self.rebanding.is_bound(v))?;
-        if let Some(w) = weights.iter().find(|w| !rest[w.vertex as usize].is_finite()) {
+        if let Some(w) = weights.iter().find(|w| !rest[w.vertex as usize].iter().all(|c| c.is_finite())) {
             return Err(GpuError::Input(format!("vertex {} has a non-finite position", w.vertex)));
         }
         let device = self.context.device.clone();
@@ -165,16 +163,17 @@ impl GpuDeformer {
             self.rebanding.binder = Some(Binder::new(&self.context, rest, &self.coefficients, &self.rest_cells));
         }
         if !weights.is_empty() || self.bands.is_some() {
-            let stage = self.bands.get_or_insert_with(|| BandStage::new(&device, self.variant, &self.rest_cells));
-            let plan = BandPlan { cells: &self.cells, positions: &self.positions, limits: &self.limits };
+            let stage = self.bands.get_or_insert_with(|| BandStage::new(&self.context, self.variant, &self.rest_cells));
+            let plan = BandPlan { cells: &self.cells, targets: &self.targets, limits: &self.limits };
             let windows: Vec<(Range<u32>, &wgpu::Buffer)> =
                 self.chunks.iter().map(|chunk| (chunk.range.clone(), &chunk.bindings)).collect();
             let source = BandSource::Bind { weights, positions: rest };
-            stage.set_records(&device, plan, &windows, source, self.rebanding.binder.as_ref(), &mut encoder);
+            stage.set_records(&self.context, plan, &windows, source, self.rebanding.binder.as_ref(), &mut encoder);
         }
         self.context.queue.submit([encoder.finish()]);
-        let validation_error = pollster::block_on(validation.pop());
-        let memory_error = pollster::block_on(out_of_memory.pop());
+        let (validation, out_of_memory) = (validation.pop(), out_of_memory.pop());
+        let validation_error = pollster::block_on(validation);
+        let memory_error = pollster::block_on(out_of_memory);
         if let Some(error) = validation_error.or(memory_error) {
             return Err(error.into());
         }
@@ -189,14 +188,20 @@ impl GpuDeformer {
             return;
         }
         let device = &self.context.device;
-        let kernel = self.rebanding.flags.get_or_insert_with(|| kernels::band_flags(device));
+        let kernels = self.context.kernels();
+        let kernel = self.rebanding.flags.get_or_insert_with(|| kernels.band_flags(device));
+        let targets = &self.targets;
+        // The flags are set once per instance and position buffer (the same bits each time), so
+        // that every instance's rest positions are written to both buffers.
+        let views: Vec<(usize, u32)> =
+            (0..targets.buffers.len()).flat_map(|p| (0..targets.instances).map(move |i| (p, i))).collect();
         let dispatches: Vec<(wgpu::BindGroup, (u32, u32))> = self
             .chunks
             .iter()
-            .filter_map(|chunk: &DeformChunk| {
+            .flat_map(|chunk: &DeformChunk| {
                 let flags = changes_in(changes, &chunk.range);
                 if flags.is_empty() {
-                    return None;
+                    return Vec::new();
                 }
                 let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                     label: Some("sweepffd band flags"),
@@ -205,17 +210,23 @@ impl GpuDeformer {
                 });
                 let count = flags.len() as u32;
                 let params = params_buffer(device, DispatchParams { vertex_count: count, ..Default::default() });
-                let group = kernel.bind_group(
-                    device,
-                    "sweepffd band flags",
-                    &[
-                        params.as_entire_binding(),
-                        buffer.as_entire_binding(),
-                        chunk.bindings.as_entire_binding(),
-                        window(&self.positions, &chunk.range, POSITION_STRIDE),
-                    ],
-                );
-                Some((group, dispatch_grid(count, &self.limits)))
+                let grid = dispatch_grid(count, &self.limits);
+                views
+                    .iter()
+                    .map(|&(parity, instance)| {
+                        let group = kernel.bind_group(
+                            device,
+                            "sweepffd band flags",
+                            &[
+                                params.as_entire_binding(),
+                                buffer.as_entire_binding(),
+                                chunk.bindings.as_entire_binding(),
+                                targets.window(parity, &chunk.range, &(instance..instance + 1)),
+                            ],
+                        );
+                        (group, grid)
+                    })
+                    .collect()
             })
             .collect();
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -242,8 +253,8 @@ mod tests {
         BandMember { vertex, keeps_rest }
     }
 
-    fn rest() -> Vec<DVec3> {
-        (0..8).map(|i| DVec3::new(i as f64, 0.5, -1.0)).collect()
+    fn rest() -> Vec<[f32; 3]> {
+        (0..8).map(|i| [i as f32, 0.5, -1.0]).collect()
     }
 
     #[test]

@@ -1,0 +1,174 @@
+//! [`DeformerDescriptor`]: what a [`GpuDeformer`](super::GpuDeformer) is built from, in the
+//! engine's own types (f32 rest positions, a `u32` triangle list), and the checks made on it
+//! before anything reaches the GPU.
+
+use super::super::GpuError;
+use super::BindingSource;
+use crate::coeffs::{BAND_FLAG, BandRecord, UNOWNED};
+use crate::mesh::Faces;
+use crate::sweep::Sweep;
+
+/// Everything a [`GpuDeformer`](super::GpuDeformer) is built from.
+///
+/// ```no_run
+/// # fn make(rest: &[sweepffd::sweep::Sweep], positions: &[[f32; 3]], owners: &[u32], triangles: &[u32]) {
+/// use sweepffd::gpu::{BindingSource, DeformerDescriptor};
+/// let descriptor = DeformerDescriptor::new(rest, positions, BindingSource::Bind { owners, bands: &[] })
+///     .with_triangles(triangles);
+/// # }
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct DeformerDescriptor<'a> {
+    /// The rest rig's sweeps (the f64 reference geometry, turned into f32 cell records).
+    pub rest: &'a [Sweep],
+    /// The rest positions, f32 xyz, one per vertex ([`rest_positions`](crate::gpu::rest_positions)
+    /// converts f64 ones): finite, fewer than [`UNOWNED`] of them.
+    pub positions: &'a [[f32; 3]],
+    /// How the vertices are bound to the rig.
+    pub bindings: BindingSource<'a>,
+    /// A triangle list (three vertex indices a triangle, each below the vertex count): with it
+    /// the deformer also keeps area-weighted vertex normals of the deformed mesh.
+    pub triangles: Option<&'a [u32]>,
+    /// Instances of the mesh (at least 1), each with its own pose, deformed in one dispatch.
+    pub instances: u32,
+    /// Encodes of the deformer one queue submission may hold, each with its own poses (at
+    /// least 1; each slot holds every instance's cell records).
+    pub pose_slots: u32,
+    /// Whether to keep the previous frame's positions (two position buffers, alternating).
+    pub previous_positions: bool,
+    /// Whether to compute every instance's bounds on the GPU each frame.
+    pub bounds: bool,
+    /// The host's rest tangents (f32 xyzw per vertex, w = ±1 the handedness, as glTF stores
+    /// them), with triangles: the deformer then keeps deformed tangents, each turned with its
+    /// vertex's normal ([`crate::normals::tangents`]).
+    pub rest_tangents: Option<&'a [[f32; 4]]>,
+}
+
+impl<'a> DeformerDescriptor<'a> {
+    /// A deformer of `positions` bound to the rig `rest` by `bindings`, without normals.
+    pub fn new(rest: &'a [Sweep], positions: &'a [[f32; 3]], bindings: BindingSource<'a>) -> DeformerDescriptor<'a> {
+        DeformerDescriptor {
+            rest,
+            positions,
+            bindings,
+            triangles: None,
+            instances: 1,
+            pose_slots: 2,
+            previous_positions: false,
+            bounds: false,
+            rest_tangents: None,
+        }
+    }
+
+    /// The same, keeping the vertex normals of the triangles `triangles` (three indices each).
+    pub fn with_triangles(self, triangles: &'a [u32]) -> DeformerDescriptor<'a> {
+        DeformerDescriptor { triangles: Some(triangles), ..self }
+    }
+
+    /// The same with `instances` instances of the mesh.
+    pub fn with_instances(self, instances: u32) -> DeformerDescriptor<'a> {
+        DeformerDescriptor { instances, ..self }
+    }
+
+    /// The same with `pose_slots` pose slots (default 2).
+    pub fn with_pose_slots(self, pose_slots: u32) -> DeformerDescriptor<'a> {
+        DeformerDescriptor { pose_slots, ..self }
+    }
+
+    /// The same, keeping the previous frame's positions.
+    pub fn with_previous_positions(self) -> DeformerDescriptor<'a> {
+        DeformerDescriptor { previous_positions: true, ..self }
+    }
+
+    /// The same, computing every instance's bounds each frame.
+    pub fn with_bounds(self) -> DeformerDescriptor<'a> {
+        DeformerDescriptor { bounds: true, ..self }
+    }
+
+    /// The same, turning the host's rest tangents (xyzw per vertex) with the normals each
+    /// frame; needs triangles.
+    pub fn with_tangents(self, rest_tangents: &'a [[f32; 4]]) -> DeformerDescriptor<'a> {
+        DeformerDescriptor { rest_tangents: Some(rest_tangents), ..self }
+    }
+
+    /// `Err(Input)` naming the first problem: no vertices, too many, a non-finite position, owners
+    /// or bindings of another length or out of the rig's range, falloff bands not sorted, bound and
+    /// in range, a triangle list not a multiple of three or indexing past the vertices.
+    pub(super) fn check(&self) -> Result<(), GpuError> {
+        check_input(self.rest, self.positions, &self.bindings)?;
+        if self.instances == 0 || self.pose_slots == 0 {
+            return Err(GpuError::Input(format!(
+                "{} instances and {} pose slots: each needs at least one",
+                self.instances, self.pose_slots
+            )));
+        }
+        if self.rest_tangents.is_some() && self.triangles.is_none() {
+            return Err(GpuError::Input("rest tangents need triangles: tangents turn with the normals".into()));
+        }
+        if let Some(triangles) = self.triangles {
+            if triangles.len() % 3 != 0 {
+                return Err(GpuError::Input(format!("{} triangle indices is not a multiple of 3", triangles.len())));
+            }
+            let n = self.positions.len();
+            if let Some(i) = triangles.iter().position(|&v| v as usize >= n) {
+                return Err(GpuError::Input(format!(
+                    "triangle {} refers to vertex {}, but the mesh has {n}",
+                    i / 3,
+                    triangles[i]
+                )));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A triangle list as [`Faces`] (one face of three vertices per triangle), for the normals.
+pub(super) fn triangle_faces(triangles: &[u32]) -> Faces {
+    let offsets = (0..=triangles.len() as u32 / 3).map(|t| 3 * t).collect();
+    Faces { offsets, indices: triangles.to_vec() }
+}
+
+fn check_input(rest: &[Sweep], positions: &[[f32; 3]], bindings: &BindingSource) -> Result<(), GpuError> {
+    if positions.is_empty() {
+        return Err(GpuError::Input("the mesh has no vertices".into()));
+    }
+    if positions.len() >= UNOWNED as usize {
+        return Err(GpuError::Input(format!("{} vertices are more than the GPU path indexes", positions.len())));
+    }
+    if let Some(i) = positions.iter().position(|p| !p.iter().all(|c| c.is_finite())) {
+        return Err(GpuError::Input(format!("vertex {i} has a non-finite position")));
+    }
+    match bindings {
+        BindingSource::Bind { owners, bands } => {
+            if owners.len() != positions.len() {
+                return Err(GpuError::Input(format!("{} owners for {} vertices", owners.len(), positions.len())));
+            }
+            if let Some(i) = owners.iter().position(|&o| o != UNOWNED && o as usize >= rest.len()) {
+                return Err(GpuError::Input(format!(
+                    "vertex {i} is owned by sweep {}, but the rig has {}",
+                    owners[i],
+                    rest.len()
+                )));
+            }
+            super::check_weights(bands, rest.len(), |v| owners.get(v).is_some_and(|&o| o != UNOWNED))?;
+        }
+        BindingSource::Precomputed { bindings, bands } => {
+            if bindings.len() != positions.len() {
+                return Err(GpuError::Input(format!("{} bindings for {} vertices", bindings.len(), positions.len())));
+            }
+            let cells: usize = rest.iter().map(|s| s.segments().len() * s.radius_samples()).sum();
+            if let Some(i) = bindings.iter().position(|b| b.cell != UNOWNED && (b.cell & !BAND_FLAG) as usize >= cells)
+            {
+                return Err(GpuError::Input(format!(
+                    "binding {i} refers to radius cell {} of {cells}",
+                    bindings[i].cell
+                )));
+            }
+            let band = |b: &BandRecord| (b.vertex, b.weight as f64, b.cell);
+            let bound = |v: usize| bindings.get(v).is_some_and(|b| b.cell != UNOWNED);
+            super::check_bands(bands, band, cells, bound)
+                .map_err(|()| GpuError::Input("the band records are not sorted, bound and in range".into()))?;
+        }
+    }
+    Ok(())
+}

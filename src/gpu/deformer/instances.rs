@@ -1,0 +1,212 @@
+//! Instances and pose slots: one bound mesh deformed by N poses in one dispatch.
+//!
+//! Data flow: posed sweeps → **cell records of every instance, one pose slot** (one
+//! `queue.write_buffer` a frame) → deform and band dispatches over (vertices × instances) →
+//! positions, instance i at [`PositionTargets::instance_offset`].
+//!
+//! **Pose slots.** `queue.write_buffer` lands before the whole next submission, so two
+//! set-pose-and-encode pairs recorded for one submission would both see the last pose. Each
+//! encode therefore writes the poses into the next of `pose_slots` slots of the cell buffer and
+//! binds that slot: up to `pose_slots` encodes of one deformer may share a submission, each
+//! with its own pose.
+
+use std::ops::Range;
+
+use wgpu::util::DeviceExt;
+
+use super::super::buffers::POSITION_STRIDE;
+use super::super::chunks::{ChunkLimits, dispatch_grid};
+use super::super::kernels::DeformVariant;
+use crate::coeffs::{CellCoeffs, InstanceParams, UNIFORM_CELL_CAPACITY};
+
+/// With several instances each instance's positions start a multiple of this many vertices
+/// apart (64 × 12 bytes = 3 × 256), so every instance's windows are aligned on any device.
+pub const INSTANCE_ALIGNMENT: u32 = 64;
+
+/// Alignment of the pose slots in the cell buffer: the largest uniform or storage offset
+/// alignment wgpu allows.
+const SLOT_ALIGNMENT: u64 = 256;
+
+/// The per-frame cell records of every instance, `count` slots of them.
+#[derive(Debug)]
+pub(crate) struct CellSlots {
+    pub(crate) buffer: wgpu::Buffer,
+    /// Bytes from one slot to the next.
+    slot_bytes: u64,
+    /// Bytes of one slot's binding (the uniform array's size for the uniform variant).
+    binding_bytes: u64,
+    /// Cell records of one instance.
+    pub(crate) per_instance: u32,
+    pub(crate) count: u32,
+}
+
+impl CellSlots {
+    /// `count` slots, each holding `instances` copies of the rest records `rest`.
+    pub(crate) fn new(
+        device: &wgpu::Device,
+        rest: &[CellCoeffs],
+        instances: u32,
+        variant: DeformVariant,
+        count: u32,
+    ) -> CellSlots {
+        let record = size_of::<CellCoeffs>() as u64;
+        let used = rest.len() as u64 * instances as u64 * record;
+        let binding_bytes = match variant {
+            DeformVariant::Uniform => UNIFORM_CELL_CAPACITY as u64 * record,
+            DeformVariant::Storage => used,
+        };
+        let slot_bytes = binding_bytes.div_ceil(SLOT_ALIGNMENT) * SLOT_ALIGNMENT;
+        let mut contents = vec![0u8; (slot_bytes * count as u64) as usize];
+        let image: &[u8] = bytemuck::cast_slice(rest);
+        for slot in 0..count as usize {
+            for instance in 0..instances as usize {
+                let at = slot * slot_bytes as usize + instance * image.len();
+                contents[at..at + image.len()].copy_from_slice(image);
+            }
+        }
+        let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("sweepffd posed cells"),
+            contents: &contents,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        });
+        CellSlots { buffer, slot_bytes, binding_bytes, per_instance: rest.len() as u32, count }
+    }
+
+    /// The byte offset of slot `slot`.
+    pub(crate) fn offset(&self, slot: u32) -> u64 {
+        slot as u64 * self.slot_bytes
+    }
+
+    /// The binding of slot `slot`.
+    pub(crate) fn binding(&self, slot: u32) -> wgpu::BindingResource<'_> {
+        wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+            buffer: &self.buffer,
+            offset: self.offset(slot),
+            size: wgpu::BufferSize::new(self.binding_bytes),
+        })
+    }
+}
+
+/// The deform kernel's outputs: `buffers` (one, or two for previous positions), each holding
+/// every instance's positions, instance i at [`instance_offset`](PositionTargets::instance_offset).
+#[derive(Debug)]
+pub(crate) struct PositionTargets {
+    pub(crate) buffers: Vec<wgpu::Buffer>,
+    pub(crate) vertex_count: u32,
+    /// Vertices from one instance's positions to the next's.
+    pub(crate) stride: u32,
+    pub(crate) instances: u32,
+    /// The instances of each dispatch: as many as one storage binding of positions holds.
+    pub(crate) groups: Vec<Range<u32>>,
+}
+
+impl PositionTargets {
+    /// The targets of `instances` instances of `vertex_count` vertices, planned for deform
+    /// chunks of at most `max_chunk` vertices.
+    pub(crate) fn plan(vertex_count: u32, instances: u32, max_chunk: u32, limits: &ChunkLimits) -> PositionTargets {
+        let stride = if instances == 1 { vertex_count } else { vertex_count.next_multiple_of(INSTANCE_ALIGNMENT) };
+        // ((g − 1) · stride + max_chunk) · 12 bytes must fit one binding.
+        let budget = limits.max_binding / POSITION_STRIDE;
+        let fitting = budget.saturating_sub(max_chunk as u64) / stride.max(1) as u64 + 1;
+        let per_group = fitting.min(limits.max_workgroups as u64).min(instances as u64).max(1) as u32;
+        let groups =
+            (0..instances.div_ceil(per_group)).map(|g| g * per_group..((g + 1) * per_group).min(instances)).collect();
+        PositionTargets { buffers: Vec::new(), vertex_count, stride, instances, groups }
+    }
+
+    /// Bytes of one position buffer.
+    pub(crate) fn bytes(&self) -> u64 {
+        ((self.instances as u64 - 1) * self.stride as u64 + self.vertex_count as u64) * POSITION_STRIDE
+    }
+
+    /// The byte offset of instance `instance`'s first position.
+    pub(crate) fn instance_offset(&self, instance: u32) -> u64 {
+        instance as u64 * self.stride as u64 * POSITION_STRIDE
+    }
+
+    /// The window of buffer `parity` covering the vertices `range` of the instances `group`.
+    pub(crate) fn window(&self, parity: usize, range: &Range<u32>, group: &Range<u32>) -> wgpu::BindingResource<'_> {
+        let first = self.instance_offset(group.start) + range.start as u64 * POSITION_STRIDE;
+        let vertices = (group.len() as u64 - 1) * self.stride as u64 + range.len() as u64;
+        wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+            buffer: &self.buffers[parity],
+            offset: first,
+            size: wgpu::BufferSize::new(vertices * POSITION_STRIDE),
+        })
+    }
+
+    /// Every instance's rest positions, as the buffers hold them at creation.
+    pub(crate) fn rest_image(&self, rest: &[[f32; 3]]) -> Vec<[f32; 3]> {
+        let mut image = vec![[0.0; 3]; (self.bytes() / POSITION_STRIDE) as usize];
+        for instance in 0..self.instances as usize {
+            let at = instance * self.stride as usize;
+            image[at..at + rest.len()].copy_from_slice(rest);
+        }
+        image
+    }
+}
+
+/// One dispatch over some instances: a bind group per (pose slot, position buffer), view
+/// `slot · buffers + parity`.
+#[derive(Debug)]
+pub(crate) struct InstanceDispatch {
+    groups: Vec<wgpu::BindGroup>,
+    parities: usize,
+    grid: (u32, u32, u32),
+}
+
+/// Which pose slot is bound and which position buffer is written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct View {
+    pub(crate) slot: u32,
+    pub(crate) parity: usize,
+}
+
+impl InstanceDispatch {
+    /// The dispatches of a kernel over `count` threads per instance (the vertices `range`, or
+    /// their band records), one per instance group; `group_of(params, cells, positions)` makes
+    /// the bind group of one view from the dispatch's params, the slot's cells and the window of
+    /// the position buffer.
+    pub(crate) fn plan(
+        device: &wgpu::Device,
+        cells: &CellSlots,
+        targets: &PositionTargets,
+        range: &Range<u32>,
+        count: u32,
+        limits: &ChunkLimits,
+        group_of: impl Fn(&wgpu::Buffer, wgpu::BindingResource<'_>, wgpu::BindingResource<'_>) -> wgpu::BindGroup,
+    ) -> Vec<InstanceDispatch> {
+        targets
+            .groups
+            .iter()
+            .map(|group| {
+                let params = InstanceParams {
+                    vertex_count: count,
+                    cells_per_instance: cells.per_instance,
+                    instance_stride: 3 * targets.stride,
+                    first_instance: group.start,
+                };
+                let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("sweepffd instance params"),
+                    contents: bytemuck::bytes_of(&params),
+                    usage: wgpu::BufferUsages::UNIFORM,
+                });
+                let parities = targets.buffers.len();
+                let mut groups = Vec::with_capacity(cells.count as usize * parities);
+                for slot in 0..cells.count {
+                    for parity in 0..parities {
+                        groups.push(group_of(&params, cells.binding(slot), targets.window(parity, range, group)));
+                    }
+                }
+                let (x, y) = dispatch_grid(count, limits);
+                InstanceDispatch { groups, parities, grid: (x, y, group.len() as u32) }
+            })
+            .collect()
+    }
+
+    /// Records the dispatch of `view` (its pipeline already set).
+    pub(crate) fn encode(&self, pass: &mut wgpu::ComputePass, view: View) {
+        pass.set_bind_group(0, &self.groups[view.slot as usize * self.parities + view.parity], &[]);
+        pass.dispatch_workgroups(self.grid.0, self.grid.1, self.grid.2);
+    }
+}

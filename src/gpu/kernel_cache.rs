@@ -1,0 +1,93 @@
+//! The compute pipelines of one device, compiled the first time a deformer needs each and then
+//! shared by every deformer (and binder) built on the same [`GpuContext`](super::GpuContext)
+//! or its clones: building a deformer compiles nothing after the first.
+
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, OnceLock};
+
+use super::kernels::{self, DeformVariant, Kernel};
+
+/// One lazily compiled kernel.
+type Slot = OnceLock<Arc<Kernel>>;
+
+/// The kernels of one device, each compiled on first use.
+#[derive(Debug, Default)]
+pub(crate) struct KernelCache {
+    bind: Slot,
+    deform: [Slot; 2],
+    band: [Slot; 2],
+    band_pack: Slot,
+    band_flags: Slot,
+    normals: [Slot; 2],
+    bounds: Slot,
+    bounds_finalize: Slot,
+    tangents: Slot,
+    /// Number of pipelines compiled so far.
+    compiled: AtomicUsize,
+}
+
+fn variant_index(variant: DeformVariant) -> usize {
+    match variant {
+        DeformVariant::Uniform => 0,
+        DeformVariant::Storage => 1,
+    }
+}
+
+impl KernelCache {
+    fn get(&self, slot: &Slot, compile: impl FnOnce() -> Kernel) -> Arc<Kernel> {
+        Arc::clone(slot.get_or_init(|| {
+            self.compiled.fetch_add(1, Ordering::Relaxed);
+            Arc::new(compile())
+        }))
+    }
+
+    /// `shaders/bind.wgsl`.
+    pub(crate) fn bind(&self, device: &wgpu::Device) -> Arc<Kernel> {
+        self.get(&self.bind, || kernels::bind(device))
+    }
+
+    /// `shaders/deform.wgsl` for cell records of `variant`.
+    pub(crate) fn deform(&self, device: &wgpu::Device, variant: DeformVariant) -> Arc<Kernel> {
+        self.get(&self.deform[variant_index(variant)], || kernels::deform(device, variant))
+    }
+
+    /// `shaders/band.wgsl` for cell records of `variant`.
+    pub(crate) fn band(&self, device: &wgpu::Device, variant: DeformVariant) -> Arc<Kernel> {
+        self.get(&self.band[variant_index(variant)], || kernels::band(device, variant))
+    }
+
+    /// `shaders/band_pack.wgsl`.
+    pub(crate) fn band_pack(&self, device: &wgpu::Device) -> Arc<Kernel> {
+        self.get(&self.band_pack, || kernels::band_pack(device))
+    }
+
+    /// `shaders/band_flags.wgsl`.
+    pub(crate) fn band_flags(&self, device: &wgpu::Device) -> Arc<Kernel> {
+        self.get(&self.band_flags, || kernels::band_flags(device))
+    }
+
+    /// `shaders/normals.wgsl`, reading the positions through one or two windows.
+    pub(crate) fn normals(&self, device: &wgpu::Device, two_windows: bool) -> Arc<Kernel> {
+        self.get(&self.normals[two_windows as usize], || kernels::normals(device, two_windows))
+    }
+
+    /// `shaders/bounds.wgsl`.
+    pub(crate) fn bounds(&self, device: &wgpu::Device) -> Arc<Kernel> {
+        self.get(&self.bounds, || kernels::bounds(device))
+    }
+
+    /// `shaders/bounds_finalize.wgsl`.
+    pub(crate) fn bounds_finalize(&self, device: &wgpu::Device) -> Arc<Kernel> {
+        self.get(&self.bounds_finalize, || kernels::bounds_finalize(device))
+    }
+
+    /// `shaders/tangents.wgsl`.
+    pub(crate) fn tangents(&self, device: &wgpu::Device) -> Arc<Kernel> {
+        self.get(&self.tangents, || kernels::tangents(device))
+    }
+
+    /// Number of pipelines compiled on this cache so far.
+    pub(crate) fn compiled(&self) -> usize {
+        self.compiled.load(Ordering::Relaxed)
+    }
+}

@@ -1,0 +1,220 @@
+//! Instances: one bound mesh, many poses, one deform dispatch. Each instance's positions equal
+//! the f32 twin's (`src/cpu/deform.rs`) for that instance's pose within the tolerance of
+//! `tests/gpu_equivalence.rs`, and, bit for bit, a one-instance deformer's; several poses in one
+//! command buffer each land; the previous positions are last frame's output, bit for bit.
+
+mod common;
+
+use sweepffd::coeffs::SweepCoefficients;
+use sweepffd::cpu;
+use sweepffd::gpu::{BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, read_bytes};
+use sweepffd::mesh::Mesh;
+use sweepffd::rig::Rig;
+use sweepffd::sweep::Sweep;
+use sweepffd::synthetic::{BendTwistTaper, Tube, attached_tube_rig, tube_rig};
+
+/// As `tests/gpu_equivalence.rs`: positions within this share of the bounding-box diagonal.
+const POSITION_TOLERANCE: f64 = 1e-5;
+
+/// Pose `i` of `n`: bend, twist and taper each different.
+fn pose(rig: &Rig, i: usize, n: usize) -> Vec<Sweep> {
+    let f = i as f64 / n as f64;
+    let keys = BendTwistTaper { bend: 2.0 * f - 1.0, twist: 3.0 * f, taper: 0.5 + f }.keys(rig);
+    rig.pose(&keys).unwrap()
+}
+
+fn descriptor<'a>(rig: &'a Rig, positions: &'a [[f32; 3]], owners: &'a [u32]) -> DeformerDescriptor<'a> {
+    DeformerDescriptor::new(rig.rest(), positions, BindingSource::Bind { owners, bands: &[] })
+}
+
+/// Every instance's latest positions, read back in one copy.
+fn read_all(context: &GpuContext, deformer: &GpuDeformer, buffer: &wgpu::Buffer) -> Vec<Vec<f32>> {
+    let n = deformer.instance_count();
+    let size = deformer.instance_offset(n - 1) + deformer.vertex_count() as u64 * 12;
+    let all: Vec<f32> = bytemuck::pod_collect_to_vec(&read_bytes(context, buffer, 0, size).unwrap());
+    (0..n)
+        .map(|i| {
+            let at = (deformer.instance_offset(i) / 4) as usize;
+            all[at..at + 3 * deformer.vertex_count() as usize].to_vec()
+        })
+        .collect()
+}
+
+fn encode_and_submit(context: &GpuContext, deformer: &mut GpuDeformer) {
+    let mut encoder = context.device.create_command_encoder(&Default::default());
+    deformer.encode(&mut encoder);
+    context.queue.submit([encoder.finish()]);
+}
+
+#[test]
+fn a_thousand_instances_of_a_10k_mesh_match_the_twin_pose_by_pose() {
+    let Some(context) = common::gpu() else { return };
+    let tube = Tube::with_vertex_count(10_000, 4.0, 0.5);
+    let (mesh, rig) = (tube.mesh(), tube_rig(&tube, 8, 16));
+    let owners = rig.owners(&mesh, "tube").unwrap();
+    let positions = sweepffd::gpu::rest_positions(&mesh.positions);
+    let n = 1000;
+    let mut deformer = GpuDeformer::new(context, &descriptor(&rig, &positions, &owners).with_instances(n)).unwrap();
+    let poses: Vec<Vec<Sweep>> = (0..n as usize).map(|i| pose(&rig, i, n as usize)).collect();
+    for (i, posed) in poses.iter().enumerate() {
+        deformer.set_pose(i as u32, posed).unwrap();
+    }
+    encode_and_submit(context, &mut deformer);
+    let gpu = read_all(context, &deformer, deformer.positions());
+    let bindings = deformer.read_bindings().unwrap();
+    let diagonal = mesh.diagonal();
+    let mut coefficients = SweepCoefficients::new(rig.rest());
+    let (mut worst, mut worst_ulps, mut worst_at) = (0.0f32, 0, (0, 0));
+    for (i, posed) in poses.iter().enumerate() {
+        coefficients.update(posed).unwrap();
+        let mut twin = cpu::packed(&mesh.positions);
+        cpu::deform::deform(&coefficients.cells, &bindings, &mut twin);
+        let (error, ulps, at) = common::worst_f32(&gpu[i], &twin);
+        worst_ulps = worst_ulps.max(ulps);
+        if error > worst {
+            (worst, worst_at) = (error, (i, at / 3));
+        }
+    }
+    println!(
+        "1000 instances × 10k vertices: max |Δ| {worst:.3e} ({:.2e} × diagonal), max {worst_ulps} ULP, worst instance {} vertex {}",
+        worst as f64 / diagonal,
+        worst_at.0,
+        worst_at.1
+    );
+    assert!(
+        worst as f64 <= POSITION_TOLERANCE * diagonal,
+        "max |Δposition| {worst:e} at instance {} vertex {}",
+        worst_at.0,
+        worst_at.1
+    );
+    // The instances really differ: the first and last poses move a vertex differently.
+    assert_ne!(gpu[0], gpu[n as usize - 1]);
+}
+
+/// Each instance of an `n`-instance deformer equals, bit for bit, a one-instance deformer posed
+/// the same, with falloff bands (the band kernel per instance) and normals.
+fn instances_equal_single_deformers(n: u32, mesh: &Mesh, rig: &Rig) {
+    let Some(context) = common::gpu() else { return };
+    let owners = rig.owners(mesh, "tube").unwrap();
+    let bands = rig.band_weights(mesh, &owners);
+    assert!(!bands.is_empty(), "the rig has falloff bands");
+    let positions = sweepffd::gpu::rest_positions(&mesh.positions);
+    let triangles: Vec<u32> = mesh.faces.triangles().flatten().collect();
+    let base = DeformerDescriptor::new(rig.rest(), &positions, BindingSource::Bind { owners: &owners, bands: &bands })
+        .with_triangles(&triangles);
+    let mut many = GpuDeformer::new(context, &base.with_instances(n)).unwrap();
+    let mut one = GpuDeformer::new(context, &base).unwrap();
+    for i in 0..n {
+        many.set_pose(i, &pose(rig, i as usize, n as usize)).unwrap();
+    }
+    encode_and_submit(context, &mut many);
+    for i in 0..n {
+        one.deform(&pose(rig, i as usize, n as usize)).unwrap();
+        let positions = many.read_instance_positions(i).unwrap();
+        assert!(positions == one.read_positions().unwrap(), "{n} instances: instance {i}'s positions");
+        let normals = many.read_instance_normals(i).unwrap();
+        assert!(normals == one.read_normals().unwrap(), "{n} instances: instance {i}'s normals");
+    }
+}
+
+#[test]
+fn few_instances_with_falloff_bands_in_the_uniform_variant_equal_single_deformers_bit_for_bit() {
+    // 7 knot intervals × 8 samples × 5 instances = 280 cells: the uniform variant.
+    let tube = Tube::with_vertex_count(3_000, 4.0, 0.5);
+    instances_equal_single_deformers(5, &tube.mesh(), &attached_tube_rig(&tube, 8, 8, 0.6));
+}
+
+#[test]
+fn many_instances_with_falloff_bands_in_the_storage_variant_equal_single_deformers_bit_for_bit() {
+    // 7 × 16 × 40 = 4,480 cells: past the uniform variant's 409.
+    let tube = Tube::with_vertex_count(3_000, 4.0, 0.5);
+    instances_equal_single_deformers(40, &tube.mesh(), &attached_tube_rig(&tube, 8, 16, 0.6));
+}
+
+#[test]
+fn a_pose_for_an_instance_that_does_not_exist_is_refused() {
+    let Some(context) = common::gpu() else { return };
+    let tube = Tube::with_vertex_count(1_000, 4.0, 0.5);
+    let (mesh, rig) = (tube.mesh(), tube_rig(&tube, 4, 8));
+    let owners = rig.owners(&mesh, "tube").unwrap();
+    let positions = sweepffd::gpu::rest_positions(&mesh.positions);
+    let mut deformer = GpuDeformer::new(context, &descriptor(&rig, &positions, &owners).with_instances(3)).unwrap();
+    assert!(deformer.set_pose(2, &pose(&rig, 1, 2)).is_ok());
+    let error = deformer.set_pose(3, &pose(&rig, 1, 2)).unwrap_err();
+    assert!(error.to_string().contains("instance 3"), "{error}");
+    let error = GpuDeformer::new(context, &descriptor(&rig, &positions, &owners).with_instances(0)).unwrap_err();
+    assert!(error.to_string().contains("at least one"), "{error}");
+}
+
+#[test]
+fn two_poses_encoded_into_one_command_buffer_each_land() {
+    let Some(context) = common::gpu() else { return };
+    let tube = Tube::with_vertex_count(2_000, 4.0, 0.5);
+    let (mesh, rig) = (tube.mesh(), tube_rig(&tube, 6, 8));
+    let owners = rig.owners(&mesh, "tube").unwrap();
+    let positions = sweepffd::gpu::rest_positions(&mesh.positions);
+    let (a, b) = (pose(&rig, 1, 4), pose(&rig, 3, 4));
+    let mut reference = GpuDeformer::new(context, &descriptor(&rig, &positions, &owners)).unwrap();
+    reference.deform(&a).unwrap();
+    let expected_a = reference.read_positions().unwrap();
+    reference.deform(&b).unwrap();
+    let expected_b = reference.read_positions().unwrap();
+    assert_ne!(expected_a, expected_b);
+
+    let mut deformer = GpuDeformer::new(context, &descriptor(&rig, &positions, &owners)).unwrap();
+    assert!(deformer.pose_slots() >= 2);
+    let size = deformer.vertex_count() as u64 * 12;
+    let copy = |label| {
+        context.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(label),
+            size,
+            usage: wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        })
+    };
+    let (first, second) = (copy("first pose"), copy("second pose"));
+    let mut encoder = context.device.create_command_encoder(&Default::default());
+    deformer.set_pose(0, &a).unwrap();
+    deformer.encode(&mut encoder);
+    encoder.copy_buffer_to_buffer(deformer.positions(), 0, &first, 0, size);
+    deformer.set_pose(0, &b).unwrap();
+    deformer.encode(&mut encoder);
+    encoder.copy_buffer_to_buffer(deformer.positions(), 0, &second, 0, size);
+    context.queue.submit([encoder.finish()]);
+    let read = |buffer| -> Vec<f32> { bytemuck::pod_collect_to_vec(&read_bytes(context, buffer, 0, size).unwrap()) };
+    assert!(read(&first) == expected_a, "the first encode saw another pose than its own");
+    assert!(read(&second) == expected_b, "the second encode saw another pose than its own");
+}
+
+#[test]
+fn previous_positions_are_last_frames_output_bit_for_bit() {
+    let Some(context) = common::gpu() else { return };
+    let tube = Tube::with_vertex_count(2_000, 4.0, 0.5);
+    let (mesh, rig) = (tube.mesh(), attached_tube_rig(&tube, 6, 8, 0.0));
+    let owners = rig.owners(&mesh, "tube").unwrap();
+    let positions = sweepffd::gpu::rest_positions(&mesh.positions);
+    let descriptor = descriptor(&rig, &positions, &owners).with_instances(3).with_previous_positions();
+    let mut deformer = GpuDeformer::new(context, &descriptor).unwrap();
+    let rest: Vec<f32> = positions.iter().flatten().copied().collect();
+    for i in 0..3 {
+        assert!(deformer.read_previous_positions(i).unwrap().unwrap() == rest, "before any frame");
+    }
+    let mut last: Vec<Vec<f32>> = (0..3).map(|_| rest.clone()).collect();
+    for frame in 0..4 {
+        for i in 0..3 {
+            deformer.set_pose(i, &pose(&rig, frame + i as usize, 7)).unwrap();
+        }
+        encode_and_submit(context, &mut deformer);
+        for i in 0..3 {
+            let previous = deformer.read_previous_positions(i).unwrap().unwrap();
+            assert!(previous == last[i as usize], "frame {frame}, instance {i}: previous is not last frame's");
+            let current = deformer.read_instance_positions(i).unwrap();
+            assert_ne!(current, previous, "frame {frame}, instance {i}: the pose moved nothing");
+            // The unbound first ring keeps its rest position in both buffers.
+            assert_eq!(current[..3 * tube.around as usize], rest[..3 * tube.around as usize]);
+            last[i as usize] = current;
+        }
+    }
+    assert!(deformer.previous_positions().is_some());
+    assert!(GpuDeformer::new(context, &descriptor.with_instances(1)).unwrap().previous_positions().is_some());
+}
