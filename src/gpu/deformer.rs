@@ -7,7 +7,7 @@ pub(crate) mod instances;
 mod set_bands;
 
 pub use bounds::BOUNDS_STRIDE;
-pub use descriptor::DeformerDescriptor;
+pub use descriptor::{DeformerDescriptor, OutputBuffer};
 pub use instances::INSTANCE_ALIGNMENT;
 
 use std::ops::Range;
@@ -171,6 +171,7 @@ impl GpuDeformer {
             pose_slots,
             previous_positions,
             bounds,
+            output,
         } = *descriptor;
         let faces = triangles.map(triangle_faces);
         let device = &context.device;
@@ -187,13 +188,42 @@ impl GpuDeformer {
         let max_chunk = ranges.iter().map(|r| r.len() as u32).max().unwrap_or(0);
         let mut targets = PositionTargets::plan(vertex_count, instances, max_chunk, &limits);
         check_fits("the position buffer", targets.bytes(), limits.max_buffer)?;
+        if let Some(output) = output {
+            if output.offset % limits.offset_alignment != 0 {
+                return Err(GpuError::Input(format!(
+                    "the output offset {} is not a multiple of the device's storage offset alignment {}",
+                    output.offset, limits.offset_alignment
+                )));
+            }
+            if output.offset + targets.bytes() > output.buffer.size() {
+                return Err(GpuError::Input(format!(
+                    "the output buffer holds {} bytes; the positions need {} from offset {}",
+                    output.buffer.size(),
+                    targets.bytes(),
+                    output.offset
+                )));
+            }
+        }
 
         let out_of_memory = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
         let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let coefficients = SweepCoefficients::new(rest);
         let image = targets.rest_image(positions);
-        targets.buffers =
-            (0..if previous_positions { 2 } else { 1 }).map(|_| upload_positions(device, &image)).collect();
+        // The bind kernel reads the rest positions from instance 0 of the first buffer, or from
+        // an upload of their own when the application supplies the output.
+        let rest_buffer = match output {
+            Some(output) => {
+                context.queue.write_buffer(output.buffer, output.offset, bytemuck::cast_slice(&image));
+                targets.buffers = vec![output.buffer.clone()];
+                targets.offset = output.offset;
+                upload_positions(device, positions)
+            }
+            None => {
+                targets.buffers =
+                    (0..if previous_positions { 2 } else { 1 }).map(|_| upload_positions(device, &image)).collect();
+                targets.buffers[0].clone()
+            }
+        };
         drop(image);
         let total_cells = coefficients.cells.len() * instances as usize;
         let variant = DeformVariant::for_cells(total_cells, &device_limits);
@@ -226,8 +256,7 @@ impl GpuDeformer {
                         }
                         let binder = binder.as_ref().expect("made for BindingSource::Bind");
                         // Instance 0 of the first position buffer holds the rest positions.
-                        let rest_positions = &targets.buffers[0];
-                        binder.encode(&mut encoder, &range, &owners, rest_positions, &buffer, &limits, None);
+                        binder.encode(&mut encoder, &range, &owners, &rest_buffer, &buffer, &limits, None);
                         buffer
                     }
                     BindingSource::Precomputed { bindings: all, .. } => {
@@ -265,8 +294,10 @@ impl GpuDeformer {
         let rebanding = Rebanding::new(rest, binder, members, &bound);
         let normals = match faces {
             Some(faces) => {
-                let offsets: Vec<u64> = (0..instances).map(|i| targets.instance_offset(i)).collect();
-                Some(NormalsStage::new(context, &faces, &targets.buffers, &offsets, vertex_count, &limits)?)
+                let base = targets.offset;
+                let offsets: Vec<u64> = (0..instances).map(|i| targets.instance_offset(i) - base).collect();
+                let buffers = &targets.buffers;
+                Some(NormalsStage::new(context, &faces, buffers, base, &offsets, vertex_count, &limits)?)
             }
             None => None,
         };
@@ -308,6 +339,19 @@ impl GpuDeformer {
     /// Number of vertices.
     pub fn vertex_count(&self) -> u32 {
         self.vertex_count
+    }
+
+    /// The device limits a deformer needs, for an application to request on its own device:
+    /// `Limits::downlevel_defaults()` with 6 storage buffers per shader stage (the bind
+    /// kernel's). Meshes and instance counts larger than those limits' bindings are split into
+    /// more dispatches; rigs and instances of up to 409 cells in all use the faster uniform
+    /// cell records when `max_uniform_buffer_binding_size` reaches 64 KiB. Request the
+    /// adapter's own limits for the largest meshes (the position buffer is one buffer).
+    pub fn required_limits() -> wgpu::Limits {
+        wgpu::Limits {
+            max_storage_buffers_per_shader_stage: STORAGE_BUFFERS_NEEDED,
+            ..wgpu::Limits::downlevel_defaults()
+        }
     }
 
     /// Number of instances: poses of the one bound mesh deformed together.
@@ -505,7 +549,11 @@ impl GpuDeformer {
             return Err(GpuError::Input(format!("instance {instance} of {}", self.targets.instances)));
         }
         let size = self.vertex_count as u64 * POSITION_STRIDE;
-        let bytes = read_bytes(&self.context, buffer, self.targets.instance_offset(instance), size)?;
+        // The normals are laid out as the deformer's own positions, from byte 0.
+        let is_positions = self.targets.buffers.iter().any(|b| b == buffer);
+        let base = if is_positions { 0 } else { self.targets.offset };
+        let offset = self.targets.instance_offset(instance) - base;
+        let bytes = read_bytes(&self.context, buffer, offset, size)?;
         Ok(bytemuck::pod_collect_to_vec(&bytes))
     }
 

@@ -29,6 +29,7 @@ impl NormalsStage {
         context: &GpuContext,
         faces: &Faces,
         positions: &[wgpu::Buffer],
+        positions_base: u64,
         instance_offsets: &[u64],
         vertex_count: u32,
         limits: &ChunkLimits,
@@ -91,9 +92,9 @@ impl NormalsStage {
             .map(|positions| {
                 let mut dispatches = Vec::with_capacity(instance_offsets.len() * tables.len());
                 for &base in instance_offsets {
-                    let low = at(positions, base, split.max(1));
+                    let low = at(positions, positions_base + base, split.max(1));
                     let high = if split < vertex_count {
-                        at(positions, base + split as u64 * POSITION_STRIDE, vertex_count - split)
+                        at(positions, positions_base + base + split as u64 * POSITION_STRIDE, vertex_count - split)
                     } else {
                         low.clone()
                     };

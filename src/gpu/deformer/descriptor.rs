@@ -38,6 +38,25 @@ pub struct DeformerDescriptor<'a> {
     pub previous_positions: bool,
     /// Whether to compute every instance's bounds on the GPU each frame.
     pub bounds: bool,
+    /// The application's own buffer to write the positions into, instead of one of the
+    /// deformer's.
+    pub output: Option<OutputBuffer<'a>>,
+}
+
+/// An application buffer the deformer writes its positions into (an engine's own vertex buffer):
+/// instance i's positions, tightly packed f32 xyz, at `offset + instance_offset(i) − offset`
+/// bytes, i.e. laid out from `offset` exactly as the deformer's own buffer. The buffer needs
+/// `STORAGE | COPY_DST` usage (`COPY_SRC` to read it back), `offset` a multiple of the device's
+/// `min_storage_buffer_offset_alignment`, and room for every instance. The deformer writes the
+/// rest positions into it at creation (unbound vertices are never written again) and the
+/// deformed ones each frame; the application must not write that range. Not combined with
+/// previous positions, which need two buffers of the deformer's own.
+#[derive(Clone, Copy, Debug)]
+pub struct OutputBuffer<'a> {
+    /// The buffer.
+    pub buffer: &'a wgpu::Buffer,
+    /// Byte offset of instance 0's first position.
+    pub offset: u64,
 }
 
 impl<'a> DeformerDescriptor<'a> {
@@ -52,6 +71,7 @@ impl<'a> DeformerDescriptor<'a> {
             pose_slots: 2,
             previous_positions: false,
             bounds: false,
+            output: None,
         }
     }
 
@@ -80,6 +100,11 @@ impl<'a> DeformerDescriptor<'a> {
         DeformerDescriptor { bounds: true, ..self }
     }
 
+    /// The same, writing the positions into the application's `buffer` from byte `offset` on.
+    pub fn with_output(self, buffer: &'a wgpu::Buffer, offset: u64) -> DeformerDescriptor<'a> {
+        DeformerDescriptor { output: Some(OutputBuffer { buffer, offset }), ..self }
+    }
+
     /// `Err(Input)` naming the first problem: no vertices, too many, a non-finite position, owners
     /// or bindings of another length or out of the rig's range, falloff bands not sorted, bound and
     /// in range, a triangle list not a multiple of three or indexing past the vertices.
@@ -90,6 +115,18 @@ impl<'a> DeformerDescriptor<'a> {
                 "{} instances and {} pose slots: each needs at least one",
                 self.instances, self.pose_slots
             )));
+        }
+        if let Some(output) = self.output {
+            if self.previous_positions {
+                return Err(GpuError::Input("previous positions need the deformer's own position buffers".into()));
+            }
+            let needed = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
+            if !output.buffer.usage().contains(needed) {
+                return Err(GpuError::Input(format!(
+                    "the output buffer has usage {:?}; the deformer needs STORAGE | COPY_DST",
+                    output.buffer.usage()
+                )));
+            }
         }
         if let Some(triangles) = self.triangles {
             if triangles.len() % 3 != 0 {
