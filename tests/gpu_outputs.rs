@@ -163,3 +163,71 @@ fn a_device_with_only_the_required_limits_runs_the_deformer() {
         assert!(error <= 1e-5 * diagonal, "instance {i}: {error:e} ({ulps} ULP) at vertex {}", at / 3);
     }
 }
+
+/// A rig of one sweep owning only the rings `rings` of `tube` (circular keys over them), with
+/// falloff `falloff` into the rest of the mesh.
+fn partial_tube_rig(tube: &Tube, rings: std::ops::Range<u32>, falloff: f64) -> sweepffd::rig::Rig {
+    use glam::{DQuat, DVec3};
+    use sweepffd::rig::{Rig, RigSweep, VertexSelection};
+    let step = tube.length / (tube.rings - 1) as f64;
+    let owned: Vec<u32> = (rings.start * tube.around..rings.end * tube.around).collect();
+    let (z0, z1) = (rings.start as f64 * step, (rings.end - 1) as f64 * step);
+    let keys = (0..5)
+        .map(|i| {
+            let z = z0 + (z1 - z0) * i as f64 / 4.0;
+            sweepffd::sweep::Key::circle(DVec3::new(0.0, 0.0, z), DQuat::IDENTITY, tube.radius, 8)
+        })
+        .collect();
+    let sweep = RigSweep {
+        name: "tube".to_string(),
+        vertices: Some(VertexSelection::Indices(owned)),
+        keys,
+        knots: None,
+        parent: None,
+        falloff,
+    };
+    Rig::new(vec![sweep]).unwrap()
+}
+
+#[test]
+fn dispatching_only_the_bound_ranges_gives_the_full_dispatchs_positions_normals_and_bounds_bit_for_bit() {
+    let Some(context) = common::gpu() else { return };
+    let tube = Tube::with_vertex_count(40_000, 4.0, 0.5);
+    let mesh = tube.mesh();
+    let middle = tube.rings / 2;
+    let rig = partial_tube_rig(&tube, middle..middle + tube.rings * 3 / 100, 0.02);
+    let owners = rig.owners(&mesh, "tube").unwrap();
+    let bands = rig.band_weights(&mesh, &owners);
+    let positions = sweepffd::gpu::rest_positions(&mesh.positions);
+    let triangles: Vec<u32> = mesh.faces.triangles().flatten().collect();
+    let n = 3;
+    let base = DeformerDescriptor::new(rig.rest(), &positions, BindingSource::Bind { owners: &owners, bands: &bands })
+        .with_triangles(&triangles)
+        .with_instances(n)
+        .with_bounds();
+    let mut partial = GpuDeformer::new(context, &base).unwrap();
+    let mut full = GpuDeformer::new(context, &base.with_full_dispatch()).unwrap();
+    let covered = partial.dispatched_vertex_count();
+    println!("bound ranges cover {covered} of {} vertices ({} bands)", mesh.positions.len(), bands.len());
+    assert!((covered as usize) < mesh.positions.len() / 10, "{covered} vertices dispatched");
+    assert_eq!(full.dispatched_vertex_count() as usize, mesh.positions.len());
+    assert_eq!(partial.read_bindings().unwrap(), full.read_bindings().unwrap());
+    for frame in 0..2 {
+        for deformer in [&mut partial, &mut full] {
+            for i in 0..n {
+                deformer.set_pose(i, &posed(&rig, i + frame)).unwrap();
+            }
+            let mut encoder = context.device.create_command_encoder(&Default::default());
+            deformer.encode(&mut encoder);
+            context.queue.submit([encoder.finish()]);
+        }
+        for i in 0..n {
+            let p = partial.read_instance_positions(i).unwrap();
+            assert!(p == full.read_instance_positions(i).unwrap(), "frame {frame} instance {i}: positions");
+            assert_ne!(p, positions.iter().flatten().copied().collect::<Vec<f32>>(), "the pose moved nothing");
+            let normals = partial.read_instance_normals(i).unwrap();
+            assert!(normals == full.read_instance_normals(i).unwrap(), "frame {frame} instance {i}: normals");
+        }
+        assert_eq!(partial.read_bounds().unwrap(), full.read_bounds().unwrap(), "frame {frame}: bounds");
+    }
+}

@@ -23,7 +23,7 @@ use super::buffers::{
     BINDING_STRIDE, POSITION_STRIDE, binding_buffer_with, cells_buffer, check_fits, empty_binding_buffer,
     upload_positions,
 };
-use super::chunks::{ChunkLimits, uniform_chunks};
+use super::chunks::{ChunkLimits, bound_chunks, uniform_chunks};
 use super::kernels::{DeformVariant, Kernel};
 use super::normals_pass::NormalsStage;
 use super::readback::{read_bytes, wait};
@@ -172,6 +172,7 @@ impl GpuDeformer {
             previous_positions,
             bounds,
             output,
+            full_dispatch,
         } = *descriptor;
         let faces = triangles.map(triangle_faces);
         let device = &context.device;
@@ -184,7 +185,16 @@ impl GpuDeformer {
         }
         let limits = ChunkLimits::of(&device_limits);
         let vertex_count = positions.len() as u32;
-        let ranges = uniform_chunks(vertex_count, BINDING_STRIDE, &limits);
+        let bound: Vec<bool> = match bindings {
+            BindingSource::Bind { owners, .. } => owners.iter().map(|&o| o != UNOWNED).collect(),
+            BindingSource::Precomputed { bindings, .. } => bindings.iter().map(|b| b.cell != UNOWNED).collect(),
+        };
+        // Only the ranges holding bound vertices are bound and deformed; the others keep the
+        // rest positions written below, untouched from then on.
+        let ranges = match full_dispatch {
+            true => uniform_chunks(vertex_count, BINDING_STRIDE, &limits),
+            false => bound_chunks(&bound, BINDING_STRIDE, &limits),
+        };
         let max_chunk = ranges.iter().map(|r| r.len() as u32).max().unwrap_or(0);
         let mut targets = PositionTargets::plan(vertex_count, instances, max_chunk, &limits);
         check_fits("the position buffer", targets.bytes(), limits.max_buffer)?;
@@ -282,14 +292,9 @@ impl GpuDeformer {
             stage.set_records(context, plan, &windows, source, binder.as_ref(), &mut encoder);
             stage
         });
-        let (members, bound): (Vec<BandMember>, Vec<bool>) = match bindings {
-            BindingSource::Bind { owners, bands } => {
-                (bands.iter().map(BandMember::of_weight).collect(), owners.iter().map(|&o| o != UNOWNED).collect())
-            }
-            BindingSource::Precomputed { bindings, bands } => (
-                bands.iter().map(BandMember::of_record).collect(),
-                bindings.iter().map(|b| b.cell != UNOWNED).collect(),
-            ),
+        let members: Vec<BandMember> = match bindings {
+            BindingSource::Bind { bands, .. } => bands.iter().map(BandMember::of_weight).collect(),
+            BindingSource::Precomputed { bands, .. } => bands.iter().map(BandMember::of_record).collect(),
         };
         let rebanding = Rebanding::new(rest, binder, members, &bound);
         let normals = match faces {
@@ -396,7 +401,14 @@ impl GpuDeformer {
         self.normals.as_ref().map(|n| &n.buffer)
     }
 
-    /// Number of deform dispatches (1 unless the mesh exceeds a device limit).
+    /// Number of vertices the deform dispatches cover (per instance): the ranges holding bound
+    /// vertices, or every vertex with [`full_dispatch`](DeformerDescriptor::full_dispatch).
+    pub fn dispatched_vertex_count(&self) -> u32 {
+        self.chunks.iter().map(|chunk| chunk.range.len() as u32).sum()
+    }
+
+    /// Number of deform dispatches (1 unless the mesh exceeds a device limit or the bound
+    /// vertices lie in several ranges; 0 if none is bound).
     pub fn chunk_count(&self) -> usize {
         self.chunks.iter().map(|chunk| chunk.dispatches.len()).sum()
     }
@@ -571,18 +583,21 @@ impl GpuDeformer {
     /// Device memory that grows with the mesh: bindings, positions and the falloff bands' records,
     /// bytes (normals and the rig's cell records excluded).
     pub fn device_bytes(&self) -> u64 {
-        let bindings = self.vertex_count as u64 * BINDING_STRIDE;
+        let bindings = self.dispatched_vertex_count() as u64 * BINDING_STRIDE;
         let positions = self.targets.bytes() * self.targets.buffers.len() as u64;
         bindings + positions + self.bands.as_ref().map_or(0, BandStage::device_bytes)
     }
 
     /// Copies the bindings back to the CPU (blocking), one per vertex; band vertices carry
-    /// [`BAND_FLAG`] in their cell.
+    /// [`BAND_FLAG`] in their cell; vertices outside every dispatch are unbound ([`UNOWNED`],
+    /// as the bind kernel writes it).
     pub fn read_bindings(&self) -> Result<Vec<GpuBinding>, GpuError> {
-        let mut bindings = Vec::with_capacity(self.vertex_count as usize);
+        let unbound = GpuBinding { cell: UNOWNED, s: 0.0, phi: 0.0, d: 0.0, h: 0.0 };
+        let mut bindings = vec![unbound; self.vertex_count as usize];
         for chunk in &self.chunks {
             let bytes = read_bytes(&self.context, &chunk.bindings, 0, chunk.range.len() as u64 * BINDING_STRIDE)?;
-            bindings.extend(bytemuck::pod_collect_to_vec::<u8, GpuBinding>(&bytes));
+            let range = chunk.range.start as usize..chunk.range.end as usize;
+            bindings[range].copy_from_slice(&bytemuck::pod_collect_to_vec::<u8, GpuBinding>(&bytes));
         }
         Ok(bindings)
     }

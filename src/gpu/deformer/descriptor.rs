@@ -41,6 +41,10 @@ pub struct DeformerDescriptor<'a> {
     /// The application's own buffer to write the positions into, instead of one of the
     /// deformer's.
     pub output: Option<OutputBuffer<'a>>,
+    /// Whether the deform dispatches cover every vertex rather than only the ranges holding
+    /// bound ones (the default): the same positions, bit for bit, more work. For tests and
+    /// benches.
+    pub full_dispatch: bool,
 }
 
 /// An application buffer the deformer writes its positions into (an engine's own vertex buffer):
@@ -72,6 +76,7 @@ impl<'a> DeformerDescriptor<'a> {
             previous_positions: false,
             bounds: false,
             output: None,
+            full_dispatch: false,
         }
     }
 
@@ -103,6 +108,11 @@ impl<'a> DeformerDescriptor<'a> {
     /// The same, writing the positions into the application's `buffer` from byte `offset` on.
     pub fn with_output(self, buffer: &'a wgpu::Buffer, offset: u64) -> DeformerDescriptor<'a> {
         DeformerDescriptor { output: Some(OutputBuffer { buffer, offset }), ..self }
+    }
+
+    /// The same, dispatching over every vertex (see [`full_dispatch`](Self::full_dispatch)).
+    pub fn with_full_dispatch(self) -> DeformerDescriptor<'a> {
+        DeformerDescriptor { full_dispatch: true, ..self }
     }
 
     /// `Err(Input)` naming the first problem: no vertices, too many, a non-finite position, owners
