@@ -7,6 +7,7 @@
 //! timestamp queries where the device supports them, wall-clock otherwise.
 
 mod cpu;
+mod engine;
 mod gpu;
 mod scene;
 mod size;
@@ -16,6 +17,7 @@ mod timer;
 use serde::Serialize;
 
 pub use cpu::CpuBench;
+pub use engine::{INSTANCES, PARTIAL_SHARE};
 pub use gpu::GpuBench;
 pub use scene::{BAND_FRACTION, BenchScene, FalloffKind};
 pub use size::{BenchSizeError, MIN_BENCH_VERTICES, check_runs, tube_vertex_count};
@@ -55,6 +57,12 @@ pub struct BenchReport {
     pub device_bytes_per_vertex: Option<f64>,
     /// The falloff comparisons (none for a mesh and rig of the user's).
     pub falloff: Vec<FalloffReport>,
+    /// Deform time of [`INSTANCES`] instances of an n / [`INSTANCES`]-vertex tube over that of
+    /// one tube of as many vertices in all, same rig, same round (`null` on the CPU).
+    pub instances_over_single: Option<f64>,
+    /// Deform and normals time of an n-vertex tube whose rig owns [`PARTIAL_SHARE`] of its
+    /// vertices over that of a rig owning every vertex, same round (`null` on the CPU).
+    pub partial_over_full: Option<f64>,
     /// Runs each median is taken over.
     pub runs: usize,
     /// Whether GPU times come from timestamp queries.
@@ -86,6 +94,10 @@ struct Round {
     lbs: f64,
     frame: f64,
     normals: f64,
+    /// Deform pass of the instances and of the single mesh (GPU only).
+    instances: (f64, f64),
+    /// Deform and normals passes of the partial and the full rig (GPU only).
+    partial: (f64, f64),
 }
 
 /// The median of `samples` (which it sorts).
