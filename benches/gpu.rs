@@ -44,6 +44,20 @@ fn gpu(c: &mut Criterion) {
         group.bench_function(BenchmarkId::new("normals", n), |b| {
             b.iter_custom(|i| gpu_time(i, || bench.time_normals()))
         });
+        // Baselines in the same run: one mesh of as many vertices as the instances together, and
+        // a rig owning every vertex.
+        group.bench_function(BenchmarkId::new("instances_1000", n), |b| {
+            b.iter_custom(|i| gpu_time(i, || bench.time_instances().map(|t| t.0)))
+        });
+        group.bench_function(BenchmarkId::new("instances_single_mesh", n), |b| {
+            b.iter_custom(|i| gpu_time(i, || bench.time_instances().map(|t| t.1)))
+        });
+        group.bench_function(BenchmarkId::new("partial_rig_3pct", n), |b| {
+            b.iter_custom(|i| gpu_time(i, || bench.time_partial().map(|t| t.0)))
+        });
+        group.bench_function(BenchmarkId::new("partial_full_rig", n), |b| {
+            b.iter_custom(|i| gpu_time(i, || bench.time_partial().map(|t| t.1)))
+        });
     }
     group.finish();
 }

@@ -55,3 +55,179 @@ fn per_instance_bounds_equal_the_cpu_extremes_of_the_read_back_positions_exactly
         assert_ne!(bounds[0], bounds[n as usize - 1], "frame {frame}: the instances' bounds differ");
     }
 }
+
+fn tube_deformer_inputs() -> (Tube, sweepffd::mesh::Mesh, sweepffd::rig::Rig) {
+    let tube = Tube::with_vertex_count(3_000, 4.0, 0.5);
+    let (mesh, rig) = (tube.mesh(), attached_tube_rig(&tube, 6, 8, 0.5));
+    (tube, mesh, rig)
+}
+
+fn posed(rig: &sweepffd::rig::Rig, i: u32) -> Vec<sweepffd::sweep::Sweep> {
+    let keys = BendTwistTaper { bend: 0.4 * i as f64, twist: 0.3, taper: 0.8 }.keys(rig);
+    rig.pose(&keys).unwrap()
+}
+
+#[test]
+fn positions_written_into_an_app_buffer_at_an_offset_equal_the_deformers_own_bit_for_bit() {
+    let Some(context) = common::gpu() else { return };
+    let (_, mesh, rig) = tube_deformer_inputs();
+    let owners = rig.owners(&mesh, "tube").unwrap();
+    let bands = rig.band_weights(&mesh, &owners);
+    let positions = sweepffd::gpu::rest_positions(&mesh.positions);
+    let triangles: Vec<u32> = mesh.faces.triangles().flatten().collect();
+    let n = 3;
+    let base = DeformerDescriptor::new(rig.rest(), &positions, BindingSource::Bind { owners: &owners, bands: &bands })
+        .with_triangles(&triangles)
+        .with_instances(n)
+        .with_bounds();
+    let mut own = GpuDeformer::new(context, &base).unwrap();
+    let offset = 3 * context.device.limits().min_storage_buffer_offset_alignment as u64;
+    let bytes = own.instance_offset(n - 1) + own.vertex_count() as u64 * 12;
+    let app = context.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("the app's vertex buffer"),
+        size: offset + bytes + 64,
+        usage: wgpu::BufferUsages::VERTEX
+            | wgpu::BufferUsages::STORAGE
+            | wgpu::BufferUsages::COPY_DST
+            | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    let sentinel = vec![0xa5u8; app.size() as usize];
+    context.queue.write_buffer(&app, 0, &sentinel);
+    let mut supplied = GpuDeformer::new(context, &base.with_output(&app, offset)).unwrap();
+    assert_eq!(supplied.positions(), &app);
+    for deformer in [&mut own, &mut supplied] {
+        for i in 0..n {
+            deformer.set_pose(i, &posed(&rig, i)).unwrap();
+        }
+        let mut encoder = context.device.create_command_encoder(&Default::default());
+        deformer.encode(&mut encoder);
+        context.queue.submit([encoder.finish()]);
+    }
+    for i in 0..n {
+        assert!(
+            supplied.read_instance_positions(i).unwrap() == own.read_instance_positions(i).unwrap(),
+            "instance {i}"
+        );
+        assert!(supplied.read_instance_normals(i).unwrap() == own.read_instance_normals(i).unwrap(), "normals {i}");
+    }
+    assert_eq!(supplied.read_bounds().unwrap(), own.read_bounds().unwrap());
+    let all = sweepffd::gpu::read_bytes(context, &app, 0, app.size()).unwrap();
+    assert!(all[..offset as usize].iter().all(|&b| b == 0xa5), "bytes before the offset were written");
+    assert!(all[(offset + bytes) as usize..].iter().all(|&b| b == 0xa5), "bytes past the positions were written");
+    let misaligned = base.with_output(&app, offset + 4);
+    assert!(GpuDeformer::new(context, &misaligned).unwrap_err().to_string().contains("alignment"));
+    let too_small = base.with_instances(n + 1).with_output(&app, offset);
+    assert!(GpuDeformer::new(context, &too_small).unwrap_err().to_string().contains("bytes"));
+}
+
+#[test]
+fn a_device_with_only_the_required_limits_runs_the_deformer() {
+    let Some(context) = common::gpu() else { return };
+    let limits = GpuDeformer::required_limits();
+    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle());
+    let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions::default())).unwrap();
+    let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+        label: Some("required limits"),
+        required_features: wgpu::Features::empty(),
+        required_limits: limits.clone(),
+        experimental_features: wgpu::ExperimentalFeatures::disabled(),
+        memory_hints: wgpu::MemoryHints::Performance,
+        trace: wgpu::Trace::Off,
+    }))
+    .unwrap();
+    let small = sweepffd::gpu::GpuContext::from_device(device, queue, adapter.get_info());
+    let (_, mesh, rig) = tube_deformer_inputs();
+    let owners = rig.owners(&mesh, "tube").unwrap();
+    let bands = rig.band_weights(&mesh, &owners);
+    let positions = sweepffd::gpu::rest_positions(&mesh.positions);
+    let descriptor =
+        DeformerDescriptor::new(rig.rest(), &positions, BindingSource::Bind { owners: &owners, bands: &bands })
+            .with_instances(4)
+            .with_bounds();
+    let mut on_small = GpuDeformer::new(&small, &descriptor).unwrap();
+    let mut on_full = GpuDeformer::new(context, &descriptor).unwrap();
+    for deformer in [&mut on_small, &mut on_full] {
+        for i in 0..4 {
+            deformer.set_pose(i, &posed(&rig, i)).unwrap();
+        }
+        let context = deformer.context().clone();
+        let mut encoder = context.device.create_command_encoder(&Default::default());
+        deformer.encode(&mut encoder);
+        context.queue.submit([encoder.finish()]);
+    }
+    let diagonal = mesh.diagonal() as f32;
+    for i in 0..4 {
+        let (a, b) = (on_small.read_instance_positions(i).unwrap(), on_full.read_instance_positions(i).unwrap());
+        let (error, ulps, at) = common::worst_f32(&a, &b);
+        assert!(error <= 1e-5 * diagonal, "instance {i}: {error:e} ({ulps} ULP) at vertex {}", at / 3);
+    }
+}
+
+/// A rig of one sweep owning only the rings `rings` of `tube` (circular keys over them), with
+/// falloff `falloff` into the rest of the mesh.
+fn partial_tube_rig(tube: &Tube, rings: std::ops::Range<u32>, falloff: f64) -> sweepffd::rig::Rig {
+    use glam::{DQuat, DVec3};
+    use sweepffd::rig::{Rig, RigSweep, VertexSelection};
+    let step = tube.length / (tube.rings - 1) as f64;
+    let owned: Vec<u32> = (rings.start * tube.around..rings.end * tube.around).collect();
+    let (z0, z1) = (rings.start as f64 * step, (rings.end - 1) as f64 * step);
+    let keys = (0..5)
+        .map(|i| {
+            let z = z0 + (z1 - z0) * i as f64 / 4.0;
+            sweepffd::sweep::Key::circle(DVec3::new(0.0, 0.0, z), DQuat::IDENTITY, tube.radius, 8)
+        })
+        .collect();
+    let sweep = RigSweep {
+        name: "tube".to_string(),
+        vertices: Some(VertexSelection::Indices(owned)),
+        keys,
+        knots: None,
+        parent: None,
+        falloff,
+    };
+    Rig::new(vec![sweep]).unwrap()
+}
+
+#[test]
+fn dispatching_only_the_bound_ranges_gives_the_full_dispatchs_positions_normals_and_bounds_bit_for_bit() {
+    let Some(context) = common::gpu() else { return };
+    let tube = Tube::with_vertex_count(40_000, 4.0, 0.5);
+    let mesh = tube.mesh();
+    let middle = tube.rings / 2;
+    let rig = partial_tube_rig(&tube, middle..middle + tube.rings * 3 / 100, 0.02);
+    let owners = rig.owners(&mesh, "tube").unwrap();
+    let bands = rig.band_weights(&mesh, &owners);
+    let positions = sweepffd::gpu::rest_positions(&mesh.positions);
+    let triangles: Vec<u32> = mesh.faces.triangles().flatten().collect();
+    let n = 3;
+    let base = DeformerDescriptor::new(rig.rest(), &positions, BindingSource::Bind { owners: &owners, bands: &bands })
+        .with_triangles(&triangles)
+        .with_instances(n)
+        .with_bounds();
+    let mut partial = GpuDeformer::new(context, &base).unwrap();
+    let mut full = GpuDeformer::new(context, &base.with_full_dispatch()).unwrap();
+    let covered = partial.dispatched_vertex_count();
+    println!("bound ranges cover {covered} of {} vertices ({} bands)", mesh.positions.len(), bands.len());
+    assert!((covered as usize) < mesh.positions.len() / 10, "{covered} vertices dispatched");
+    assert_eq!(full.dispatched_vertex_count() as usize, mesh.positions.len());
+    assert_eq!(partial.read_bindings().unwrap(), full.read_bindings().unwrap());
+    for frame in 0..2 {
+        for deformer in [&mut partial, &mut full] {
+            for i in 0..n {
+                deformer.set_pose(i, &posed(&rig, i + frame)).unwrap();
+            }
+            let mut encoder = context.device.create_command_encoder(&Default::default());
+            deformer.encode(&mut encoder);
+            context.queue.submit([encoder.finish()]);
+        }
+        for i in 0..n {
+            let p = partial.read_instance_positions(i).unwrap();
+            assert!(p == full.read_instance_positions(i).unwrap(), "frame {frame} instance {i}: positions");
+            assert_ne!(p, positions.iter().flatten().copied().collect::<Vec<f32>>(), "the pose moved nothing");
+            let normals = partial.read_instance_normals(i).unwrap();
+            assert!(normals == full.read_instance_normals(i).unwrap(), "frame {frame} instance {i}: normals");
+        }
+        assert_eq!(partial.read_bounds().unwrap(), full.read_bounds().unwrap(), "frame {frame}: bounds");
+    }
+}

@@ -53,6 +53,8 @@ impl CpuBench {
         let mut rounds = Vec::with_capacity(runs);
         for round in 0..WARMUP + runs {
             let times = Round {
+                instances: (0.0, 1.0),
+                partial: (0.0, 1.0),
                 deform: time(&mut || {
                     deform_vertices(scene.rig.rest(), &scene.posed, &self.bindings, &scene.mesh.positions, &mut out)
                 }),
@@ -96,6 +98,8 @@ impl CpuBench {
             normals_ms: 0.0,
             readback_ms: None,
             device_bytes_per_vertex: None,
+            instances_over_single: None,
+            partial_over_full: None,
             falloff: scene
                 .with_falloff
                 .iter()

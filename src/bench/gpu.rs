@@ -5,6 +5,7 @@ use std::time::Instant;
 
 use wgpu::util::DeviceExt;
 
+use super::engine::EngineComparisons;
 use super::skinning::{skinning_influences, skinning_joints};
 use super::{BenchReport, BenchScene, FalloffKind, FalloffReport, GpuTimer, Round, best_of, median, median_of};
 use crate::coeffs::{BAND_FLAG, DispatchParams, SweepCoefficients};
@@ -37,6 +38,8 @@ pub struct GpuBench {
     copy: Dispatches,
     skinning: Dispatches,
     timer: Option<GpuTimer>,
+    /// Instances against one mesh, a partial rig against a full one.
+    engine: EngineComparisons,
 }
 
 impl GpuBench {
@@ -137,6 +140,7 @@ impl GpuBench {
             copy: (copy_kernel, copy_dispatches),
             skinning: (skinning_kernel, skinning_dispatches),
             timer: GpuTimer::new(context),
+            engine: EngineComparisons::new(context, n as usize)?,
         })
     }
 
@@ -175,6 +179,18 @@ impl GpuBench {
         time(&self.context, self.timer.as_ref(), |encoder, timer| {
             deformer.encode_deform_pass(encoder, timer.and_then(|t| t.writes(true, true)))
         })
+    }
+
+    /// Seconds of the deform pass of [`INSTANCES`](super::INSTANCES) instances of a small tube
+    /// and of one tube of as many vertices in all, back to back.
+    pub fn time_instances(&mut self) -> Result<(f64, f64), GpuError> {
+        self.engine.time_instances(&self.context, self.timer.as_ref())
+    }
+
+    /// Seconds of the deform and normals passes of a rig owning
+    /// [`PARTIAL_SHARE`](super::PARTIAL_SHARE) of a tube and of one owning all, back to back.
+    pub fn time_partial(&mut self) -> Result<(f64, f64), GpuError> {
+        self.engine.time_partial(&self.context, self.timer.as_ref())
     }
 
     /// Seconds of the copy baseline.
@@ -232,6 +248,8 @@ impl GpuBench {
                 lbs: best_of(BEST_OF, || self.time_skinning())?,
                 frame: best_of(BEST_OF, || self.time_frame())?,
                 normals: best_of(BEST_OF, || self.time_normals())?,
+                instances: self.engine.time_instances(&self.context, self.timer.as_ref())?,
+                partial: self.engine.time_partial(&self.context, self.timer.as_ref())?,
             };
             if round >= WARMUP {
                 rounds.push(times);
@@ -275,6 +293,8 @@ impl GpuBench {
             readback_ms: Some(readback * 1e3),
             device_bytes_per_vertex: Some(device_bytes as f64 / n),
             falloff,
+            instances_over_single: Some(column(|r| r.instances.0 / r.instances.1)),
+            partial_over_full: Some(column(|r| r.partial.0 / r.partial.1)),
             runs,
             timestamps: self.timer.is_some(),
         })
@@ -289,7 +309,7 @@ impl GpuBench {
 
 /// Records with `record`, submits, waits, and returns the timestamped seconds (wall-clock
 /// without timestamp queries).
-fn time(
+pub(super) fn time(
     context: &GpuContext,
     timer: Option<&GpuTimer>,
     record: impl FnOnce(&mut wgpu::CommandEncoder, Option<&GpuTimer>),

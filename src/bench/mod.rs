@@ -7,6 +7,7 @@
 //! timestamp queries where the device supports them, wall-clock otherwise.
 
 mod cpu;
+mod engine;
 mod frame;
 mod gpu;
 mod scene;
@@ -17,6 +18,7 @@ mod timer;
 use serde::Serialize;
 
 pub use cpu::CpuBench;
+pub use engine::{INSTANCES, PARTIAL_SHARE};
 pub use frame::{FRAME_CPU_FRAMES, FRAME_WARMUP, FrameBench, host_frame_seconds, median_host_frame_ms};
 pub use gpu::GpuBench;
 pub use scene::{BAND_FRACTION, BenchScene, FalloffKind};
@@ -61,6 +63,12 @@ pub struct BenchReport {
     pub device_bytes_per_vertex: Option<f64>,
     /// The falloff comparisons (none for a mesh and rig of the user's).
     pub falloff: Vec<FalloffReport>,
+    /// Deform time of [`INSTANCES`] instances of an n / [`INSTANCES`]-vertex tube over that of
+    /// one tube of as many vertices in all, same rig, same round (`null` on the CPU).
+    pub instances_over_single: Option<f64>,
+    /// Deform and normals time of an n-vertex tube whose rig owns [`PARTIAL_SHARE`] of its
+    /// vertices over that of a rig owning every vertex, same round (`null` on the CPU).
+    pub partial_over_full: Option<f64>,
     /// Runs each median is taken over.
     pub runs: usize,
     /// Whether GPU times come from timestamp queries.
@@ -92,6 +100,10 @@ struct Round {
     lbs: f64,
     frame: f64,
     normals: f64,
+    /// Deform pass of the instances and of the single mesh (GPU only).
+    instances: (f64, f64),
+    /// Deform and normals passes of the partial and the full rig (GPU only).
+    partial: (f64, f64),
 }
 
 /// The median of `samples` (which it sorts).

@@ -92,6 +92,17 @@ fn print_table(r: &BenchReport) {
     if let Some(bytes) = r.device_bytes_per_vertex {
         println!("  device memory for bindings + positions: {bytes:.1} bytes per vertex");
     }
+    if let (Some(instances), Some(partial)) = (r.instances_over_single, r.partial_over_full) {
+        println!(
+            "  instances {instances:>10.2} × ({} instances of n / {} vertices over one n-vertex mesh, deform)",
+            sweepffd::bench::INSTANCES,
+            sweepffd::bench::INSTANCES
+        );
+        println!(
+            "  partial   {partial:>10.2} × (a rig owning {:.0}% of the vertices over one owning all, deform + normals)",
+            100.0 * sweepffd::bench::PARTIAL_SHARE
+        );
+    }
     for f in &r.falloff {
         let into = match f.kind {
             FalloffKind::Rest => "the rest position",

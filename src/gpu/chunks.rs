@@ -52,6 +52,44 @@ pub fn uniform_chunks(vertex_count: u32, stride: u64, limits: &ChunkLimits) -> V
     (0..vertex_count.div_ceil(cap)).map(|c| c * cap..((c + 1) * cap).min(vertex_count)).collect()
 }
 
+/// Bound vertices closer than this are dispatched together (the unbound ones between them are
+/// skipped by the kernel), so that a scattered rig does not make many tiny dispatches.
+pub const MERGE_GAP: u32 = 4096;
+
+/// Vertex ranges covering every vertex with `bound[v]` and as few others as alignment and
+/// [`MERGE_GAP`] allow, sorted, each starting on an aligned offset and small enough that a stream
+/// of `stride` bytes a vertex fits one binding, as [`uniform_chunks`]'. Empty if nothing is
+/// bound.
+pub fn bound_chunks(bound: &[bool], stride: u64, limits: &ChunkLimits) -> Vec<Range<u32>> {
+    let granule = limits.granule();
+    let n = bound.len() as u32;
+    let mut runs: Vec<Range<u32>> = Vec::new();
+    let mut v = 0u32;
+    while v < n {
+        if !bound[v as usize] {
+            v += 1;
+            continue;
+        }
+        let start = v;
+        while v < n && bound[v as usize] {
+            v += 1;
+        }
+        let (start, end) = (start / granule * granule, v.next_multiple_of(granule).min(n));
+        match runs.last_mut() {
+            Some(last) if start <= last.end.saturating_add(MERGE_GAP) => last.end = end,
+            _ => runs.push(start..end),
+        }
+    }
+    let fit = (limits.max_chunk_bytes() / stride).min(u32::MAX as u64) as u32;
+    let cap = (fit / granule * granule).max(granule);
+    runs.into_iter()
+        .flat_map(|run| {
+            (0..run.len().div_ceil(cap as usize) as u32)
+                .map(move |c| run.start + c * cap..(run.start + (c + 1) * cap).min(run.end))
+        })
+        .collect()
+}
+
 /// Consecutive vertex ranges for the normals kernel: each chunk's rows of the adjacency
 /// (`offsets`, one more entry than vertices; `entry_bytes` per adjacency entry), its own
 /// offsets and its window of the normals (12 bytes a vertex) each fit one binding. `None` if a
@@ -114,6 +152,31 @@ mod tests {
             assert!((chunk.len() as u64) * 20 <= LAVAPIPE.max_binding);
             assert_eq!((chunk.start as u64 * 12) % 256, 0, "positions window offset");
         }
+    }
+
+    #[test]
+    fn bound_chunks_cover_the_bound_runs_aligned_and_merge_close_ones() {
+        let limits = ChunkLimits { offset_alignment: 256, ..LAVAPIPE };
+        let mut bound = vec![false; 100_000];
+        bound[1000..1100].fill(true);
+        bound[3000..3010].fill(true); // within MERGE_GAP of the first run
+        bound[50_000..50_001].fill(true);
+        let chunks = bound_chunks(&bound, 20, &limits);
+        assert_eq!(chunks, vec![960..3008 + 64, 49_984..50_048]);
+        for (v, _) in bound.iter().enumerate().filter(|(_, b)| **b) {
+            assert!(chunks.iter().any(|c| c.contains(&(v as u32))), "vertex {v}");
+        }
+        assert!(bound_chunks(&[false; 10], 20, &limits).is_empty());
+        assert_eq!(bound_chunks(&[true; 10], 20, &limits), vec![0..10]);
+    }
+
+    #[test]
+    fn bound_chunks_split_a_long_run_within_the_binding_limit() {
+        let limits = ChunkLimits { max_binding: 64 * 20 * 10, ..LAVAPIPE };
+        let chunks = bound_chunks(&vec![true; 10_000], 20, &limits);
+        assert_eq!(chunks.first().unwrap().start, 0);
+        assert_eq!(chunks.last().unwrap().end, 10_000);
+        assert!(chunks.iter().all(|c| c.len() as u64 * 20 <= limits.max_binding && c.start % 64 == 0));
     }
 
     #[test]

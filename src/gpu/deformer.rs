@@ -7,7 +7,7 @@ pub(crate) mod instances;
 mod set_bands;
 
 pub use bounds::BOUNDS_STRIDE;
-pub use descriptor::DeformerDescriptor;
+pub use descriptor::{DeformerDescriptor, OutputBuffer};
 pub use instances::INSTANCE_ALIGNMENT;
 
 use std::ops::Range;
@@ -23,7 +23,7 @@ use super::buffers::{
     BINDING_STRIDE, POSITION_STRIDE, binding_buffer_with, cells_buffer, check_fits, empty_binding_buffer,
     upload_positions,
 };
-use super::chunks::{ChunkLimits, uniform_chunks};
+use super::chunks::{ChunkLimits, bound_chunks, uniform_chunks};
 use super::kernels::{DeformVariant, Kernel};
 use super::normals_pass::NormalsStage;
 use super::readback::{read_bytes, wait};
@@ -176,6 +176,8 @@ impl GpuDeformer {
             previous_positions,
             bounds,
             rest_tangents,
+            output,
+            full_dispatch,
         } = *descriptor;
         let faces = triangles.map(triangle_faces);
         let device = &context.device;
@@ -188,17 +190,55 @@ impl GpuDeformer {
         }
         let limits = ChunkLimits::of(&device_limits);
         let vertex_count = positions.len() as u32;
-        let ranges = uniform_chunks(vertex_count, BINDING_STRIDE, &limits);
+        let bound: Vec<bool> = match bindings {
+            BindingSource::Bind { owners, .. } => owners.iter().map(|&o| o != UNOWNED).collect(),
+            BindingSource::Precomputed { bindings, .. } => bindings.iter().map(|b| b.cell != UNOWNED).collect(),
+        };
+        // Only the ranges holding bound vertices are bound and deformed; the others keep the
+        // rest positions written below, untouched from then on.
+        let ranges = match full_dispatch {
+            true => uniform_chunks(vertex_count, BINDING_STRIDE, &limits),
+            false => bound_chunks(&bound, BINDING_STRIDE, &limits),
+        };
         let max_chunk = ranges.iter().map(|r| r.len() as u32).max().unwrap_or(0);
         let mut targets = PositionTargets::plan(vertex_count, instances, max_chunk, &limits);
         check_fits("the position buffer", targets.bytes(), limits.max_buffer)?;
+        if let Some(output) = output {
+            if output.offset % limits.offset_alignment != 0 {
+                return Err(GpuError::Input(format!(
+                    "the output offset {} is not a multiple of the device's storage offset alignment {}",
+                    output.offset, limits.offset_alignment
+                )));
+            }
+            if output.offset + targets.bytes() > output.buffer.size() {
+                return Err(GpuError::Input(format!(
+                    "the output buffer holds {} bytes; the positions need {} from offset {}",
+                    output.buffer.size(),
+                    targets.bytes(),
+                    output.offset
+                )));
+            }
+        }
 
         let out_of_memory = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
         let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let coefficients = SweepCoefficients::new(rest);
         let image = targets.rest_image(positions);
-        targets.buffers =
-            (0..if previous_positions { 2 } else { 1 }).map(|_| upload_positions(device, &image)).collect();
+        // The bind kernel reads the rest positions from instance 0 of the first buffer, or from
+        // an upload of their own when the application supplies the output.
+        let rest_buffer = match output {
+            Some(output) => {
+                context.queue.write_buffer(output.buffer, output.offset, bytemuck::cast_slice(&image));
+                targets.buffers = vec![output.buffer.clone()];
+                targets.offset = output.offset;
+                upload_positions(device, positions)
+            }
+            None => {
+                targets.buffers =
+                    (0..if previous_positions { 2 } else { 1 }).map(|_| upload_positions(device, &image)).collect();
+                targets.buffers[0].clone()
+            }
+        };
         drop(image);
         let total_cells = coefficients.cells.len() * instances as usize;
         let variant = DeformVariant::for_cells(total_cells, &device_limits);
@@ -231,8 +271,7 @@ impl GpuDeformer {
                         }
                         let binder = binder.as_ref().expect("made for BindingSource::Bind");
                         // Instance 0 of the first position buffer holds the rest positions.
-                        let rest_positions = &targets.buffers[0];
-                        binder.encode(&mut encoder, &range, &owners, rest_positions, &buffer, &limits, None);
+                        binder.encode(&mut encoder, &range, &owners, &rest_buffer, &buffer, &limits, None);
                         buffer
                     }
                     BindingSource::Precomputed { bindings: all, .. } => {
@@ -258,14 +297,9 @@ impl GpuDeformer {
             stage.set_records(context, plan, &windows, source, binder.as_ref(), &mut encoder);
             stage
         });
-        let (members, bound): (Vec<BandMember>, Vec<bool>) = match bindings {
-            BindingSource::Bind { owners, bands } => {
-                (bands.iter().map(BandMember::of_weight).collect(), owners.iter().map(|&o| o != UNOWNED).collect())
-            }
-            BindingSource::Precomputed { bindings, bands } => (
-                bands.iter().map(BandMember::of_record).collect(),
-                bindings.iter().map(|b| b.cell != UNOWNED).collect(),
-            ),
+        let members: Vec<BandMember> = match bindings {
+            BindingSource::Bind { bands, .. } => bands.iter().map(BandMember::of_weight).collect(),
+            BindingSource::Precomputed { bands, .. } => bands.iter().map(BandMember::of_record).collect(),
         };
         let rebanding = Rebanding::new(rest, binder, members, &bound);
         // One normals (and tangents) stage per position buffer, each recording its rest pass now;
@@ -275,7 +309,9 @@ impl GpuDeformer {
         if let Some(faces) = &faces {
             for buffer in &targets.buffers {
                 let sizes = (vertex_count, targets.stride);
-                let stage = NormalsStage::new(context, &mut encoder, faces, buffer, sizes, instances, &bound, &limits)?;
+                let positions = (buffer, targets.offset);
+                let stage =
+                    NormalsStage::new(context, &mut encoder, faces, positions, sizes, instances, &bound, &limits)?;
                 if let Some(rest_tangents) = rest_tangents {
                     let stage =
                         TangentStage::new(context, &mut encoder, rest_tangents, &stage, sizes, instances, &limits)?;
@@ -323,6 +359,19 @@ impl GpuDeformer {
         self.vertex_count
     }
 
+    /// The device limits a deformer needs, for an application to request on its own device:
+    /// `Limits::downlevel_defaults()` with 6 storage buffers per shader stage (the bind
+    /// kernel's). Meshes and instance counts larger than those limits' bindings are split into
+    /// more dispatches; rigs and instances of up to 409 cells in all use the faster uniform
+    /// cell records when `max_uniform_buffer_binding_size` reaches 64 KiB. Request the
+    /// adapter's own limits for the largest meshes (the position buffer is one buffer).
+    pub fn required_limits() -> wgpu::Limits {
+        wgpu::Limits {
+            max_storage_buffers_per_shader_stage: STORAGE_BUFFERS_NEEDED,
+            ..wgpu::Limits::downlevel_defaults()
+        }
+    }
+
     /// Number of instances: poses of the one bound mesh deformed together.
     pub fn instance_count(&self) -> u32 {
         self.targets.instances
@@ -365,7 +414,14 @@ impl GpuDeformer {
         self.normals.get(self.current).map(|n| &n.buffer)
     }
 
-    /// Number of deform dispatches (1 unless the mesh exceeds a device limit).
+    /// Number of vertices the deform dispatches cover (per instance): the ranges holding bound
+    /// vertices, or every vertex with [`full_dispatch`](DeformerDescriptor::full_dispatch).
+    pub fn dispatched_vertex_count(&self) -> u32 {
+        self.chunks.iter().map(|chunk| chunk.range.len() as u32).sum()
+    }
+
+    /// Number of deform dispatches (1 unless the mesh exceeds a device limit or the bound
+    /// vertices lie in several ranges; 0 if none is bound).
     pub fn chunk_count(&self) -> usize {
         self.chunks.iter().map(|chunk| chunk.dispatches.len()).sum()
     }
@@ -551,7 +607,11 @@ impl GpuDeformer {
             return Err(GpuError::Input(format!("instance {instance} of {}", self.targets.instances)));
         }
         let size = self.vertex_count as u64 * POSITION_STRIDE;
-        let bytes = read_bytes(&self.context, buffer, self.targets.instance_offset(instance), size)?;
+        // The normals are laid out as the deformer's own positions, from byte 0.
+        let is_positions = self.targets.buffers.iter().any(|b| b == buffer);
+        let base = if is_positions { 0 } else { self.targets.offset };
+        let offset = self.targets.instance_offset(instance) - base;
+        let bytes = read_bytes(&self.context, buffer, offset, size)?;
         Ok(bytemuck::pod_collect_to_vec(&bytes))
     }
 
@@ -569,18 +629,21 @@ impl GpuDeformer {
     /// Device memory that grows with the mesh: bindings, positions and the falloff bands' records,
     /// bytes (normals and the rig's cell records excluded).
     pub fn device_bytes(&self) -> u64 {
-        let bindings = self.vertex_count as u64 * BINDING_STRIDE;
+        let bindings = self.dispatched_vertex_count() as u64 * BINDING_STRIDE;
         let positions = self.targets.bytes() * self.targets.buffers.len() as u64;
         bindings + positions + self.bands.as_ref().map_or(0, BandStage::device_bytes)
     }
 
     /// Copies the bindings back to the CPU (blocking), one per vertex; band vertices carry
-    /// [`BAND_FLAG`] in their cell.
+    /// [`BAND_FLAG`] in their cell; vertices outside every dispatch are unbound ([`UNOWNED`],
+    /// as the bind kernel writes it).
     pub fn read_bindings(&self) -> Result<Vec<GpuBinding>, GpuError> {
-        let mut bindings = Vec::with_capacity(self.vertex_count as usize);
+        let unbound = GpuBinding { cell: UNOWNED, s: 0.0, phi: 0.0, d: 0.0, h: 0.0 };
+        let mut bindings = vec![unbound; self.vertex_count as usize];
         for chunk in &self.chunks {
             let bytes = read_bytes(&self.context, &chunk.bindings, 0, chunk.range.len() as u64 * BINDING_STRIDE)?;
-            bindings.extend(bytemuck::pod_collect_to_vec::<u8, GpuBinding>(&bytes));
+            let range = chunk.range.start as usize..chunk.range.end as usize;
+            bindings[range].copy_from_slice(&bytemuck::pod_collect_to_vec::<u8, GpuBinding>(&bytes));
         }
         Ok(bindings)
     }

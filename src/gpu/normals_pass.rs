@@ -122,14 +122,16 @@ struct NormalsPlan<'a> {
 impl NormalsStage {
     /// Plans the normals of `instances` copies of the mesh of `faces` over `vertex_count`
     /// vertices each, `stride` vertices apart (instance k's vertex v at k · stride + v), read
-    /// from `positions`; `moves[v]` says whether vertex v of the mesh can move (a sweep owns it). Records the pass over every vertex (the rest normals) into
-    /// `encoder`; the stage's own dispatches then cover only the vertices whose normal can change.
+    /// from `positions` from byte `positions_base` on; `moves[v]` says whether vertex v of the
+    /// mesh can move (a sweep owns it). Records the pass over every vertex (the rest normals)
+    /// into `encoder`; the stage's own dispatches then cover only the vertices whose normal can
+    /// change.
     #[expect(clippy::too_many_arguments, reason = "the stage's inputs, each used once")]
     pub(crate) fn new(
         context: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
         faces: &Faces,
-        positions: &wgpu::Buffer,
+        (positions, positions_base): (&wgpu::Buffer, u64),
         (vertex_count, stride): (u32, u32),
         instances: u32,
         moves: &[bool],
@@ -161,11 +163,11 @@ impl NormalsStage {
             kernel: &kernel,
             adjacency: &adjacency,
             stride,
-            low: window(positions, &(0..split.max(1)), POSITION_STRIDE),
+            low: based(positions, positions_base, 0..split.max(1)),
             high: if split < total {
-                window(positions, &(split..total), POSITION_STRIDE)
+                based(positions, positions_base, split..total)
             } else {
-                window(positions, &(0..split.max(1)), POSITION_STRIDE)
+                based(positions, positions_base, 0..split.max(1))
             },
             split,
             normals: &buffer,
@@ -226,6 +228,15 @@ impl NormalsPlan<'_> {
             .collect();
         Ok(dispatches)
     }
+}
+
+/// The window of the positions `vertices` of `buffer`, whose vertex 0 is at byte `base`.
+fn based(buffer: &wgpu::Buffer, base: u64, vertices: Range<u32>) -> wgpu::BindingResource<'_> {
+    wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+        buffer,
+        offset: base + vertices.start as u64 * POSITION_STRIDE,
+        size: wgpu::BufferSize::new(vertices.len() as u64 * POSITION_STRIDE),
+    })
 }
 
 #[cfg(test)]

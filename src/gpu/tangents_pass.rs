@@ -209,7 +209,7 @@ mod tests {
             &context,
             &mut encoder,
             &mesh.faces,
-            &positions,
+            (&positions, 0),
             (n as u32, n as u32),
             3,
             &moves,

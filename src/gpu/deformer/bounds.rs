@@ -22,10 +22,10 @@ use crate::cpu::bounds::{EMPTY, reduce};
 /// Bytes of one instance's bounds: min.xyz, 0, max.xyz, 0 as f32.
 pub const BOUNDS_STRIDE: u64 = 32;
 
-/// The bounds kernels, their buffers and dispatches.
-/// One dispatch: its bind group and (x, y, z) workgroup grid.
-type GridDispatch = (wgpu::BindGroup, (u32, u32, u32));
+/// One reduction dispatch: its bind group and grid (x, y, instances).
+type Dispatch = (wgpu::BindGroup, (u32, u32, u32));
 
+/// The bounds kernels, their buffers and dispatches.
 #[derive(Debug)]
 pub(crate) struct BoundsStage {
     reduce: Arc<Kernel>,
@@ -34,7 +34,7 @@ pub(crate) struct BoundsStage {
     extremes: wgpu::Buffer,
     pub(crate) buffer: wgpu::Buffer,
     /// `dispatches[p]` read position buffer p: (bind group, grid x, y, z).
-    dispatches: Vec<Vec<GridDispatch>>,
+    dispatches: Vec<Vec<Dispatch>>,
     finalize_dispatch: (wgpu::BindGroup, (u32, u32)),
 }
 

@@ -42,6 +42,29 @@ pub struct DeformerDescriptor<'a> {
     /// them), with triangles: the deformer then keeps deformed tangents, each turned with its
     /// vertex's normal ([`crate::normals::tangents`]).
     pub rest_tangents: Option<&'a [[f32; 4]]>,
+    /// The application's own buffer to write the positions into, instead of one of the
+    /// deformer's.
+    pub output: Option<OutputBuffer<'a>>,
+    /// Whether the deform dispatches cover every vertex rather than only the ranges holding
+    /// bound ones (the default): the same positions, bit for bit, more work. For tests and
+    /// benches.
+    pub full_dispatch: bool,
+}
+
+/// An application buffer the deformer writes its positions into (an engine's own vertex buffer):
+/// instance i's positions, tightly packed f32 xyz, at `offset + instance_offset(i) − offset`
+/// bytes, i.e. laid out from `offset` exactly as the deformer's own buffer. The buffer needs
+/// `STORAGE | COPY_DST` usage (`COPY_SRC` to read it back), `offset` a multiple of the device's
+/// `min_storage_buffer_offset_alignment`, and room for every instance. The deformer writes the
+/// rest positions into it at creation (unbound vertices are never written again) and the
+/// deformed ones each frame; the application must not write that range. Not combined with
+/// previous positions, which need two buffers of the deformer's own.
+#[derive(Clone, Copy, Debug)]
+pub struct OutputBuffer<'a> {
+    /// The buffer.
+    pub buffer: &'a wgpu::Buffer,
+    /// Byte offset of instance 0's first position.
+    pub offset: u64,
 }
 
 impl<'a> DeformerDescriptor<'a> {
@@ -57,6 +80,8 @@ impl<'a> DeformerDescriptor<'a> {
             previous_positions: false,
             bounds: false,
             rest_tangents: None,
+            output: None,
+            full_dispatch: false,
         }
     }
 
@@ -91,6 +116,16 @@ impl<'a> DeformerDescriptor<'a> {
         DeformerDescriptor { rest_tangents: Some(rest_tangents), ..self }
     }
 
+    /// The same, writing the positions into the application's `buffer` from byte `offset` on.
+    pub fn with_output(self, buffer: &'a wgpu::Buffer, offset: u64) -> DeformerDescriptor<'a> {
+        DeformerDescriptor { output: Some(OutputBuffer { buffer, offset }), ..self }
+    }
+
+    /// The same, dispatching over every vertex (see [`full_dispatch`](Self::full_dispatch)).
+    pub fn with_full_dispatch(self) -> DeformerDescriptor<'a> {
+        DeformerDescriptor { full_dispatch: true, ..self }
+    }
+
     /// `Err(Input)` naming the first problem: no vertices, too many, a non-finite position, owners
     /// or bindings of another length or out of the rig's range, falloff bands not sorted, bound and
     /// in range, a triangle list not a multiple of three or indexing past the vertices.
@@ -104,6 +139,18 @@ impl<'a> DeformerDescriptor<'a> {
         }
         if self.rest_tangents.is_some() && self.triangles.is_none() {
             return Err(GpuError::Input("rest tangents need triangles: tangents turn with the normals".into()));
+        }
+        if let Some(output) = self.output {
+            if self.previous_positions {
+                return Err(GpuError::Input("previous positions need the deformer's own position buffers".into()));
+            }
+            let needed = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
+            if !output.buffer.usage().contains(needed) {
+                return Err(GpuError::Input(format!(
+                    "the output buffer has usage {:?}; the deformer needs STORAGE | COPY_DST",
+                    output.buffer.usage()
+                )));
+            }
         }
         if let Some(triangles) = self.triangles {
             if triangles.len() % 3 != 0 {

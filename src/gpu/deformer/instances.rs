@@ -92,6 +92,8 @@ impl CellSlots {
 #[derive(Debug)]
 pub(crate) struct PositionTargets {
     pub(crate) buffers: Vec<wgpu::Buffer>,
+    /// Byte offset of instance 0 in each buffer (an app-supplied output's offset, else 0).
+    pub(crate) offset: u64,
     pub(crate) vertex_count: u32,
     /// Vertices from one instance's positions to the next's.
     pub(crate) stride: u32,
@@ -111,17 +113,17 @@ impl PositionTargets {
         let per_group = fitting.min(limits.max_workgroups as u64).min(instances as u64).max(1) as u32;
         let groups =
             (0..instances.div_ceil(per_group)).map(|g| g * per_group..((g + 1) * per_group).min(instances)).collect();
-        PositionTargets { buffers: Vec::new(), vertex_count, stride, instances, groups }
+        PositionTargets { buffers: Vec::new(), offset: 0, vertex_count, stride, instances, groups }
     }
 
-    /// Bytes of one position buffer.
+    /// Bytes of every instance's positions, from instance 0's first.
     pub(crate) fn bytes(&self) -> u64 {
         ((self.instances as u64 - 1) * self.stride as u64 + self.vertex_count as u64) * POSITION_STRIDE
     }
 
     /// The byte offset of instance `instance`'s first position.
     pub(crate) fn instance_offset(&self, instance: u32) -> u64 {
-        instance as u64 * self.stride as u64 * POSITION_STRIDE
+        self.offset + instance as u64 * self.stride as u64 * POSITION_STRIDE
     }
 
     /// The window of buffer `parity` covering the vertices `range` of the instances `group`.
