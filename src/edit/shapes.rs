@@ -21,6 +21,7 @@
 use glam::{DQuat, DVec3};
 
 use super::rigid::Motion;
+use crate::limits::MAX_RIG_COORDINATE;
 use crate::sweep::radius::AreaPolynomial;
 use crate::sweep::{Key, Sweep, SweepError};
 
@@ -39,6 +40,8 @@ struct Kept {
     volume: Option<f64>,
     /// How many [`Shape::scale_radii`] the radius function carries since it was built.
     scaled: usize,
+    /// The largest radius of the keys, scaled with them.
+    largest: f64,
 }
 
 /// The most scalings of a kept radius function before it is rebuilt: each rounds the keys'
@@ -83,11 +86,11 @@ impl Shape {
                 None => Sweep::try_new(keys, Some(knots)),
             };
             let rebuilt = rebuilt.inspect_err(|_| self.kept = None)?;
-            let (areas, scaled) = match self.kept.take() {
-                Some(kept) => (kept.areas, kept.scaled),
-                None => (None, 0),
+            let (areas, scaled, largest) = match self.kept.take() {
+                Some(kept) => (kept.areas, kept.scaled, kept.largest),
+                None => (None, 0, largest_radius(keys)),
             };
-            self.kept = Some(Kept { frames: frames(keys), sweep: rebuilt, areas, volume: None, scaled });
+            self.kept = Some(Kept { frames: frames(keys), sweep: rebuilt, areas, volume: None, scaled, largest });
         }
         Ok(self.kept.as_mut().expect("kept above"))
     }
@@ -113,23 +116,35 @@ impl Shape {
         }
     }
 
-    /// Notes that every radius of the sweep's keys was multiplied by `factor` (a volume rule's
-    /// uniform rescale, §5): r(θ, t) is scaled by `factor`, and A(t) and the volume (Eq. 1) by
-    /// factor², in time linear in the keys. Forgets the sweep instead after [`MAX_SCALED`]
-    /// scalings, or when `radii_valid` is false (so that rebuilding reports the radii).
-    pub fn scale_radii(&mut self, factor: f64, radii_valid: bool) {
-        let Some(kept) = &mut self.kept else { return };
-        if !radii_valid || kept.scaled + 1 >= MAX_SCALED {
+    /// Scales the kept sweep as if every radius of its keys were multiplied by `factor` (a
+    /// volume rule's uniform rescale, §5): r(θ, t) by `factor`, and A(t) and the volume (Eq. 1)
+    /// by factor², in time linear in the keys. Returns whether it did; then the caller may
+    /// defer multiplying the keys' radii (several factors into one pass), provided it does so
+    /// before the memo is asked to rebuild from them.
+    ///
+    /// Returns false, forgetting the sweep, when none is kept, after [`MAX_SCALED`] scalings,
+    /// or when the largest radius would exceed [`MAX_RIG_COORDINATE`]: the caller scales the
+    /// keys now, and the rebuild reports radii out of range.
+    #[must_use = "when false the caller must scale the keys' radii itself"]
+    pub fn scale_radii(&mut self, factor: f64) -> bool {
+        let Some(kept) = &mut self.kept else { return false };
+        if kept.scaled + 1 >= MAX_SCALED || !(kept.largest * factor <= MAX_RIG_COORDINATE) {
             self.kept = None;
-            return;
+            return false;
         }
         kept.sweep = kept.sweep.with_radii_scaled(factor);
         kept.areas = kept.areas.take().map(|areas| areas.iter().map(|area| area.scaled(factor)).collect());
         // Eq. 1 is linear in A, and A scales by factor²: the volume does (up to rounding, and
         // the quadrature's 1e-12, whose subdivision the scaling leaves alone).
         kept.volume = kept.volume.map(|volume| volume * (factor * factor));
+        kept.largest *= factor;
         kept.scaled += 1;
+        true
     }
+}
+
+fn largest_radius(keys: &[Key]) -> f64 {
+    keys.iter().flat_map(|key| &key.radii).fold(0.0, |largest, &r| largest.max(r))
 }
 
 fn frames(keys: &[Key]) -> Vec<(DVec3, DQuat)> {

@@ -133,25 +133,25 @@ pub struct AreaPolynomial {
 }
 
 impl AreaPolynomial {
-    /// The area polynomial of knot interval `segment` of `field`.
+    /// The area polynomial of knot interval `segment` of `field`: with H the 4×4 matrix
+    /// H\[q\]\[q′\] = 1/(q + q′ + 1) and c_p the row c\[p\] of a patch, the coefficient of s^(p+p′)
+    /// gathers c_p·H·c_p′ over the angular intervals, times the field's scale squared.
     pub fn new(field: &RadiusField, segment: usize) -> AreaPolynomial {
+        let samples = field.samples;
         let mut a = [0.0; 7];
-        for j in 0..field.samples {
-            let c = &field.patch(segment, j).c;
+        for patch in &field.patches[segment * samples..(segment + 1) * samples] {
+            let c = &patch.c;
+            // H·c_p, once per row.
+            let hc = c.map(|row| HILBERT.map(|h| h[0] * row[0] + h[1] * row[1] + h[2] * row[2] + h[3] * row[3]));
             for p in 0..4 {
-                for p2 in p..4 {
-                    let mut sum = 0.0;
-                    for q in 0..4 {
-                        for q2 in 0..4 {
-                            sum += c[p][q] * c[p2][q2] / (q + q2 + 1) as f64;
-                        }
-                    }
-                    a[p + p2] += if p2 == p { sum } else { 2.0 * sum };
+                a[2 * p] += dot(&c[p], &hc[p]);
+                for p2 in p + 1..4 {
+                    a[p + p2] += 2.0 * dot(&c[p], &hc[p2]);
                 }
             }
         }
-        let half_step = 0.5 * TAU / field.samples as f64;
-        AreaPolynomial { a: a.map(|x| x * half_step) }
+        let factor = 0.5 * TAU / samples as f64 * field.scale * field.scale;
+        AreaPolynomial { a: a.map(|x| x * factor) }
     }
 
     /// A of the radii scaled by `factor`: A scaled by factor² (up to rounding).
@@ -164,6 +164,18 @@ impl AreaPolynomial {
     pub fn value(&self, s: f64) -> f64 {
         self.a.iter().rev().fold(0.0, |acc, &c| acc * s + c)
     }
+}
+
+/// H\[q\]\[q′\] = ∫₀¹ φ^q φ^q′ dφ = 1/(q + q′ + 1), the Hilbert matrix of order 4.
+const HILBERT: [[f64; 4]; 4] = [
+    [1.0, 1.0 / 2.0, 1.0 / 3.0, 1.0 / 4.0],
+    [1.0 / 2.0, 1.0 / 3.0, 1.0 / 4.0, 1.0 / 5.0],
+    [1.0 / 3.0, 1.0 / 4.0, 1.0 / 5.0, 1.0 / 6.0],
+    [1.0 / 4.0, 1.0 / 5.0, 1.0 / 6.0, 1.0 / 7.0],
+];
+
+fn dot(a: &[f64; 4], b: &[f64; 4]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3]
 }
 
 #[cfg(test)]
