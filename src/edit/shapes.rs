@@ -154,12 +154,19 @@ fn frames(keys: &[Key]) -> Vec<(DVec3, DQuat)> {
 /// Whether `keys` have the centers and rotations `frames`, bit for bit (so that a rebuilt
 /// sweep would be bit for bit the kept one).
 fn same_frames(frames: &[(DVec3, DQuat)], keys: &[Key]) -> bool {
-    let bits = |(center, rotation): (DVec3, DQuat)| {
-        let [x, y, z] = center.to_array();
-        let [qx, qy, qz, qw] = rotation.to_array();
-        [x, y, z, qx, qy, qz, qw].map(f64::to_bits)
-    };
-    frames.len() == keys.len() && frames.iter().zip(keys).all(|(&a, b)| bits(a) == bits((b.center, b.rotation)))
+    // Element by element: comparing arrays of bits calls memcmp, which costs more than the
+    // comparison itself on seven words.
+    let same = |a: f64, b: f64| a.to_bits() == b.to_bits();
+    frames.len() == keys.len()
+        && frames.iter().zip(keys).all(|(&(center, rotation), key)| {
+            same(center.x, key.center.x)
+                && same(center.y, key.center.y)
+                && same(center.z, key.center.z)
+                && same(rotation.x, key.rotation.x)
+                && same(rotation.y, key.rotation.y)
+                && same(rotation.z, key.rotation.z)
+                && same(rotation.w, key.rotation.w)
+        })
 }
 
 /// The memos of every sweep of a rig.
