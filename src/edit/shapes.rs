@@ -9,13 +9,15 @@
 //! radii.
 //!
 //! The memo compares the keys' frames (centers and rotations), not their radii: whoever
-//! changes radii says so, by [`Shape::forget`] or [`Shape::scale_radii`]. Within `edit` the
-//! radii change in two places only: a `scale_radii` edit and a volume rule's rescale.
+//! changes radii says so, by [`Shape::forget`], [`Shape::change_key_radii`] or
+//! [`Shape::scale_radii`]. Within `edit` the radii change in two places only: a `scale_radii`
+//! edit (one key's radii, added to r(θ, t) in place on the knot intervals it reaches) and a
+//! volume rule's rescale.
 //!
 //! A volume rule rescales whole sweeps: there the kept r(θ, t) and A(t) are scaled instead of
 //! rebuilt ([`Shape::scale_radii`]), in time independent of the radii (r keeps one factor,
 //! [`RadiusField::scaled`](crate::sweep::radius::RadiusField::scaled)), and the volume of Eq. 1
-//! scales with A. Such a sweep is rebuilt from its keys after [`MAX_SCALED`] scalings, so that
+//! scales with A. Such a sweep is rebuilt from its keys after [`MAX_SCALED`] scalings (or changes of one key), so that
 //! it stays within 10⁻¹³ relative of the keys' radii, which are rounded at every rescale.
 
 use glam::{DQuat, DVec3};
@@ -128,7 +130,8 @@ impl Shape {
     #[must_use = "when false the caller must scale the keys' radii itself"]
     pub fn scale_radii(&mut self, factor: f64) -> bool {
         let Some(kept) = &mut self.kept else { return false };
-        if kept.scaled + 1 >= MAX_SCALED || !(kept.largest * factor <= MAX_RIG_COORDINATE) {
+        let largest = kept.largest * factor;
+        if kept.scaled + 1 >= MAX_SCALED || largest.is_nan() || largest > MAX_RIG_COORDINATE {
             self.kept = None;
             return false;
         }
@@ -140,6 +143,31 @@ impl Shape {
         kept.largest *= factor;
         kept.scaled += 1;
         true
+    }
+
+    /// Notes that the radii of key `key` of `keys` changed from `before` (a `scale_radii`
+    /// edit): r(θ, t) takes the change in place ([`Sweep::add_to_key_radii`]), on the knot
+    /// intervals it reaches only, and A(t) is recomputed there, in time proportional to the
+    /// radii of about 30 keys rather than all. Forgets the sweep instead when the new radii are
+    /// not valid (so that rebuilding reports them) or after [`MAX_SCALED`] changes.
+    pub fn change_key_radii(&mut self, keys: &[Key], key: usize, before: &[f64]) {
+        let Some(kept) = &mut self.kept else { return };
+        let radii = &keys[key].radii;
+        let valid = radii.iter().all(|&r| r.is_finite() && (0.0..=MAX_RIG_COORDINATE).contains(&r));
+        if !valid || radii.len() != before.len() || kept.scaled + 1 >= MAX_SCALED {
+            self.kept = None;
+            return;
+        }
+        let delta: Vec<f64> = radii.iter().zip(before).map(|(after, before)| after - before).collect();
+        let changed = kept.sweep.add_to_key_radii(key, &delta);
+        if let Some(areas) = &mut kept.areas {
+            for k in changed {
+                areas[k] = AreaPolynomial::new(kept.sweep.radius_field(), k);
+            }
+        }
+        kept.volume = None;
+        kept.largest = kept.largest.max(largest_radius(&keys[key..=key]));
+        kept.scaled += 1;
     }
 }
 

@@ -3,7 +3,8 @@
 //! Scaling every radius of a sweep by f scales its volume (Eq. 1) by exactly f², so a sweep is
 //! given a target volume V* by one uniform rescale f = √(V*/V). Rescaling a parent moves the
 //! keys its children hang from, so the rules re-run the downward propagation and repeat until
-//! every target holds (to 1e-9 relative). Virtual sweeps (which own no vertices) take no part.
+//! every target holds (to 1e-9 relative). The rounds rescale the sweeps' memos only; the keys'
+//! radii are multiplied once per sweep, by the product of its factors, when the rule is done. Virtual sweeps (which own no vertices) take no part.
 
 use glam::DVec3;
 #[cfg(feature = "json")]
