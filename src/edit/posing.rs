@@ -161,8 +161,9 @@ fn apply_edit(
             if theta_range.is_some_and(|r| !r.iter().all(|v| v.is_finite())) {
                 return Err(EditError::Invalid("\"theta_range\" must hold two finite angles".into()));
             }
+            let before = keys[key].radii.clone();
             scale_radii(&mut keys[key], *factor, theta_range.map(|[a, b]| (a, b)));
-            shape.forget();
+            shape.change_key_radii(keys, key, &before);
             Ok(0)
         }
         Edit::DragPoint { theta, t, d, h, to, mode, keys: k, .. } => {

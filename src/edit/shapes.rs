@@ -9,18 +9,21 @@
 //! radii.
 //!
 //! The memo compares the keys' frames (centers and rotations), not their radii: whoever
-//! changes radii says so, by [`Shape::forget`] or [`Shape::scale_radii`]. Within `edit` the
-//! radii change in two places only: a `scale_radii` edit and a volume rule's rescale.
+//! changes radii says so, by [`Shape::forget`], [`Shape::change_key_radii`] or
+//! [`Shape::scale_radii`]. Within `edit` the radii change in two places only: a `scale_radii`
+//! edit (one key's radii, added to r(θ, t) in place on the knot intervals it reaches) and a
+//! volume rule's rescale.
 //!
 //! A volume rule rescales whole sweeps: there the kept r(θ, t) and A(t) are scaled instead of
 //! rebuilt ([`Shape::scale_radii`]), in time independent of the radii (r keeps one factor,
 //! [`RadiusField::scaled`](crate::sweep::radius::RadiusField::scaled)), and the volume of Eq. 1
-//! scales with A. Such a sweep is rebuilt from its keys after [`MAX_SCALED`] scalings, so that
+//! scales with A. Such a sweep is rebuilt from its keys after [`MAX_SCALED`] scalings (or changes of one key), so that
 //! it stays within 10⁻¹³ relative of the keys' radii, which are rounded at every rescale.
 
 use glam::{DQuat, DVec3};
 
 use super::rigid::Motion;
+use crate::limits::MAX_RIG_COORDINATE;
 use crate::sweep::radius::AreaPolynomial;
 use crate::sweep::{Key, Sweep, SweepError};
 
@@ -39,6 +42,8 @@ struct Kept {
     volume: Option<f64>,
     /// How many [`Shape::scale_radii`] the radius function carries since it was built.
     scaled: usize,
+    /// The largest radius of the keys, scaled with them.
+    largest: f64,
 }
 
 /// The most scalings of a kept radius function before it is rebuilt: each rounds the keys'
@@ -83,11 +88,11 @@ impl Shape {
                 None => Sweep::try_new(keys, Some(knots)),
             };
             let rebuilt = rebuilt.inspect_err(|_| self.kept = None)?;
-            let (areas, scaled) = match self.kept.take() {
-                Some(kept) => (kept.areas, kept.scaled),
-                None => (None, 0),
+            let (areas, scaled, largest) = match self.kept.take() {
+                Some(kept) => (kept.areas, kept.scaled, kept.largest),
+                None => (None, 0, largest_radius(keys)),
             };
-            self.kept = Some(Kept { frames: frames(keys), sweep: rebuilt, areas, volume: None, scaled });
+            self.kept = Some(Kept { frames: frames(keys), sweep: rebuilt, areas, volume: None, scaled, largest });
         }
         Ok(self.kept.as_mut().expect("kept above"))
     }
@@ -113,23 +118,61 @@ impl Shape {
         }
     }
 
-    /// Notes that every radius of the sweep's keys was multiplied by `factor` (a volume rule's
-    /// uniform rescale, §5): r(θ, t) is scaled by `factor`, and A(t) and the volume (Eq. 1) by
-    /// factor², in time linear in the keys. Forgets the sweep instead after [`MAX_SCALED`]
-    /// scalings, or when `radii_valid` is false (so that rebuilding reports the radii).
-    pub fn scale_radii(&mut self, factor: f64, radii_valid: bool) {
-        let Some(kept) = &mut self.kept else { return };
-        if !radii_valid || kept.scaled + 1 >= MAX_SCALED {
+    /// Scales the kept sweep as if every radius of its keys were multiplied by `factor` (a
+    /// volume rule's uniform rescale, §5): r(θ, t) by `factor`, and A(t) and the volume (Eq. 1)
+    /// by factor², in time linear in the keys. Returns whether it did; then the caller may
+    /// defer multiplying the keys' radii (several factors into one pass), provided it does so
+    /// before the memo is asked to rebuild from them.
+    ///
+    /// Returns false, forgetting the sweep, when none is kept, after [`MAX_SCALED`] scalings,
+    /// or when the largest radius would exceed [`MAX_RIG_COORDINATE`]: the caller scales the
+    /// keys now, and the rebuild reports radii out of range.
+    #[must_use = "when false the caller must scale the keys' radii itself"]
+    pub fn scale_radii(&mut self, factor: f64) -> bool {
+        let Some(kept) = &mut self.kept else { return false };
+        let largest = kept.largest * factor;
+        if kept.scaled + 1 >= MAX_SCALED || largest.is_nan() || largest > MAX_RIG_COORDINATE {
             self.kept = None;
-            return;
+            return false;
         }
         kept.sweep = kept.sweep.with_radii_scaled(factor);
         kept.areas = kept.areas.take().map(|areas| areas.iter().map(|area| area.scaled(factor)).collect());
         // Eq. 1 is linear in A, and A scales by factor²: the volume does (up to rounding, and
         // the quadrature's 1e-12, whose subdivision the scaling leaves alone).
         kept.volume = kept.volume.map(|volume| volume * (factor * factor));
+        kept.largest *= factor;
+        kept.scaled += 1;
+        true
+    }
+
+    /// Notes that the radii of key `key` of `keys` changed from `before` (a `scale_radii`
+    /// edit): r(θ, t) takes the change in place ([`Sweep::add_to_key_radii`]), on the knot
+    /// intervals it reaches only, and A(t) is recomputed there, in time proportional to the
+    /// radii of about 30 keys rather than all. Forgets the sweep instead when the new radii are
+    /// not valid (so that rebuilding reports them) or after [`MAX_SCALED`] changes.
+    pub fn change_key_radii(&mut self, keys: &[Key], key: usize, before: &[f64]) {
+        let Some(kept) = &mut self.kept else { return };
+        let radii = &keys[key].radii;
+        let valid = radii.iter().all(|&r| r.is_finite() && (0.0..=MAX_RIG_COORDINATE).contains(&r));
+        if !valid || radii.len() != before.len() || kept.scaled + 1 >= MAX_SCALED {
+            self.kept = None;
+            return;
+        }
+        let delta: Vec<f64> = radii.iter().zip(before).map(|(after, before)| after - before).collect();
+        let changed = kept.sweep.add_to_key_radii(key, &delta);
+        if let Some(areas) = &mut kept.areas {
+            for k in changed {
+                areas[k] = AreaPolynomial::new(kept.sweep.radius_field(), k);
+            }
+        }
+        kept.volume = None;
+        kept.largest = kept.largest.max(largest_radius(&keys[key..=key]));
         kept.scaled += 1;
     }
+}
+
+fn largest_radius(keys: &[Key]) -> f64 {
+    keys.iter().flat_map(|key| &key.radii).fold(0.0, |largest, &r| largest.max(r))
 }
 
 fn frames(keys: &[Key]) -> Vec<(DVec3, DQuat)> {
@@ -139,12 +182,19 @@ fn frames(keys: &[Key]) -> Vec<(DVec3, DQuat)> {
 /// Whether `keys` have the centers and rotations `frames`, bit for bit (so that a rebuilt
 /// sweep would be bit for bit the kept one).
 fn same_frames(frames: &[(DVec3, DQuat)], keys: &[Key]) -> bool {
-    let bits = |(center, rotation): (DVec3, DQuat)| {
-        let [x, y, z] = center.to_array();
-        let [qx, qy, qz, qw] = rotation.to_array();
-        [x, y, z, qx, qy, qz, qw].map(f64::to_bits)
-    };
-    frames.len() == keys.len() && frames.iter().zip(keys).all(|(&a, b)| bits(a) == bits((b.center, b.rotation)))
+    // Element by element: comparing arrays of bits calls memcmp, which costs more than the
+    // comparison itself on seven words.
+    let same = |a: f64, b: f64| a.to_bits() == b.to_bits();
+    frames.len() == keys.len()
+        && frames.iter().zip(keys).all(|(&(center, rotation), key)| {
+            same(center.x, key.center.x)
+                && same(center.y, key.center.y)
+                && same(center.z, key.center.z)
+                && same(rotation.x, key.rotation.x)
+                && same(rotation.y, key.rotation.y)
+                && same(rotation.z, key.rotation.z)
+                && same(rotation.w, key.rotation.w)
+        })
 }
 
 /// The memos of every sweep of a rig.

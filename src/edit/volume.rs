@@ -3,7 +3,8 @@
 //! Scaling every radius of a sweep by f scales its volume (Eq. 1) by exactly f², so a sweep is
 //! given a target volume V* by one uniform rescale f = √(V*/V). Rescaling a parent moves the
 //! keys its children hang from, so the rules re-run the downward propagation and repeat until
-//! every target holds (to 1e-9 relative). Virtual sweeps (which own no vertices) take no part.
+//! every target holds (to 1e-9 relative). The rounds rescale the sweeps' memos only; the keys'
+//! radii are multiplied once per sweep, by the product of its factors, when the rule is done. Virtual sweeps (which own no vertices) take no part.
 
 use glam::DVec3;
 #[cfg(feature = "json")]
@@ -155,6 +156,27 @@ fn scale_checked(keys: &mut [Key], factor: f64) -> bool {
     largest <= crate::limits::MAX_RIG_COORDINATE
 }
 
+/// The factors by which a rule has rescaled each sweep's memo but not yet its keys' radii: a
+/// rule rescales a sweep once per round, and its keys' radii are multiplied once, at the end,
+/// by the product ([`Pending::apply`]), so a round costs time independent of the radii.
+struct Pending(Vec<f64>);
+
+impl Pending {
+    fn new(sweeps: usize) -> Pending {
+        Pending(vec![1.0; sweeps])
+    }
+
+    /// Multiplies every radius of every sweep by its pending factor. A sweep whose radii leave
+    /// the valid range is forgotten, so that the edit's check of its keys reports them.
+    fn apply(self, keys: &mut [Vec<Key>], shapes: &mut [Shape]) {
+        for ((keys, shape), factor) in keys.iter_mut().zip(shapes).zip(self.0) {
+            if factor != 1.0 && !scale_checked(keys, factor) {
+                shape.forget();
+            }
+        }
+    }
+}
+
 /// Rescales `sweep` to volume `target` and re-attaches its descendants.
 fn rescale_to(
     rig: &Rig,
@@ -162,14 +184,20 @@ fn rescale_to(
     sweep: usize,
     target: f64,
     shapes: &mut [Shape],
+    pending: &mut Pending,
 ) -> Result<(), EditError> {
     let volume = sweep_volume(rig, keys, sweep, shapes)?;
     if !(target > 0.0 && volume > 0.0 && target.is_finite()) {
         return Err(EditError::VolumeUnreachable { sweep: rig.sweeps()[sweep].name.clone(), target });
     }
     let factor = (target / volume).sqrt();
-    let valid = scale_checked(&mut keys[sweep], factor);
-    shapes[sweep].scale_radii(factor, valid);
+    if shapes[sweep].scale_radii(factor) {
+        pending.0[sweep] *= factor;
+    } else {
+        // The memo is gone: its next build reads (and checks) the keys' radii.
+        scale(&mut keys[sweep], pending.0[sweep] * factor);
+        pending.0[sweep] = 1.0;
+    }
     propagate_down_kept(rig, keys, sweep, shapes)
 }
 
@@ -197,16 +225,19 @@ fn keep_total(
 ) -> Result<(), EditError> {
     let absorbers = absorbers(rig, edited);
     let alone = absorbers == [edited];
+    let mut pending = Pending::new(keys.len());
     until_converged(|| {
         let delta = if alone { 0.0 } else { sweep_volume(rig, keys, edited, shapes)? - before.sweeps[edited] };
         let mut worst = 0.0f64;
         for &a in &absorbers {
             let target = before.sweeps[a] - delta / absorbers.len() as f64;
             worst = worst.max(((sweep_volume(rig, keys, a, shapes)? - target) / target).abs());
-            rescale_to(rig, keys, a, target, shapes)?;
+            rescale_to(rig, keys, a, target, shapes, &mut pending)?;
         }
         Ok(worst)
-    })
+    })?;
+    pending.apply(keys, shapes);
+    Ok(())
 }
 
 /// Each (child, parent) pair of handles keeps the ratio of its volumes before the edit,
@@ -219,6 +250,7 @@ fn keep_ratios(
     shapes: &mut [Shape],
 ) -> Result<(), EditError> {
     let order = outward_pairs(rig, edited);
+    let mut pending = Pending::new(keys.len());
     until_converged(|| {
         let mut worst = 0.0f64;
         for &(child, parent, rescale_child) in &order {
@@ -227,13 +259,15 @@ fn keep_ratios(
                 (sweep_volume(rig, keys, child, shapes)?, sweep_volume(rig, keys, parent, shapes)?);
             worst = worst.max(((child_volume / parent_volume - ratio) / ratio).abs());
             if rescale_child {
-                rescale_to(rig, keys, child, parent_volume * ratio, shapes)?;
+                rescale_to(rig, keys, child, parent_volume * ratio, shapes, &mut pending)?;
             } else {
-                rescale_to(rig, keys, parent, child_volume / ratio, shapes)?;
+                rescale_to(rig, keys, parent, child_volume / ratio, shapes, &mut pending)?;
             }
         }
         Ok(worst)
-    })
+    })?;
+    pending.apply(keys, shapes);
+    Ok(())
 }
 
 /// The (child, parent) links between handles in breadth-first order from `start`, each with

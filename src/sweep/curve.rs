@@ -4,7 +4,7 @@
 use glam::DVec3;
 
 use super::cubic::CubicPiece;
-use super::natural_spline::natural_spline_pieces;
+use super::natural_spline::NaturalSplineSystem;
 
 /// One cubic piece of C(t) per knot interval, a [`CubicPiece`] per coordinate.
 #[derive(Clone, Debug, PartialEq)]
@@ -40,12 +40,18 @@ impl CurvePiece {
     }
 }
 
-/// The pieces of the natural spline through `centers` at `knots`.
+/// The pieces of the natural spline through `centers` at `knots`: one factorization of the
+/// knots' system, solved for x, y and z.
 pub fn center_curve(knots: &[f64], centers: &[DVec3]) -> Vec<CurvePiece> {
-    let axis = |pick: fn(&DVec3) -> f64| {
+    let system = NaturalSplineSystem::new(knots);
+    let mut m = vec![0.0; knots.len()];
+    let mut axis = |pick: fn(&DVec3) -> f64| {
         let values: Vec<f64> = centers.iter().map(pick).collect();
-        natural_spline_pieces(knots, &values)
+        system.second_derivatives_into(&values, &mut m);
+        (values, m.clone())
     };
-    let (xs, ys, zs) = (axis(|p| p.x), axis(|p| p.y), axis(|p| p.z));
-    xs.into_iter().zip(ys).zip(zs).map(|((x, y), z)| CurvePiece { axes: [x, y, z] }).collect()
+    let (x, y, z) = (axis(|p| p.x), axis(|p| p.y), axis(|p| p.z));
+    (0..knots.len() - 1)
+        .map(|i| CurvePiece { axes: [&x, &y, &z].map(|(values, m)| system.piece(values, m, i)) })
+        .collect()
 }

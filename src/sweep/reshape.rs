@@ -33,4 +33,12 @@ impl Sweep {
             radius: Arc::new(self.radius.scaled(factor)),
         }
     }
+
+    /// This sweep after the radii of key `key` changed by `delta` (ρ_key,j += delta\[j\]),
+    /// C(t) and R(t) kept: see [`RadiusField::add_to_key`](super::radius::RadiusField::add_to_key),
+    /// whose changed knot intervals it returns. The caller guarantees `delta` has M entries and
+    /// leaves the radii valid.
+    pub fn add_to_key_radii(&mut self, key: usize, delta: &[f64]) -> std::ops::Range<usize> {
+        Arc::make_mut(&mut self.radius).add_to_key(&self.knots, key, delta)
+    }
 }
