@@ -1,32 +1,72 @@
 //! sweepffd: sweep-based freeform deformation of 3D meshes (Yoon & Kim, "Sweep-based Freeform
-//! Deformations").
+//! Deformations"), on the GPU in an application's own frame loop.
 //!
 //! Deformable parts of a mesh are approximated by control sweep surfaces built from key
 //! cross-sections; every vertex is bound to a sweep by parameters (θ, t, d, h) and follows the
-//! sweep through Eq. 2 when the sweep is edited. The data flows through the modules in order:
+//! sweep through Eq. 2 when the sweep is edited. An application hands over its wgpu device,
+//! builds a [`GpuDeformer`] once, and each frame poses its rigs and records the deformation into
+//! its own command encoder, then draws our buffers (`examples/embed.rs` is this, complete):
+//!
+//! ```no_run
+//! use sweepffd::gpu::DeformerDescriptor;
+//! use sweepffd::{BindingSource, GpuContext, GpuDeformer, Key, Rig, wgpu};
+//!
+//! # fn frame_loop(device: wgpu::Device, queue: wgpu::Queue, info: wgpu::AdapterInfo, rig: &Rig,
+//! #     positions: &[[f32; 3]], triangles: &[u32], keys: &[Vec<Key>])
+//! #     -> Result<(), Box<dyn std::error::Error>> {
+//! // Once: the app's device (requested with GpuDeformer::required_limits()), one bound mesh
+//! // with four instances, and storage for each instance's posed sweeps.
+//! let context = GpuContext::from_device(device.clone(), queue.clone(), info);
+//! let owners = rig.owners_of(positions.len(), &[], "mesh")?;
+//! let bindings = BindingSource::Bind { owners: &owners, bands: &[] };
+//! let descriptor =
+//!     DeformerDescriptor::new(rig.rest(), positions, bindings).with_triangles(triangles).with_instances(4);
+//! let mut deformer = GpuDeformer::new(&context, &descriptor)?;
+//! let mut poses: Vec<_> = (0..4).map(|_| rig.pose_buffer()).collect();
+//! // Each frame: nothing allocated in sweepffd's code.
+//! for (i, pose) in poses.iter_mut().enumerate() {
+//!     rig.pose_into(keys, pose)?;
+//!     deformer.set_pose(i as u32, pose.sweeps())?;
+//! }
+//! let mut encoder = device.create_command_encoder(&Default::default());
+//! deformer.encode(&mut encoder); // upload the poses, deform, normals
+//! // ... the app's render pass draws deformer.positions() and deformer.normals() ...
+//! queue.submit([encoder.finish()]);
+//! # Ok(()) }
+//! ```
+//!
+//! The data flows through the modules in order:
 //!
 //! rig → sweep → sweep coefficients → bind → deform → normals → output
 //!
-//! - [`rig`]: rig and pose files, validation, which sweep owns which vertex.
+//! - [`rig`]: rigs built in code or read from files (feature `json`), which sweep owns which
+//!   vertex, posing, the bindings file.
 //! - [`sweep`]: the f64 sweep surface model, C(t), R(t), r(θ, t), and its volume (Eq. 1).
 //! - [`fit`]: control sweeps fitted to mesh parts (§3).
 //! - [`edit`]: posing by edits: key moves, point drags, hierarchies, volume rules (§4–5).
 //! - [`bind`]: binding parameters of each vertex by root-finding (§3).
-//! - [`deform`]: vertex positions of a posed rig through Eq. 2.
-//! - [`mesh`]: mesh files in and out, enclosed volume.
+//! - [`deform`]: vertex positions of a posed rig through Eq. 2, f64 reference.
+//! - [`normals`]: vertex normals and tangents, f64 reference.
+//! - [`gpu`]: the engine: binding, Eq. 2, normals, tangents and bounds in WGSL compute.
+//! - [`mesh`]: meshes in code, and mesh files in and out (feature `formats`).
 //! - [`coeffs`]: sweeps as compact f32 coefficient arrays, the GPU buffer layouts.
 //! - [`cpu`]: f32 twins of the WGSL kernels in `shaders/`.
 //! - [`synthetic`]: procedural meshes, rigs and poses.
 //! - [`limits`]: the largest inputs accepted, checked before allocating.
-//! - [`render`]: headless pictures of meshes and their control sweeps (PNG).
+//! - [`parallel`]: the CPU paths on every core (feature `parallel`) or on the calling thread.
+//! - `render` (feature `render`): headless pictures of meshes and their control sweeps (PNG).
+//! - `bench` (feature `cli`): the throughput measurements of `sweepffd bench`.
 //! - `view` (feature `viewer`, on by default): the interactive viewer, a winit window drawing
 //!   the GPU deformer's buffers, with direct manipulation (§4–5), undo and scripted sessions.
 //!
+//! On the CPU, with files (features `formats` and `parallel`):
+//!
 //! ```no_run
-//! use glam::DVec3;
+//! # #[cfg(feature = "formats")]
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! use sweepffd::glam::DVec3;
 //! use sweepffd::{deform::deform_vertices, mesh::Mesh, rig::Rig};
 //!
-//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
 //! let mesh = Mesh::load("bunny.obj".as_ref())?;
 //! let rig = Rig::load("bunny-rig.json".as_ref())?;
 //! let owners = rig.owners(&mesh, "bunny.obj")?;
@@ -37,6 +77,8 @@
 //! mesh.save("bunny-posed.obj".as_ref(), &deformed)?;
 //! # Ok(())
 //! # }
+//! # #[cfg(not(feature = "formats"))]
+//! # fn main() {}
 //! ```
 
 #[cfg(feature = "cli")]
