@@ -167,26 +167,10 @@ fn a_device_with_only_the_required_limits_runs_the_deformer() {
 /// A rig of one sweep owning only the rings `rings` of `tube` (circular keys over them), with
 /// falloff `falloff` into the rest of the mesh.
 fn partial_tube_rig(tube: &Tube, rings: std::ops::Range<u32>, falloff: f64) -> sweepffd::rig::Rig {
-    use glam::{DQuat, DVec3};
-    use sweepffd::rig::{Rig, RigSweep, VertexSelection};
     let step = tube.length / (tube.rings - 1) as f64;
     let owned: Vec<u32> = (rings.start * tube.around..rings.end * tube.around).collect();
-    let (z0, z1) = (rings.start as f64 * step, (rings.end - 1) as f64 * step);
-    let keys = (0..5)
-        .map(|i| {
-            let z = z0 + (z1 - z0) * i as f64 / 4.0;
-            sweepffd::sweep::Key::circle(DVec3::new(0.0, 0.0, z), DQuat::IDENTITY, tube.radius, 8)
-        })
-        .collect();
-    let sweep = RigSweep {
-        name: "tube".to_string(),
-        vertices: Some(VertexSelection::Indices(owned)),
-        keys,
-        knots: None,
-        parent: None,
-        falloff,
-    };
-    Rig::new(vec![sweep]).unwrap()
+    let z = (rings.start as f64 * step, (rings.end - 1) as f64 * step);
+    sweepffd::rig::Rig::new(vec![sweepffd::synthetic::straight_sweep(tube, owned, z, 5, 8, falloff)]).unwrap()
 }
 
 #[test]

@@ -8,15 +8,14 @@
 
 mod common;
 
-use glam::{DQuat, DVec3, Vec3};
+use glam::{DVec3, Vec3};
 use sweepffd::coeffs::{GpuBinding, UNOWNED};
 use sweepffd::cpu;
 use sweepffd::gpu::{BindingSource, DeformerDescriptor, GpuDeformer, rest_positions};
 use sweepffd::mesh::Mesh;
 use sweepffd::normals::{NormalAdjacency, dirty_vertices};
-use sweepffd::rig::{Rig, RigSweep, VertexSelection};
-use sweepffd::sweep::Key;
-use sweepffd::synthetic::{BendTwistTaper, Tube};
+use sweepffd::rig::{Rig, RigSweep};
+use sweepffd::synthetic::{BendTwistTaper, Tube, straight_sweep};
 
 const POSE: BendTwistTaper = BendTwistTaper { bend: 1.0, twist: 1.3, taper: 0.7 };
 
@@ -28,21 +27,8 @@ fn top_owned_tube(owned_rings: u32) -> (Mesh, Rig) {
     let owned: Vec<u32> =
         (first * tube.around..tube.rings * tube.around).chain([tube.rings * tube.around + 1]).collect();
     let step = tube.length / (tube.rings - 1) as f64;
-    let z0 = (first as f64 - 0.5) * step;
-    let keys = (0..4)
-        .map(|i| {
-            let z = z0 + (tube.length + 0.5 * step - z0) * i as f64 / 3.0;
-            Key::circle(DVec3::new(0.0, 0.0, z), DQuat::IDENTITY, tube.radius, 8)
-        })
-        .collect();
-    let sweep = RigSweep {
-        name: "top".to_string(),
-        vertices: Some(VertexSelection::Indices(owned)),
-        keys,
-        knots: None,
-        parent: None,
-        falloff: 0.0,
-    };
+    let z = ((first as f64 - 0.5) * step, tube.length + 0.5 * step);
+    let sweep = RigSweep { name: "top".to_string(), ..straight_sweep(&tube, owned, z, 4, 8, 0.0) };
     (tube.mesh(), Rig::new(vec![sweep]).unwrap())
 }
 

@@ -2,14 +2,12 @@
 //! many small instances against one large mesh, and a rig owning a small share of a mesh against
 //! one owning all of it.
 
-use glam::{DQuat, DVec3};
-
 use super::GpuTimer;
 use super::gpu::time;
 use crate::gpu::{BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, GpuError, rest_positions};
-use crate::rig::{Rig, RigSweep, VertexSelection};
-use crate::sweep::{Key, Sweep};
-use crate::synthetic::{BendTwistTaper, Tube, tube_rig};
+use crate::rig::Rig;
+use crate::sweep::Sweep;
+use crate::synthetic::{BendTwistTaper, Tube, straight_sweep, tube_rig};
 
 /// Instances of the `instances_over_single` comparison.
 pub const INSTANCES: u32 = 1000;
@@ -50,19 +48,9 @@ fn partial_rig(tube: &Tube, share: f64) -> Rig {
     let first = (tube.rings - rings) / 2;
     let step = tube.length / (tube.rings - 1) as f64;
     let (z0, z1) = (first as f64 * step, (first + rings - 1) as f64 * step);
-    let keys = (0..8)
-        .map(|i| Key::circle(DVec3::new(0.0, 0.0, z0 + (z1 - z0) * i as f64 / 7.0), DQuat::IDENTITY, tube.radius, 16))
-        .collect();
     let owned = (first * tube.around..(first + rings) * tube.around).collect();
-    let sweep = RigSweep {
-        name: "tube".to_string(),
-        vertices: Some(VertexSelection::Indices(owned)),
-        keys,
-        knots: None,
-        parent: None,
-        falloff: 0.0,
-    };
-    Rig::new(vec![sweep]).expect("a straight rig with distinct keys is valid")
+    Rig::new(vec![straight_sweep(tube, owned, (z0, z1), 8, 16, 0.0)])
+        .expect("a straight rig with distinct keys is valid")
 }
 
 impl EngineComparisons {

@@ -5,4 +5,4 @@ mod pose;
 mod tube;
 
 pub use pose::BendTwistTaper;
-pub use tube::{Tube, attached_tube_rig, split_tube_rig, tube_rig};
+pub use tube::{Tube, attached_tube_rig, split_tube_rig, straight_sweep, tube_rig};

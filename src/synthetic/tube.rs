@@ -102,22 +102,35 @@ pub fn tube_rig(tube: &Tube, keys: usize, samples: usize) -> Rig {
 pub fn attached_tube_rig(tube: &Tube, keys: usize, samples: usize, falloff: f64) -> Rig {
     let step = tube.length / (tube.rings - 1) as f64;
     let owned: Vec<u32> = (tube.around..tube.rings * tube.around).chain([tube.rings * tube.around + 1]).collect();
-    let z0 = 0.5 * step;
+    let sweep = straight_sweep(tube, owned, (0.5 * step, tube.length), keys, samples, falloff);
+    Rig::new(vec![sweep]).expect("a straight rig with distinct keys is valid")
+}
+
+/// A sweep named "tube" along `tube`'s axis owning the vertices `owned`: `keys` (at least two)
+/// circular keys of `samples` radii, of the tube's radius, evenly spaced from z = `z0` to `z1`,
+/// with falloff `falloff`.
+pub fn straight_sweep(
+    tube: &Tube,
+    owned: Vec<u32>,
+    (z0, z1): (f64, f64),
+    keys: usize,
+    samples: usize,
+    falloff: f64,
+) -> RigSweep {
     let keys = (0..keys)
         .map(|i| {
-            let z = z0 + (tube.length - z0) * i as f64 / (keys - 1) as f64;
+            let z = z0 + (z1 - z0) * i as f64 / (keys - 1) as f64;
             Key::circle(DVec3::new(0.0, 0.0, z), DQuat::IDENTITY, tube.radius, samples)
         })
         .collect();
-    let sweep = RigSweep {
+    RigSweep {
         name: "tube".to_string(),
         vertices: Some(VertexSelection::Indices(owned)),
         keys,
         knots: None,
         parent: None,
         falloff,
-    };
-    Rig::new(vec![sweep]).expect("a straight rig with distinct keys is valid")
+    }
 }
 
 /// A rig of two sweeps, `lower` and `upper`, splitting `tube` at its middle (the middle ring
