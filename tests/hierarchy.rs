@@ -137,7 +137,18 @@ fn total_rule_refuses_a_change_the_other_parts_cannot_absorb() {
     let grow = Edit::ScaleRadii { sweep: "body".into(), key: 3, factor: 1.25, theta_range: None };
     let error = posing.apply(&grow).unwrap_err();
     assert!(error.to_string().starts_with("the volume rule cannot give sweep"), "{error}");
-    assert_eq!(posing.keys()[0], rig.sweeps()[0].keys, "a failed edit changes nothing");
+    let rest: Vec<_> = rig.sweeps().iter().map(|sweep| sweep.keys.clone()).collect();
+    assert_eq!(posing.keys(), rest, "a failed edit changes nothing, in any sweep");
+    // After edits that moved and rescaled every sweep, a failing one puts back every key,
+    // radii included, to the bit (the edit ran in place, journaled).
+    let shrink = Edit::ScaleRadii { sweep: "body".into(), key: 3, factor: 0.97, theta_range: None };
+    posing.apply(&shrink).unwrap();
+    let edited = posing.keys().to_vec();
+    assert_ne!(edited, rest, "the shrink moved and rescaled sweeps");
+    posing.apply(&grow).unwrap_err();
+    assert_eq!(posing.keys(), edited, "a failed edit after others changes nothing");
+    posing.apply(&shrink).unwrap();
+    assert_ne!(posing.keys(), edited, "edits go on after a failure");
 }
 
 #[test]

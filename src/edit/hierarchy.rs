@@ -78,6 +78,31 @@ pub(super) fn propagate_down_kept(
     Ok(())
 }
 
+/// Updates every descendant of the sweeps `nodes` from them (downward only), each once, parents
+/// before children: the same keys as [`propagate_down_kept`] from each of `nodes` in turn, for
+/// the cost of one pass.
+pub(super) fn propagate_down_from(
+    rig: &Rig,
+    keys: &mut [Vec<Key>],
+    nodes: &[usize],
+    shapes: &mut [Shape],
+) -> Result<(), EditError> {
+    let mut moved = vec![false; keys.len()];
+    nodes.iter().for_each(|&node| moved[node] = true);
+    // From the roots down, breadth first: every parent is done before its children.
+    let mut queue: VecDeque<usize> = (0..keys.len()).filter(|&sweep| rig.links()[sweep].is_none()).collect();
+    while let Some(node) = queue.pop_front() {
+        for (child, link) in children(rig, node) {
+            if moved[node] {
+                follow_parent(rig, keys, child, link, shapes)?;
+                moved[child] = true;
+            }
+            queue.push_back(child);
+        }
+    }
+    Ok(())
+}
+
 /// The children of `node` with their links.
 fn children(rig: &Rig, node: usize) -> impl Iterator<Item = (usize, &Link)> {
     rig.links()

@@ -11,6 +11,7 @@ mod drag;
 mod edits;
 mod error;
 mod hierarchy;
+mod journal;
 mod keys;
 mod posing;
 mod rigid;

@@ -8,10 +8,11 @@ use super::controls::Controls;
 use super::drag::drag_point_kept;
 use super::edits::Edit;
 use super::hierarchy::propagate_kept;
+use super::journal::Journal;
 use super::keys::{move_key, scale_radii};
 use super::section::{SectionTarget, move_sections_kept};
 use super::shapes::{Shape, Shapes};
-use super::volume::{BoundMesh, VolumeRule, Volumes, apply_rule};
+use super::volume::{BoundMesh, Pending, VolumeRule, Volumes, apply_rule};
 use crate::bind::VertexBinding;
 use crate::rig::Rig;
 use crate::sweep::{Key, Sweep};
@@ -32,13 +33,16 @@ pub struct Posing<'a> {
     /// The sweeps last built from (recent) keys, kept from edit to edit: a memo, so an edit
     /// rebuilds and measures only the sweeps it changes.
     shapes: Shapes,
+    /// What the edit being applied changed, to undo it if it fails.
+    journal: Journal,
 }
 
 impl<'a> Posing<'a> {
     /// Starts from the rest keys of `rig`.
     pub fn new(rig: &'a Rig) -> Posing<'a> {
         let keys = rig.sweeps().iter().map(|sweep| sweep.keys.clone()).collect();
-        let shapes = vec![Shape::default(); rig.sweeps().len()];
+        // The rig's rest sweeps are those of its rest keys.
+        let shapes = rig.rest().iter().zip(rig.sweeps()).map(|(sweep, rest)| Shape::of(sweep, &rest.keys)).collect();
         Posing {
             rig,
             keys,
@@ -47,6 +51,7 @@ impl<'a> Posing<'a> {
             controls: Controls::default(),
             mesh: None,
             shapes,
+            journal: Journal::default(),
         }
     }
 
@@ -102,32 +107,48 @@ impl<'a> Posing<'a> {
         result
     }
 
+    /// Applies `edit` to the keys in place, journaled: on error the journal puts them back.
     fn try_apply(&mut self, edit: &Edit) -> Result<usize, EditError> {
+        self.journal.begin(&self.keys);
+        let result = self.edit_in_place(edit);
+        if result.is_err() {
+            self.journal.restore(&mut self.keys);
+        }
+        result
+    }
+
+    fn edit_in_place(&mut self, edit: &Edit) -> Result<usize, EditError> {
         let rig = self.rig;
         let sweep =
             rig.sweep_index(edit.sweep()).ok_or_else(|| EditError::UnknownSweep { sweep: edit.sweep().into() })?;
-        let shapes = &mut self.shapes;
+        let (keys, shapes, journal) = (&mut self.keys, &mut self.shapes, &mut self.journal);
         let before = match self.volume {
             VolumeRule::None => None,
-            _ => Some(Volumes::measure_kept(rig, &self.keys, self.mesh.as_ref(), shapes)?),
+            _ => Some(Volumes::measure_kept(rig, keys, self.mesh.as_ref(), shapes)?),
         };
-        let mut keys = self.keys.clone();
+        if let Edit::ScaleRadii { key, .. } = edit
+            && *key < keys[sweep].len()
+        {
+            journal.save_key_radii(keys, sweep, *key);
+        }
         let knots = rig.rest()[sweep].knots();
         let rounds = apply_edit(edit, &mut keys[sweep], knots, &self.controls, &mut shapes[sweep])?;
         shapes[sweep].sweep(&keys[sweep], knots)?;
         if self.hierarchy {
-            propagate_kept(rig, &mut keys, sweep, &self.controls, shapes)?;
+            propagate_kept(rig, keys, sweep, &self.controls, shapes)?;
         }
-        if let Some(before) = &before {
-            apply_rule(self.volume, rig, &mut keys, sweep, before, self.mesh.as_ref(), shapes)?;
-        }
+        let pending = match &before {
+            Some(before) => apply_rule(self.volume, rig, keys, sweep, before, self.mesh.as_ref(), shapes, journal)?,
+            None => Pending::none(keys.len()),
+        };
         // Every sweep the edit reached is checked as rest keys are: finite, in range. The radii
-        // of a kept sweep are those it was built from, checked then (or rescaled and checked).
+        // of a kept sweep are those it was built from, checked then (or rescaled and checked);
+        // the rule's pending rescales are checked as they are applied, last.
         for ((keys, rest), shape) in keys.iter().zip(rig.sweeps()).zip(shapes.iter()) {
             let checked = if shape.checked_radii() { Sweep::validate_frames(keys) } else { Sweep::validate(keys) };
             checked.map_err(|source| EditError::Sweep { sweep: rest.name.clone(), source })?;
         }
-        self.keys = keys;
+        pending.apply(rig, keys, shapes, journal)?;
         Ok(rounds)
     }
 }

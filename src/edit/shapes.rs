@@ -1,12 +1,14 @@
 //! The posed sweeps of the keys being edited, kept between the rebuilds of an edit: a memo, so
-//! that its results are those of building every sweep afresh (bit for bit after rigid moves, up
-//! to rounding after rescales).
+//! that its results are those of building every sweep afresh (bit for bit after moves of some
+//! keys, up to rounding after rescales and after moves of a whole sweep).
 //!
 //! The controls (§4), the hierarchy (§5) and the volume rules rebuild a sweep after every step,
 //! and most steps move keys rigidly. A kept sweep whose keys moved is rebuilt by
 //! [`Sweep::try_with_axis`] (C(t) and R(t) only, linear in the keys), and its volume (Eq. 1)
 //! reuses the area polynomials A(t), so such a step costs time independent of the number of
-//! radii.
+//! radii. A sweep carried whole by its parent (§5) is not even rebuilt: its C(t) and R(t) are
+//! moved with it ([`Sweep::try_move_rigidly`]), and rebuilt from its keys after
+//! [`MAX_SCALED`] such moves, so that it stays within a few ulps of the rebuilt one.
 //!
 //! The memo compares the keys' frames (centers and rotations), not their radii: whoever
 //! changes radii says so, by [`Shape::forget`], [`Shape::change_key_radii`] or
@@ -42,6 +44,8 @@ struct Kept {
     volume: Option<f64>,
     /// How many [`Shape::scale_radii`] the radius function carries since it was built.
     scaled: usize,
+    /// How many [`Shape::move_rigidly`] C(t) carries since it was last built from the keys.
+    moved: usize,
     /// The largest radius of the keys, scaled with them.
     largest: f64,
 }
@@ -69,6 +73,21 @@ impl Shape {
         Ok(kept.volume.expect("set above"))
     }
 
+    /// The memo of `sweep`, which is the sweep [`Sweep::try_new`] builds through `keys` at its
+    /// knots (e.g. a rig's rest sweep and its rest keys): nothing is rebuilt.
+    pub fn of(sweep: &Sweep, keys: &[Key]) -> Shape {
+        let kept = Kept {
+            frames: frames(keys),
+            sweep: sweep.clone(),
+            areas: None,
+            volume: None,
+            scaled: 0,
+            moved: 0,
+            largest: largest_radius(keys),
+        };
+        Shape { kept: Some(kept) }
+    }
+
     /// Forgets the sweep: the keys' radii changed, so the next call rebuilds it from them.
     pub fn forget(&mut self) {
         self.kept = None;
@@ -78,6 +97,13 @@ impl Shape {
     /// to), which were valid, and only their frames need checking.
     pub fn checked_radii(&self) -> bool {
         self.kept.is_some()
+    }
+
+    /// An upper bound on the radii of the keys of the kept sweep, scaled with it by
+    /// [`Shape::scale_radii`] (so including factors the caller has deferred); `None` when no
+    /// sweep is kept.
+    pub fn largest_radius(&self) -> Option<f64> {
+        self.kept.as_ref().map(|kept| kept.largest)
     }
 
     fn update(&mut self, keys: &[Key], knots: &[f64]) -> Result<&mut Kept, SweepError> {
@@ -92,26 +118,37 @@ impl Shape {
                 Some(kept) => (kept.areas, kept.scaled, kept.largest),
                 None => (None, 0, largest_radius(keys)),
             };
-            self.kept = Some(Kept { frames: frames(keys), sweep: rebuilt, areas, volume: None, scaled, largest });
+            self.kept =
+                Some(Kept { frames: frames(keys), sweep: rebuilt, areas, volume: None, scaled, moved: 0, largest });
         }
         Ok(self.kept.as_mut().expect("kept above"))
     }
 
     /// Moves every key of `keys` by `motion` (radii unchanged). When the memo holds the sweep of
-    /// `keys` before the move, it rebuilds C(t) and R(t) at once and keeps the volume: Eq. 1 is
-    /// invariant under a rigid motion of the whole sweep (A(t) is unchanged, N(t) and C′(t)
-    /// turn together), so a child carried by its parent (§5) costs no quadrature. The kept
-    /// volume differs from one integrated afresh by the quadrature's error, under 10⁻¹².
+    /// `keys` before the move, it moves C(t) and R(t) with them ([`Sweep::try_move_rigidly`],
+    /// no system solved; rebuilt from the keys every [`MAX_SCALED`] moves) and keeps the
+    /// volume: Eq. 1 is invariant under a rigid motion of the whole sweep (A(t) is unchanged,
+    /// N(t) and C′(t) turn together), so a child carried by its parent (§5) costs no
+    /// quadrature. The kept volume differs from one integrated afresh by the quadrature's
+    /// error, under 10⁻¹².
     pub fn move_rigidly(&mut self, keys: &mut [Key], motion: &Motion) {
         let before = self.kept.as_ref().is_some_and(|kept| same_frames(&kept.frames, keys));
         for key in keys.iter_mut() {
             motion.apply(key);
         }
         let Some(kept) = self.kept.as_mut().filter(|_| before) else { return };
-        match kept.sweep.try_with_axis(keys) {
-            Ok(sweep) => {
-                kept.sweep = sweep;
-                kept.frames = frames(keys);
+        let rebuild = kept.moved + 1 >= MAX_SCALED;
+        let moved = if rebuild {
+            kept.sweep.try_with_axis(keys).map(|sweep| kept.sweep = sweep)
+        } else {
+            kept.sweep.try_move_rigidly(keys, motion.rotation)
+        };
+        match moved {
+            Ok(()) => {
+                for (frame, key) in kept.frames.iter_mut().zip(keys.iter()) {
+                    *frame = (key.center, key.rotation);
+                }
+                kept.moved = if rebuild { 0 } else { kept.moved + 1 };
             }
             // The caller's check of the frames reports it.
             Err(_) => self.kept = None,

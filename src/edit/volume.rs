@@ -4,20 +4,23 @@
 //! given a target volume V* by one uniform rescale f = √(V*/V). Rescaling a parent moves the
 //! keys its children hang from, so the rules re-run the downward propagation and repeat until
 //! every target holds (to 1e-9 relative). The rounds rescale the sweeps' memos only; the keys'
-//! radii are multiplied once per sweep, by the product of its factors, when the rule is done. Virtual sweeps (which own no vertices) take no part.
+//! radii are multiplied once per sweep, by the product of its factors, once the rule is done
+//! and the pose is checked ([`Pending`]). Virtual sweeps (which own no vertices) take no part.
 
 use glam::DVec3;
 #[cfg(feature = "json")]
 use serde::{Deserialize, Serialize};
 
 use super::EditError;
-use super::hierarchy::propagate_down_kept;
+use super::hierarchy::propagate_down_from;
+use super::journal::Journal;
 use super::shapes::Shape;
 use crate::bind::MeshBindings;
 use crate::deform::deform_vertices;
+use crate::limits::MAX_RIG_COORDINATE;
 use crate::mesh::Mesh;
 use crate::rig::Rig;
-use crate::sweep::Key;
+use crate::sweep::{Key, Sweep};
 
 /// Which volumes an edit keeps.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -94,8 +97,11 @@ impl Volumes {
     }
 }
 
-/// Applies `rule` after sweep `edited` changed, given the volumes `before` the edit.
-pub fn apply_rule(
+/// Applies `rule` after sweep `edited` changed, given the volumes `before` the edit, saving in
+/// `journal` the radii it changes. Returns the rescales still to apply to the keys' radii
+/// ([`Pending::apply`]), once the pose is checked.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn apply_rule(
     rule: VolumeRule,
     rig: &Rig,
     keys: &mut [Vec<Key>],
@@ -103,19 +109,20 @@ pub fn apply_rule(
     before: &Volumes,
     mesh: Option<&BoundMesh>,
     shapes: &mut [Shape],
-) -> Result<(), EditError> {
+    journal: &mut Journal,
+) -> Result<Pending, EditError> {
     if rule == VolumeRule::None || !is_handle(rig, edited) {
-        return Ok(());
+        return Ok(Pending::none(keys.len()));
     }
     match rule {
-        VolumeRule::None => Ok(()),
-        VolumeRule::Total => keep_total(rig, keys, edited, before, shapes),
-        VolumeRule::Ratio => keep_ratios(rig, keys, edited, before, shapes),
+        VolumeRule::None => Ok(Pending::none(keys.len())),
+        VolumeRule::Total => keep_total(rig, keys, edited, before, shapes, journal),
+        VolumeRule::Ratio => keep_ratios(rig, keys, edited, before, shapes, journal),
         VolumeRule::Mesh => {
-            keep_mesh(rig, keys, edited, before, mesh.ok_or(EditError::MeshNeeded)?)?;
+            keep_mesh(rig, keys, edited, before, mesh.ok_or(EditError::MeshNeeded)?, journal)?;
             // The mesh rule rescales copies of the keys, not through the memos.
             shapes.iter_mut().for_each(Shape::forget);
-            Ok(())
+            Ok(Pending::none(keys.len()))
         }
     }
 }
@@ -142,42 +149,51 @@ fn scale(keys: &mut [Key], factor: f64) {
     }
 }
 
-/// [`scale`], returning whether every scaled radius is still finite and within
-/// [`MAX_RIG_COORDINATE`](crate::limits::MAX_RIG_COORDINATE) (the radii were valid before, and
-/// `factor` is positive, so none is negative): one pass over the radii.
-fn scale_checked(keys: &mut [Key], factor: f64) -> bool {
-    let mut largest = 0.0f64;
-    for key in keys {
-        for radius in &mut key.radii {
-            *radius *= factor;
-            largest = largest.max(*radius);
-        }
-    }
-    largest <= crate::limits::MAX_RIG_COORDINATE
-}
-
 /// The factors by which a rule has rescaled each sweep's memo but not yet its keys' radii: a
 /// rule rescales a sweep once per round, and its keys' radii are multiplied once, at the end,
 /// by the product ([`Pending::apply`]), so a round costs time independent of the radii.
-struct Pending(Vec<f64>);
+pub(super) struct Pending(Vec<f64>);
 
 impl Pending {
-    fn new(sweeps: usize) -> Pending {
+    /// No rescale, for `sweeps` sweeps.
+    pub(super) fn none(sweeps: usize) -> Pending {
         Pending(vec![1.0; sweeps])
     }
 
-    /// Multiplies every radius of every sweep by its pending factor. A sweep whose radii leave
-    /// the valid range is forgotten, so that the edit's check of its keys reports them.
-    fn apply(self, keys: &mut [Vec<Key>], shapes: &mut [Shape]) {
-        for ((keys, shape), factor) in keys.iter_mut().zip(shapes).zip(self.0) {
-            if factor != 1.0 && !scale_checked(keys, factor) {
-                shape.forget();
+    /// Multiplies every radius of every sweep by its pending factor. The memo bounds the
+    /// scaled radii (its largest radius carries the factors, [`Shape::largest_radius`]);
+    /// multiplying by a positive factor is monotonic in the radius, even rounded, so the
+    /// largest scaled radius is the bound up to the few ulps by which the product of the
+    /// factors rounds differently. A sweep whose bound, with a margin for those, stays within
+    /// [`MAX_RIG_COORDINATE`] is scaled in place; any other (none in practice) has its radii
+    /// saved in `journal` first and is checked after, failing as its keys would.
+    pub(super) fn apply(
+        self,
+        rig: &Rig,
+        keys: &mut [Vec<Key>],
+        shapes: &mut [Shape],
+        journal: &mut Journal,
+    ) -> Result<(), EditError> {
+        for (sweep, factor) in self.0.into_iter().enumerate() {
+            if factor == 1.0 {
+                continue;
+            }
+            let bounded = shapes[sweep].largest_radius().is_some_and(|r| r * (1.0 + 1e-12) <= MAX_RIG_COORDINATE);
+            if bounded {
+                scale(&mut keys[sweep], factor);
+            } else {
+                journal.save_sweep_radii(keys, sweep);
+                scale(&mut keys[sweep], factor);
+                Sweep::validate(&keys[sweep])
+                    .map_err(|source| EditError::Sweep { sweep: rig.sweeps()[sweep].name.clone(), source })?;
             }
         }
+        Ok(())
     }
 }
 
-/// Rescales `sweep` to volume `target` and re-attaches its descendants.
+/// Rescales `sweep` to volume `target`; its descendants are re-attached at the end of the
+/// round ([`propagate_down_from`]), once for all the sweeps the round rescaled.
 fn rescale_to(
     rig: &Rig,
     keys: &mut [Vec<Key>],
@@ -185,6 +201,7 @@ fn rescale_to(
     target: f64,
     shapes: &mut [Shape],
     pending: &mut Pending,
+    journal: &mut Journal,
 ) -> Result<(), EditError> {
     let volume = sweep_volume(rig, keys, sweep, shapes)?;
     if !(target > 0.0 && volume > 0.0 && target.is_finite()) {
@@ -195,10 +212,11 @@ fn rescale_to(
         pending.0[sweep] *= factor;
     } else {
         // The memo is gone: its next build reads (and checks) the keys' radii.
+        journal.save_sweep_radii(keys, sweep);
         scale(&mut keys[sweep], pending.0[sweep] * factor);
         pending.0[sweep] = 1.0;
     }
-    propagate_down_kept(rig, keys, sweep, shapes)
+    Ok(())
 }
 
 /// Repeats `round` (which returns the largest relative error left) until it is within tolerance.
@@ -222,22 +240,23 @@ fn keep_total(
     edited: usize,
     before: &Volumes,
     shapes: &mut [Shape],
-) -> Result<(), EditError> {
+    journal: &mut Journal,
+) -> Result<Pending, EditError> {
     let absorbers = absorbers(rig, edited);
     let alone = absorbers == [edited];
-    let mut pending = Pending::new(keys.len());
+    let mut pending = Pending::none(keys.len());
     until_converged(|| {
         let delta = if alone { 0.0 } else { sweep_volume(rig, keys, edited, shapes)? - before.sweeps[edited] };
         let mut worst = 0.0f64;
         for &a in &absorbers {
             let target = before.sweeps[a] - delta / absorbers.len() as f64;
             worst = worst.max(((sweep_volume(rig, keys, a, shapes)? - target) / target).abs());
-            rescale_to(rig, keys, a, target, shapes, &mut pending)?;
+            rescale_to(rig, keys, a, target, shapes, &mut pending, journal)?;
         }
+        propagate_down_from(rig, keys, &absorbers, shapes)?;
         Ok(worst)
     })?;
-    pending.apply(keys, shapes);
-    Ok(())
+    Ok(pending)
 }
 
 /// Each (child, parent) pair of handles keeps the ratio of its volumes before the edit,
@@ -248,26 +267,30 @@ fn keep_ratios(
     edited: usize,
     before: &Volumes,
     shapes: &mut [Shape],
-) -> Result<(), EditError> {
+    journal: &mut Journal,
+) -> Result<Pending, EditError> {
     let order = outward_pairs(rig, edited);
-    let mut pending = Pending::new(keys.len());
+    let mut pending = Pending::none(keys.len());
     until_converged(|| {
         let mut worst = 0.0f64;
+        let mut rescaled = Vec::with_capacity(order.len());
         for &(child, parent, rescale_child) in &order {
             let ratio = before.sweeps[child] / before.sweeps[parent];
             let (child_volume, parent_volume) =
                 (sweep_volume(rig, keys, child, shapes)?, sweep_volume(rig, keys, parent, shapes)?);
             worst = worst.max(((child_volume / parent_volume - ratio) / ratio).abs());
             if rescale_child {
-                rescale_to(rig, keys, child, parent_volume * ratio, shapes, &mut pending)?;
+                rescale_to(rig, keys, child, parent_volume * ratio, shapes, &mut pending, journal)?;
+                rescaled.push(child);
             } else {
-                rescale_to(rig, keys, parent, child_volume / ratio, shapes, &mut pending)?;
+                rescale_to(rig, keys, parent, child_volume / ratio, shapes, &mut pending, journal)?;
+                rescaled.push(parent);
             }
         }
+        propagate_down_from(rig, keys, &rescaled, shapes)?;
         Ok(worst)
     })?;
-    pending.apply(keys, shapes);
-    Ok(())
+    Ok(pending)
 }
 
 /// The (child, parent) links between handles in breadth-first order from `start`, each with
@@ -311,6 +334,7 @@ fn keep_mesh(
     edited: usize,
     before: &Volumes,
     mesh: &BoundMesh,
+    journal: &mut Journal,
 ) -> Result<(), EditError> {
     let target = before.mesh.ok_or(EditError::MeshNeeded)?;
     let absorbers = absorbers(rig, edited);
@@ -329,6 +353,8 @@ fn keep_mesh(
     for _ in 0..ROUNDS {
         let (scaled, g1) = trial(f1)?;
         if (g1 / target).abs() <= MESH_TOLERANCE {
+            // The absorbers' radii change; their descendants only move.
+            absorbers.iter().for_each(|&a| journal.save_sweep_radii(keys, a));
             keys.clone_from_slice(&scaled);
             return Ok(());
         }

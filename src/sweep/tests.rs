@@ -168,3 +168,45 @@ fn invalid_keys_are_rejected_with_the_key_at_fault() {
 }
 
 use glam::DMat3;
+
+#[test]
+fn a_sweep_moved_rigidly_equals_the_one_rebuilt_from_the_moved_keys() {
+    let keys = bent_keys();
+    let sweep = Sweep::try_new(&keys, None).unwrap();
+    let (rotation, translation) =
+        (DQuat::from_rotation_x(2.3) * DQuat::from_rotation_z(-0.8), DVec3::new(3.0, -1.5, 40.0));
+    let moved_keys: Vec<Key> = keys
+        .iter()
+        .map(|key| Key {
+            center: rotation * key.center + translation,
+            rotation: (rotation * key.rotation).normalize(),
+            radii: key.radii.clone(),
+        })
+        .collect();
+    let rebuilt = sweep.try_with_axis(&moved_keys).unwrap();
+    let mut moved = sweep.clone();
+    moved.try_move_rigidly(&moved_keys, rotation).unwrap();
+    let mut worst = 0.0f64;
+    for i in 0..=40 {
+        let t = i as f64 / 40.0;
+        for (theta, d, h) in [(0.0, 0.0, 0.0), (1.9, 0.2, -0.1), (4.4, -0.1, 0.3)] {
+            worst = worst.max(moved.point(theta, t, d, h).distance(rebuilt.point(theta, t, d, h)));
+        }
+        worst = worst.max(moved.center_second_derivative(t).distance(rebuilt.center_second_derivative(t)));
+    }
+    // Relative to the coordinates (|C| ≈ 45): a few ulps.
+    assert!(worst <= 1e-14 * 45.0, "moved vs rebuilt: {worst:e}");
+    for (i, key) in moved_keys.iter().enumerate() {
+        assert_eq!(moved.center(moved.knots()[i]), key.center, "C(u_{i}) is the moved center exactly");
+    }
+    // The rotation matters: moving by another one is a different sweep.
+    let mut wrong = sweep.clone();
+    wrong.try_move_rigidly(&moved_keys, DQuat::IDENTITY).unwrap();
+    assert!(wrong.center(0.37).distance(rebuilt.center(0.37)) > 1e-3);
+    // A moved key that is not valid is refused, the sweep untouched.
+    let mut bad = moved_keys.clone();
+    bad[2].center.x = f64::NAN;
+    let mut kept = sweep.clone();
+    assert!(kept.try_move_rigidly(&bad, rotation).is_err());
+    assert_eq!(kept, sweep);
+}
