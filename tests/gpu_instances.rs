@@ -147,43 +147,52 @@ fn a_pose_for_an_instance_that_does_not_exist_is_refused() {
 }
 
 #[test]
-fn two_poses_encoded_into_one_command_buffer_each_land() {
+fn every_pose_encoded_into_one_command_buffer_lands() {
     let Some(context) = common::gpu() else { return };
     let tube = Tube::with_vertex_count(2_000, 4.0, 0.5);
     let (mesh, rig) = (tube.mesh(), tube_rig(&tube, 6, 8));
     let owners = rig.owners(&mesh, "tube").unwrap();
     let positions = sweepffd::gpu::rest_positions(&mesh.positions);
-    let (a, b) = (pose(&rig, 1, 4), pose(&rig, 3, 4));
+    // Five poses, more than the two staging buffers a deformer starts with.
+    let poses: Vec<Vec<Sweep>> = (0..5).map(|i| pose(&rig, i, 4)).collect();
     let mut reference = GpuDeformer::new(context, &descriptor(&rig, &positions, &owners)).unwrap();
-    reference.deform(&a).unwrap();
-    let expected_a = reference.read_positions().unwrap();
-    reference.deform(&b).unwrap();
-    let expected_b = reference.read_positions().unwrap();
-    assert_ne!(expected_a, expected_b);
+    let expected: Vec<Vec<f32>> = poses
+        .iter()
+        .map(|posed| {
+            reference.deform(posed).unwrap();
+            reference.read_positions().unwrap()
+        })
+        .collect();
+    assert!(expected.windows(2).all(|pair| pair[0] != pair[1]), "the poses differ");
 
     let mut deformer = GpuDeformer::new(context, &descriptor(&rig, &positions, &owners)).unwrap();
-    assert!(deformer.pose_slots() >= 2);
+    assert_eq!(deformer.pose_uploads(), 2);
     let size = deformer.vertex_count() as u64 * 12;
-    let copy = |label| {
-        context.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some(label),
-            size,
-            usage: wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
+    let copies: Vec<wgpu::Buffer> = (0..poses.len())
+        .map(|_| {
+            context.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("one pose's positions"),
+                size,
+                usage: wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
         })
-    };
-    let (first, second) = (copy("first pose"), copy("second pose"));
-    let mut encoder = context.device.create_command_encoder(&Default::default());
-    deformer.set_pose(0, &a).unwrap();
-    deformer.encode(&mut encoder);
-    encoder.copy_buffer_to_buffer(deformer.positions(), 0, &first, 0, size);
-    deformer.set_pose(0, &b).unwrap();
-    deformer.encode(&mut encoder);
-    encoder.copy_buffer_to_buffer(deformer.positions(), 0, &second, 0, size);
-    context.queue.submit([encoder.finish()]);
+        .collect();
     let read = |buffer| -> Vec<f32> { bytemuck::pod_collect_to_vec(&read_bytes(context, buffer, 0, size).unwrap()) };
-    assert!(read(&first) == expected_a, "the first encode saw another pose than its own");
-    assert!(read(&second) == expected_b, "the second encode saw another pose than its own");
+    // Twice: the second command buffer reuses the staging buffers the first one made.
+    for round in 0..2 {
+        let mut encoder = context.device.create_command_encoder(&Default::default());
+        for (posed, copy) in poses.iter().zip(&copies) {
+            deformer.set_pose(0, posed).unwrap();
+            deformer.encode(&mut encoder);
+            encoder.copy_buffer_to_buffer(deformer.positions(), 0, copy, 0, size);
+        }
+        context.queue.submit([encoder.finish()]);
+        for (i, (copy, expected)) in copies.iter().zip(&expected).enumerate() {
+            assert!(read(copy) == *expected, "round {round}: encode {i} saw another pose than its own");
+        }
+        assert_eq!(deformer.pose_uploads(), poses.len(), "round {round}: one staging buffer per encode in flight");
+    }
 }
 
 #[test]

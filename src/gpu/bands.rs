@@ -18,7 +18,7 @@ use super::GpuContext;
 use super::binder::Binder;
 use super::buffers::{empty_binding_buffer, params_buffer, upload_positions};
 use super::chunks::{ChunkLimits, dispatch_grid};
-use super::deformer::instances::{CellSlots, InstanceDispatch, PositionTargets, View};
+use super::deformer::instances::{InstanceDispatch, PosedCells, PositionTargets};
 use super::kernels::{DeformVariant, Kernel};
 use super::readback::read_bytes;
 use crate::bind::falloff::BandWeight;
@@ -58,7 +58,7 @@ pub(crate) struct BandStage {
 
 /// The deformer's buffers the band dispatches bind.
 pub(crate) struct BandPlan<'a> {
-    pub cells: &'a CellSlots,
+    pub cells: &'a PosedCells,
     pub targets: &'a PositionTargets,
     pub limits: &'a ChunkLimits,
 }
@@ -162,15 +162,16 @@ impl BandStage {
         }
     }
 
-    /// Records the band dispatches into a compute pass, after the deform dispatches.
-    pub(crate) fn encode(&self, pass: &mut wgpu::ComputePass, view: View) {
+    /// Records the band dispatches writing position buffer `parity` into a compute pass, after
+    /// the deform dispatches.
+    pub(crate) fn encode(&self, pass: &mut wgpu::ComputePass, parity: usize) {
         if self.chunks.is_empty() {
             return;
         }
         pass.set_pipeline(&self.kernel.pipeline);
         for chunk in &self.chunks {
             for dispatch in &chunk.dispatches {
-                dispatch.encode(pass, view);
+                dispatch.encode(pass, parity);
             }
         }
     }

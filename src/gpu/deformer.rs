@@ -5,6 +5,7 @@ mod bounds;
 mod descriptor;
 pub(crate) mod instances;
 mod set_bands;
+mod uploads;
 
 pub use bounds::BOUNDS_STRIDE;
 pub use descriptor::{DeformerDescriptor, OutputBuffer};
@@ -15,8 +16,9 @@ use std::sync::Arc;
 
 use self::bounds::BoundsStage;
 use self::descriptor::triangle_faces;
-use self::instances::{CellSlots, InstanceDispatch, PositionTargets, View};
+use self::instances::{InstanceDispatch, PosedCells, PositionTargets};
 use self::set_bands::{BandMember, Rebanding};
+use self::uploads::PoseUploads;
 use super::bands::{BandPlan, BandSource, BandStage};
 use super::binder::Binder;
 use super::buffers::{
@@ -56,7 +58,7 @@ pub enum BindingSource<'a> {
 /// bindings stay on the GPU and are shared by every instance. Each frame,
 /// [`set_pose`](GpuDeformer::set_pose) turns an instance's posed sweeps into a few KB of
 /// coefficients on the host, and [`encode`](GpuDeformer::encode) uploads every instance's (one
-/// `queue.write_buffer`, into the next pose slot) and records the deform (and normals)
+/// copy recorded into the encoder, from a staging buffer) and records the deform (and normals)
 /// dispatches into the application's command encoder, every instance in one deform dispatch: no allocation, pipeline or bind-group creation, no vertex
 /// upload per frame. The [`positions`](GpuDeformer::positions) buffer (and
 /// [`normals`](GpuDeformer::normals)) has `VERTEX | STORAGE` usage: draw it directly as a
@@ -96,10 +98,11 @@ pub struct GpuDeformer {
     kernel: Arc<Kernel>,
     vertex_count: u32,
     targets: PositionTargets,
-    cells: CellSlots,
+    cells: PosedCells,
     /// Every instance's cell records, instance i at i × the rig's cell count: the next encode
-    /// writes them into the next pose slot.
+    /// uploads them.
     poses: Vec<CellCoeffs>,
+    uploads: PoseUploads,
     coefficients: SweepCoefficients,
     variant: DeformVariant,
     /// The rest rig's cell records, which binding and the band kernel read.
@@ -112,8 +115,6 @@ pub struct GpuDeformer {
     /// The tangents stage of each position buffer (none without rest tangents).
     tangents: Vec<TangentStage>,
     bounds: Option<BoundsStage>,
-    /// The pose slot the next encode writes and binds.
-    next_slot: u32,
     /// The position buffer holding the latest positions.
     current: usize,
 }
@@ -128,13 +129,13 @@ struct DeformChunk {
 
 impl DeformChunk {
     /// The deform dispatches of the vertices in `range`, whose bindings are in `bindings`, for
-    /// every instance, pose slot and position buffer.
+    /// every instance and position buffer.
     fn new(
         device: &wgpu::Device,
         kernel: &Kernel,
         range: Range<u32>,
         bindings: wgpu::Buffer,
-        cells: &CellSlots,
+        cells: &PosedCells,
         targets: &PositionTargets,
         limits: &ChunkLimits,
     ) -> DeformChunk {
@@ -172,7 +173,7 @@ impl GpuDeformer {
             bindings,
             triangles,
             instances,
-            pose_slots,
+            pose_uploads,
             previous_positions,
             bounds,
             rest_tangents,
@@ -242,7 +243,8 @@ impl GpuDeformer {
         drop(image);
         let total_cells = coefficients.cells.len() * instances as usize;
         let variant = DeformVariant::for_cells(total_cells, &device_limits);
-        let cells = CellSlots::new(device, &coefficients.cells, instances, variant, pose_slots);
+        let cells = PosedCells::new(device, &coefficients.cells, instances, variant);
+        let uploads = PoseUploads::new(device, cells.used_bytes, pose_uploads);
         let rest_cells = cells_buffer(device, &coefficients, variant);
         let kernel = context.kernels().deform(device, variant);
         let mut encoder =
@@ -331,6 +333,7 @@ impl GpuDeformer {
             targets,
             cells,
             poses,
+            uploads,
             coefficients,
             variant,
             rest_cells,
@@ -340,7 +343,6 @@ impl GpuDeformer {
             normals,
             tangents,
             bounds,
-            next_slot: 0,
             current: 0,
         };
         context.queue.submit([encoder.finish()]);
@@ -433,10 +435,10 @@ impl GpuDeformer {
         self.normals.get(self.current).map_or(0, |n| n.dispatches.len()) + tangents
     }
 
-    /// Number of pose slots: how many encodes of this deformer one queue submission may hold,
-    /// each with its own poses.
-    pub fn pose_slots(&self) -> u32 {
-        self.cells.count
+    /// Number of staging buffers the pose uploads have made so far: as many as encodes were
+    /// in flight at once (see [`DeformerDescriptor::with_pose_uploads`]).
+    pub fn pose_uploads(&self) -> usize {
+        self.uploads.len()
     }
 
     /// Turns posed sweeps into the coefficients of instance `instance` (in place, no
@@ -458,7 +460,8 @@ impl GpuDeformer {
     }
 
     /// Records the frame's work into `encoder`: the deform pass (every instance's poses
-    /// uploaded into the next pose slot, one `queue.write_buffer`; deform and band kernels over
+    /// uploaded by a copy recorded ahead of it, so that every encode deforms with the poses set
+    /// before it, however many share a command buffer; deform and band kernels over
     /// every instance), then the normals pass if any. Afterwards
     /// [`positions`](GpuDeformer::positions) is the buffer this frame writes.
     pub fn encode(&mut self, encoder: &mut wgpu::CommandEncoder) {
@@ -490,21 +493,18 @@ impl GpuDeformer {
         Ok(Some(bytemuck::pod_collect_to_vec(&bytes)))
     }
 
-    /// Records the deform pass alone (as [`encode`](GpuDeformer::encode) does: upload into the
-    /// next pose slot, the deform kernel, then the band kernel for the vertices in falloff
+    /// Records the deform pass alone (as [`encode`](GpuDeformer::encode) does: the upload of
+    /// the poses, the deform kernel, then the band kernel for the vertices in falloff
     /// bands), optionally writing timestamps around it.
     pub fn encode_deform_pass(
         &mut self,
         encoder: &mut wgpu::CommandEncoder,
         timestamps: Option<wgpu::ComputePassTimestampWrites>,
     ) {
-        let slot = self.next_slot;
-        self.next_slot = (slot + 1) % self.cells.count;
         let bytes = bytemuck::cast_slice(&self.poses);
-        self.context.queue.write_buffer(&self.cells.buffer, self.cells.offset(slot), bytes);
+        self.uploads.encode(&self.context.device, &self.context.queue, encoder, bytes, &self.cells.buffer);
         let parity = (self.current + 1) % self.targets.buffers.len();
         self.current = parity;
-        let view = View { slot, parity };
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("sweepffd deform"),
             timestamp_writes: timestamps,
@@ -512,11 +512,11 @@ impl GpuDeformer {
         pass.set_pipeline(&self.kernel.pipeline);
         for chunk in &self.chunks {
             for dispatch in &chunk.dispatches {
-                dispatch.encode(&mut pass, view);
+                dispatch.encode(&mut pass, parity);
             }
         }
         if let Some(bands) = &self.bands {
-            bands.encode(&mut pass, view);
+            bands.encode(&mut pass, parity);
         }
     }
 

@@ -31,9 +31,11 @@ pub struct DeformerDescriptor<'a> {
     pub triangles: Option<&'a [u32]>,
     /// Instances of the mesh (at least 1), each with its own pose, deformed in one dispatch.
     pub instances: u32,
-    /// Encodes of the deformer one queue submission may hold, each with its own poses (at
-    /// least 1; each slot holds every instance's cell records).
-    pub pose_slots: u32,
+    /// Staging buffers for the poses' uploads made at creation (at least 1; each holds every
+    /// instance's cell records). Each encode uploads through a free one and makes another if
+    /// none is free, so this is a starting size, not a limit: as many encodes as wanted may
+    /// share a command buffer, each with its own poses.
+    pub pose_uploads: u32,
     /// Whether to keep the previous frame's positions (two position buffers, alternating).
     pub previous_positions: bool,
     /// Whether to compute every instance's bounds on the GPU each frame.
@@ -76,7 +78,7 @@ impl<'a> DeformerDescriptor<'a> {
             bindings,
             triangles: None,
             instances: 1,
-            pose_slots: 2,
+            pose_uploads: 2,
             previous_positions: false,
             bounds: false,
             rest_tangents: None,
@@ -95,9 +97,10 @@ impl<'a> DeformerDescriptor<'a> {
         DeformerDescriptor { instances, ..self }
     }
 
-    /// The same with `pose_slots` pose slots (default 2).
-    pub fn with_pose_slots(self, pose_slots: u32) -> DeformerDescriptor<'a> {
-        DeformerDescriptor { pose_slots, ..self }
+    /// The same with `pose_uploads` staging buffers made at creation (default 2, enough for a
+    /// frame loop with a frame in flight; more are made when needed).
+    pub fn with_pose_uploads(self, pose_uploads: u32) -> DeformerDescriptor<'a> {
+        DeformerDescriptor { pose_uploads, ..self }
     }
 
     /// The same, keeping the previous frame's positions.
@@ -131,10 +134,10 @@ impl<'a> DeformerDescriptor<'a> {
     /// in range, a triangle list not a multiple of three or indexing past the vertices.
     pub(super) fn check(&self) -> Result<(), GpuError> {
         check_input(self.rest, self.positions, &self.bindings)?;
-        if self.instances == 0 || self.pose_slots == 0 {
+        if self.instances == 0 || self.pose_uploads == 0 {
             return Err(GpuError::Input(format!(
-                "{} instances and {} pose slots: each needs at least one",
-                self.instances, self.pose_slots
+                "{} instances and {} pose uploads: each needs at least one",
+                self.instances, self.pose_uploads
             )));
         }
         if self.rest_tangents.is_some() && self.triangles.is_none() {

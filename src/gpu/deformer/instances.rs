@@ -1,14 +1,8 @@
-//! Instances and pose slots: one bound mesh deformed by N poses in one dispatch.
+//! Instances: one bound mesh deformed by N poses in one dispatch.
 //!
-//! Data flow: posed sweeps → **cell records of every instance, one pose slot** (one
-//! `queue.write_buffer` a frame) → deform and band dispatches over (vertices × instances) →
-//! positions, instance i at [`PositionTargets::instance_offset`].
-//!
-//! **Pose slots.** `queue.write_buffer` lands before the whole next submission, so two
-//! set-pose-and-encode pairs recorded for one submission would both see the last pose. Each
-//! encode therefore writes the poses into the next of `pose_slots` slots of the cell buffer and
-//! binds that slot: up to `pose_slots` encodes of one deformer may share a submission, each
-//! with its own pose.
+//! Data flow: posed sweeps → **cell records of every instance** (copied in by each encode from
+//! a staging buffer, [`PoseUploads`](super::uploads::PoseUploads)) → deform and band dispatches
+//! over (vertices × instances) → positions, instance i at [`PositionTargets::instance_offset`].
 
 use std::ops::Range;
 
@@ -23,65 +17,51 @@ use crate::coeffs::{CellCoeffs, InstanceParams, UNIFORM_CELL_CAPACITY};
 /// apart (64 × 12 bytes = 3 × 256), so every instance's windows are aligned on any device.
 pub const INSTANCE_ALIGNMENT: u32 = 64;
 
-/// Alignment of the pose slots in the cell buffer: the largest uniform or storage offset
-/// alignment wgpu allows.
-const SLOT_ALIGNMENT: u64 = 256;
-
-/// The per-frame cell records of every instance, `count` slots of them.
+/// The per-frame cell records of every instance, instance i at i × `per_instance`.
 #[derive(Debug)]
-pub(crate) struct CellSlots {
+pub(crate) struct PosedCells {
     pub(crate) buffer: wgpu::Buffer,
-    /// Bytes from one slot to the next.
-    slot_bytes: u64,
-    /// Bytes of one slot's binding (the uniform array's size for the uniform variant).
+    /// Bytes of the records of every instance.
+    pub(crate) used_bytes: u64,
+    /// Bytes of the binding (the uniform array's size for the uniform variant).
     binding_bytes: u64,
     /// Cell records of one instance.
     pub(crate) per_instance: u32,
-    pub(crate) count: u32,
 }
 
-impl CellSlots {
-    /// `count` slots, each holding `instances` copies of the rest records `rest`.
+impl PosedCells {
+    /// `instances` copies of the rest records `rest`.
     pub(crate) fn new(
         device: &wgpu::Device,
         rest: &[CellCoeffs],
         instances: u32,
         variant: DeformVariant,
-        count: u32,
-    ) -> CellSlots {
+    ) -> PosedCells {
         let record = size_of::<CellCoeffs>() as u64;
-        let used = rest.len() as u64 * instances as u64 * record;
+        let used_bytes = rest.len() as u64 * instances as u64 * record;
         let binding_bytes = match variant {
             DeformVariant::Uniform => UNIFORM_CELL_CAPACITY as u64 * record,
-            DeformVariant::Storage => used,
+            DeformVariant::Storage => used_bytes,
         };
-        let slot_bytes = binding_bytes.div_ceil(SLOT_ALIGNMENT) * SLOT_ALIGNMENT;
-        let mut contents = vec![0u8; (slot_bytes * count as u64) as usize];
+        let mut contents = vec![0u8; binding_bytes as usize];
         let image: &[u8] = bytemuck::cast_slice(rest);
-        for slot in 0..count as usize {
-            for instance in 0..instances as usize {
-                let at = slot * slot_bytes as usize + instance * image.len();
-                contents[at..at + image.len()].copy_from_slice(image);
-            }
+        for instance in 0..instances as usize {
+            let at = instance * image.len();
+            contents[at..at + image.len()].copy_from_slice(image);
         }
         let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("sweepffd posed cells"),
             contents: &contents,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
         });
-        CellSlots { buffer, slot_bytes, binding_bytes, per_instance: rest.len() as u32, count }
+        PosedCells { buffer, used_bytes, binding_bytes, per_instance: rest.len() as u32 }
     }
 
-    /// The byte offset of slot `slot`.
-    pub(crate) fn offset(&self, slot: u32) -> u64 {
-        slot as u64 * self.slot_bytes
-    }
-
-    /// The binding of slot `slot`.
-    pub(crate) fn binding(&self, slot: u32) -> wgpu::BindingResource<'_> {
+    /// The binding of the records.
+    pub(crate) fn binding(&self) -> wgpu::BindingResource<'_> {
         wgpu::BindingResource::Buffer(wgpu::BufferBinding {
             buffer: &self.buffer,
-            offset: self.offset(slot),
+            offset: 0,
             size: wgpu::BufferSize::new(self.binding_bytes),
         })
     }
@@ -148,30 +128,21 @@ impl PositionTargets {
     }
 }
 
-/// One dispatch over some instances: a bind group per (pose slot, position buffer), view
-/// `slot · buffers + parity`.
+/// One dispatch over some instances: a bind group per position buffer (`parity`).
 #[derive(Debug)]
 pub(crate) struct InstanceDispatch {
     groups: Vec<wgpu::BindGroup>,
-    parities: usize,
     grid: (u32, u32, u32),
-}
-
-/// Which pose slot is bound and which position buffer is written.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct View {
-    pub(crate) slot: u32,
-    pub(crate) parity: usize,
 }
 
 impl InstanceDispatch {
     /// The dispatches of a kernel over `count` threads per instance (the vertices `range`, or
     /// their band records), one per instance group; `group_of(params, cells, positions)` makes
-    /// the bind group of one view from the dispatch's params, the slot's cells and the window of
-    /// the position buffer.
+    /// the bind group of one position buffer from the dispatch's params, the cells and the
+    /// window of the position buffer.
     pub(crate) fn plan(
         device: &wgpu::Device,
-        cells: &CellSlots,
+        cells: &PosedCells,
         targets: &PositionTargets,
         range: &Range<u32>,
         count: u32,
@@ -193,22 +164,18 @@ impl InstanceDispatch {
                     contents: bytemuck::bytes_of(&params),
                     usage: wgpu::BufferUsages::UNIFORM,
                 });
-                let parities = targets.buffers.len();
-                let mut groups = Vec::with_capacity(cells.count as usize * parities);
-                for slot in 0..cells.count {
-                    for parity in 0..parities {
-                        groups.push(group_of(&params, cells.binding(slot), targets.window(parity, range, group)));
-                    }
-                }
+                let groups = (0..targets.buffers.len())
+                    .map(|parity| group_of(&params, cells.binding(), targets.window(parity, range, group)))
+                    .collect();
                 let (x, y) = dispatch_grid(count, limits);
-                InstanceDispatch { groups, parities, grid: (x, y, group.len() as u32) }
+                InstanceDispatch { groups, grid: (x, y, group.len() as u32) }
             })
             .collect()
     }
 
-    /// Records the dispatch of `view` (its pipeline already set).
-    pub(crate) fn encode(&self, pass: &mut wgpu::ComputePass, view: View) {
-        pass.set_bind_group(0, &self.groups[view.slot as usize * self.parities + view.parity], &[]);
+    /// Records the dispatch writing position buffer `parity` (its pipeline already set).
+    pub(crate) fn encode(&self, pass: &mut wgpu::ComputePass, parity: usize) {
+        pass.set_bind_group(0, &self.groups[parity], &[]);
         pass.dispatch_workgroups(self.grid.0, self.grid.1, self.grid.2);
     }
 }
