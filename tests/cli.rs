@@ -477,7 +477,11 @@ fn bench_prints_one_json_line_with_every_figure() {
             assert!(value.is_finite() && value > 0.0, "{backend}: {field} = {value}");
         }
         if backend == "gpu" {
-            assert_eq!(report["device_bytes_per_vertex"].as_f64(), Some(32.0));
+            // Bindings (20) and positions (12); normals (12) and their pass's lists: the vertex
+            // (4), its offset (4) and its fan of neighbours, 6 on the tube's grid with the first
+            // repeated to close it (28), fewer on the two boundary rings.
+            let bytes = report["device_bytes_per_vertex"].as_f64().unwrap();
+            assert!(bytes > 76.0 && bytes <= 80.0, "device bytes per vertex {bytes}");
             assert!(report["readback_ms"].as_f64().is_some_and(|ms| ms > 0.0));
             assert!(report["frame_cpu_ms"].as_f64().is_some_and(|ms| ms > 0.0));
         } else {

@@ -626,12 +626,17 @@ impl GpuDeformer {
         self.bands.as_ref().map_or(0, BandStage::len)
     }
 
-    /// Device memory that grows with the mesh: bindings, positions and the falloff bands' records,
-    /// bytes (normals and the rig's cell records excluded).
+    /// Device memory that grows with the mesh, bytes: bindings, positions (both buffers with
+    /// previous positions; an app-supplied output's share counted too), the falloff bands' records, and
+    /// the normals and tangents with what their passes keep (rest normals and tangents, vertex
+    /// and fan lists). The rig's cell records, the staging buffers of the pose uploads and the
+    /// bounds are excluded: they grow with the rig and the instances, not the vertices.
     pub fn device_bytes(&self) -> u64 {
         let bindings = self.dispatched_vertex_count() as u64 * BINDING_STRIDE;
         let positions = self.targets.bytes() * self.targets.buffers.len() as u64;
-        bindings + positions + self.bands.as_ref().map_or(0, BandStage::device_bytes)
+        let normals: u64 = self.normals.iter().map(|stage| stage.device_bytes).sum();
+        let tangents: u64 = self.tangents.iter().map(|stage| stage.device_bytes).sum();
+        bindings + positions + normals + tangents + self.bands.as_ref().map_or(0, BandStage::device_bytes)
     }
 
     /// Copies the bindings back to the CPU (blocking), one per vertex; band vertices carry

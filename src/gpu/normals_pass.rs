@@ -104,6 +104,8 @@ pub(crate) struct NormalsStage {
     pub(crate) dispatches: Vec<Dispatch>,
     /// The vertices (all instances) recomputed per frame, ascending.
     pub(crate) dirty: Vec<u32>,
+    /// Device memory the stage keeps: the normals and the per-frame dispatches' lists.
+    pub(crate) device_bytes: u64,
 }
 
 /// What the normal dispatches of one stage share.
@@ -174,21 +176,24 @@ impl NormalsStage {
             limits,
         };
         let every = instanced(&(0..vertex_count).collect::<Vec<u32>>(), stride, instances.max(1));
-        record(encoder, "sweepffd rest normals", &kernel, &plan.dispatches(device, &every)?);
+        record(encoder, "sweepffd rest normals", &kernel, &plan.dispatches(device, &every)?.0);
         let dirty = instanced(&dirty_vertices(&adjacency, |v| moves[v]), stride, instances.max(1));
-        let dispatches = plan.dispatches(device, &dirty)?;
-        Ok(NormalsStage { kernel, buffer, dispatches, dirty })
+        let (dispatches, list_bytes) = plan.dispatches(device, &dirty)?;
+        let device_bytes = buffer.size() + list_bytes;
+        Ok(NormalsStage { kernel, buffer, dispatches, dirty, device_bytes })
     }
 }
 
 impl NormalsPlan<'_> {
-    /// The dispatches computing the normals of `vertices` (ascending, over all instances).
-    fn dispatches(&self, device: &wgpu::Device, vertices: &[u32]) -> Result<Vec<Dispatch>, GpuError> {
+    /// The dispatches computing the normals of `vertices` (ascending, over all instances), and
+    /// the bytes of the vertex, offset and fan lists they bind.
+    fn dispatches(&self, device: &wgpu::Device, vertices: &[u32]) -> Result<(Vec<Dispatch>, u64), GpuError> {
         let n = self.stride;
         let row = |g: u32| self.adjacency.fans_of((g % n) as usize).len() as u64;
         let chunks = list_chunks(vertices, POSITION_STRIDE, row, self.limits).ok_or_else(|| {
             GpuError::Input("a vertex has more incident triangles than one storage binding holds".into())
         })?;
+        let mut list_bytes = 0u64;
         let dispatches = chunks
             .iter()
             .map(|chunk| {
@@ -201,6 +206,7 @@ impl NormalsPlan<'_> {
                     fans.extend(entries.iter().map(|&e| ((e & FAN_INDEX) + base) | (e & FAN_START)));
                     offsets.push(fans.len() as u32);
                 }
+                list_bytes += 4 * (list.len() + offsets.len() + fans.len()) as u64;
                 let params = params_buffer(
                     device,
                     DispatchParams {
@@ -226,7 +232,7 @@ impl NormalsPlan<'_> {
                 (group, dispatch_grid(list.len() as u32, self.limits))
             })
             .collect();
-        Ok(dispatches)
+        Ok((dispatches, list_bytes))
     }
 }
 

@@ -31,6 +31,9 @@ pub(crate) struct TangentStage {
     buffer: wgpu::Buffer,
     /// The per-frame dispatches, over the normals stage's dirty vertices.
     dispatches: Vec<Dispatch>,
+    /// Device memory the stage keeps: the tangents, the rest normals and tangents it reads and
+    /// the per-frame vertex lists.
+    pub(crate) device_bytes: u64,
 }
 
 /// What the tangent dispatches of one stage share.
@@ -104,7 +107,8 @@ impl TangentStage {
         let every = instanced(&(0..vertex_count).collect::<Vec<u32>>(), stride, instances.max(1));
         record(encoder, "sweepffd rest tangents", &kernel, &plan.dispatches(device, &every)?);
         let dispatches = plan.dispatches(device, &normals.dirty)?;
-        Ok(TangentStage { kernel, buffer, dispatches })
+        let device_bytes = buffer.size() + rest_normals.size() + rest_tangents.size() + 4 * normals.dirty.len() as u64;
+        Ok(TangentStage { kernel, buffer, dispatches, device_bytes })
     }
 
     /// The deformed tangents, f32 xyzw per vertex (16 bytes, tightly packed, instance after
