@@ -35,3 +35,14 @@ pub use tangents_pass::TANGENT_STRIDE;
 pub fn rest_positions(positions: &[glam::DVec3]) -> Vec<[f32; 3]> {
     positions.iter().map(|p| p.as_vec3().to_array()).collect()
 }
+
+/// An app's `Vec3` positions (or normals) as the engine takes them, without a copy: glam's
+/// `Vec3` is three f32 in order, 12 bytes, as `[f32; 3]` (`Vec3A`, 16 bytes, is not).
+///
+/// ```
+/// let positions = [sweepffd::glam::Vec3::new(1.0, 2.0, 3.0)];
+/// assert_eq!(sweepffd::gpu::vec3_positions(&positions), &[[1.0, 2.0, 3.0]]);
+/// ```
+pub fn vec3_positions(positions: &[glam::Vec3]) -> &[[f32; 3]] {
+    bytemuck::cast_slice(positions)
+}
