@@ -39,12 +39,12 @@ fn fit_and_compare(mesh: &Mesh, vertices: &[u32], name: &str) -> (Fit, f64) {
     for step in &fitted.steps {
         eprintln!("  {}: RMS {:.2}%", step.label, 100.0 * step.quality.rms_d);
     }
+    let complete = fitted.sections.iter().filter(|s| !s.open && !s.borrowed).count();
     eprintln!(
-        "  centers {:?}",
-        fitted.keys.iter().map(|k| k.center.to_array().map(|c| (c * 1000.0).round() / 1000.0)).collect::<Vec<_>>()
+        "  {complete} of {} sections complete; rim {:.4?} near key 0 and the last key",
+        fitted.keys.len(),
+        fitted.rim
     );
-    eprintln!("  rim {:?}", fitted.rim);
-    eprintln!("  sections {:?}", fitted.sections.iter().map(|s| (s.open, s.borrowed, s.missed)).collect::<Vec<_>>());
     assert_eq!(q.vertices, vertices.len(), "{name}");
     assert_eq!(q.without_root, 0, "{name}: every owned vertex binds with a root");
     assert!(seconds <= 1.0, "{name}: {seconds:.3} s");
@@ -131,28 +131,50 @@ fn moved(mesh: &Mesh, rotation: DQuat, translation: DVec3) -> Mesh {
     moved
 }
 
-#[test]
-fn fitting_a_rigidly_moved_part_gives_the_moved_keys() {
-    let Some(mesh) = load("armadillo_50k.obj") else { return };
-    let leg = largest_connected(&mesh, armadillo_leg_with_foot);
+/// Fits `vertices` of `mesh` and of its rigidly moved copy; returns the worst distance between
+/// the moved keys' centers and the copy's, relative to the part's length, and the two RMS |d|.
+fn moved_fit(mesh: &Mesh, vertices: &[u32], name: &str) -> (f64, f64, f64) {
     let rotation = DQuat::from_axis_angle(DVec3::new(0.3, -0.8, 0.5).normalize(), 1.1);
     let translation = DVec3::new(12.5, -40.0, 7.25);
-    let other = moved(&mesh, rotation, translation);
-    let here = fit(&mesh, &leg, &FitOptions::default()).unwrap();
-    let there = fit(&other, &leg, &FitOptions::default()).unwrap();
-    assert_eq!(here.keys.len(), there.keys.len());
+    let other = moved(mesh, rotation, translation);
+    let here = fit(mesh, vertices, &FitOptions::default()).unwrap();
+    let there = fit(&other, vertices, &FitOptions::default()).unwrap();
+    assert_eq!(here.keys.len(), there.keys.len(), "{name}");
     let length: f64 = here.keys.windows(2).map(|w| w[0].center.distance(w[1].center)).sum();
-    let mut worst = 0.0f64;
-    for (a, b) in here.keys.iter().zip(&there.keys) {
-        worst = worst.max((rotation * a.center + translation).distance(b.center));
-    }
-    let quality = (here.quality.rms_d - there.quality.rms_d).abs();
+    let worst = here
+        .keys
+        .iter()
+        .zip(&there.keys)
+        .map(|(a, b)| (rotation * a.center + translation).distance(b.center))
+        .fold(0.0, f64::max);
+    let (a, b) = (here.quality.rms_d, there.quality.rms_d);
     eprintln!(
-        "moved armadillo leg: worst key center {:.2e} of the part's length {length:.2}, RMS {:.4}% vs {:.4}%",
+        "moved {name}: worst key center {:.2e} of the part's length {length:.4}, RMS {:.4}% vs {:.4}%",
         worst / length,
-        100.0 * here.quality.rms_d,
-        100.0 * there.quality.rms_d
+        100.0 * a,
+        100.0 * b
     );
-    assert!(worst <= 1e-6 * length, "key centers differ by {worst} (length {length})");
-    assert!(quality <= 1e-6, "RMS |d| {} vs {}", here.quality.rms_d, there.quality.rms_d);
+    (worst / length, a, b)
+}
+
+#[test]
+fn fitting_a_rigidly_moved_part_gives_the_moved_keys() {
+    let mut parts: Vec<(Mesh, Vec<u32>, &str)> = Vec::new();
+    if let Some(mesh) = load("armadillo_50k.obj") {
+        let leg = largest_connected(&mesh, armadillo_leg_with_foot);
+        parts.push((mesh, leg, "armadillo leg with foot"));
+    }
+    if let Some(mesh) = load("bunny_stanford_zipper.obj") {
+        let ear = largest_connected(&mesh, |p| p.z < -0.012 && p.x < -0.055 && p.y > 0.13);
+        parts.push((mesh, ear, "bunny front ear"));
+    }
+    if let Some(mesh) = load("spot_triangulated.obj") {
+        let leg = largest_connected(&mesh, spot_leg(1.0, 0.79));
+        parts.push((mesh, leg, "spot front left leg"));
+    }
+    for (mesh, vertices, name) in &parts {
+        let (worst, a, b) = moved_fit(mesh, vertices, name);
+        assert!(worst <= 1e-6, "{name}: key centers differ by {worst} of the part's length");
+        assert!((a - b).abs() <= 1e-6, "{name}: RMS |d| {a} vs {b}");
+    }
 }
