@@ -91,7 +91,8 @@ fn the_armadillos_leg_with_its_foot_fits_as_one_part() {
     assert!(fitted.quality.rms_d <= 0.10, "leg: {:?}", fitted.quality);
 }
 
-/// Spot's leg around (x, z) = (sx·0.21, z0): the vertices below the belly (y = −0.56) there.
+/// Spot's leg around (x, z) = (sx·0.21, z0) (its head is towards −z, its hind legs at
+/// z0 = 0.79, its front legs at z0 = 0.06): the vertices below the belly (y = −0.56) there.
 fn spot_leg(sx: f64, z0: f64) -> impl Fn(DVec3) -> bool {
     move |p: DVec3| p.y < -0.56 && (p.x - sx * 0.21).abs() < 0.2 && (p.z - z0).abs() < 0.22
 }
@@ -100,7 +101,7 @@ fn spot_leg(sx: f64, z0: f64) -> impl Fn(DVec3) -> bool {
 fn spots_legs_fit_from_their_skeletons() {
     let Some(mesh) = load("spot_triangulated.obj") else { return };
     for (name, sx, z0) in
-        [("front left", 1.0, 0.79), ("front right", -1.0, 0.79), ("hind left", 1.0, 0.06), ("hind right", -1.0, 0.06)]
+        [("hind +x", 1.0, 0.79), ("hind −x", -1.0, 0.79), ("front +x", 1.0, 0.06), ("front −x", -1.0, 0.06)]
     {
         let leg = largest_connected(&mesh, spot_leg(sx, z0));
         let (fitted, _) = fit_and_compare(&mesh, &leg, &format!("spot {name} leg"));
@@ -108,7 +109,7 @@ fn spots_legs_fit_from_their_skeletons() {
     }
 }
 
-/// A quadruped's lower leg selected with a box tilted 30° about x, so its rim is cut
+/// A quadruped's lower leg (spot's hind leg on the +x side) selected with a box tilted 30° about x, so its rim is cut
 /// obliquely: below the plane through (0, −0.6, 0.79) with normal (0, cos 30°, sin 30°).
 #[test]
 fn a_lower_leg_cut_obliquely_fits_with_complete_sections() {
@@ -170,7 +171,7 @@ fn fitting_a_rigidly_moved_part_gives_the_moved_keys() {
     }
     if let Some(mesh) = load("spot_triangulated.obj") {
         let leg = largest_connected(&mesh, spot_leg(1.0, 0.79));
-        parts.push((mesh, leg, "spot front left leg"));
+        parts.push((mesh, leg, "spot hind +x leg"));
     }
     for (mesh, vertices, name) in &parts {
         let (worst, a, b) = moved_fit(mesh, vertices, name);
