@@ -1,7 +1,8 @@
 //! Fitting one sweep to a mesh part (§3, Fig. 3) with the skeleton as the first guess, against
 //! the same fit started from the part's principal axis, measured in the same run: the upper
 //! five sixths of a closed tube (attached at z = 1, capped at its tip), at several vertex
-//! counts, and the shared meshes' limbs when `../shared/meshes` is beside the clone.
+//! counts, and the shared meshes' limbs when `../shared/meshes` is beside the clone; and
+//! `autorig` (protrusions found and each fitted) on the bunny and the armadillo.
 //!
 //! `cargo bench --bench fit`.
 
@@ -10,6 +11,7 @@ mod common;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use glam::DVec3;
+use sweepffd::fit::autorig::{AutorigOptions, autorig};
 use sweepffd::fit::axis::principal_axis;
 use sweepffd::fit::{FitOptions, fit, largest_connected};
 use sweepffd::mesh::Mesh;
@@ -56,5 +58,18 @@ fn shared_limbs(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, tube_parts, shared_limbs);
+fn autorig_meshes(c: &mut Criterion) {
+    let mut group = c.benchmark_group("autorig");
+    group.sample_size(10);
+    for name in ["bunny_stanford_zipper.obj", "armadillo_50k.obj"] {
+        let Some(path) = common::shared_mesh(name) else { continue };
+        let mesh = Mesh::load(&path).unwrap();
+        group.bench_function(BenchmarkId::from_parameter(format!("{name}/{}", mesh.positions.len())), |b| {
+            b.iter(|| autorig(&mesh, &AutorigOptions::default()).unwrap())
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, tube_parts, shared_limbs, autorig_meshes);
 criterion_main!(benches);

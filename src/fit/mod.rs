@@ -2,6 +2,8 @@
 //! hand, in one call.
 //!
 //! Data flow: mesh part → **fit** → rig → sweep → … (the fitted keys go into a rig file).
+//! [`autorig`] finds the parts themselves (a mesh's protrusions, [`protrusions`]) and fits
+//! one sweep to each.
 //!
 //! [`fit`] follows the paper's steps:
 //! 1. **Axis.** The user's polyline, or else the part's skeleton ([`skeleton`]): the
@@ -46,12 +48,14 @@
 //!    fades at the part's boundary, the user's or a fraction of the part's length.
 
 pub mod attached;
+pub mod autorig;
 pub mod axis;
 mod error;
 pub mod falloff;
 pub mod frames;
 pub mod geodesic;
 pub mod part;
+pub mod protrusions;
 pub mod quality;
 pub mod radii;
 mod refine;
