@@ -41,7 +41,7 @@ pub struct Args {
     /// A file of the part's zero-based vertex indices (JSON array, or separated by spaces or commas).
     #[arg(long)]
     pub indices: Option<PathBuf>,
-    /// First guess at the axis, a polyline "x0,y0,z0;x1,y1,z1;..." (default: the part's principal axis).
+    /// First guess at the axis, a polyline "x0,y0,z0;x1,y1,z1;..." (default: the part's skeleton, from where it is attached to its tip).
     #[arg(long, allow_hyphen_values = true)]
     pub axis: Option<String>,
     /// Keys placed along the axis before any is inserted.
@@ -231,8 +231,8 @@ fn print_report(name: &str, fitted: &Fit, options: &FitOptions, seconds: f64) {
     let order = match (&options.axis, near_first + near_last > 0.0) {
         (Some(_), _) => "key 0 at the first end of --axis",
         (None, true) if near_first > near_last => "key 0 at the attached end",
-        (None, true) => "as much rim at both ends: key 0 where the principal axis starts",
-        (None, false) => "no rim: key 0 where the principal axis starts",
+        (None, true) => "as much rim at both ends: key 0 where the skeleton starts",
+        (None, false) => "no rim: key 0 where the skeleton starts",
     };
     println!(
         "  rim (where the part meets the rest of the mesh): {near_first:.6} near key 0, {near_last:.6} near key {last}; {order}"

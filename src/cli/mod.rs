@@ -3,6 +3,7 @@
 //! arguments themselves (an unknown flag, a value that does not parse) with exit status 2.
 //! SIGINT and SIGTERM end the process with status 130 and 143 ([`signals`]).
 
+mod autorig;
 mod backend;
 mod bench;
 mod bind;
@@ -44,6 +45,8 @@ enum Command {
     Pose(pose::Args),
     /// Fit a control sweep to a part of a mesh (§3) and write it into a rig.
     Fit(fit::Args),
+    /// Find a mesh's protrusions, fit one control sweep to each and write the rig.
+    Autorig(autorig::Args),
     /// Print each sweep's volume (Eq. 1) as JSON.
     Volume(volume::Args),
     /// Print the GPU adapter, its backend and the limits the kernels are planned for.
@@ -75,6 +78,7 @@ pub fn run() -> ExitCode {
         Command::Deform(args) => deform::run(args, quiet),
         Command::Pose(args) => pose::run(args, quiet),
         Command::Fit(args) => fit::run(args, quiet),
+        Command::Autorig(args) => autorig::run(args, quiet),
         Command::Volume(args) => volume::run(args),
         Command::Info => info::run(),
         Command::Bench(args) => bench::run(args, quiet),

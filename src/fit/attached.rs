@@ -90,7 +90,7 @@ mod tests {
         let centers = [DVec3::ZERO, DVec3::new(0.3, 0.1, 1.0), DVec3::new(1.1, 0.2, 1.8), DVec3::new(2.0, 0.0, 2.1)];
         let normals: Vec<DVec3> =
             (0..4).map(|i| (centers[(i + 1).min(3)] - centers[i.saturating_sub(1)]).normalize()).collect();
-        transported_frames(&normals)
+        transported_frames(&normals, None)
             .into_iter()
             .zip(centers)
             .enumerate()

@@ -59,6 +59,15 @@ impl Polyline {
         }
     }
 
+    /// The direction of the chord from arc length s − h to s + h, both clamped to
+    /// [0, length]: a tangent that does not follow the polyline's small kinks; the end
+    /// segment's direction where the clamped chord vanishes.
+    pub fn chord_tangent(&self, s: f64, h: f64) -> DVec3 {
+        let length = self.length();
+        let (a, b) = ((s - h).clamp(0.0, length), (s + h).clamp(0.0, length));
+        (self.point(b) - self.point(a)).try_normalize().unwrap_or_else(|| self.tangent(s))
+    }
+
     /// The arc length of the point of the polyline (extended along its end segments) nearest
     /// to `p`.
     pub fn project(&self, p: DVec3) -> f64 {

@@ -2,11 +2,17 @@
 //! hand, in one call.
 //!
 //! Data flow: mesh part → **fit** → rig → sweep → … (the fitted keys go into a rig file).
+//! [`autorig`] finds the parts themselves (a mesh's protrusions, [`protrusions`]) and fits
+//! one sweep to each.
 //!
 //! [`fit`] follows the paper's steps:
-//! 1. **Axis.** The user's polyline, or else the part's principal axis (the direction of
-//!    largest variance of its vertices, [`axis::principal_axis`]) through its centroid. The
-//!    re-centering below turns this first guess into a skeleton that follows the part.
+//! 1. **Axis.** The user's polyline, or else the part's skeleton ([`skeleton`]): the
+//!    centroids of its level sets of geodesic distance from the loop where it is attached
+//!    (its rim), from its attached end to its tip, so that the first guess already follows a
+//!    curved or L-shaped part however it was cut or placed (the principal axis of the
+//!    vertices, [`axis::principal_axis`], only where no skeleton can be found). Key 0's plane
+//!    is the plane of that loop; θ = 0 comes from the part's shape
+//!    ([`frames::reference_direction`]), so the fit of a rigidly moved part is the moved fit.
 //! 2. **Rough sweep** (Fig. 3a): circles along the axis enclosing every vertex, recorded as
 //!    the first [`FitStep`].
 //! 3. **Key sections** (Fig. 3b, c): `keys` planes along the axis, normal to it, cut the
@@ -16,7 +22,10 @@
 //!    outermost crossing of each ray ([`radii::sample`]). A ray that crosses the boundary
 //!    more than once (a section that is not star-shaped around its center) is counted in
 //!    [`SectionReport::several_crossings`]; a ray that meets nothing takes the value
-//!    interpolated between its neighbours ([`SectionReport::missed`]).
+//!    interpolated between its neighbours ([`SectionReport::missed`]). A plane that would
+//!    leave the part through its rim (an oblique cut) is tilted towards the rim's plane or
+//!    moved away from it until its section is complete; only where no such plane is found
+//!    does the key borrow its center and radii from its complete neighbours.
 //! 4. **Re-centering.** The keys move to their sections' centers; the normals follow the
 //!    tangent C′(u_i) of the sweep through the new centers; frames are carried along by
 //!    parallel transport (θ = 0 does not twist between keys); the sections are cut again.
@@ -31,23 +40,28 @@
 //!    the mesh, is measured towards each end of the sweep by its edges' parameter t; when the
 //!    rim nearer the last key is strictly longer, the sweep is traversed from its other end
 //!    (the same surface, so the fit is unchanged), so that key 0 sits where the part is
-//!    attached (a leg's hip, an ear's base). A part with no rim, or as much at both ends,
-//!    keeps the principal axis's order. A user's axis keeps its own order: the user's axis
+//!    attached (a leg's hip, an ear's base). The skeleton already starts at the longest rim
+//!    loop, so this turns only a part whose rim the fit measures otherwise; a part with no
+//!    rim, or as much at both ends, keeps the skeleton's order. A user's axis keeps its own order: the user's axis
 //!    order wins over the rim.
 //! 8. **Falloff** ([`falloff`]): the width W of the band over which the sweep's deformation
 //!    fades at the part's boundary, the user's or a fraction of the part's length.
 
 pub mod attached;
+pub mod autorig;
 pub mod axis;
 mod error;
 pub mod falloff;
 pub mod frames;
+pub mod geodesic;
 pub mod part;
+pub mod protrusions;
 pub mod quality;
 pub mod radii;
 mod refine;
 pub mod section;
 pub mod select;
+pub mod skeleton;
 pub mod star;
 
 use glam::DVec3;
@@ -68,7 +82,7 @@ use crate::sweep::Key;
 pub struct FitOptions {
     /// The first guess at the axis, a polyline from the first end of the part to the other;
     /// key 0 sits at its first point's end, whatever the part's rim. `None`: the part's
-    /// principal axis, oriented so that key 0 sits at the end where the part is attached.
+    /// skeleton ([`skeleton`]), from the end where the part is attached to its tip.
     pub axis: Option<Vec<DVec3>>,
     /// Keys placed along the axis before any insertion (at least 2, at most
     /// [`MAX_KEYS_PER_SWEEP`]).

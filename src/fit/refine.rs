@@ -7,11 +7,12 @@ use std::f64::consts::TAU;
 use glam::{DQuat, DVec2, DVec3};
 
 use super::axis::{Polyline, principal_axis};
-use super::frames::transported_frames;
+use super::frames::{first_x_axis, reference_direction, transported_frames};
 use super::part::Part;
 use super::quality::{Measured, measure};
 use super::radii::{ray_crossings, sample};
 use super::section::{Contour, Plane, around, center, cut};
+use super::skeleton::skeleton;
 use super::star::star_center;
 use super::{FitError, FitOptions, FitStep, SectionReport};
 use crate::sweep::{Key, Sweep};
@@ -25,6 +26,10 @@ const END_INSETS: [f64; 8] = [0.02, 0.04, 0.07, 0.1, 0.14, 0.19, 0.25, 0.32];
 const TILTS: [f64; 5] = [-0.3, -0.15, 0.0, 0.15, 0.3];
 /// Re-centering passes after the first cut and after each key insertion.
 const RECENTER_PASSES: usize = 3;
+/// The chord over which the skeleton's tangent is taken, as a fraction of its length.
+const SKELETON_CHORD: f64 = 0.1;
+/// Insertion rounds in a row that may fail to tighten the fit before insertion stops.
+const STALE_ROUNDS: usize = 2;
 
 /// Where a key's plane is: a point of it (the key's center) and its normal.
 #[derive(Clone, Copy, Debug)]
@@ -92,12 +97,15 @@ pub struct Fitted {
 
 /// Fits a sweep to `part`, recording each step.
 pub fn run(part: &Part, options: &FitOptions) -> Result<(Fitted, Vec<FitStep>), FitError> {
-    let axis = match &options.axis {
-        Some(points) => Polyline::new(points).ok_or(FitError::Axis)?,
-        None => {
-            let (centroid, direction) = principal_axis(&part.positions);
-            Polyline::new(&[centroid - direction, centroid + direction]).ok_or(FitError::Flat)?
-        }
+    let (axis, start_normal, follows) = match &options.axis {
+        Some(points) => (Polyline::new(points).ok_or(FitError::Axis)?, None, false),
+        None => match skeleton(part) {
+            Some(skeleton) => (skeleton.axis, skeleton.start_normal, true),
+            None => {
+                let (centroid, direction) = principal_axis(&part.positions);
+                (Polyline::new(&[centroid - direction, centroid + direction]).ok_or(FitError::Flat)?, None, false)
+            }
+        },
     };
     let along: Vec<f64> = part.positions.iter().map(|&p| axis.project(p)).collect();
     let (lo, hi) = along.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &s| (lo.min(s), hi.max(s)));
@@ -105,13 +113,16 @@ pub fn run(part: &Part, options: &FitOptions) -> Result<(Fitted, Vec<FitStep>), 
     if length.is_nan() || length <= 0.0 {
         return Err(FitError::Flat);
     }
-    let fitter = Fitter { part, options, length };
+    let reference = reference_direction(&part.positions, axis.point(0.0), axis.tangent(0.0), axis.length());
+    let skeleton = follows.then(|| axis.clone());
+    let fitter = Fitter { part, options, length, reference, start_normal, skeleton };
     let margin = END_MARGIN * length;
     let count = options.keys;
     let stations: Vec<Station> = (0..count)
         .map(|k| {
             let s = lo - margin + (length + 2.0 * margin) * k as f64 / (count - 1) as f64;
-            Station { center: axis.point(s), normal: axis.tangent(s) }
+            let normal = if follows { axis.chord_tangent(s, SKELETON_CHORD * axis.length()) } else { axis.tangent(s) };
+            Station { center: axis.point(s), normal }
         })
         .collect();
 
@@ -121,13 +132,20 @@ pub fn run(part: &Part, options: &FitOptions) -> Result<(Fitted, Vec<FitStep>), 
     fitted = fitter.recenter(fitted)?;
     steps.push(fitter.step("keys re-centered on their sections".to_string(), &fitted));
 
-    while fitted.keys.len() < options.max_keys {
-        let Some(refined) = fitter.insert_keys(&fitted)? else { break };
-        if refined.measured.quality.rms_d >= fitted.measured.quality.rms_d {
-            break;
+    // Insertion goes on through one round that does not tighten the fit (a key inserted at a
+    // bend may need its neighbours' before it pays), keeping the tightest fit seen.
+    let mut trial = fitted.clone();
+    let mut stale = 0;
+    while trial.keys.len() < options.max_keys && stale < STALE_ROUNDS {
+        let Some(refined) = fitter.insert_keys(&trial)? else { break };
+        trial = refined;
+        if trial.measured.quality.rms_d >= fitted.measured.quality.rms_d {
+            stale += 1;
+            continue;
         }
-        let inserted = refined.keys.len() - fitted.keys.len();
-        fitted = refined;
+        stale = 0;
+        let inserted = trial.keys.len() - fitted.keys.len();
+        fitted = trial.clone();
         let label = format!("{inserted} keys inserted where the fit was loose, {} in all", fitted.keys.len());
         steps.push(fitter.step(label, &fitted));
     }
@@ -138,14 +156,23 @@ struct Fitter<'a> {
     part: &'a Part,
     options: &'a FitOptions,
     length: f64,
+    /// The direction θ = 0 of key 0 is taken from ([`reference_direction`]).
+    reference: Option<DVec3>,
+    /// The unit normal of the plane of the loop the skeleton starts from (the part's rim),
+    /// pointing into the part; key 0 lies in a plane with this normal, and planes near it
+    /// tilt towards it where they would leave the part through its rim.
+    start_normal: Option<DVec3>,
+    /// The part's skeleton, when it is the first guess: the keys' planes stay normal to it
+    /// (its chord tangent over [`SKELETON_CHORD`] of its length) as they are re-centered.
+    skeleton: Option<Polyline>,
 }
 
 impl Fitter<'_> {
     /// Fig. 3a: a circular sweep along the first axis enclosing every vertex.
     fn rough(&self, axis: &Polyline, stations: &[Station]) -> Result<FitStep, FitError> {
         let radius = self.part.positions.iter().map(|&p| p.distance(axis.point(axis.project(p)))).fold(0.0, f64::max);
-        let stations = self.with_ends_past_the_part(stations.to_vec());
-        let frames = transported_frames(&stations.iter().map(|s| s.normal).collect::<Vec<_>>());
+        let stations = self.with_ends_past_the_part(self.attached_start(stations.to_vec()));
+        let frames = transported_frames(&stations.iter().map(|s| s.normal).collect::<Vec<_>>(), self.reference);
         let keys: Vec<Key> =
             stations.iter().zip(frames).map(|(s, q)| Key::circle(s.center, q, radius, self.options.radii)).collect();
         let sweep = Sweep::try_new(&keys, None)?;
@@ -159,19 +186,36 @@ impl Fitter<'_> {
     /// slanted selection boundary) takes its center from the line through the two nearest
     /// complete keys on its inner side and its radii from the nearest complete key.
     fn pass(&self, stations: &[Station]) -> Result<Fitted, FitError> {
-        let stations = self.with_ends_past_the_part(stations.to_vec());
-        let frames = transported_frames(&stations.iter().map(|s| s.normal).collect::<Vec<_>>());
+        let mut stations = self.with_ends_past_the_part(self.attached_start(stations.to_vec()));
+        let mut frames = transported_frames(&stations.iter().map(|s| s.normal).collect::<Vec<_>>(), self.reference);
         let last = stations.len() - 1;
-        let cuts: Vec<Option<Cut>> = stations
-            .iter()
-            .zip(&frames)
-            .enumerate()
-            .map(|(i, (station, &rotation))| match i {
-                0 => self.end_section(station, rotation, station.normal),
-                i if i == last => self.end_section(station, rotation, -station.normal),
-                _ => self.section(station.center, rotation),
-            })
-            .collect();
+        let mut cuts: Vec<Option<Cut>> = Vec::with_capacity(stations.len());
+        for i in 0..=last {
+            let (station, rotation) = (stations[i], frames[i]);
+            cuts.push(match i {
+                0 => self.end_section(&station, rotation, station.normal),
+                i if i == last => self.end_section(&station, rotation, -station.normal),
+                _ => {
+                    let cut = self.section(station.center, rotation);
+                    match cut {
+                        Some(cut) if cut.complete() => Some(cut),
+                        _ => match self.complete_nearby(&stations, i, rotation) {
+                            Some((moved, turned, complete)) => {
+                                stations[i] = moved;
+                                frames[i] = turned;
+                                Some(complete)
+                            }
+                            None => cut,
+                        },
+                    }
+                }
+            });
+        }
+        for i in 1..frames.len() {
+            if frames[i - 1].dot(frames[i]) < 0.0 {
+                frames[i] = -frames[i];
+            }
+        }
         let complete: Vec<usize> = (0..cuts.len()).filter(|&i| cuts[i].as_ref().is_some_and(Cut::complete)).collect();
         let mut centers = Vec::with_capacity(stations.len());
         let mut radii: Vec<Option<Vec<f64>>> = Vec::with_capacity(stations.len());
@@ -219,6 +263,47 @@ impl Fitter<'_> {
         let sweep = Sweep::try_new(&keys, None)?;
         let measured = measure(&sweep, &self.part.positions);
         Ok(Fitted { keys, sections, sweep, measured })
+    }
+
+    /// Key 0's plane turned to the start loop's plane, where the skeleton starts at one: a
+    /// part cut obliquely from the rest of the mesh starts in the plane of its cut.
+    fn attached_start(&self, mut stations: Vec<Station>) -> Vec<Station> {
+        if let Some(normal) = self.start_normal {
+            stations[0].normal = normal;
+        }
+        stations
+    }
+
+    /// A complete section near inner station `i`, whose own plane leaves the part through its
+    /// rim or misses some rays: the plane moved along its normal away from the nearer end by
+    /// 0, 0.2, 0.4 and 0.6 of the distance to the nearest neighbouring station, at each
+    /// distance first untilted, then tilted half and all the way towards key 0's plane (for a
+    /// key in the first half, where [`Fitter::start_normal`] is known). The first complete one, with its
+    /// station and its frame (`rotation` turned by the tilt); `None` when none is complete.
+    fn complete_nearby(&self, stations: &[Station], i: usize, rotation: DQuat) -> Option<(Station, DQuat, Cut)> {
+        let station = stations[i];
+        let last = stations.len() - 1;
+        let first_half = 2 * i <= last;
+        let spacing =
+            station.center.distance(stations[i - 1].center).min(station.center.distance(stations[i + 1].center));
+        let away = if first_half { station.normal } else { -station.normal };
+        let start = self.start_normal.filter(|_| first_half);
+        let tilts: &[f64] = if start.is_some() { &[0.0, 0.5, 1.0] } else { &[0.0] };
+        let mut candidates: Vec<Station> = Vec::new();
+        for f in [0.0, 0.2, 0.4, 0.6] {
+            for &w in tilts {
+                let normal =
+                    start.map_or(Some(station.normal), |s| (station.normal * (1.0 - w) + s * w).try_normalize());
+                if let Some(normal) = normal.filter(|_| f > 0.0 || w > 0.0) {
+                    candidates.push(Station { center: station.center + away * (f * spacing), normal });
+                }
+            }
+        }
+        candidates.into_iter().find_map(|candidate| {
+            let turned = DQuat::from_rotation_arc(station.normal, candidate.normal) * rotation;
+            let cut = self.section(candidate.center, turned)?;
+            cut.complete().then_some((candidate, turned, cut))
+        })
     }
 
     /// An end key's section: its plane lies just past the part, so the section is taken from
@@ -287,8 +372,10 @@ impl Fitter<'_> {
         Ok(fitted)
     }
 
-    /// The stations of fitted keys, with normals along the tangent C′(u_i) of their sweep,
-    /// each inner one then tilted to the plane of least section area nearby. An end key
+    /// The stations of fitted keys, with normals along the skeleton's chord tangent at the
+    /// point nearest each key's center when the skeleton is the first guess; otherwise along
+    /// the tangent C′(u_i) of their sweep, each inner one then tilted to the plane of least
+    /// section area nearby. An end key
     /// takes the normal of its inner neighbour: the tangent at the very end of a natural
     /// spline swings with every move of the end key, the one inside does not.
     fn stations_of(&self, fitted: &Fitted) -> Vec<Station> {
@@ -300,7 +387,12 @@ impl Fitter<'_> {
         };
         let mut stations: Vec<Station> = (0..=last)
             .map(|i| {
-                let station = Station { center: fitted.keys[i].center, normal: tangent(i) };
+                let center = fitted.keys[i].center;
+                if let Some(skeleton) = &self.skeleton {
+                    let s = skeleton.project(center);
+                    return Station { center, normal: skeleton.chord_tangent(s, SKELETON_CHORD * skeleton.length()) };
+                }
+                let station = Station { center, normal: tangent(i) };
                 if i == 0 || i == last { station } else { self.least_area(station) }
             })
             .collect();
@@ -315,7 +407,7 @@ impl Fitter<'_> {
     /// closed section around the center has the least area: the plane most nearly
     /// perpendicular to the part there.
     fn least_area(&self, station: Station) -> Station {
-        let side = station.normal.any_orthonormal_vector();
+        let side = first_x_axis(station.normal, self.reference);
         let up = station.normal.cross(side);
         let area = |normal: DVec3| -> f64 {
             let x = normal.any_orthonormal_vector();
@@ -377,8 +469,14 @@ impl Fitter<'_> {
             stations.push(station);
             if loose.binary_search(&k).is_ok() {
                 let middle = 0.5 * (knots[k] + knots[k + 1]);
-                let normal = fitted.sweep.center_derivative(middle).try_normalize().unwrap_or(station.normal);
-                stations.push(Station { center: fitted.sweep.center(middle), normal });
+                let center = fitted.sweep.center(middle);
+                let normal = match &self.skeleton {
+                    Some(skeleton) => {
+                        skeleton.chord_tangent(skeleton.project(center), SKELETON_CHORD * skeleton.length())
+                    }
+                    None => fitted.sweep.center_derivative(middle).try_normalize().unwrap_or(station.normal),
+                };
+                stations.push(Station { center, normal });
             }
         }
         let refined = self.pass(&stations)?;

@@ -92,7 +92,7 @@ fn fitting_a_known_bent_sweep_puts_its_surface_on_the_true_one() {
     ];
     let normals: Vec<DVec3> =
         (0..5).map(|i| (centers[(i + 1).min(4)] - centers[i.saturating_sub(1)]).normalize()).collect();
-    let frames = super::frames::transported_frames(&normals);
+    let frames = super::frames::transported_frames(&normals, None);
     let keys: Vec<Key> =
         (0..5).map(|i| Key { center: centers[i], rotation: frames[i], radii: even_radii(i, 8) }).collect();
     let truth = Sweep::try_new(&keys, None).unwrap();

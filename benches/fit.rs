@@ -1,0 +1,75 @@
+//! Fitting one sweep to a mesh part (§3, Fig. 3) with the skeleton as the first guess, against
+//! the same fit started from the part's principal axis, measured in the same run: the upper
+//! five sixths of a closed tube (attached at z = 1, capped at its tip), at several vertex
+//! counts, and the shared meshes' limbs when `../shared/meshes` is beside the clone; and
+//! `autorig` (protrusions found and each fitted) on the bunny and the armadillo.
+//!
+//! `cargo bench --bench fit`.
+
+#[path = "../tests/common/mod.rs"]
+mod common;
+
+use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use glam::DVec3;
+use sweepffd::fit::autorig::{AutorigOptions, autorig};
+use sweepffd::fit::axis::principal_axis;
+use sweepffd::fit::{FitOptions, fit, largest_connected};
+use sweepffd::mesh::Mesh;
+use sweepffd::synthetic::Tube;
+
+/// The part's principal axis as a user's axis: the first guess the fit used before the skeleton.
+fn principal_axis_options(mesh: &Mesh, vertices: &[u32]) -> FitOptions {
+    let positions: Vec<DVec3> = vertices.iter().map(|&v| mesh.positions[v as usize]).collect();
+    let (centroid, direction) = principal_axis(&positions);
+    FitOptions { axis: Some(vec![centroid - direction, centroid + direction]), ..FitOptions::default() }
+}
+
+fn tube_parts(c: &mut Criterion) {
+    let mut group = c.benchmark_group("fit_tube_part");
+    group.sample_size(10);
+    for n in [5_000, 20_000, 50_000] {
+        let tube = Tube::with_vertex_count(n, 6.0, 0.5);
+        let mesh = tube.mesh();
+        let part = largest_connected(&mesh, |p| p.z >= 1.0);
+        let options = principal_axis_options(&mesh, &part);
+        group.bench_with_input(BenchmarkId::new("skeleton", n), &part, |b, part| {
+            b.iter(|| fit(&mesh, part, &FitOptions::default()).unwrap())
+        });
+        group.bench_with_input(BenchmarkId::new("principal_axis", n), &part, |b, part| {
+            b.iter(|| fit(&mesh, part, &options).unwrap())
+        });
+    }
+    group.finish();
+}
+
+fn shared_limbs(c: &mut Criterion) {
+    let Some(path) = common::shared_mesh("armadillo_50k.obj") else { return };
+    let mesh = Mesh::load(&path).unwrap();
+    let leg = largest_connected(&mesh, |p| p.x < -5.0 && p.y < -8.0 && p.z < 35.0);
+    let options = principal_axis_options(&mesh, &leg);
+    let mut group = c.benchmark_group("fit_armadillo_leg_with_foot");
+    group.sample_size(10);
+    group.bench_function(BenchmarkId::from_parameter(format!("skeleton/{}", leg.len())), |b| {
+        b.iter(|| fit(&mesh, &leg, &FitOptions::default()).unwrap())
+    });
+    group.bench_function(BenchmarkId::from_parameter(format!("principal_axis/{}", leg.len())), |b| {
+        b.iter(|| fit(&mesh, &leg, &options).unwrap())
+    });
+    group.finish();
+}
+
+fn autorig_meshes(c: &mut Criterion) {
+    let mut group = c.benchmark_group("autorig");
+    group.sample_size(10);
+    for name in ["bunny_stanford_zipper.obj", "armadillo_50k.obj"] {
+        let Some(path) = common::shared_mesh(name) else { continue };
+        let mesh = Mesh::load(&path).unwrap();
+        group.bench_function(BenchmarkId::from_parameter(format!("{name}/{}", mesh.positions.len())), |b| {
+            b.iter(|| autorig(&mesh, &AutorigOptions::default()).unwrap())
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, tube_parts, shared_limbs, autorig_meshes);
+criterion_main!(benches);

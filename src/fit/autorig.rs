@@ -1,0 +1,104 @@
+//! Rigging a whole mesh in one call: its protrusions ([`super::protrusions`]) each get one
+//! fitted sweep ([`super::fit`]), key 0 at the part's attachment (its rim), with the fit's
+//! falloff; the rest of the mesh (the body) stays unowned.
+//!
+//! Data flow: mesh → protrusions → **fit** per part → rig document.
+
+use std::time::Instant;
+
+use super::protrusions::protrusions;
+use super::{Fit, FitError, FitOptions, fit};
+use crate::mesh::Mesh;
+use crate::rig::{FORMAT, RigDocument, VERSION, VertexSelection};
+
+/// How to rig a mesh.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AutorigOptions {
+    /// The shortest protrusion kept, as a fraction of the mesh's bounding-box diagonal
+    /// (its persistence: the drop in geodesic distance from its tip to where it meets the
+    /// body).
+    pub min_length: f64,
+    /// The most parts kept, the longest first.
+    pub max_parts: usize,
+    /// The falloff width W of every sweep in mesh units; `None`: the fit's default, a
+    /// fraction of each part's length.
+    pub falloff: Option<f64>,
+}
+
+impl Default for AutorigOptions {
+    fn default() -> AutorigOptions {
+        AutorigOptions { min_length: 0.08, max_parts: 16, falloff: None }
+    }
+}
+
+/// One part found and fitted.
+#[derive(Clone, Debug)]
+pub struct RiggedPart {
+    /// `part0`, `part1`, …, longest first.
+    pub name: String,
+    /// The part's vertices, increasing.
+    pub vertices: Vec<u32>,
+    /// Its tip (the vertex farthest from the body's center).
+    pub tip: u32,
+    /// Its length (persistence), mesh units.
+    pub length: f64,
+    /// The fitted sweep.
+    pub fit: Fit,
+    /// Seconds the fit took.
+    pub seconds: f64,
+}
+
+/// A rigged mesh: its parts, longest first.
+#[derive(Clone, Debug)]
+pub struct Autorig {
+    /// The parts.
+    pub parts: Vec<RiggedPart>,
+    /// Seconds finding the parts took.
+    pub search_seconds: f64,
+}
+
+impl Autorig {
+    /// The rig file: one sweep per part, owning its vertices.
+    pub fn document(&self) -> RigDocument {
+        let sweeps = self
+            .parts
+            .iter()
+            .map(|p| p.fit.sweep_document(p.name.clone(), VertexSelection::Indices(p.vertices.clone()), None))
+            .collect();
+        RigDocument { format: FORMAT.to_string(), version: VERSION, sweeps }
+    }
+}
+
+/// Finds `mesh`'s protrusions and fits a sweep to each; a part the fit refuses is left out.
+/// An empty rig for a mesh with none (a sphere).
+pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitError> {
+    if !(options.min_length.is_finite() && options.min_length > 0.0) {
+        return Err(FitError::Options(format!(
+            "--min-length must be a positive fraction of the mesh's size, found {}",
+            options.min_length
+        )));
+    }
+    let started = Instant::now();
+    let (lo, hi) = mesh
+        .positions
+        .iter()
+        .fold((glam::DVec3::INFINITY, glam::DVec3::NEG_INFINITY), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
+    let diagonal = (hi - lo).length();
+    let found = protrusions(mesh, options.min_length * diagonal, options.max_parts);
+    let search_seconds = started.elapsed().as_secs_f64();
+    let fit_options = FitOptions { falloff: options.falloff, ..FitOptions::default() };
+    let mut parts = Vec::new();
+    for protrusion in found {
+        let started = Instant::now();
+        let Ok(fitted) = fit(mesh, &protrusion.vertices, &fit_options) else { continue };
+        parts.push(RiggedPart {
+            name: format!("part{}", parts.len()),
+            vertices: protrusion.vertices,
+            tip: protrusion.tip,
+            length: protrusion.length,
+            fit: fitted,
+            seconds: started.elapsed().as_secs_f64(),
+        });
+    }
+    Ok(Autorig { parts, search_seconds })
+}

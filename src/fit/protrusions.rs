@@ -1,0 +1,298 @@
+//! Finding a mesh's protrusions (legs, arms, ears, a tail, a spout) for [`super::autorig`]:
+//! the branches of the merge tree of the superlevel sets of geodesic distance from the body's
+//! center, kept where they are long (their *persistence*). This is the geodesic-distance Reeb
+//! graph of Hilaga et al. ("Topology matching for fully automatic similarity estimation of 3D
+//! shapes", SIGGRAPH 2001, §3) read as a 0-dimensional persistence diagram (Edelsbrunner,
+//! Letscher & Zomorodian, "Topological persistence and simplification", 2002, §3): each tip
+//! (a local maximum of the distance) starts a branch, which ends where its superlevel set
+//! meets the set of a farther tip; its persistence is the drop in distance between the two.
+//!
+//! 1. **Connectivity.** Vertices at bit-identical positions are joined (unwelded patch seams,
+//!    as in the Newell teapot), then the mesh splits into edge-connected components; each is
+//!    searched alone.
+//! 2. **Distance.** g = edge-path geodesic distance ([`EdgeGraph::distances`]) from the
+//!    component's vertex nearest its centroid, a center inside the body for a star-shaped
+//!    body.
+//! 3. **Merge tree.** Vertices in decreasing g join the components of their neighbours
+//!    already added (union-find); where two meet, the one with the lower tip ends there at
+//!    level g(v), with persistence g(tip) − g(v). The farthest tip's branch never ends: it
+//!    is closed at the highest level where a kept branch ends in it.
+//! 4. **Parts.** Branches with persistence at least `min_length` are kept, the longest first,
+//!    at most `max_parts`; each part is the tip's connected superlevel set at its end level,
+//!    trimmed where its cross-sections widen into the body, less vertices already in a longer
+//!    part; a part holding more than a quarter of its component is the body's far side and
+//!    is dropped. Low-persistence bumps (fingers, claws, a scan's
+//!    noise) stay inside the branch they end in.
+//!
+//! Everything depends on edge lengths, connectivity and the order of distances (ties broken
+//! by vertex index), so a rigidly moved mesh gives the same parts.
+
+use std::collections::HashMap;
+
+use glam::DVec3;
+
+use super::geodesic::EdgeGraph;
+use crate::mesh::Mesh;
+
+/// A protrusion: a tip and the vertices of its branch.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Protrusion {
+    /// The mesh vertices of the part, increasing.
+    pub vertices: Vec<u32>,
+    /// The tip: the part's vertex farthest from the body's center.
+    pub tip: u32,
+    /// The persistence: the drop in geodesic distance from the tip to where the part meets
+    /// the body, mesh units.
+    pub length: f64,
+}
+
+/// A branch of the merge tree.
+#[derive(Clone, Copy, Debug)]
+struct Branch {
+    tip: u32,
+    /// The level where it ended.
+    end: f64,
+    /// The tip of the branch it ended in.
+    into: u32,
+}
+
+/// The protrusions of `mesh` (see the module docs), longest first.
+pub fn protrusions(mesh: &Mesh, min_length: f64, max_parts: usize) -> Vec<Protrusion> {
+    let welded = weld(&mesh.positions);
+    let triangles: Vec<[u32; 3]> = mesh
+        .faces
+        .triangles()
+        .map(|t| t.map(|v| welded[v as usize]))
+        .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+        .collect();
+    let graph = EdgeGraph::new(&mesh.positions, &triangles);
+    let mut used = vec![false; mesh.positions.len()];
+    for t in &triangles {
+        for &v in t {
+            used[v as usize] = true;
+        }
+    }
+    let mut seen = vec![false; mesh.positions.len()];
+    let mut found: Vec<Protrusion> = Vec::new();
+    for start in 0..mesh.positions.len() {
+        if !used[start] || seen[start] {
+            continue;
+        }
+        let component = flood(&graph, start as u32, |_| true);
+        for &v in &component {
+            seen[v as usize] = true;
+        }
+        found.extend(component_protrusions(mesh, &graph, &triangles, &component, min_length));
+    }
+    found.sort_by(|a, b| b.length.total_cmp(&a.length).then(a.tip.cmp(&b.tip)));
+    found.truncate(max_parts);
+    // Each welded vertex stands for every vertex at its position.
+    let mut members: HashMap<u32, Vec<u32>> = HashMap::new();
+    for (v, &w) in welded.iter().enumerate() {
+        if w as usize != v {
+            members.entry(w).or_default().push(v as u32);
+        }
+    }
+    let mut taken = vec![false; mesh.positions.len()];
+    for part in &mut found {
+        let mut vertices: Vec<u32> =
+            part.vertices.iter().flat_map(|v| members.get(v).into_iter().flatten().chain([v])).copied().collect();
+        vertices.retain(|&v| !std::mem::replace(&mut taken[v as usize], true));
+        vertices.sort_unstable();
+        part.vertices = vertices;
+    }
+    found.retain(|p| p.vertices.len() >= 4);
+    found
+}
+
+/// For each vertex, the first vertex at the same position (bit for bit).
+fn weld(positions: &[DVec3]) -> Vec<u32> {
+    let mut first: HashMap<[u64; 3], u32> = HashMap::new();
+    positions
+        .iter()
+        .enumerate()
+        .map(|(v, p)| {
+            let key = p.to_array().map(|c| if c == 0.0 { 0 } else { c.to_bits() });
+            *first.entry(key).or_insert(v as u32)
+        })
+        .collect()
+}
+
+/// The vertices reachable from `start` through vertices that `keep` accepts, increasing.
+fn flood(graph: &EdgeGraph, start: u32, keep: impl Fn(u32) -> bool) -> Vec<u32> {
+    let mut reached = vec![start];
+    let mut visited = std::collections::HashSet::from([start]);
+    let mut i = 0;
+    while i < reached.len() {
+        for &(n, _) in graph.neighbours(reached[i]) {
+            if keep(n) && visited.insert(n) {
+                reached.push(n);
+            }
+        }
+        i += 1;
+    }
+    reached.sort_unstable();
+    reached
+}
+
+/// The protrusions of one component (its vertices increasing).
+fn component_protrusions(
+    mesh: &Mesh,
+    graph: &EdgeGraph,
+    triangles: &[[u32; 3]],
+    component: &[u32],
+    min_length: f64,
+) -> Vec<Protrusion> {
+    if component.len() < 16 {
+        return Vec::new();
+    }
+    let centroid = component.iter().map(|&v| mesh.positions[v as usize]).sum::<DVec3>() / component.len() as f64;
+    let center = component
+        .iter()
+        .copied()
+        .min_by(|&a, &b| {
+            let (da, db) =
+                (mesh.positions[a as usize].distance(centroid), mesh.positions[b as usize].distance(centroid));
+            da.total_cmp(&db).then(a.cmp(&b))
+        })
+        .unwrap_or(component[0]);
+    let g = graph.distances(&[center]);
+    let (branches, eldest) = merge_tree(graph, component, &g);
+    let mut kept: Vec<(u32, f64)> =
+        branches.iter().filter(|b| g[b.tip as usize] - b.end >= min_length).map(|b| (b.tip, b.end)).collect();
+    // The eldest branch ends at the highest level where a kept branch ends in it.
+    let eldest_end = branches
+        .iter()
+        .filter(|b| b.into == eldest && g[b.tip as usize] - b.end >= min_length)
+        .map(|b| b.end)
+        .fold(f64::NEG_INFINITY, f64::max);
+    if eldest_end.is_finite() && g[eldest as usize] - eldest_end >= min_length {
+        kept.push((eldest, eldest_end));
+    }
+    kept.into_iter()
+        .map(|(tip, end)| {
+            let region = flood(graph, tip, |v| g[v as usize] > end);
+            let vertices = trimmed(mesh, graph, triangles, tip, region);
+            Protrusion { vertices, tip, length: g[tip as usize] - end }
+        })
+        .filter(|p| p.vertices.len() as f64 <= MAX_SHARE * component.len() as f64)
+        .collect()
+}
+
+/// The part of `region` (increasing) up to where its cross-sections widen into the body: the
+/// level sets of distance from the tip, cut at [`TRIM_LEVELS`] levels, are measured (their
+/// total length, the perimeter); the region is cut at the first level from [`TRIM_START`] on
+/// whose perimeter exceeds [`TRIM_JUMP`] × the largest of the [`TRIM_WINDOW`] before it.
+fn trimmed(mesh: &Mesh, graph: &EdgeGraph, triangles: &[[u32; 3]], tip: u32, region: Vec<u32>) -> Vec<u32> {
+    let d = graph.distances(&[tip]);
+    let mut inside = vec![false; mesh.positions.len()];
+    for &v in &region {
+        inside[v as usize] = true;
+    }
+    let reach = region.iter().map(|&v| d[v as usize]).fold(0.0, f64::max);
+    if reach <= 0.0 {
+        return region;
+    }
+    let step = reach / TRIM_LEVELS as f64;
+    let mut perimeter = vec![0.0; TRIM_LEVELS];
+    for t in triangles.iter().filter(|t| t.iter().all(|&v| inside[v as usize])) {
+        let h = t.map(|v| d[v as usize]);
+        let (lo, hi) = (h[0].min(h[1]).min(h[2]), h[0].max(h[1]).max(h[2]));
+        let first = (lo / step).floor() as usize + 1;
+        let last = ((hi / step).ceil() as usize).min(TRIM_LEVELS);
+        for (k, sum) in perimeter.iter_mut().enumerate().take(last).skip(first) {
+            let level = k as f64 * step;
+            let mut ends = Vec::with_capacity(2);
+            for e in 0..3 {
+                let (a, b) = (e, (e + 1) % 3);
+                if (h[a] < level) != (h[b] < level) {
+                    let (pa, pb) = (mesh.positions[t[a] as usize], mesh.positions[t[b] as usize]);
+                    ends.push(pa + (pb - pa) * ((level - h[a]) / (h[b] - h[a])));
+                }
+            }
+            if let [a, b] = ends[..] {
+                *sum += a.distance(b);
+            }
+        }
+    }
+    let cut = (TRIM_START..TRIM_LEVELS).find(|&k| {
+        let before = perimeter[k - TRIM_WINDOW..k].iter().copied().fold(0.0, f64::max);
+        before > 0.0 && perimeter[k] > TRIM_JUMP * before
+    });
+    match cut {
+        Some(k) => {
+            let level = (k as f64 - 0.5) * step;
+            region.into_iter().filter(|&v| d[v as usize] < level).collect()
+        }
+        None => region,
+    }
+}
+
+/// A part holds at most this share of its component's vertices: more is the body's far side
+/// (the eldest branch of a body with short protrusions, such as the bunny's back), not a limb.
+const MAX_SHARE: f64 = 0.25;
+/// Levels of distance from a part's tip at which its cross-sections are measured.
+const TRIM_LEVELS: usize = 40;
+/// The first level at which a part may be cut (a part is at least this many levels long,
+/// past a hand's or a foot's widening below its fingers or toes).
+const TRIM_START: usize = 10;
+/// The levels before a level whose widest section it is compared with.
+const TRIM_WINDOW: usize = 4;
+/// A cross-section this many times the widest of the [`TRIM_WINDOW`] before it meets the body.
+const TRIM_JUMP: f64 = 1.5;
+
+/// The branches of the merge tree of superlevel sets of `g` over `component` and the
+/// eldest tip (the farthest vertex).
+fn merge_tree(graph: &EdgeGraph, component: &[u32], g: &[f64]) -> (Vec<Branch>, u32) {
+    let mut order = component.to_vec();
+    order.sort_by(|&a, &b| g[b as usize].total_cmp(&g[a as usize]).then(a.cmp(&b)));
+    let mut parent: HashMap<u32, u32> = HashMap::with_capacity(order.len());
+    let mut peak: HashMap<u32, u32> = HashMap::new();
+    fn root(parent: &mut HashMap<u32, u32>, mut v: u32) -> u32 {
+        while let Some(&p) = parent.get(&v) {
+            if p == v {
+                break;
+            }
+            let grand = parent[&p];
+            parent.insert(v, grand);
+            v = p;
+        }
+        v
+    }
+    let mut branches = Vec::new();
+    for &v in &order {
+        parent.insert(v, v);
+        peak.insert(v, v);
+        for &(n, _) in graph.neighbours(v) {
+            if !parent.contains_key(&n) {
+                continue;
+            }
+            let (rv, rn) = (root(&mut parent, v), root(&mut parent, n));
+            if rv == rn {
+                continue;
+            }
+            let (pv, pn) = (peak[&rv], peak[&rn]);
+            let elder_first =
+                |a: u32, b: u32| g[a as usize] > g[b as usize] || (g[a as usize] == g[b as usize] && a < b);
+            let (elder, younger, elder_root, younger_root) =
+                if elder_first(pv, pn) { (pv, pn, rv, rn) } else { (pn, pv, rn, rv) };
+            if younger != v {
+                branches.push(Branch { tip: younger, end: g[v as usize], into: elder });
+            }
+            parent.insert(younger_root, elder_root);
+            peak.insert(elder_root, elder);
+        }
+    }
+    (branches, order[0])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn welding_joins_bit_identical_positions_only() {
+        let p = [DVec3::ZERO, DVec3::X, DVec3::new(-0.0, 0.0, 0.0), DVec3::X + DVec3::splat(1e-12)];
+        assert_eq!(weld(&p), [0, 1, 0, 3]);
+    }
+}
