@@ -38,7 +38,13 @@ fn write_the_million_vertex_bunny_with_fitted_ears() {
         let ear = largest_connected(&bunny, inside);
         let fitted = fit(&bunny, &ear, &FitOptions::default()).unwrap();
         let owned = steps.iter().fold(ear, |owned, step| step.carry(&owned));
-        println!("{name}: {} keys, RMS |d| {:.3}, {} of {} vertices", fitted.keys.len(), fitted.quality.rms_d, owned.len(), mesh.positions.len());
+        println!(
+            "{name}: {} keys, RMS |d| {:.3}, {} of {} vertices",
+            fitted.keys.len(),
+            fitted.quality.rms_d,
+            owned.len(),
+            mesh.positions.len()
+        );
         sweeps.push(fitted.sweep_document(name.into(), VertexSelection::Indices(owned), None));
     }
     let rig = RigDocument { format: FORMAT.into(), version: VERSION, sweeps };
