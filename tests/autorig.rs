@@ -8,9 +8,27 @@ use std::f64::consts::PI;
 use std::fs;
 
 use glam::{DQuat, DVec3};
-use sweepffd::fit::autorig::{AutorigOptions, autorig};
+use sweepffd::fit::autorig::{Autorig, AutorigOptions, autorig};
 use sweepffd::fit::largest_connected;
 use sweepffd::mesh::{Faces, Mesh};
+
+/// Prints each part of `rigged`, found on `mesh` (named `name`): vertices, tip, keys, fit
+/// quality and time.
+fn print_parts(name: &str, mesh: &Mesh, rigged: &Autorig) {
+    for part in &rigged.parts {
+        let q = part.fit.quality;
+        eprintln!(
+            "{name} {}: {} vertices, tip {:.3}, {} keys, RMS |d| {:.2}%, max {:.1}%, {:.3} s",
+            part.name,
+            part.vertices.len(),
+            mesh.positions[part.tip as usize],
+            part.fit.keys.len(),
+            100.0 * q.rms_d,
+            100.0 * q.max_d,
+            part.seconds
+        );
+    }
+}
 
 /// A UV sphere of radius 1: `rings` − 1 latitude rings of `around` vertices and two poles.
 fn sphere(rings: u32, around: u32) -> Mesh {
@@ -66,18 +84,9 @@ fn the_bunny_gets_its_two_ears_each_with_its_tip() {
     let Some(path) = common::shared_mesh("bunny_stanford_zipper.obj") else { return };
     let mesh = Mesh::load(&path).unwrap();
     let rigged = autorig(&mesh, &AutorigOptions::default()).unwrap();
+    print_parts("bunny", &mesh, &rigged);
     for part in &rigged.parts {
-        let q = part.fit.quality;
-        eprintln!(
-            "bunny {}: {} vertices, {} keys, RMS |d| {:.2}%, max {:.1}%, {:.3} s",
-            part.name,
-            part.vertices.len(),
-            part.fit.keys.len(),
-            100.0 * q.rms_d,
-            100.0 * q.max_d,
-            part.seconds
-        );
-        assert_eq!(q.without_root, 0, "{}: every owned vertex binds with a root", part.name);
+        assert_eq!(part.fit.quality.without_root, 0, "{}: every owned vertex binds with a root", part.name);
     }
     assert_eq!(rigged.parts.len(), 2);
     for (ear, selected) in bunny_ears(&mesh) {
@@ -131,18 +140,7 @@ fn the_chair_gets_its_four_legs() {
     let Some(path) = common::shared_mesh("chair.off") else { return };
     let mesh = Mesh::load(&path).unwrap();
     let rigged = autorig(&mesh, &AutorigOptions::default()).unwrap();
-    for part in &rigged.parts {
-        let q = part.fit.quality;
-        let tip = mesh.positions[part.tip as usize];
-        eprintln!(
-            "chair {}: {} vertices, tip {tip:.3}, {} keys, RMS |d| {:.2}%, {:.3} s",
-            part.name,
-            part.vertices.len(),
-            part.fit.keys.len(),
-            100.0 * q.rms_d,
-            part.seconds
-        );
-    }
+    print_parts("chair", &mesh, &rigged);
     let legs = rigged.parts.iter().filter(|p| mesh.positions[p.tip as usize].y < 0.05).collect::<Vec<_>>();
     assert_eq!(legs.len(), 4);
     assert!(legs.iter().all(|p| p.fit.quality.rms_d <= 0.10), "the legs fit within 10%");
@@ -189,18 +187,9 @@ fn the_armadillo_gets_its_hands_feet_and_tail() {
     let rigged = autorig(&mesh, &AutorigOptions::default()).unwrap();
     let seconds = started.elapsed().as_secs_f64();
     let tips: Vec<DVec3> = rigged.parts.iter().map(|p| mesh.positions[p.tip as usize]).collect();
-    for (part, tip) in rigged.parts.iter().zip(&tips) {
-        let q = part.fit.quality;
-        eprintln!(
-            "armadillo {}: {} vertices, tip {tip:.1}, {} keys, RMS |d| {:.1}%, max {:.0}%, {:.3} s",
-            part.name,
-            part.vertices.len(),
-            part.fit.keys.len(),
-            100.0 * q.rms_d,
-            100.0 * q.max_d,
-            part.seconds
-        );
-        assert_eq!(q.without_root, 0, "{}", part.name);
+    print_parts("armadillo", &mesh, &rigged);
+    for part in &rigged.parts {
+        assert_eq!(part.fit.quality.without_root, 0, "{}", part.name);
     }
     eprintln!("armadillo: {} parts in {seconds:.3} s", rigged.parts.len());
     let count = |test: &dyn Fn(&DVec3) -> bool| tips.iter().filter(|t| test(t)).count();

@@ -50,6 +50,7 @@
 pub mod attached;
 pub mod autorig;
 pub mod axis;
+mod disjoint_sets;
 mod error;
 pub mod falloff;
 pub mod frames;

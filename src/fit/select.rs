@@ -4,6 +4,7 @@
 
 use glam::DVec3;
 
+use super::disjoint_sets::DisjointSets;
 use crate::mesh::Mesh;
 
 /// The largest edge-connected set of vertices of `mesh` whose positions `inside` accepts,
@@ -41,25 +42,17 @@ impl Pieces {
     /// Union-find over the edges of the faces whose two ends are both accepted.
     fn new(mesh: &Mesh, inside: impl Fn(DVec3) -> bool) -> Pieces {
         let chosen: Vec<bool> = mesh.positions.iter().map(|&p| inside(p)).collect();
-        let mut parent: Vec<u32> = (0..mesh.positions.len() as u32).collect();
-        fn root(parent: &mut [u32], mut v: u32) -> u32 {
-            while parent[v as usize] != v {
-                parent[v as usize] = parent[parent[v as usize] as usize];
-                v = parent[v as usize];
-            }
-            v
-        }
+        let mut sets = DisjointSets::new(mesh.positions.len());
         for face in mesh.faces.iter() {
             for (k, &a) in face.iter().enumerate() {
                 let b = face[(k + 1) % face.len()];
                 if chosen[a as usize] && chosen[b as usize] {
-                    let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
-                    parent[ra as usize] = rb;
+                    let (ra, rb) = (sets.root(a), sets.root(b));
+                    sets.attach(ra, rb);
                 }
             }
         }
-        let roots =
-            (0..mesh.positions.len() as u32).map(|v| chosen[v as usize].then(|| root(&mut parent, v))).collect();
+        let roots = (0..mesh.positions.len() as u32).map(|v| chosen[v as usize].then(|| sets.root(v))).collect();
         Pieces { roots }
     }
 

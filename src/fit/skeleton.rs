@@ -33,6 +33,7 @@
 use glam::{DMat3, DVec3};
 
 use super::axis::Polyline;
+use super::disjoint_sets::DisjointSets;
 use super::geodesic::EdgeGraph;
 use super::part::Part;
 
@@ -98,33 +99,25 @@ fn start_loop(part: &Part, graph: &EdgeGraph) -> Option<Vec<[u32; 2]>> {
     if edges.is_empty() {
         return None;
     }
-    let mut parent: Vec<u32> = (0..graph.len() as u32).collect();
-    fn root(parent: &mut [u32], mut v: u32) -> u32 {
-        while parent[v as usize] != v {
-            parent[v as usize] = parent[parent[v as usize] as usize];
-            v = parent[v as usize];
-        }
-        v
-    }
+    let mut sets = DisjointSets::new(graph.len());
     for &[a, b] in &edges {
-        let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
-        parent[ra.max(rb) as usize] = ra.min(rb);
+        let (ra, rb) = (sets.root(a), sets.root(b));
+        sets.attach(ra.max(rb), ra.min(rb));
     }
     let mut lengths: Vec<f64> = vec![0.0; graph.len()];
     for &[a, b] in &edges {
-        let r = root(&mut parent, a);
+        let r = sets.root(a);
         lengths[r as usize] += part.positions[a as usize].distance(part.positions[b as usize]);
     }
     let longest = (0..lengths.len()).max_by(|&a, &b| lengths[a].total_cmp(&lengths[b]).then(b.cmp(&a)))?;
-    let piece: Vec<[u32; 2]> =
-        edges.iter().copied().filter(|&[a, _]| root(&mut parent, a) as usize == longest).collect();
+    let piece: Vec<[u32; 2]> = edges.iter().copied().filter(|&[a, _]| sets.root(a) as usize == longest).collect();
     // A selection cut along a coarse mesh leaves gaps in its rim: the pieces of the same loop
     // lie within the longest piece's reach of its centroid, a loop at another end does not.
     let centroid = loop_centroid(part, &piece);
     let reach =
         JOIN_REACH * piece.iter().flatten().map(|&v| part.positions[v as usize].distance(centroid)).fold(0.0, f64::max);
     let near = |v: u32| part.positions[v as usize].distance(centroid) <= reach;
-    Some(edges.into_iter().filter(|&[a, b]| root(&mut parent, a) as usize == longest || (near(a) && near(b))).collect())
+    Some(edges.into_iter().filter(|&[a, b]| sets.root(a) as usize == longest || (near(a) && near(b))).collect())
 }
 
 /// The edges of the part's triangles that lie on only one of them and not on the rim: the
