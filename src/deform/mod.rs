@@ -11,6 +11,9 @@
 //! with C, R and r of the posed sweep and (θ, t, d, h) from binding against the rest sweep.
 
 pub mod blend;
+pub mod jacobian;
+#[cfg(test)]
+mod tests;
 
 use crate::parallel::prelude::*;
 use glam::DVec3;
