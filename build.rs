@@ -12,6 +12,22 @@ const KERNELS: &[(&str, &[&str])] = &[
     ("deform_uniform", &["layout.wgsl", "cells_uniform.wgsl", "sweep_eval.wgsl", "deform.wgsl"]),
     ("deform_storage", &["layout.wgsl", "cells_storage.wgsl", "sweep_eval.wgsl", "deform.wgsl"]),
     (
+        "deform_normals_uniform",
+        &["layout.wgsl", "cells_uniform.wgsl", "sweep_eval.wgsl", "jacobian.wgsl", "deform_normals.wgsl"],
+    ),
+    (
+        "deform_normals_storage",
+        &["layout.wgsl", "cells_storage.wgsl", "sweep_eval.wgsl", "jacobian.wgsl", "deform_normals.wgsl"],
+    ),
+    (
+        "normal_coords_uniform",
+        &["layout.wgsl", "cells_uniform.wgsl", "sweep_eval.wgsl", "jacobian.wgsl", "normal_coords.wgsl"],
+    ),
+    (
+        "normal_coords_storage",
+        &["layout.wgsl", "cells_storage.wgsl", "sweep_eval.wgsl", "jacobian.wgsl", "normal_coords.wgsl"],
+    ),
+    (
         "band_uniform",
         &["layout.wgsl", "cells_uniform.wgsl", "rest_cells_uniform.wgsl", "sweep_eval.wgsl", "blend.wgsl", "band.wgsl"],
     ),

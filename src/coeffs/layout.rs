@@ -43,7 +43,8 @@ pub const UNIFORM_CELL_CAPACITY: u32 = 409;
 pub struct CellCoeffs {
     /// Power-basis coefficients of r, `[power of φ][power of s]`.
     pub radius: [[f32; 4]; 4],
-    /// The curve's coefficients in xyz; π/M in `curve[0].w`.
+    /// The curve's coefficients in xyz; π/M in `curve[0].w`; which ends of the sweep the knot
+    /// interval holds in `curve[1].w` ([`CellCoeffs::ends`]).
     pub curve: [[f32; 4]; 4],
     /// q_k ⊗ qz(θ_mid).
     pub q0: [f32; 4],
@@ -55,6 +56,12 @@ impl CellCoeffs {
     /// Half the angular step, π/M.
     pub fn half_step(&self) -> f32 {
         self.curve[0][3]
+    }
+
+    /// The `curve[1].w` of knot interval `k` of `segments`: 1 on the first, plus 2 on the last
+    /// (binding beyond an end happens there, [`crate::cpu::jacobian::is_beyond_end`]).
+    pub fn ends(k: usize, segments: usize) -> f32 {
+        (u32::from(k == 0) + 2 * u32::from(k + 1 == segments)) as f32
     }
 }
 

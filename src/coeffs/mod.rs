@@ -51,6 +51,20 @@ impl SweepCoefficients {
         coefficients
     }
 
+    /// The sweep whose cells hold `cell` (its [`BAND_FLAG`] ignored), or [`UNOWNED`] for
+    /// [`UNOWNED`] or a cell past the last sweep's.
+    pub fn sweep_of_cell(&self, cell: u32) -> u32 {
+        if cell == UNOWNED {
+            return UNOWNED;
+        }
+        let cell = cell & !BAND_FLAG;
+        let after = self.sweeps.partition_point(|info| info.first_cell <= cell);
+        match after.checked_sub(1).map(|i| (i, &self.sweeps[i])) {
+            Some((i, info)) if cell < info.first_cell + info.segment_count * info.samples => i as u32,
+            _ => UNOWNED,
+        }
+    }
+
     /// Whether `sweeps` have the structure these arrays were sized for.
     pub fn fits(&self, sweeps: &[Sweep]) -> bool {
         sweeps.len() == self.sweeps.len()
@@ -72,6 +86,7 @@ impl SweepCoefficients {
             for (k, segment) in sweep.segments().iter().enumerate() {
                 let mut curve = segment.curve.power_coefficients().map(vec4);
                 curve[0][3] = half_step as f32;
+                curve[1][3] = CellCoeffs::ends(k, sweep.segments().len());
                 let (start, end) = (segment.orientation.start, segment.orientation.end);
                 for j in 0..m {
                     // R(t)·Rz(θ_mid) as one quaternion: mixing the ends of q ⊗ qz(θ_mid) is the same

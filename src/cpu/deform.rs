@@ -2,8 +2,9 @@
 //! v = C(t) + R(t)·((r(θ,t) + d)·cos θ, (r(θ,t) + d)·sin θ, h).
 
 use crate::parallel::prelude::*;
-use glam::Vec3;
+use glam::{Vec3, Vec4};
 
+use super::jacobian::{NORMAL_BEYOND_END, deformed_normal, point_frame};
 use super::sweep_eval::{curve_at, direction_at, quat_at, radius_at, rotate};
 use crate::coeffs::{BAND_FLAG, CellCoeffs, GpuBinding};
 
@@ -34,4 +35,40 @@ pub fn deform(cells: &[CellCoeffs], bindings: &[GpuBinding], positions: &mut [f3
             }
         }
     });
+}
+
+/// One invocation of `shaders/deform_normals.wgsl`: the new position and Jacobian normal of a
+/// vertex whose normal coordinates record is `record`, or `None` if it is unbound or in a
+/// falloff band (whose normals the normals pass computes).
+pub fn deform_vertex_with_normal(cells: &[CellCoeffs], binding: &GpuBinding, record: Vec4) -> Option<(Vec3, Vec3)> {
+    if binding.cell >= BAND_FLAG {
+        return None;
+    }
+    let cell = &cells[binding.cell as usize];
+    let frame = point_frame(cell, binding, record.w == NORMAL_BEYOND_END);
+    Some((frame.position, deformed_normal(cell, binding, &frame, record)))
+}
+
+/// Every invocation of `shaders/deform_normals.wgsl`: overwrites the positions and normals of
+/// the bound vertices outside falloff bands (both tightly packed xyz), in parallel.
+pub fn deform_with_normals(
+    cells: &[CellCoeffs],
+    bindings: &[GpuBinding],
+    records: &[Vec4],
+    positions: &mut [f32],
+    normals: &mut [f32],
+) {
+    const CHUNK: usize = 4096;
+    let outputs = positions.par_chunks_mut(3 * CHUNK).zip(normals.par_chunks_mut(3 * CHUNK));
+    outputs.zip(bindings.par_chunks(CHUNK).zip(records.par_chunks(CHUNK))).for_each(
+        |((positions, normals), (bindings, records))| {
+            let outputs = positions.chunks_exact_mut(3).zip(normals.chunks_exact_mut(3));
+            for ((xyz, n), (binding, &record)) in outputs.zip(bindings.iter().zip(records)) {
+                if let Some((p, normal)) = deform_vertex_with_normal(cells, binding, record) {
+                    xyz.copy_from_slice(&p.to_array());
+                    n.copy_from_slice(&normal.to_array());
+                }
+            }
+        },
+    );
 }

@@ -3,7 +3,7 @@
 //! [`deform`], `shaders/band.wgsl` ↔ [`band`], `shaders/band_pack.wgsl` ↔ [`band_pack`],
 //! `shaders/band_flags.wgsl` ↔ [`band_flags`], `shaders/normals.wgsl` ↔ [`normals`],
 //! `shaders/tangents.wgsl` ↔ [`tangents`], and the shared `shaders/sweep_eval.wgsl` ↔
-//! [`sweep_eval`], `shaders/angle.wgsl` ↔ [`angle`], `shaders/blend.wgsl` ↔ [`blend`]; the
+//! [`sweep_eval`], `shaders/jacobian.wgsl` ↔ [`jacobian`], `shaders/angle.wgsl` ↔ [`angle`], `shaders/blend.wgsl` ↔ [`blend`]; the
 //! benchmark baselines `shaders/copy.wgsl` ↔ [`copy`],
 //! `shaders/skinning.wgsl` ↔ [`skinning`]).
 //!
@@ -21,6 +21,7 @@ pub mod blend;
 pub mod bounds;
 pub mod copy;
 pub mod deform;
+pub mod jacobian;
 pub mod normals;
 pub mod skinning;
 pub mod sweep_eval;

@@ -127,9 +127,7 @@ pub fn normal_coordinates(rest: &Sweep, binding: &VertexBinding, normal: DVec3) 
 /// coordinates (zero where the deformation degenerates there).
 pub fn deformed_normal(posed: &Sweep, binding: &VertexBinding, coordinates: &NormalCoordinates) -> DVec3 {
     match *coordinates {
-        NormalCoordinates::Jacobian(m) => {
-            cofactor_times(&parameter_jacobian(posed, binding), m).normalize_or_zero()
-        }
+        NormalCoordinates::Jacobian(m) => cofactor_times(&parameter_jacobian(posed, binding), m).normalize_or_zero(),
         NormalCoordinates::Frame(local) => (posed.orientation(binding.t) * local).normalize_or_zero(),
     }
 }

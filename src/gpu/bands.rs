@@ -143,7 +143,7 @@ impl BandStage {
                 range,
                 count,
                 plan.limits,
-                |params, cells, out| {
+                |params, cells, _, _, out| {
                     kernel.bind_group(
                         device,
                         "sweepffd band",

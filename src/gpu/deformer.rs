@@ -4,6 +4,7 @@
 mod bounds;
 mod descriptor;
 pub(crate) mod instances;
+mod normal_coords;
 mod set_bands;
 mod uploads;
 
@@ -17,6 +18,7 @@ use std::sync::Arc;
 use self::bounds::BoundsStage;
 use self::descriptor::triangle_faces;
 use self::instances::{InstanceDispatch, PosedCells, PositionTargets};
+use self::normal_coords::NormalCoordinates;
 use self::set_bands::{BandMember, Rebanding};
 use self::uploads::PoseUploads;
 use super::bands::{BandPlan, BandSource, BandStage};
@@ -33,6 +35,7 @@ use super::tangents_pass::{TANGENT_STRIDE, TangentStage};
 use super::{GpuContext, GpuError};
 use crate::bind::falloff::BandWeight;
 use crate::coeffs::{BAND_FLAG, BandRecord, CellCoeffs, GpuBinding, SweepCoefficients, UNOWNED};
+use crate::normals::jacobian_reach;
 use crate::sweep::Sweep;
 
 /// Storage buffers the bind kernel uses in one stage, the most of any kernel.
@@ -115,6 +118,10 @@ pub struct GpuDeformer {
     /// The tangents stage of each position buffer (none without rest tangents).
     tangents: Vec<TangentStage>,
     bounds: Option<BoundsStage>,
+    /// Bytes of the normal coordinates records (Jacobian normals; the buffers are held by the
+    /// deform dispatches' bind groups).
+    coordinates_bytes: u64,
+    jacobian_normals: bool,
     /// The position buffer holding the latest positions.
     current: usize,
 }
@@ -130,6 +137,9 @@ struct DeformChunk {
 impl DeformChunk {
     /// The deform dispatches of the vertices in `range`, whose bindings are in `bindings`, for
     /// every instance and position buffer.
+    /// With Jacobian normals, `normals` holds the chunk's normal coordinates and the normals
+    /// buffer of each position buffer, which the fused kernel writes too.
+    #[expect(clippy::too_many_arguments, reason = "the chunk's inputs, each used once")]
     fn new(
         device: &wgpu::Device,
         kernel: &Kernel,
@@ -137,16 +147,26 @@ impl DeformChunk {
         bindings: wgpu::Buffer,
         cells: &PosedCells,
         targets: &PositionTargets,
+        normals: Option<(&wgpu::Buffer, &[NormalsStage])>,
         limits: &ChunkLimits,
     ) -> DeformChunk {
         let count = range.len() as u32;
-        let dispatches = InstanceDispatch::plan(device, cells, targets, &range, count, limits, |params, cells, out| {
-            kernel.bind_group(
-                device,
-                "sweepffd deform",
-                &[params.as_entire_binding(), cells, bindings.as_entire_binding(), out],
-            )
-        });
+        let dispatches = InstanceDispatch::plan(
+            device,
+            cells,
+            targets,
+            &range,
+            count,
+            limits,
+            |params, cells, parity, group, out| {
+                let mut resources = vec![params.as_entire_binding(), cells, bindings.as_entire_binding(), out];
+                if let Some((coordinates, stages)) = normals {
+                    resources.push(coordinates.as_entire_binding());
+                    resources.push(targets.window_of(&stages[parity].buffer, 0, &range, group));
+                }
+                kernel.bind_group(device, "sweepffd deform", &resources)
+            },
+        );
         DeformChunk { range, bindings, dispatches }
     }
 }
@@ -177,6 +197,7 @@ impl GpuDeformer {
             previous_positions,
             bounds,
             rest_tangents,
+            jacobian_normals,
             output,
             full_dispatch,
         } = *descriptor;
@@ -246,7 +267,10 @@ impl GpuDeformer {
         let cells = PosedCells::new(device, &coefficients.cells, instances, variant);
         let uploads = PoseUploads::new(device, cells.used_bytes, pose_uploads);
         let rest_cells = cells_buffer(device, &coefficients, variant);
-        let kernel = context.kernels().deform(device, variant);
+        let kernel = match jacobian_normals {
+            true => context.kernels().deform_normals(device, variant),
+            false => context.kernels().deform(device, variant),
+        };
         let mut encoder =
             device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd bind") });
         let binder = match bindings {
@@ -257,7 +281,44 @@ impl GpuDeformer {
             BindingSource::Bind { bands, .. } => bands.iter().map(|b| b.vertex).collect(),
             BindingSource::Precomputed { bands, .. } => bands.iter().map(|b| b.vertex).collect(),
         };
-        let chunks: Vec<DeformChunk> = ranges
+        // With Jacobian normals the deform kernel writes the normals of the vertices whose
+        // one-ring one sweep moves whole (crate::normals::jacobian_reach); the normals pass
+        // computes the others, after it.
+        let by_deform: Option<Vec<bool>> = match (jacobian_normals, triangles) {
+            (true, Some(triangles)) => {
+                let mut influence: Vec<u32> = match bindings {
+                    BindingSource::Bind { owners, .. } => owners.to_vec(),
+                    BindingSource::Precomputed { bindings, .. } => {
+                        bindings.iter().map(|b| coefficients.sweep_of_cell(b.cell)).collect()
+                    }
+                };
+                for &v in &band_vertices {
+                    influence[v as usize] = UNOWNED;
+                }
+                Some(jacobian_reach(triangles, &influence))
+            }
+            _ => None,
+        };
+        // One normals (and tangents) stage per position buffer, each recording its rest pass now;
+        // per frame only the vertices whose one-ring can move are recomputed.
+        let mut normals = Vec::new();
+        let mut tangents = Vec::new();
+        if let Some(faces) = &faces {
+            for buffer in &targets.buffers {
+                let sizes = (vertex_count, targets.stride);
+                let positions = (buffer, targets.offset);
+                let moves = (&bound[..], by_deform.as_deref());
+                let stage =
+                    NormalsStage::new(context, &mut encoder, faces, positions, sizes, instances, moves, &limits)?;
+                if let Some(rest_tangents) = rest_tangents {
+                    let stage =
+                        TangentStage::new(context, &mut encoder, rest_tangents, &stage, sizes, instances, &limits)?;
+                    tangents.push(stage);
+                }
+                normals.push(stage);
+            }
+        }
+        let chunks: Vec<(DeformChunk, Option<NormalCoordinates>)> = ranges
             .into_iter()
             .map(|range| {
                 let (start, end) = (range.start as usize, range.end as usize);
@@ -284,9 +345,27 @@ impl GpuDeformer {
                         binding_buffer_with(device, &chunk)
                     }
                 };
-                DeformChunk::new(device, &kernel, range, bindings_buffer, &cells, &targets, &limits)
+                let coordinates = jacobian_normals.then(|| {
+                    let rest_normals = &normals.first().expect("Jacobian normals need triangles").buffer;
+                    let coordinates = NormalCoordinates::new(device, range.len() as u32);
+                    coordinates.encode(
+                        context,
+                        &mut encoder,
+                        variant,
+                        (&rest_cells, &bindings_buffer, rest_normals),
+                        &range,
+                        &limits,
+                    );
+                    coordinates
+                });
+                let normals = coordinates.as_ref().map(|c| (&c.buffer, &normals[..]));
+                let chunk =
+                    DeformChunk::new(device, &kernel, range, bindings_buffer, &cells, &targets, normals, &limits);
+                (chunk, coordinates)
             })
             .collect();
+        let (chunks, coordinates): (Vec<DeformChunk>, Vec<Option<NormalCoordinates>>) = chunks.into_iter().unzip();
+        let coordinates_bytes = coordinates.iter().flatten().map(|c| c.buffer.size()).sum();
         let bands = (!band_vertices.is_empty()).then(|| {
             let source = match bindings {
                 BindingSource::Bind { bands, .. } => BandSource::Bind { weights: bands, positions },
@@ -304,24 +383,6 @@ impl GpuDeformer {
             BindingSource::Precomputed { bands, .. } => bands.iter().map(BandMember::of_record).collect(),
         };
         let rebanding = Rebanding::new(rest, binder, members, &bound);
-        // One normals (and tangents) stage per position buffer, each recording its rest pass now;
-        // per frame only the vertices whose one-ring can move are recomputed.
-        let mut normals = Vec::new();
-        let mut tangents = Vec::new();
-        if let Some(faces) = &faces {
-            for buffer in &targets.buffers {
-                let sizes = (vertex_count, targets.stride);
-                let positions = (buffer, targets.offset);
-                let stage =
-                    NormalsStage::new(context, &mut encoder, faces, positions, sizes, instances, &bound, &limits)?;
-                if let Some(rest_tangents) = rest_tangents {
-                    let stage =
-                        TangentStage::new(context, &mut encoder, rest_tangents, &stage, sizes, instances, &limits)?;
-                    tangents.push(stage);
-                }
-                normals.push(stage);
-            }
-        }
         let ranges: Vec<Range<u32>> = chunks.iter().map(|chunk| chunk.range.clone()).collect();
         let bounds = bounds.then(|| BoundsStage::new(context, &targets, &ranges, positions, &limits));
         let poses = (0..instances).flat_map(|_| coefficients.cells.iter().copied()).collect();
@@ -343,6 +404,8 @@ impl GpuDeformer {
             normals,
             tangents,
             bounds,
+            coordinates_bytes,
+            jacobian_normals,
             current: 0,
         };
         context.queue.submit([encoder.finish()]);
@@ -629,14 +692,15 @@ impl GpuDeformer {
     /// Device memory that grows with the mesh, bytes: bindings, positions (both buffers with
     /// previous positions; an app-supplied output's share counted too), the falloff bands' records, and
     /// the normals and tangents with what their passes keep (rest normals and tangents, vertex
-    /// and fan lists). The rig's cell records, the staging buffers of the pose uploads and the
+    /// and fan lists), and the normal coordinates of Jacobian normals. The rig's cell records, the staging buffers of the pose uploads and the
     /// bounds are excluded: they grow with the rig and the instances, not the vertices.
     pub fn device_bytes(&self) -> u64 {
         let bindings = self.dispatched_vertex_count() as u64 * BINDING_STRIDE;
         let positions = self.targets.bytes() * self.targets.buffers.len() as u64;
         let normals: u64 = self.normals.iter().map(|stage| stage.device_bytes).sum();
         let tangents: u64 = self.tangents.iter().map(|stage| stage.device_bytes).sum();
-        bindings + positions + normals + tangents + self.bands.as_ref().map_or(0, BandStage::device_bytes)
+        let bands = self.bands.as_ref().map_or(0, BandStage::device_bytes);
+        bindings + positions + normals + tangents + bands + self.coordinates_bytes
     }
 
     /// Copies the bindings back to the CPU (blocking), one per vertex; band vertices carry

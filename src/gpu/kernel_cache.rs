@@ -15,6 +15,8 @@ type Slot = OnceLock<Arc<Kernel>>;
 pub(crate) struct KernelCache {
     bind: Slot,
     deform: [Slot; 2],
+    deform_normals: [Slot; 2],
+    normal_coords: [Slot; 2],
     band: [Slot; 2],
     band_pack: Slot,
     band_flags: Slot,
@@ -49,6 +51,16 @@ impl KernelCache {
     /// `shaders/deform.wgsl` for cell records of `variant`.
     pub(crate) fn deform(&self, device: &wgpu::Device, variant: DeformVariant) -> Arc<Kernel> {
         self.get(&self.deform[variant_index(variant)], || kernels::deform(device, variant))
+    }
+
+    /// `shaders/deform_normals.wgsl` for cell records of `variant`.
+    pub(crate) fn deform_normals(&self, device: &wgpu::Device, variant: DeformVariant) -> Arc<Kernel> {
+        self.get(&self.deform_normals[variant_index(variant)], || kernels::deform_normals(device, variant))
+    }
+
+    /// `shaders/normal_coords.wgsl` for rest cell records of `variant`.
+    pub(crate) fn normal_coords(&self, device: &wgpu::Device, variant: DeformVariant) -> Arc<Kernel> {
+        self.get(&self.normal_coords[variant_index(variant)], || kernels::normal_coords(device, variant))
     }
 
     /// `shaders/band.wgsl` for cell records of `variant`.

@@ -130,6 +130,28 @@ pub fn deform(device: &wgpu::Device, variant: DeformVariant) -> Kernel {
     Kernel::new(device, "sweepffd deform", source, "deform_main", &[Uniform, cells, Read, ReadWrite])
 }
 
+/// `shaders/deform_normals.wgsl`: params, cells (uniform or storage), bindings (read),
+/// positions (written), normal coordinates (read), normals (written).
+pub fn deform_normals(device: &wgpu::Device, variant: DeformVariant) -> Kernel {
+    let (source, cells) = match variant {
+        DeformVariant::Uniform => (shaders::DEFORM_NORMALS_UNIFORM, Uniform),
+        DeformVariant::Storage => (shaders::DEFORM_NORMALS_STORAGE, Read),
+    };
+    let slots = [Uniform, cells, Read, ReadWrite, Read, ReadWrite];
+    Kernel::new(device, "sweepffd deform normals", source, "deform_normals_main", &slots)
+}
+
+/// `shaders/normal_coords.wgsl`: params, rest cells (uniform or storage), bindings, rest normals
+/// (read); normal coordinates (written).
+pub fn normal_coords(device: &wgpu::Device, variant: DeformVariant) -> Kernel {
+    let (source, cells) = match variant {
+        DeformVariant::Uniform => (shaders::NORMAL_COORDS_UNIFORM, Uniform),
+        DeformVariant::Storage => (shaders::NORMAL_COORDS_STORAGE, Read),
+    };
+    let slots = [Uniform, cells, Read, Read, ReadWrite];
+    Kernel::new(device, "sweepffd normal coordinates", source, "normal_coords_main", &slots)
+}
+
 /// `shaders/band.wgsl`: params, cells (uniform or storage), bindings (read), positions
 /// (written), rest cells (uniform or storage), band records (read).
 pub fn band(device: &wgpu::Device, variant: DeformVariant) -> Kernel {

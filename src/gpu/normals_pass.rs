@@ -100,7 +100,8 @@ pub(crate) fn record(encoder: &mut wgpu::CommandEncoder, label: &str, kernel: &K
 pub(crate) struct NormalsStage {
     pub(crate) kernel: Arc<Kernel>,
     pub(crate) buffer: wgpu::Buffer,
-    /// The per-frame dispatches, over [`dirty`](Self::dirty).
+    /// The per-frame dispatches, over [`dirty`](Self::dirty) (less the vertices the deform
+    /// kernel writes, with Jacobian normals).
     pub(crate) dispatches: Vec<Dispatch>,
     /// The vertices (all instances) recomputed per frame, ascending.
     pub(crate) dirty: Vec<u32>,
@@ -127,7 +128,8 @@ impl NormalsStage {
     /// from `positions` from byte `positions_base` on; `moves[v]` says whether vertex v of the
     /// mesh can move (a sweep owns it). Records the pass over every vertex (the rest normals)
     /// into `encoder`; the stage's own dispatches then cover only the vertices whose normal can
-    /// change.
+    /// change, less those for which `by_deform` is true (the deform kernel writes their normals
+    /// through its Jacobian).
     #[expect(clippy::too_many_arguments, reason = "the stage's inputs, each used once")]
     pub(crate) fn new(
         context: &GpuContext,
@@ -136,7 +138,7 @@ impl NormalsStage {
         (positions, positions_base): (&wgpu::Buffer, u64),
         (vertex_count, stride): (u32, u32),
         instances: u32,
-        moves: &[bool],
+        (moves, by_deform): (&[bool], Option<&[bool]>),
         limits: &ChunkLimits,
     ) -> Result<NormalsStage, GpuError> {
         let device = &context.device;
@@ -177,8 +179,15 @@ impl NormalsStage {
         };
         let every = instanced(&(0..vertex_count).collect::<Vec<u32>>(), stride, instances.max(1));
         record(encoder, "sweepffd rest normals", &kernel, &plan.dispatches(device, &every)?.0);
-        let dirty = instanced(&dirty_vertices(&adjacency, |v| moves[v]), stride, instances.max(1));
-        let (dispatches, list_bytes) = plan.dispatches(device, &dirty)?;
+        let moving = dirty_vertices(&adjacency, |v| moves[v]);
+        let dirty = instanced(&moving, stride, instances.max(1));
+        let (dispatches, list_bytes) = match by_deform {
+            None => plan.dispatches(device, &dirty)?,
+            Some(by_deform) => {
+                let faced: Vec<u32> = moving.into_iter().filter(|&v| !by_deform[v as usize]).collect();
+                plan.dispatches(device, &instanced(&faced, stride, instances.max(1)))?
+            }
+        };
         let device_bytes = buffer.size() + list_bytes;
         Ok(NormalsStage { kernel, buffer, dispatches, dirty, device_bytes })
     }

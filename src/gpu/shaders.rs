@@ -10,6 +10,17 @@ pub const DEFORM_UNIFORM: &str = include_str!(concat!(env!("OUT_DIR"), "/deform_
 /// Eq. 2 for every bound vertex, cell records in a storage buffer: `shaders/deform.wgsl` after
 /// `shaders/cells_storage.wgsl`, entry point `deform_main`.
 pub const DEFORM_STORAGE: &str = include_str!(concat!(env!("OUT_DIR"), "/deform_storage.wgsl"));
+/// Eq. 2 fused with the Jacobian normals, cell records in a uniform buffer:
+/// `shaders/deform_normals.wgsl` after `shaders/cells_uniform.wgsl` and `shaders/jacobian.wgsl`,
+/// entry point `deform_normals_main`.
+pub const DEFORM_NORMALS_UNIFORM: &str = include_str!(concat!(env!("OUT_DIR"), "/deform_normals_uniform.wgsl"));
+/// The same, cell records in a storage buffer.
+pub const DEFORM_NORMALS_STORAGE: &str = include_str!(concat!(env!("OUT_DIR"), "/deform_normals_storage.wgsl"));
+/// The normal coordinates of every vertex at creation, rest cell records in a uniform buffer:
+/// `shaders/normal_coords.wgsl` after `shaders/jacobian.wgsl`, entry point `normal_coords_main`.
+pub const NORMAL_COORDS_UNIFORM: &str = include_str!(concat!(env!("OUT_DIR"), "/normal_coords_uniform.wgsl"));
+/// The same, rest cell records in a storage buffer.
+pub const NORMAL_COORDS_STORAGE: &str = include_str!(concat!(env!("OUT_DIR"), "/normal_coords_storage.wgsl"));
 /// Falloff bands, cell records in uniform buffers: `shaders/band.wgsl` after
 /// `shaders/cells_uniform.wgsl`, `shaders/rest_cells_uniform.wgsl` and `shaders/blend.wgsl`, entry
 /// point `band_main`.
@@ -45,10 +56,14 @@ pub const SKINNING: &str = include_str!(concat!(env!("OUT_DIR"), "/skinning.wgsl
 pub const TANGENTS: &str = include_str!(concat!(env!("OUT_DIR"), "/tangents.wgsl"));
 
 /// Every kernel as (name, composed source, entry point).
-pub const ALL: [(&str, &str, &str); 14] = [
+pub const ALL: [(&str, &str, &str); 18] = [
     ("bind", BIND, "bind_main"),
     ("deform_uniform", DEFORM_UNIFORM, "deform_main"),
     ("deform_storage", DEFORM_STORAGE, "deform_main"),
+    ("deform_normals_uniform", DEFORM_NORMALS_UNIFORM, "deform_normals_main"),
+    ("deform_normals_storage", DEFORM_NORMALS_STORAGE, "deform_normals_main"),
+    ("normal_coords_uniform", NORMAL_COORDS_UNIFORM, "normal_coords_main"),
+    ("normal_coords_storage", NORMAL_COORDS_STORAGE, "normal_coords_main"),
     ("band_uniform", BAND_UNIFORM, "band_main"),
     ("band_storage", BAND_STORAGE, "band_main"),
     ("band_pack", BAND_PACK, "band_pack_main"),

@@ -216,7 +216,7 @@ mod tests {
             (&positions, 0),
             (n as u32, n as u32),
             3,
-            &moves,
+            (&moves, None),
             &limits,
         )
         .unwrap();

@@ -17,9 +17,11 @@ use glam::DVec3;
 use crate::mesh::Faces;
 
 mod dirty;
+mod reach;
 pub mod tangents;
 
 pub use dirty::{dirty_vertices, instanced};
+pub use reach::jacobian_reach;
 
 /// Marks the first neighbour of a fan in [`NormalAdjacency::fans`].
 pub const FAN_START: u32 = 1 << 31;

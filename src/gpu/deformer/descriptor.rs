@@ -44,6 +44,10 @@ pub struct DeformerDescriptor<'a> {
     /// them), with triangles: the deformer then keeps deformed tangents, each turned with its
     /// vertex's normal ([`crate::normals::tangents`]).
     pub rest_tangents: Option<&'a [[f32; 4]]>,
+    /// Whether the normals (with triangles) come through the deformation's Jacobian, fused into
+    /// the deform kernel (see [`with_jacobian_normals`](Self::with_jacobian_normals)), rather
+    /// than from the deformed triangles.
+    pub jacobian_normals: bool,
     /// The application's own buffer to write the positions into, instead of one of the
     /// deformer's.
     pub output: Option<OutputBuffer<'a>>,
@@ -82,6 +86,7 @@ impl<'a> DeformerDescriptor<'a> {
             previous_positions: false,
             bounds: false,
             rest_tangents: None,
+            jacobian_normals: false,
             output: None,
             full_dispatch: false,
         }
@@ -119,6 +124,16 @@ impl<'a> DeformerDescriptor<'a> {
         DeformerDescriptor { rest_tangents: Some(rest_tangents), ..self }
     }
 
+    /// The same, computing the normals of the vertices a sweep moves through the Jacobian of
+    /// the deformation (Nanson's formula, [`crate::deform::jacobian`]) in the deform kernel
+    /// itself: each such vertex's binding is read once and its position and normal written
+    /// once, with no gather over its triangles. Vertices in falloff bands and unbound vertices
+    /// beside moving ones keep the triangle-based normals. Needs triangles; the falloff bands are
+    /// then fixed ([`set_bands`](crate::gpu::GpuDeformer::set_bands) refuses).
+    pub fn with_jacobian_normals(self) -> DeformerDescriptor<'a> {
+        DeformerDescriptor { jacobian_normals: true, ..self }
+    }
+
     /// The same, writing the positions into the application's `buffer` from byte `offset` on.
     pub fn with_output(self, buffer: &'a wgpu::Buffer, offset: u64) -> DeformerDescriptor<'a> {
         DeformerDescriptor { output: Some(OutputBuffer { buffer, offset }), ..self }
@@ -139,6 +154,9 @@ impl<'a> DeformerDescriptor<'a> {
                 "{} instances and {} pose uploads: each needs at least one",
                 self.instances, self.pose_uploads
             )));
+        }
+        if self.jacobian_normals && self.triangles.is_none() {
+            return Err(GpuError::Input("Jacobian normals need triangles: they start from the rest normals".into()));
         }
         if self.rest_tangents.is_some() && self.triangles.is_none() {
             return Err(GpuError::Input("rest tangents need triangles: tangents turn with the normals".into()));

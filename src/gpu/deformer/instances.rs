@@ -108,10 +108,22 @@ impl PositionTargets {
 
     /// The window of buffer `parity` covering the vertices `range` of the instances `group`.
     pub(crate) fn window(&self, parity: usize, range: &Range<u32>, group: &Range<u32>) -> wgpu::BindingResource<'_> {
-        let first = self.instance_offset(group.start) + range.start as u64 * POSITION_STRIDE;
+        self.window_of(&self.buffers[parity], self.offset, range, group)
+    }
+
+    /// The same window of `buffer`, laid out as the positions (12 bytes a vertex) from byte
+    /// `base` on.
+    pub(crate) fn window_of<'b>(
+        &self,
+        buffer: &'b wgpu::Buffer,
+        base: u64,
+        range: &Range<u32>,
+        group: &Range<u32>,
+    ) -> wgpu::BindingResource<'b> {
+        let first = self.instance_offset(group.start) - self.offset + base + range.start as u64 * POSITION_STRIDE;
         let vertices = (group.len() as u64 - 1) * self.stride as u64 + range.len() as u64;
         wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-            buffer: &self.buffers[parity],
+            buffer,
             offset: first,
             size: wgpu::BufferSize::new(vertices * POSITION_STRIDE),
         })
@@ -139,15 +151,22 @@ impl InstanceDispatch {
     /// The dispatches of a kernel over `count` threads per instance (the vertices `range`, or
     /// their band records), one per instance group; `group_of(params, cells, positions)` makes
     /// the bind group of one position buffer from the dispatch's params, the cells and the
-    /// window of the position buffer.
-    pub(crate) fn plan(
+    /// window of the position buffer (the group's parity and instances given too, for windows
+    /// of other buffers laid out as the positions).
+    pub(crate) fn plan<'a>(
         device: &wgpu::Device,
-        cells: &PosedCells,
-        targets: &PositionTargets,
+        cells: &'a PosedCells,
+        targets: &'a PositionTargets,
         range: &Range<u32>,
         count: u32,
         limits: &ChunkLimits,
-        group_of: impl Fn(&wgpu::Buffer, wgpu::BindingResource<'_>, wgpu::BindingResource<'_>) -> wgpu::BindGroup,
+        group_of: impl Fn(
+            &wgpu::Buffer,
+            wgpu::BindingResource<'a>,
+            usize,
+            &Range<u32>,
+            wgpu::BindingResource<'a>,
+        ) -> wgpu::BindGroup,
     ) -> Vec<InstanceDispatch> {
         targets
             .groups
@@ -165,7 +184,9 @@ impl InstanceDispatch {
                     usage: wgpu::BufferUsages::UNIFORM,
                 });
                 let groups = (0..targets.buffers.len())
-                    .map(|parity| group_of(&params, cells.binding(), targets.window(parity, range, group)))
+                    .map(|parity| {
+                        group_of(&params, cells.binding(), parity, group, targets.window(parity, range, group))
+                    })
                     .collect();
                 let (x, y) = dispatch_grid(count, limits);
                 InstanceDispatch { groups, grid: (x, y, group.len() as u32) }

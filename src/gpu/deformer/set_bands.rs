@@ -145,6 +145,11 @@ impl GpuDeformer {
                 self.vertex_count
             )));
         }
+        if self.jacobian_normals {
+            return Err(GpuError::Input(
+                "new falloff bands on a deformer with Jacobian normals: build a new deformer with them".into(),
+            ));
+        }
         check_weights(weights, self.coefficients.sweeps.len(), |v| self.rebanding.is_bound(v))?;
         if let Some(w) = weights.iter().find(|w| !rest[w.vertex as usize].iter().all(|c| c.is_finite())) {
             return Err(GpuError::Input(format!("vertex {} has a non-finite position", w.vertex)));

@@ -1,0 +1,44 @@
+// Deformation (paper Eq. 2, extended by the axial offset h) fused with the vertex normals
+// through its Jacobian: each bound vertex reads its binding and normal coordinates once and
+// writes its position and its normal once (src/deform/jacobian.rs). The positions equal
+// deform.wgsl's. Vertices in falloff bands, and the unbound vertices beside moving ones, get
+// their normals from the normals pass instead.
+// Composed after layout.wgsl, cells_uniform.wgsl or cells_storage.wgsl (binding 1: the cell
+// records), sweep_eval.wgsl and jacobian.wgsl. Twin: src/cpu/deform.rs (deform_with_normals).
+// Every instance in one dispatch: workgroup layer z is instance params.first_instance + z.
+
+@group(0) @binding(0) var<uniform> params: InstanceParams;
+@group(0) @binding(2) var<storage, read> bindings: array<GpuBinding>;
+// Tightly packed xyz, instance z at z * params.instance_stride floats, as deform.wgsl's.
+@group(0) @binding(3) var<storage, read_write> positions: array<f32>;
+// The chunk's normal coordinates records (jacobian.wgsl), one per vertex, shared by instances.
+@group(0) @binding(4) var<storage, read> coordinates: array<vec4<f32>>;
+// Laid out as the positions.
+@group(0) @binding(5) var<storage, read_write> normals: array<f32>;
+
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn deform_normals_main(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    let i = invocation_index(group, groups, lane);
+    if (i >= params.vertex_count) {
+        return;
+    }
+    let binding = bindings[i];
+    if (binding.cell >= BAND_FLAG) {
+        return;
+    }
+    let cell = cells[(params.first_instance + group.z) * params.cells_per_instance + binding.cell];
+    let record = coordinates[i];
+    let frame = point_frame(cell, binding, record.w == NORMAL_BEYOND_END);
+    let n = deformed_normal(cell, binding, frame, record);
+    let o = group.z * params.instance_stride + 3u * i;
+    positions[o] = frame.position.x;
+    positions[o + 1u] = frame.position.y;
+    positions[o + 2u] = frame.position.z;
+    normals[o] = n.x;
+    normals[o + 1u] = n.y;
+    normals[o + 2u] = n.z;
+}
