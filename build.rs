@@ -42,6 +42,7 @@ const KERNELS: &[(&str, &[&str])] = &[
     ("bounds", &["layout.wgsl", "bounds.wgsl"]),
     ("bounds_finalize", &["layout.wgsl", "bounds_finalize.wgsl"]),
     ("copy", &["layout.wgsl", "copy.wgsl"]),
+    ("copy_wide", &["layout.wgsl", "copy_wide.wgsl"]),
     ("skinning", &["layout.wgsl", "skinning.wgsl"]),
     ("tangents", &["layout.wgsl", "tangents.wgsl"]),
 ];

@@ -44,6 +44,12 @@ fn gpu(c: &mut Criterion) {
         group.bench_function(BenchmarkId::new("normals", n), |b| {
             b.iter_custom(|i| gpu_time(i, || bench.time_normals()))
         });
+        group.bench_function(BenchmarkId::new("deform_jacobian_normals", n), |b| {
+            b.iter_custom(|i| gpu_time(i, || bench.time_fused()))
+        });
+        group.bench_function(BenchmarkId::new("copy_wide_baseline", n), |b| {
+            b.iter_custom(|i| gpu_time(i, || bench.time_wide_copy()))
+        });
         // Baselines in the same run: one mesh of as many vertices as the instances together, and
         // a rig owning every vertex.
         group.bench_function(BenchmarkId::new("instances_1000", n), |b| {

@@ -484,8 +484,17 @@ fn bench_prints_one_json_line_with_every_figure() {
             assert!(bytes > 76.0 && bytes <= 80.0, "device bytes per vertex {bytes}");
             assert!(report["readback_ms"].as_f64().is_some_and(|ms| ms > 0.0));
             assert!(report["frame_cpu_ms"].as_f64().is_some_and(|ms| ms > 0.0));
+            for field in ["fused_over_copy", "fused_over_separate", "instances_over_single", "partial_over_full"] {
+                let value = report[field].as_f64().unwrap_or_else(|| panic!("{field} missing in {stdout}"));
+                assert!(value.is_finite() && value > 0.0, "{field} = {value}");
+            }
+            // The bench's tube is smooth and fine: the two kinds of normals agree closely.
+            let angle = report["normals_angle_p99_deg"].as_f64().unwrap();
+            assert!((0.0..2.0).contains(&angle), "normals angle {angle}°");
         } else {
-            assert!(report["frame_cpu_ms"].is_null());
+            for field in ["frame_cpu_ms", "fused_over_copy", "normals_angle_p99_deg"] {
+                assert!(report[field].is_null(), "{field} in {stdout}");
+            }
         }
     }
 }

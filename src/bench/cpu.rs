@@ -55,6 +55,8 @@ impl CpuBench {
             let times = Round {
                 instances: (0.0, 1.0),
                 partial: (0.0, 1.0),
+                fused: 0.0,
+                wide_copy: 1.0,
                 deform: time(&mut || {
                     deform_vertices(scene.rig.rest(), &scene.posed, &self.bindings, &scene.mesh.positions, &mut out)
                 }),
@@ -100,6 +102,9 @@ impl CpuBench {
             device_bytes_per_vertex: None,
             instances_over_single: None,
             partial_over_full: None,
+            fused_over_copy: None,
+            fused_over_separate: None,
+            normals_angle_p99_deg: None,
             falloff: scene
                 .with_falloff
                 .iter()

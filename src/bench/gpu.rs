@@ -6,6 +6,7 @@ use std::time::Instant;
 use wgpu::util::DeviceExt;
 
 use super::engine::EngineComparisons;
+use super::fused::FusedComparison;
 use super::skinning::{skinning_influences, skinning_joints};
 use super::{BenchReport, BenchScene, FalloffKind, FalloffReport, GpuTimer, Round, best_of, median, median_of};
 use crate::coeffs::{BAND_FLAG, DispatchParams, SweepCoefficients};
@@ -23,7 +24,7 @@ const WARMUP: usize = 3;
 const BEST_OF: usize = 3;
 
 /// A pipeline's dispatches, one per chunk.
-type Dispatches = (kernels::Kernel, Vec<(wgpu::BindGroup, (u32, u32))>);
+pub(super) type Dispatches = (kernels::Kernel, Vec<(wgpu::BindGroup, (u32, u32))>);
 
 /// Every kernel of the bench, set up on one device for one scene.
 pub struct GpuBench {
@@ -40,6 +41,8 @@ pub struct GpuBench {
     timer: Option<GpuTimer>,
     /// Instances against one mesh, a partial rig against a full one.
     engine: EngineComparisons,
+    /// The fused deform + Jacobian normals kernel.
+    fused: FusedComparison,
 }
 
 impl GpuBench {
@@ -51,8 +54,9 @@ impl GpuBench {
         let source = BindingSource::Bind { owners: &scene.owners, bands: &bands };
         let positions = crate::gpu::rest_positions(&scene.mesh.positions);
         let triangles: Vec<u32> = scene.mesh.faces.triangles().flatten().collect();
-        let deformer =
-            GpuDeformer::new(context, &DeformerDescriptor::new(rest, &positions, source).with_triangles(&triangles))?;
+        let descriptor = DeformerDescriptor::new(rest, &positions, source).with_triangles(&triangles);
+        let mut deformer = GpuDeformer::new(context, &descriptor)?;
+        let fused = FusedComparison::new(context, descriptor, &mut deformer, &scene.posed)?;
         let mut flagged_owners = scene.owners.clone();
         for band in &bands {
             flagged_owners[band.vertex as usize] |= BAND_FLAG;
@@ -141,6 +145,7 @@ impl GpuBench {
             skinning: (skinning_kernel, skinning_dispatches),
             timer: GpuTimer::new(context),
             engine: EngineComparisons::new(context, n as usize)?,
+            fused,
         })
     }
 
@@ -191,6 +196,16 @@ impl GpuBench {
     /// [`PARTIAL_SHARE`](super::PARTIAL_SHARE) of a tube and of one owning all, back to back.
     pub fn time_partial(&mut self) -> Result<(f64, f64), GpuError> {
         self.engine.time_partial(&self.context, self.timer.as_ref())
+    }
+
+    /// Seconds of the fused deform + Jacobian normals pass.
+    pub fn time_fused(&mut self) -> Result<f64, GpuError> {
+        self.fused.time_fused(&self.context, self.timer.as_ref())
+    }
+
+    /// Seconds of the copy kernel moving the fused kernel's bytes.
+    pub fn time_wide_copy(&self) -> Result<f64, GpuError> {
+        self.fused.time_wide_copy(&self.context, self.timer.as_ref())
     }
 
     /// Seconds of the copy baseline.
@@ -250,6 +265,8 @@ impl GpuBench {
                 normals: best_of(BEST_OF, || self.time_normals())?,
                 instances: self.engine.time_instances(&self.context, self.timer.as_ref())?,
                 partial: self.engine.time_partial(&self.context, self.timer.as_ref())?,
+                fused: best_of(BEST_OF, || self.time_fused())?,
+                wide_copy: best_of(BEST_OF, || self.time_wide_copy())?,
             };
             if round >= WARMUP {
                 rounds.push(times);
@@ -295,6 +312,9 @@ impl GpuBench {
             falloff,
             instances_over_single: Some(column(|r| r.instances.0 / r.instances.1)),
             partial_over_full: Some(column(|r| r.partial.0 / r.partial.1)),
+            fused_over_copy: Some(column(|r| r.fused / r.wide_copy)),
+            fused_over_separate: Some(column(|r| r.fused / (r.deform + r.normals))),
+            normals_angle_p99_deg: Some(self.fused.angle_p99_deg),
             runs,
             timestamps: self.timer.is_some(),
         })
@@ -330,12 +350,12 @@ pub(super) fn time(
     }
 }
 
-fn chunk_params(device: &wgpu::Device, range: &Range<u32>) -> wgpu::Buffer {
+pub(super) fn chunk_params(device: &wgpu::Device, range: &Range<u32>) -> wgpu::Buffer {
     params_buffer(device, DispatchParams { vertex_count: range.len() as u32, ..Default::default() })
 }
 
 /// Records one pass over all of a pipeline's dispatches.
-fn encode(encoder: &mut wgpu::CommandEncoder, (kernel, dispatches): &Dispatches, timer: Option<&GpuTimer>) {
+pub(super) fn encode(encoder: &mut wgpu::CommandEncoder, (kernel, dispatches): &Dispatches, timer: Option<&GpuTimer>) {
     let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
         label: Some("sweepffd bench"),
         timestamp_writes: timer.and_then(|t| t.writes(true, true)),

@@ -9,6 +9,7 @@
 mod cpu;
 mod engine;
 mod frame;
+mod fused;
 mod gpu;
 mod scene;
 mod size;
@@ -69,6 +70,17 @@ pub struct BenchReport {
     /// Deform and normals time of an n-vertex tube whose rig owns [`PARTIAL_SHARE`] of its
     /// vertices over that of a rig owning every vertex, same round (`null` on the CPU).
     pub partial_over_full: Option<f64>,
+    /// The fused deform + Jacobian normals pass over a copy kernel moving as many bytes (a
+    /// binding and a normal coordinates record read, a position and a normal written), same
+    /// round (`null` on the CPU).
+    pub fused_over_copy: Option<f64>,
+    /// The fused pass over the deform pass plus the triangle normals pass it replaces, same
+    /// round (`null` on the CPU).
+    pub fused_over_separate: Option<f64>,
+    /// The 99th percentile of the angle between the Jacobian normals and the triangle normals
+    /// of the posed scene, over the vertices whose normals the fused kernel writes, degrees
+    /// (`null` on the CPU).
+    pub normals_angle_p99_deg: Option<f64>,
     /// Runs each median is taken over.
     pub runs: usize,
     /// Whether GPU times come from timestamp queries.
@@ -104,6 +116,9 @@ struct Round {
     instances: (f64, f64),
     /// Deform and normals passes of the partial and the full rig (GPU only).
     partial: (f64, f64),
+    /// The fused deform + Jacobian normals pass and its copy baseline (GPU only).
+    fused: f64,
+    wide_copy: f64,
 }
 
 /// The median of `samples` (which it sorts).

@@ -86,6 +86,14 @@ fn print_table(r: &BenchReport) {
     if r.backend == "gpu" {
         println!("  normals   {:>10.3} ms (area-weighted vertex normals of the deformed mesh)", r.normals_ms);
     }
+    if let (Some(copy), Some(separate), Some(angle)) =
+        (r.fused_over_copy, r.fused_over_separate, r.normals_angle_p99_deg)
+    {
+        println!(
+            "  fused     {copy:>10.2} × (deform + Jacobian normals over a copy of its bytes; {separate:.2} × deform + \
+             triangle normals; 99th percentile {angle:.2}° from the triangle normals)"
+        );
+    }
     if let Some(readback) = r.readback_ms {
         println!("  readback  {readback:>10.3} ms");
     }

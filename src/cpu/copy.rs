@@ -21,3 +21,11 @@ pub fn copy(bindings: &[GpuBinding], positions: &mut [f32]) {
         }
     });
 }
+
+/// One invocation of `shaders/copy_wide.wgsl`, the fused kernel's memory ceiling.
+pub fn copy_wide_vertex(b: &GpuBinding, record: [f32; 4], xyz: &mut [f32], normal: &mut [f32]) {
+    copy_vertex(b, xyz);
+    normal[0] = record[0] + record[3];
+    normal[1] = record[1];
+    normal[2] = record[2];
+}

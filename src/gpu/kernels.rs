@@ -202,6 +202,12 @@ pub fn copy(device: &wgpu::Device) -> Kernel {
     Kernel::new(device, "sweepffd copy baseline", shaders::COPY, "copy_main", &[Uniform, Read, ReadWrite])
 }
 
+/// `shaders/copy_wide.wgsl`: params, bindings, records (read); positions, normals (written).
+pub fn copy_wide(device: &wgpu::Device) -> Kernel {
+    let slots = [Uniform, Read, Read, ReadWrite, ReadWrite];
+    Kernel::new(device, "sweepffd wide copy baseline", shaders::COPY_WIDE, "copy_wide_main", &slots)
+}
+
 /// `shaders/skinning.wgsl`: params, joints (uniform), rest positions, influences (read); positions
 /// (written).
 pub fn skinning(device: &wgpu::Device) -> Kernel {

@@ -48,6 +48,9 @@ pub const BOUNDS: &str = include_str!(concat!(env!("OUT_DIR"), "/bounds.wgsl"));
 pub const BOUNDS_FINALIZE: &str = include_str!(concat!(env!("OUT_DIR"), "/bounds_finalize.wgsl"));
 /// Benchmark baseline moving the deform kernel's bytes: `shaders/copy.wgsl`, `copy_main`.
 pub const COPY: &str = include_str!(concat!(env!("OUT_DIR"), "/copy.wgsl"));
+/// Benchmark baseline moving the fused deform + Jacobian normals kernel's bytes:
+/// `shaders/copy_wide.wgsl`, `copy_wide_main`.
+pub const COPY_WIDE: &str = include_str!(concat!(env!("OUT_DIR"), "/copy_wide.wgsl"));
 /// Benchmark baseline, four-influence linear-blend skinning: `shaders/skinning.wgsl`,
 /// `skinning_main`.
 pub const SKINNING: &str = include_str!(concat!(env!("OUT_DIR"), "/skinning.wgsl"));
@@ -56,7 +59,7 @@ pub const SKINNING: &str = include_str!(concat!(env!("OUT_DIR"), "/skinning.wgsl
 pub const TANGENTS: &str = include_str!(concat!(env!("OUT_DIR"), "/tangents.wgsl"));
 
 /// Every kernel as (name, composed source, entry point).
-pub const ALL: [(&str, &str, &str); 18] = [
+pub const ALL: [(&str, &str, &str); 19] = [
     ("bind", BIND, "bind_main"),
     ("deform_uniform", DEFORM_UNIFORM, "deform_main"),
     ("deform_storage", DEFORM_STORAGE, "deform_main"),
@@ -73,6 +76,7 @@ pub const ALL: [(&str, &str, &str); 18] = [
     ("bounds", BOUNDS, "bounds_main"),
     ("bounds_finalize", BOUNDS_FINALIZE, "bounds_finalize_main"),
     ("copy", COPY, "copy_main"),
+    ("copy_wide", COPY_WIDE, "copy_wide_main"),
     ("skinning", SKINNING, "skinning_main"),
     ("tangents", TANGENTS, "tangents_main"),
 ];

@@ -1,0 +1,30 @@
+// Benchmark baseline: the memory ceiling of the fused deform + Jacobian normals kernel. Reads
+// each vertex's 20-byte binding and 16-byte normal coordinates record and writes 12 bytes of
+// position and 12 of normal, as deform_normals.wgsl does, with no arithmetic to speak of.
+// Composed after layout.wgsl. Twin: src/cpu/copy.rs (copy_wide).
+
+@group(0) @binding(0) var<uniform> params: DispatchParams;
+@group(0) @binding(1) var<storage, read> bindings: array<GpuBinding>;
+@group(0) @binding(2) var<storage, read> records: array<vec4<f32>>;
+@group(0) @binding(3) var<storage, read_write> positions: array<f32>;
+@group(0) @binding(4) var<storage, read_write> normals: array<f32>;
+
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn copy_wide_main(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    let i = invocation_index(group, groups, lane);
+    if (i >= params.vertex_count) {
+        return;
+    }
+    let b = bindings[i];
+    let r = records[i];
+    positions[3u * i] = b.s + f32(b.cell);
+    positions[3u * i + 1u] = b.phi + b.h;
+    positions[3u * i + 2u] = b.d;
+    normals[3u * i] = r.x + r.w;
+    normals[3u * i + 1u] = r.y;
+    normals[3u * i + 2u] = r.z;
+}
