@@ -127,9 +127,11 @@ impl<'a> DeformerDescriptor<'a> {
     /// The same, computing the normals of the vertices a sweep moves through the Jacobian of
     /// the deformation (Nanson's formula, [`crate::deform::jacobian`]) in the deform kernel
     /// itself: each such vertex's binding is read once and its position and normal written
-    /// once, with no gather over its triangles. Vertices in falloff bands and unbound vertices
-    /// beside moving ones keep the triangle-based normals. Needs triangles; the falloff bands are
-    /// then fixed ([`set_bands`](crate::gpu::GpuDeformer::set_bands) refuses).
+    /// once, with no gather over its triangles. It covers the vertices whose whole one-ring one
+    /// sweep moves ([`crate::normals::jacobian_reach`]); the others (falloff bands, hard seams
+    /// between sweeps, unbound vertices beside moving ones) keep the triangle normals. Needs
+    /// triangles; the falloff bands are then fixed
+    /// ([`set_bands`](crate::gpu::GpuDeformer::set_bands) refuses).
     pub fn with_jacobian_normals(self) -> DeformerDescriptor<'a> {
         DeformerDescriptor { jacobian_normals: true, ..self }
     }
