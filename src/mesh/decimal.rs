@@ -7,7 +7,9 @@
 //! `1.0`, `1e+16`, std `1` and `10000000000000000`). So a number is printed by `zmij`, read
 //! back into its significant digits and decimal exponent ([`Digits`]), and laid out again the
 //! way `core::fmt` does (`flt2dec::digits_to_dec_str` and `digits_to_exp_str` with no minimum
-//! precision). `tests` compares the two on edge cases and on millions of random bit patterns.
+//! precision). Most values skip that: where `zmij` already writes std's layout but for a `.0`
+//! or a `+`, and the value cannot be a halfway case, its text is copied with those dropped.
+//! `tests` compares the two on edge cases, halfway cases and millions of random bit patterns.
 //!
 //! Only finite values are printed here: every writer checks its coordinates first.
 
@@ -45,6 +47,15 @@ impl Shortest for f32 {
     }
 }
 
+/// Whether `value` may lie exactly halfway between two shortest candidates `d` and `d + 1` at
+/// `10^k` ([`halfway`]), a cheap test that lets almost every coordinate skip the exact one: it
+/// needs `e = k − 1` and either `5^k ≤ m < 2^53` (so `k ≤ 22`) or `5^−k ≤ 2d + 1 < 2·10^17`
+/// (so `k ≥ −24`).
+fn may_be_halfway(value: impl Shortest) -> bool {
+    let (m, e) = value.odd_significand();
+    m != 0 && (-26..=22).contains(&e)
+}
+
 /// `m · 2^e` with the factors of two of `m` moved into `e`.
 fn odd(m: u64, e: i32) -> (u64, i32) {
     if m == 0 {
@@ -80,9 +91,8 @@ struct Digits {
 }
 
 impl Digits {
-    fn of(value: impl Shortest) -> Digits {
-        let mut buffer = zmij::Buffer::new();
-        let text = value.zmij(&mut buffer).as_bytes();
+    /// The digits of `value` from `text`, its output from `zmij`.
+    fn of(value: impl Shortest, text: &[u8]) -> Digits {
         let (negative, text) = match text.split_first() {
             Some((b'-', rest)) => (true, rest),
             _ => (false, text),
@@ -159,7 +169,14 @@ fn parse_exponent(text: &[u8]) -> i32 {
 /// exponent (`1e300` is a 1 and 300 zeros, `1e-7` is `0.0000001`), `-` before a negative
 /// value and before −0, no fraction for an integer (`1`, `-0`).
 pub(crate) fn push_display(out: &mut Vec<u8>, value: impl Shortest) {
-    let d = Digits::of(value);
+    let mut buffer = zmij::Buffer::new();
+    let text = value.zmij(&mut buffer).as_bytes();
+    if !may_be_halfway(value) && !text.contains(&b'e') {
+        // `zmij`'s fixed layout is std's, but for the `.0` it writes after an integer.
+        out.extend_from_slice(text.strip_suffix(b".0").unwrap_or(text));
+        return;
+    }
+    let d = Digits::of(value, text);
     if d.negative {
         out.push(b'-');
     }
@@ -186,7 +203,19 @@ pub(crate) fn push_display(out: &mut Vec<u8>, value: impl Shortest) {
 /// Appends `value` as `format!("{value:e}")` writes it: `d.ddde-7`, `de16`, `0e0` (one digit
 /// before the point, the point only when more digits follow, the exponent without `+`).
 pub(crate) fn push_lower_exp(out: &mut Vec<u8>, value: impl Shortest) {
-    let d = Digits::of(value);
+    let mut buffer = zmij::Buffer::new();
+    let text = value.zmij(&mut buffer).as_bytes();
+    if !may_be_halfway(value)
+        && let Some(e) = text.iter().position(|&b| b == b'e')
+    {
+        // `zmij`'s exponent layout is std's, but for the `+` it writes before a positive
+        // exponent.
+        out.extend_from_slice(&text[..=e]);
+        let exponent = &text[e + 1..];
+        out.extend_from_slice(exponent.strip_prefix(b"+").unwrap_or(exponent));
+        return;
+    }
+    let d = Digits::of(value, text);
     if d.negative {
         out.push(b'-');
     }
