@@ -1,6 +1,7 @@
 //! Stanford PLY files (ASCII, binary little and big endian): the header through the
-//! `ply-rs-bw` crate, the data straight from the bytes ([`direct`]), or, for what that reader
-//! leaves aside or refuses, through `ply-rs-bw` as well, whose errors name the fault.
+//! `ply-rs-bw` crate, the data straight from the bytes ([`direct`]; written back by patching
+//! them, [`patch`]), or, for what that reader leaves aside or refuses, through `ply-rs-bw` as
+//! well, whose errors name the fault.
 //!
 //! The mesh is the `vertex` element's float or double `x`, `y`, `z` and the `face` element's
 //! integer list `vertex_indices` (or `vertex_index`); other elements and properties are kept
@@ -12,6 +13,7 @@
 mod direct;
 mod error;
 mod header;
+mod patch;
 pub(crate) mod read;
 pub(crate) mod write;
 

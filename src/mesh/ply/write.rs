@@ -8,11 +8,11 @@ use ply_rs_bw::ply::{
 };
 use ply_rs_bw::writer::Writer;
 
-use super::{PlyFile, direct};
+use super::{PlyFile, patch};
 use crate::mesh::Faces;
 
 /// Writes the PLY file `file` with new vertex positions, faithfully: a file read straight from
-/// its bytes by patching them ([`direct::write_faithful`]: the output is the input with only
+/// its bytes by patching them ([`patch::write_faithful`]: the output is the input with only
 /// the moved vertices' coordinates changed), one read through `ply-rs-bw` by writing its data
 /// again ([`write_parsed`]).
 pub(crate) fn write_faithful(
@@ -22,7 +22,7 @@ pub(crate) fn write_faithful(
     positions: &[DVec3],
 ) -> io::Result<()> {
     match file {
-        PlyFile::Bytes(file) => direct::write_faithful(out, file, original, positions),
+        PlyFile::Bytes(file) => patch::write_faithful(out, file, original, positions),
         PlyFile::Parsed(ply) => write_parsed(out, ply, original, positions),
     }
 }
