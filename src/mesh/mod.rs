@@ -8,7 +8,7 @@
 //! the normals around them).
 //!
 //! - [`Mesh::load`] reads, by extension, `.obj` (our own scanner, f64, vertex order kept; see
-//!   `obj`), `.ply` (through `ply-rs-bw`; see `ply`), `.off` (ASCII OFF with the `C`, `N` and
+//!   `obj`), `.ply` (header through `ply-rs-bw`, data straight from the bytes; see `ply`), `.off` (ASCII OFF with the `C`, `N` and
 //!   `ST` variants, our own reader; see `off`) or `.gltf` / `.glb` (through the `gltf` crate:
 //!   every triangle primitive of the default scene, node transforms applied, one group per
 //!   mesh; see `gltf`); [`Mesh::from_parts`] builds a mesh in code.
@@ -22,6 +22,8 @@
 
 mod atomic;
 mod bounds;
+#[cfg(feature = "formats")]
+mod decimal;
 mod error;
 mod faces;
 #[cfg(feature = "formats")]

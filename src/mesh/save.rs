@@ -16,8 +16,9 @@ impl Mesh {
     /// *Faithful* when the mesh was loaded from a file of the same format and its vertex count,
     /// faces and groups are still those of the file: the output is the input file with only the
     /// positions of moved vertices changed (see the OBJ and PLY writers for the exact rules);
-    /// with unchanged positions an OBJ comes out byte-identical and a PLY parses to identical
-    /// data; an OFF comes out byte-identical. A glTF read from `.gltf` or `.glb` can be written
+    /// with unchanged positions an OBJ, an OFF and a PLY come out byte-identical (a PLY whose
+    /// `vertex` element has a list property, read through `ply-rs-bw`, parses to identical
+    /// data). A glTF read from `.gltf` or `.glb` can be written
     /// faithfully to either: the same document with only the POSITION data of moved vertices
     /// (back in each node's local space), their accessors' `min`/`max`, and the NORMAL of
     /// their triangles changed (see `gltf::write`). Otherwise (another format, a mesh built with
@@ -73,7 +74,7 @@ impl Mesh {
     /// Whether [`Mesh::save`] to a file of `format` stores positions as f32.
     fn stores_f32(&self, format: Format) -> bool {
         match (&self.source, format) {
-            (Source::Ply(p), Format::Ply) if p.describes(self) => ply::write::stores_f32(&p.file),
+            (Source::Ply(p), Format::Ply) if p.describes(self) => ply::write::stores_f32(p.file.header()),
             (_, Format::Ply | Format::Gltf | Format::Glb) => true,
             (_, Format::Obj | Format::Off) => false,
         }

@@ -5,13 +5,15 @@ use std::fmt;
 use std::sync::Arc;
 
 use glam::DVec3;
-#[cfg(feature = "formats")]
-use ply_rs_bw::ply::{DefaultElement, Ply};
 
 #[cfg(feature = "formats")]
 use super::gltf::GltfFile;
 #[cfg(feature = "formats")]
+use super::obj::ObjFile;
+#[cfg(feature = "formats")]
 use super::off::OffFile;
+#[cfg(feature = "formats")]
+use super::ply::PlyFile;
 use super::{FaceGroup, Faces, Mesh};
 
 /// Where a mesh came from. Cloning a mesh shares its source.
@@ -20,12 +22,12 @@ pub(crate) enum Source {
     /// Built in code by [`Mesh::from_parts`]: no file to be faithful to.
     #[default]
     Code,
-    /// Read from an OBJ file: its bytes.
+    /// Read from an OBJ file: its bytes and where each vertex's statement lies.
     #[cfg(feature = "formats")]
-    Obj(Arc<Original<Vec<u8>>>),
-    /// Read from a PLY file: its header and every element, as parsed.
+    Obj(Arc<Original<ObjFile>>),
+    /// Read from a PLY file: its bytes and where the vertices lie, or every element as parsed.
     #[cfg(feature = "formats")]
-    Ply(Arc<Original<Ply<DefaultElement>>>),
+    Ply(Arc<Original<PlyFile>>),
     /// Read from an OFF file: its bytes and where each vertex's coordinates lie.
     #[cfg(feature = "formats")]
     Off(Arc<Original<OffFile>>),
@@ -71,9 +73,9 @@ impl fmt::Debug for Source {
         match self {
             Source::Code => f.write_str("Code"),
             #[cfg(feature = "formats")]
-            Source::Obj(o) => write!(f, "Obj({} bytes)", o.file.len()),
+            Source::Obj(o) => write!(f, "Obj({} bytes)", o.file.bytes.len()),
             #[cfg(feature = "formats")]
-            Source::Ply(p) => write!(f, "Ply({:?})", p.file.header.encoding),
+            Source::Ply(p) => write!(f, "Ply({:?})", p.file.header().encoding),
             #[cfg(feature = "formats")]
             Source::Off(o) => write!(f, "Off({} bytes)", o.file.bytes.len()),
             #[cfg(feature = "formats")]

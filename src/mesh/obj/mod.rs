@@ -5,13 +5,26 @@
 //! bunny has 1,113 unused vertices, and a rig binds vertices by index). Other OBJ crates read
 //! f32 only or panic on free-form statements. So a small line scanner ([`scan`]) is shared by
 //! the reader ([`read`]) and the faithful writer ([`mod@write`]): one tokenizer, so they always
-//! agree on which line is which vertex.
+//! agree on which line is which vertex. Large files are read, and written, in pieces on every
+//! core (see [`read`]).
 //!
 //! Understood statements: `v x y z [w]` and `v x y z r g b` (the first three numbers are the
 //! position), `f`/`fo` with `p`, `p/t`, `p//n`, `p/t/n` (1-based, or negative relative to the
 //! vertices read so far), `g name…` and `o name` (both name groups, see [`read`]). Every other
 //! statement (`vt`, `vn`, `usemtl`, `mtllib`, `s`, `l`, `p`, …) is kept verbatim and ignored.
 
+mod join;
+mod pieces;
 pub(crate) mod read;
 pub(crate) mod scan;
 pub(crate) mod write;
+
+/// An OBJ file as read, for the faithful writer: its bytes and where each vertex's `v`
+/// statement starts (the byte offset of its logical line), so that a write visits only the
+/// statements of moved vertices.
+pub(crate) struct ObjFile {
+    /// The file.
+    pub bytes: Vec<u8>,
+    /// `lines[i]`: the offset in `bytes` of the logical line of vertex i's `v` statement.
+    pub lines: Vec<usize>,
+}

@@ -4,28 +4,48 @@
 //! the current object, which also acts as a group because Blender writes objects rather than
 //! groups. A face belongs to every current group and to the current object. Groups are listed
 //! in order of first appearance; a group that ends up with no face is dropped.
+//!
+//! A file is read as [`Part`]s, runs of whole logical lines, joined in file order
+//! ([`super::join`]). A part read on its own does not know what comes before it: it keeps its
+//! negative face indices relative to its own vertices and its `g` and `o` statements as events,
+//! resolved and replayed when the parts are joined. With the feature `parallel` a large file is
+//! cut into many parts read on every core ([`super::pieces`]); if any of them finds a fault, or
+//! the joined counts cross a limit, the file is read again as one part, which stops at the
+//! first fault in file order: errors name the same line as reading line by line would.
 
-use std::collections::HashMap;
 use std::path::Path;
 
 use glam::DVec3;
 
+use super::ObjFile;
+use super::join::{GroupChange, join};
 use super::scan::{self, Keyword, Scanner, VertexIssue};
 use crate::mesh::source::{Original, Source};
-use crate::mesh::{FaceGroup, Faces, Limited, Mesh, MeshError, ObjLineError};
+use crate::mesh::{Faces, Limited, Mesh, MeshError, ObjLineError};
 
 /// Reads the OBJ file `bytes` (read from `path`, which errors name).
 pub(crate) fn read(path: &Path, bytes: Vec<u8>) -> Result<Mesh, MeshError> {
-    let mut reader = Reader::default();
-    for line in Scanner::new(&bytes) {
-        reader.statement(line.number, &line.body).map_err(|problem| MeshError::Obj {
-            path: path.to_path_buf(),
-            line: line.number,
-            problem,
-        })?;
+    let (mesh, lines) = match super::pieces::read_in_pieces(&bytes) {
+        Some(read) => read,
+        None => read_whole(path, &bytes)?,
+    };
+    let file = ObjFile { bytes, lines };
+    Ok(Mesh { source: Source::Obj(Original::new(file, &mesh)), ..mesh })
+}
+
+/// Reads `bytes` as one part, on the calling thread: the mesh and the byte offset of each
+/// vertex's logical line, or the first fault in file order.
+pub(crate) fn read_whole(path: &Path, bytes: &[u8]) -> Result<(Mesh, Vec<usize>), MeshError> {
+    let obj_error = |line, problem| MeshError::Obj { path: path.to_path_buf(), line, problem };
+    let part = read_part(bytes, 0, true).map_err(|(line, problem)| obj_error(line, problem))?;
+    let count = part.positions.len();
+    if count == 0 {
+        return Err(MeshError::Empty { path: path.to_path_buf() });
     }
-    let mesh = reader.finish(path)?;
-    Ok(Mesh { source: Source::Obj(Original::new(bytes, &mesh)), ..mesh })
+    if let Some((index, line)) = part.largest.filter(|&(i, _)| i > count as i64) {
+        return Err(obj_error(line, ObjLineError::IndexOutOfRange { index, count }));
+    }
+    Ok(join(vec![part]))
 }
 
 /// Checks that every word of `text` is a finite number (the values of `vt`, `vn`, `vp`, and
@@ -42,20 +62,46 @@ fn finite_numbers(text: &[u8], what: &'static str) -> Result<(), ObjLineError> {
     Ok(())
 }
 
-/// The mesh read so far.
-#[derive(Default)]
+/// What a run of whole logical lines of an OBJ file gives, read on its own.
+#[derive(Debug, Default)]
+pub(crate) struct Part {
+    /// The positions of its `v` statements.
+    pub positions: Vec<DVec3>,
+    /// The byte offset in the file of each of those statements' logical line.
+    pub lines: Vec<usize>,
+    /// Its faces. A negative index of a part that does not start the file is held in
+    /// `relative` and is 0 here until joined.
+    pub faces: Faces,
+    /// For a part that does not start the file, each negative face index: its place in
+    /// `faces.indices` and the index resolved against this part's vertices only (vertices
+    /// read before it in the part plus the index; below 0 when it reaches an earlier part).
+    pub relative: Vec<(usize, i64)>,
+    /// Its `g` and `o` statements in order, each with the number of its faces before it.
+    pub events: Vec<(usize, GroupChange)>,
+    /// The largest positive face index met (as written) and its line: checked once the
+    /// vertex count is known.
+    pub largest: Option<(i64, usize)>,
+}
+
+/// Reads the logical lines of `bytes`, which lie at byte `offset` of the file; `starts_file`
+/// when `offset` is 0. Stops at the first fault, with its line, counted from 1 at the start of
+/// `bytes`: the file's line, vertex numbers and limits are exact only when `starts_file`.
+pub(crate) fn read_part(bytes: &[u8], offset: usize, starts_file: bool) -> Result<Part, (usize, ObjLineError)> {
+    let mut reader = Reader { part: Part::default(), starts_file, offset, line: 0, face: Vec::new() };
+    reader.part.faces = Faces::new();
+    for line in Scanner::new(bytes) {
+        reader.line = line.number;
+        reader.statement(line.start, &line.body).map_err(|problem| (line.number, problem))?;
+    }
+    Ok(reader.part)
+}
+
+/// A part being read.
 struct Reader {
-    positions: Vec<DVec3>,
-    faces: Faces,
-    groups: Vec<FaceGroup>,
-    group_ids: HashMap<String, usize>,
-    /// Groups named by the last `g`.
-    current: Vec<usize>,
-    /// Group named by the last `o`.
-    object: Option<usize>,
-    /// The largest positive face index met (as written) and its line: checked at the end,
-    /// when the vertex count is known.
-    largest: Option<(i64, usize)>,
+    part: Part,
+    starts_file: bool,
+    /// Where the part's bytes lie in the file.
+    offset: usize,
     /// The line of the statement being read.
     line: usize,
     /// The face being read, as zero-based indices.
@@ -63,23 +109,25 @@ struct Reader {
 }
 
 impl Reader {
-    /// Reads the statement `body` of the logical line `number`.
-    fn statement(&mut self, number: usize, body: &[u8]) -> Result<(), ObjLineError> {
-        self.line = number;
+    /// Reads the statement `body` of the logical line at byte `start` of the part.
+    fn statement(&mut self, start: usize, body: &[u8]) -> Result<(), ObjLineError> {
         let code = scan::code(body);
         let (keyword, args) = scan::keyword(code);
+        let faces = self.part.faces.len();
         match keyword {
-            Keyword::Vertex => self.vertex(code, args),
+            Keyword::Vertex => self.vertex(start, code, args),
             Keyword::Face => self.face(&code[args]),
             Keyword::Group => {
-                self.current = scan::words(&code[args.clone()])
-                    .map(|w| self.group_id(&code[args.start + w.start..args.start + w.end]))
+                let names = scan::words(&code[args.clone()])
+                    .map(|w| scan::lossy(&code[args.start + w.start..args.start + w.end]))
                     .collect();
+                self.part.events.push((faces, GroupChange::Groups(names)));
                 Ok(())
             }
             Keyword::Object => {
                 let name = code[args].trim_ascii();
-                self.object = (!name.is_empty()).then(|| self.group_id(name));
+                let name = (!name.is_empty()).then(|| scan::lossy(name));
+                self.part.events.push((faces, GroupChange::Object(name)));
                 Ok(())
             }
             Keyword::Values(what) => finite_numbers(&code[args], what),
@@ -87,19 +135,21 @@ impl Reader {
         }
     }
 
-    fn vertex(&mut self, code: &[u8], args: std::ops::Range<usize>) -> Result<(), ObjLineError> {
+    fn vertex(&mut self, start: usize, code: &[u8], args: std::ops::Range<usize>) -> Result<(), ObjLineError> {
         let ([x, y, z], tail) = scan::vertex(code, args).map_err(|issue| match issue {
             VertexIssue::NotANumber(token) => ObjLineError::NotANumber { what: "vertex coordinate", token },
             VertexIssue::Missing(found) => ObjLineError::MissingCoordinates { found },
         })?;
         let p = DVec3::new(x, y, z);
+        let positions = &mut self.part.positions;
         if !p.is_finite() {
-            let vertex = self.positions.len() + 1;
+            let vertex = positions.len() + 1;
             return Err(ObjLineError::NonFinite { vertex });
         }
         finite_numbers(&code[tail..], "vertex value")?;
-        Limited::Vertices.check(self.positions.len() as u64 + 1).map_err(ObjLineError::Limit)?;
-        self.positions.push(p);
+        Limited::Vertices.check(positions.len() as u64 + 1).map_err(ObjLineError::Limit)?;
+        positions.push(p);
+        self.part.lines.push(self.offset + start);
         Ok(())
     }
 
@@ -108,7 +158,7 @@ impl Reader {
         for w in scan::words(args) {
             let word = &args[w];
             let index = word.split(|&b| b == b'/').next().unwrap_or(word);
-            let index: i64 = scan::number(index)
+            let index = scan::integer(index)
                 .ok_or_else(|| ObjLineError::NotANumber { what: "face index", token: scan::lossy(word) })?;
             let resolved = self.resolve(index)?;
             Limited::FaceCorners.check(self.face.len() as u64 + 1).map_err(ObjLineError::Limit)?;
@@ -118,59 +168,31 @@ impl Reader {
             let count = self.face.len();
             return Err(ObjLineError::ShortFace { count });
         }
-        let f = self.faces.len() as u32;
-        self.faces.push_within_limits(&self.face).map_err(ObjLineError::Limit)?;
-        for &g in self.current.iter().chain(self.object.iter()) {
-            let faces = &mut self.groups[g].faces;
-            if faces.last() != Some(&f) {
-                faces.push(f);
-            }
-        }
-        Ok(())
+        self.part.faces.push_within_limits(&self.face).map_err(ObjLineError::Limit)
     }
 
     /// The zero-based vertex of an OBJ index: positive 1-based, negative relative to the
-    /// vertices read so far. Positive indices are range-checked in [`Reader::finish`].
+    /// vertices read so far. Positive indices are range-checked once the vertex count is
+    /// known; a negative index of a part that does not start the file is resolved when joined.
     fn resolve(&mut self, index: i64) -> Result<u32, ObjLineError> {
-        let preceding = self.positions.len();
+        let preceding = self.part.positions.len();
         if index > 0 {
-            if self.largest.is_none_or(|(largest, _)| index > largest) {
-                self.largest = Some((index, self.line));
+            if self.part.largest.is_none_or(|(largest, _)| index > largest) {
+                self.part.largest = Some((index, self.line));
             }
             return Ok(u32::try_from(index - 1).unwrap_or(u32::MAX));
         }
         if index == 0 {
             return Err(ObjLineError::ZeroIndex);
         }
-        let resolved = (preceding as i64).checked_add(index).filter(|&r| r >= 0);
+        let resolved = (preceding as i64).checked_add(index);
+        if !self.starts_file {
+            let resolved = resolved.ok_or(ObjLineError::RelativeIndexOutOfRange { index, preceding })?;
+            self.part.relative.push((self.part.faces.indices.len() + self.face.len(), resolved));
+            return Ok(0);
+        }
+        let resolved = resolved.filter(|&r| r >= 0);
         resolved.map(|r| r as u32).ok_or(ObjLineError::RelativeIndexOutOfRange { index, preceding })
-    }
-
-    fn group_id(&mut self, name: &[u8]) -> usize {
-        let name = scan::lossy(name);
-        if let Some(&id) = self.group_ids.get(&name) {
-            return id;
-        }
-        let id = self.groups.len();
-        self.groups.push(FaceGroup { name: name.clone(), faces: Vec::new() });
-        self.group_ids.insert(name, id);
-        id
-    }
-
-    fn finish(mut self, path: &Path) -> Result<Mesh, MeshError> {
-        let count = self.positions.len();
-        if count == 0 {
-            return Err(MeshError::Empty { path: path.to_path_buf() });
-        }
-        if let Some((index, line)) = self.largest.filter(|&(i, _)| i > count as i64) {
-            let problem = ObjLineError::IndexOutOfRange { index, count };
-            return Err(MeshError::Obj { path: path.to_path_buf(), line, problem });
-        }
-        self.groups.retain(|g| !g.faces.is_empty());
-        if self.faces.offsets.is_empty() {
-            self.faces = Faces::new();
-        }
-        Ok(Mesh { positions: self.positions, faces: self.faces, groups: self.groups, source: Source::Code })
     }
 }
 

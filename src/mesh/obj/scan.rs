@@ -40,7 +40,7 @@ impl<'a> Scanner<'a> {
 
     /// The next physical line from `pos`: (content range, ending range).
     fn physical(&self, pos: usize) -> (Range<usize>, Range<usize>) {
-        match self.bytes[pos..].iter().position(|&b| b == b'\n') {
+        match memchr::memchr(b'\n', &self.bytes[pos..]) {
             Some(i) => {
                 let lf = pos + i;
                 let content_end = if lf > pos && self.bytes[lf - 1] == b'\r' { lf - 1 } else { lf };
@@ -91,7 +91,7 @@ impl<'a> Iterator for Scanner<'a> {
 
 /// The statement part of a line body: everything before the first `#`.
 pub(crate) fn code(body: &[u8]) -> &[u8] {
-    let end = body.iter().position(|&b| b == b'#').unwrap_or(body.len());
+    let end = memchr::memchr(b'#', body).unwrap_or(body.len());
     &body[..end]
 }
 
@@ -174,6 +174,30 @@ pub(crate) fn vertex(code: &[u8], args: Range<usize>) -> Result<([f64; 3], usize
 /// Parses a word as a number of type `T`; `None` if it is not valid UTF-8 or not a number.
 pub(crate) fn number<T: std::str::FromStr>(word: &[u8]) -> Option<T> {
     std::str::from_utf8(word).ok()?.parse().ok()
+}
+
+/// Parses a word as an `i64` exactly as `str::parse::<i64>` does (an optional `+` or `-`, then
+/// at least one ASCII digit, no overflow), without the UTF-8 check; `None` otherwise.
+pub(crate) fn integer(word: &[u8]) -> Option<i64> {
+    let (negative, digits) = match word.split_first() {
+        Some((b'-', rest)) => (true, rest),
+        Some((b'+', rest)) => (false, rest),
+        _ => (false, word),
+    };
+    if digits.is_empty() {
+        return None;
+    }
+    // Accumulated towards the sign, so that i64::MIN parses.
+    let mut value: i64 = 0;
+    for &b in digits {
+        let d = i64::from(b.wrapping_sub(b'0'));
+        if d > 9 {
+            return None;
+        }
+        value = value.checked_mul(10)?;
+        value = if negative { value.checked_sub(d)? } else { value.checked_add(d)? };
+    }
+    Some(value)
 }
 
 /// A word as text, invalid UTF-8 replaced.
@@ -264,6 +288,38 @@ mod tests {
         assert_eq!(vertex(c, keyword(c).1), Err(VertexIssue::NotANumber("abc".into())));
         let c = b"v 1 \xff 3";
         assert_eq!(vertex(c, keyword(c).1), Err(VertexIssue::NotANumber("\u{fffd}".into())));
+    }
+
+    #[test]
+    fn integer_parses_as_str_parse_does() {
+        let words: [&[u8]; 22] = [
+            b"0",
+            b"1",
+            b"-1",
+            b"+7",
+            b"007",
+            b"-0",
+            b"+",
+            b"-",
+            b"",
+            b"1/2",
+            b"12a",
+            b"\xff1",
+            b" 1",
+            b"--1",
+            b"+-1",
+            b"9223372036854775807",
+            b"9223372036854775808",
+            b"-9223372036854775808",
+            b"-9223372036854775809",
+            b"99999999999999999999",
+            b"\xd9\xa3",
+            b"1e3",
+        ];
+        for word in words {
+            let expected = std::str::from_utf8(word).ok().and_then(|s| s.parse::<i64>().ok());
+            assert_eq!(integer(word), expected, "{:?}", lossy(word));
+        }
     }
 
     #[test]

@@ -1,68 +1,138 @@
 //! Writing OBJ files: faithfully over the file a mesh was read from, or generically.
+//!
+//! Both build their text in blocks of [`BLOCK`] vertices, a window of blocks at a time on every
+//! core (with the feature `parallel`), and write each block with one call: the output is the
+//! same bytes whatever the number of threads.
 
 use std::io::{self, Write};
+use std::ops::Range;
 
 use glam::DVec3;
 
-use super::scan::{self, Keyword, Scanner};
+use super::ObjFile;
+use super::scan::{self, Scanner};
+use crate::mesh::decimal::{push_display, push_lower_exp};
 use crate::mesh::{FaceGroup, Faces};
+use crate::parallel::prelude::*;
+
+/// Vertices (or faces) per block of text built on one thread.
+const BLOCK: usize = 1 << 14;
+
+/// Blocks built at once before they are written, which bounds the text held in memory.
+const WINDOW: usize = 64;
 
 /// A coordinate in the shortest decimal form that reads back to the same f64: plain digits,
 /// or exponent notation for magnitudes below 1e-5 or from 1e16 on (so round-off such as
-/// 6.1e-17 stays short). Every OBJ reader parses both forms.
+/// 6.1e-17 stays short). Every OBJ reader parses both forms. The same text as
+/// `format!("{}")`, respectively `format!("{:e}")`, of the value ([`push_coordinate`]).
 pub(crate) struct Coordinate(pub f64);
 
 impl std::fmt::Display for Coordinate {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let magnitude = self.0.abs();
-        if magnitude != 0.0 && !(1e-5..1e16).contains(&magnitude) {
-            write!(f, "{:e}", self.0)
-        } else {
-            write!(f, "{}", self.0)
+        if !self.0.is_finite() {
+            // As `{}` writes them, for messages about values that cannot be written.
+            return write!(f, "{}", self.0);
         }
+        let mut text = Vec::with_capacity(32);
+        push_coordinate(&mut text, self.0);
+        // The formatter writes ASCII digits, signs, points and `e` only.
+        f.write_str(std::str::from_utf8(&text).map_err(|_| std::fmt::Error)?)
     }
 }
 
-/// Writes the OBJ file `bytes` with new vertex positions.
+/// Appends [`Coordinate`]`(value)` to `out`.
+pub(crate) fn push_coordinate(out: &mut Vec<u8>, value: f64) {
+    let magnitude = value.abs();
+    if magnitude != 0.0 && !(1e-5..1e16).contains(&magnitude) {
+        push_lower_exp(out, value);
+    } else {
+        push_display(out, value);
+    }
+}
+
+/// Appends `x y z` (three [`Coordinate`]s).
+pub(crate) fn push_position(out: &mut Vec<u8>, p: DVec3) {
+    push_coordinate(out, p.x);
+    out.push(b' ');
+    push_coordinate(out, p.y);
+    out.push(b' ');
+    push_coordinate(out, p.z);
+}
+
+/// Builds the text of each of `count` items in blocks of [`BLOCK`] (`block` gives the text of
+/// a range of items, or `None` for "copy the original bytes of the range", which `original`
+/// gives), a window at a time in parallel, and writes them in order.
+fn write_blocks<'a>(
+    out: &mut impl Write,
+    count: usize,
+    block: impl Fn(Range<usize>) -> Option<Vec<u8>> + Sync,
+    original: impl Fn(Range<usize>) -> &'a [u8],
+) -> io::Result<()> {
+    let blocks: Vec<Range<usize>> = (0..count).step_by(BLOCK).map(|s| s..(s + BLOCK).min(count)).collect();
+    for window in blocks.chunks(WINDOW) {
+        let texts: Vec<Option<Vec<u8>>> = window.par_iter().map(|range| block(range.clone())).collect();
+        for (range, text) in window.iter().zip(texts) {
+            match text {
+                Some(text) => out.write_all(&text)?,
+                None => out.write_all(original(range.clone()))?,
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Writes the OBJ file `file` with new vertex positions.
 ///
 /// Every byte is copied as it is except the `v` statements of vertices whose position changed
-/// (any coordinate differs bit for bit from `original`, the positions read from `bytes`).
+/// (any coordinate differs bit for bit from `original`, the positions read from the file).
 /// Such a statement is written `v x y z` (shortest round-trip digits, see [`Coordinate`]), then
 /// its original text after the third number (w or colour, a comment), then its original line
 /// ending; a `\`-continued statement becomes one line. With unchanged positions the output is
-/// byte-identical to `bytes`.
+/// byte-identical to the file.
 pub(crate) fn write_faithful(
     out: &mut impl Write,
-    bytes: &[u8],
+    file: &ObjFile,
     original: &[DVec3],
     positions: &[DVec3],
 ) -> io::Result<()> {
-    let mut copied = 0;
-    let mut vertex = 0;
-    for line in Scanner::new(bytes) {
-        let code = scan::code(&line.body);
-        let (keyword, args) = scan::keyword(code);
-        if keyword != Keyword::Vertex {
-            continue;
-        }
-        let i = vertex;
-        vertex += 1;
-        let (Some(old), Some(new)) = (original.get(i), positions.get(i)) else {
-            continue;
-        };
-        if same_bits(*old, *new) {
-            continue;
-        }
-        let Ok((_, tail)) = scan::vertex(code, args) else {
-            continue;
-        };
-        out.write_all(&bytes[copied..line.start])?;
-        write!(out, "v {} {} {}", Coordinate(new.x), Coordinate(new.y), Coordinate(new.z))?;
-        out.write_all(&line.body[tail..])?;
-        out.write_all(line.ending)?;
-        copied = line.start + line.raw.len();
+    let bytes = &file.bytes[..];
+    let count = file.lines.len().min(original.len()).min(positions.len());
+    // Vertices first..last own the bytes from the first's statement (the file's start for
+    // vertex 0) to the next vertex's statement (the file's end after the last vertex).
+    let span = |vertices: Range<usize>| {
+        let start = if vertices.start == 0 { 0 } else { file.lines[vertices.start] };
+        let end = if vertices.end >= count { bytes.len() } else { file.lines[vertices.end] };
+        start..end
+    };
+    if count == 0 {
+        return out.write_all(bytes);
     }
-    out.write_all(&bytes[copied..])
+    let block = |vertices: Range<usize>| {
+        let span = span(vertices.clone());
+        let mut text: Option<Vec<u8>> = None;
+        let mut copied = span.start;
+        for i in vertices {
+            if same_bits(original[i], positions[i]) {
+                continue;
+            }
+            let start = file.lines[i];
+            let Some(line) = Scanner::new(&bytes[start..]).next() else { continue };
+            let code = scan::code(&line.body);
+            let (_, args) = scan::keyword(code);
+            let Ok((_, tail)) = scan::vertex(code, args) else { continue };
+            let text = text.get_or_insert_with(|| Vec::with_capacity(span.len() + 1024));
+            text.extend_from_slice(&bytes[copied..start]);
+            text.extend_from_slice(b"v ");
+            push_position(text, positions[i]);
+            text.extend_from_slice(&line.body[tail..]);
+            text.extend_from_slice(line.ending);
+            copied = start + line.raw.len();
+        }
+        let mut text = text?;
+        text.extend_from_slice(&bytes[copied..span.end]);
+        Some(text)
+    };
+    write_blocks(out, count, block, |vertices| &bytes[span(vertices)])
 }
 
 /// Whether two positions are equal bit for bit (so −0.0 differs from 0.0).
@@ -84,10 +154,17 @@ pub(crate) fn write_generic(
     faces: &Faces,
     groups: &[FaceGroup],
 ) -> io::Result<()> {
-    writeln!(out, "# written by sweepffd")?;
-    for p in positions {
-        writeln!(out, "v {} {} {}", Coordinate(p.x), Coordinate(p.y), Coordinate(p.z))?;
-    }
+    out.write_all(b"# written by sweepffd\n")?;
+    let vertices = |range: Range<usize>| {
+        let mut text = Vec::with_capacity(range.len() * 64);
+        for &p in &positions[range] {
+            text.extend_from_slice(b"v ");
+            push_position(&mut text, p);
+            text.push(b'\n');
+        }
+        Some(text)
+    };
+    write_blocks(out, positions.len(), vertices, |_| &[])?;
     let owner = first_groups(faces.len(), groups);
     write_faces(out, faces, &owner, None)?;
     for (g, group) in groups.iter().enumerate() {
@@ -116,14 +193,34 @@ fn first_groups(face_count: usize, groups: &[FaceGroup]) -> Vec<Option<usize>> {
 
 /// Writes the `f` lines of the faces whose first group is `group`.
 fn write_faces(out: &mut impl Write, faces: &Faces, owner: &[Option<usize>], group: Option<usize>) -> io::Result<()> {
-    for (face, _) in faces.iter().zip(owner).filter(|(_, o)| **o == group) {
-        out.write_all(b"f")?;
-        for &v in face {
-            write!(out, " {}", u64::from(v) + 1)?;
+    let block = |range: Range<usize>| {
+        let mut text = Vec::with_capacity(range.len() * 32);
+        for f in range.filter(|&f| owner[f] == group) {
+            text.push(b'f');
+            for &v in faces.face(f) {
+                text.push(b' ');
+                push_decimal(&mut text, u64::from(v) + 1);
+            }
+            text.push(b'\n');
         }
-        out.write_all(b"\n")?;
+        Some(text)
+    };
+    write_blocks(out, faces.len(), block, |_| &[])
+}
+
+/// Appends the decimal digits of `n`.
+fn push_decimal(out: &mut Vec<u8>, mut n: u64) {
+    let mut digits = [0u8; 20];
+    let mut at = digits.len();
+    loop {
+        at -= 1;
+        digits[at] = b'0' + (n % 10) as u8;
+        n /= 10;
+        if n == 0 {
+            break;
+        }
     }
-    Ok(())
+    out.extend_from_slice(&digits[at..]);
 }
 
 #[cfg(test)]
@@ -131,14 +228,16 @@ mod tests {
     use std::path::Path;
 
     use super::*;
-    use crate::mesh::obj::read::read;
+    use crate::mesh::obj::read::{read, read_whole};
 
     const MIXED: &[u8] = b"# exported\r\nmtllib m.mtl\r\no thing\r\n  v 0 0 0 1.0\r\nv 1.0 0.0 0.0 # right\r\nv 0 \\\r\n 1 0\r\nv 0 0 1 0.5 0.25 0.125\nvt 0 0\r\nvn 0 0 1\r\ng a b\r\nusemtl red\r\nf 1/1/1 2/1/1 3/1/1\r\nf 1//1 \\\n 3//1 4//1\r\n\r\n# end";
 
     fn faithful(text: &[u8], positions: &[DVec3]) -> Vec<u8> {
         let mesh = read(Path::new("m.obj"), text.to_vec()).unwrap();
+        let (_, lines) = read_whole(Path::new("m.obj"), text).unwrap();
+        let file = ObjFile { bytes: text.to_vec(), lines };
         let mut out = Vec::new();
-        write_faithful(&mut out, text, &mesh.positions, positions).unwrap();
+        write_faithful(&mut out, &file, &mesh.positions, positions).unwrap();
         out
     }
 
@@ -227,5 +326,132 @@ mod tests {
         for (a, b) in back.positions.iter().zip(&positions) {
             assert!(same_bits(*a, *b), "{a} vs {b}");
         }
+    }
+
+    /// The faithful writer as it was before blocks: a scan of every line, `core::fmt` digits.
+    fn line_by_line(bytes: &[u8], original: &[DVec3], positions: &[DVec3]) -> Vec<u8> {
+        let mut out = Vec::new();
+        let (mut copied, mut vertex) = (0, 0);
+        for line in Scanner::new(bytes) {
+            let code = scan::code(&line.body);
+            let (keyword, args) = scan::keyword(code);
+            if keyword != scan::Keyword::Vertex {
+                continue;
+            }
+            let i = vertex;
+            vertex += 1;
+            if same_bits(original[i], positions[i]) {
+                continue;
+            }
+            let (_, tail) = scan::vertex(code, args).unwrap();
+            let p = positions[i];
+            out.extend_from_slice(&bytes[copied..line.start]);
+            out.extend_from_slice(
+                format!("v {} {} {}", fmt_coordinate(p.x), fmt_coordinate(p.y), fmt_coordinate(p.z)).as_bytes(),
+            );
+            out.extend_from_slice(&line.body[tail..]);
+            out.extend_from_slice(line.ending);
+            copied = line.start + line.raw.len();
+        }
+        out.extend_from_slice(&bytes[copied..]);
+        out
+    }
+
+    /// [`Coordinate`] as it was written before `zmij`: through `core::fmt`.
+    fn fmt_coordinate(value: f64) -> String {
+        let magnitude = value.abs();
+        if magnitude != 0.0 && !(1e-5..1e16).contains(&magnitude) { format!("{value:e}") } else { format!("{value}") }
+    }
+
+    fn next(state: &mut u64) -> u64 {
+        *state ^= *state << 13;
+        *state ^= *state >> 7;
+        *state ^= *state << 17;
+        *state
+    }
+
+    /// A position of mixed magnitudes, with now and then a −0 or a tiny or huge coordinate.
+    fn random_position(state: &mut u64) -> DVec3 {
+        let mut c = || {
+            let unit = (next(state) >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
+            match next(state) % 10 {
+                0 => -0.0,
+                1 => unit * 1e-9,
+                2 => unit * 1e20,
+                3 => (unit * 1000.0).round(),
+                _ => unit,
+            }
+        };
+        DVec3::new(c(), c(), c())
+    }
+
+    #[test]
+    fn faithful_blocks_match_the_line_by_line_writer() {
+        let mut state = 0x2545_f491_4f6c_dd1d;
+        let mut text = b"# many\r\nmtllib m.mtl\n".to_vec();
+        let count = 3 * BLOCK + 5;
+        for i in 0..count {
+            let line = match i % 7 {
+                0 => format!("v {i} 0 1 1.0 # w\r\n"),
+                1 => format!("  v {i} \\\n 0 2\n"),
+                2 => format!("v {i} 0 3 0.5 0.5 0.5\nvt 0 0\n"),
+                3 => format!("v {i}.5 -0 4\nf 1 2 3\n# c\n"),
+                _ => format!("v {i} 1e-3 5\n"),
+            };
+            text.extend_from_slice(line.as_bytes());
+        }
+        text.extend_from_slice(b"g end\nf 1 2 3");
+        let mesh = read(Path::new("m.obj"), text.clone()).unwrap();
+        assert_eq!(mesh.positions.len(), count);
+        let patterns: [&dyn Fn(usize) -> bool; 5] =
+            [&|_| false, &|_| true, &|i| i == 0 || i == count - 1, &|i| (BLOCK..2 * BLOCK).contains(&i), &|i| {
+                i % 97 == 3
+            }];
+        for moves in patterns {
+            let positions: Vec<DVec3> = mesh
+                .positions
+                .iter()
+                .enumerate()
+                .map(|(i, &p)| if moves(i) { random_position(&mut state) } else { p })
+                .collect();
+            let got = faithful(&text, &positions);
+            assert!(got == line_by_line(&text, &mesh.positions, &positions), "the block writer differs");
+        }
+    }
+
+    #[test]
+    fn generic_blocks_match_core_fmt() {
+        let mut state = 7;
+        let count = 2 * BLOCK + 3;
+        let positions: Vec<DVec3> = (0..count).map(|_| random_position(&mut state)).collect();
+        let mut faces = Faces::new();
+        for f in 0..count as u32 - 3 {
+            if f % 3 == 0 {
+                faces.push(&[f, f + 1, f + 2, f + 3]);
+            } else {
+                faces.push(&[f, f + 2, f + 1]);
+            }
+        }
+        let groups = vec![FaceGroup { name: "a b".into(), faces: (0..count as u32 / 2).step_by(3).collect() }];
+        let mut out = Vec::new();
+        write_generic(&mut out, &positions, &faces, &groups).unwrap();
+        let mut expected = String::from("# written by sweepffd\n");
+        for p in &positions {
+            expected += &format!("v {} {} {}\n", fmt_coordinate(p.x), fmt_coordinate(p.y), fmt_coordinate(p.z));
+        }
+        let owner = first_groups(faces.len(), &groups);
+        for group in [None, Some(0)] {
+            if group.is_some() {
+                expected += "g a_b\n";
+            }
+            for (face, _) in faces.iter().zip(&owner).filter(|(_, o)| **o == group) {
+                expected += "f";
+                for &v in face {
+                    expected += &format!(" {}", v + 1);
+                }
+                expected += "\n";
+            }
+        }
+        assert!(out == expected.as_bytes(), "the generic block writer differs");
     }
 }

@@ -6,15 +6,33 @@ use glam::DVec3;
 use ply_rs_bw::parser::Parser;
 use ply_rs_bw::ply::{DefaultElement, ElementDef, Ply, Property, PropertyType, ScalarType};
 
-use super::header;
+use super::direct::{self, PlyBytes};
+use super::{PlyFile, header};
 use crate::mesh::source::{Original, Source};
 use crate::mesh::{Faces, Mesh, MeshDataError, MeshError};
 
 /// The names of the face index list, in order of preference.
 const INDEX_LISTS: [&str; 2] = ["vertex_indices", "vertex_index"];
 
-/// Reads the PLY file `bytes` (read from `path`, which errors name).
-pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
+/// Reads the PLY file `bytes` (read from `path`, which errors name): straight from the bytes
+/// ([`direct`]) when that reader accepts the file, else through `ply-rs-bw`, which names the
+/// fault (or reads what the direct reader leaves to it, a `vertex` element with a list).
+pub(crate) fn read(path: &Path, bytes: Vec<u8>) -> Result<Mesh, MeshError> {
+    header::check(&bytes).map_err(|(line, problem)| MeshError::PlyHeader {
+        path: path.to_path_buf(),
+        line,
+        problem,
+    })?;
+    if let Some((positions, faces, header, layout, xyz)) = direct::read(&bytes) {
+        let mesh = Mesh { positions, faces, groups: Vec::new(), source: Source::Code };
+        let file = PlyFile::Bytes(PlyBytes { bytes, header, layout, xyz });
+        return Ok(Mesh { source: Source::Ply(Original::new(file, &mesh)), ..mesh });
+    }
+    read_parsed(path, &bytes)
+}
+
+/// Reads the PLY file `bytes` through `ply-rs-bw`.
+pub(crate) fn read_parsed(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
     header::check(bytes).map_err(|(line, problem)| MeshError::PlyHeader { path: path.to_path_buf(), line, problem })?;
     let ply = Parser::<DefaultElement>::new()
         .read_ply(&mut &bytes[..])
@@ -23,7 +41,7 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
     let faces = faces(path, &ply, positions.len())?;
     check_finite(path, &ply)?;
     let mesh = Mesh { positions, faces, groups: Vec::new(), source: Source::Code };
-    Ok(Mesh { source: Source::Ply(Original::new(ply, &mesh)), ..mesh })
+    Ok(Mesh { source: Source::Ply(Original::new(PlyFile::Parsed(ply), &mesh)), ..mesh })
 }
 
 /// The longest parser message shown, in characters: the parser quotes the offending line,
@@ -82,20 +100,25 @@ fn positions(path: &Path, ply: &Ply<DefaultElement>) -> Result<Vec<DVec3>, MeshE
     Ok(positions)
 }
 
+/// The place among the face element's properties of its vertex index list: the first of
+/// [`INDEX_LISTS`] that is a list of integers.
+pub(crate) fn index_list(face: &ElementDef) -> Option<usize> {
+    INDEX_LISTS.into_iter().find_map(|name| {
+        let (place, _, def) = face.properties.get_full(name)?;
+        match &def.data_type {
+            PropertyType::List(_, t) if !matches!(t, ScalarType::Float | ScalarType::Double) => Some(place),
+            _ => None,
+        }
+    })
+}
+
 fn faces(path: &Path, ply: &Ply<DefaultElement>, count: usize) -> Result<Faces, MeshError> {
     let mut faces = Faces::new();
     let Some(def) = ply.header.elements.get("face") else {
         return Ok(faces);
     };
-    let name = INDEX_LISTS
-        .into_iter()
-        .find(|name| {
-            matches!(
-                def.properties.get(*name).map(|p| &p.data_type),
-                Some(PropertyType::List(_, t)) if !matches!(t, ScalarType::Float | ScalarType::Double)
-            )
-        })
-        .ok_or_else(|| MeshError::NoPlyFaceIndices { path: path.to_path_buf() })?;
+    let name = index_list(def).and_then(|place| def.properties.get_index(place)).map(|(name, _)| name.as_str());
+    let name = name.ok_or_else(|| MeshError::NoPlyFaceIndices { path: path.to_path_buf() })?;
     let data_error = |problem| MeshError::PlyData { path: path.to_path_buf(), problem };
     let mut face = Vec::new();
     for (f, element) in ply.payload.get("face").into_iter().flatten().enumerate() {
@@ -159,7 +182,7 @@ mod tests {
     use super::*;
 
     fn load(text: &[u8]) -> Result<Mesh, MeshError> {
-        read(Path::new("m.ply"), text)
+        read(Path::new("m.ply"), text.to_vec())
     }
 
     fn error(text: &str) -> String {

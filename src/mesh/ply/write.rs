@@ -8,7 +8,24 @@ use ply_rs_bw::ply::{
 };
 use ply_rs_bw::writer::Writer;
 
+use super::{PlyFile, patch};
 use crate::mesh::Faces;
+
+/// Writes the PLY file `file` with new vertex positions, faithfully: a file read straight from
+/// its bytes by patching them ([`patch::write_faithful`]: the output is the input with only
+/// the moved vertices' coordinates changed), one read through `ply-rs-bw` by writing its data
+/// again ([`write_parsed`]).
+pub(crate) fn write_faithful(
+    out: &mut impl Write,
+    file: &PlyFile,
+    original: &[DVec3],
+    positions: &[DVec3],
+) -> io::Result<()> {
+    match file {
+        PlyFile::Bytes(file) => patch::write_faithful(out, file, original, positions),
+        PlyFile::Parsed(ply) => write_parsed(out, ply, original, positions),
+    }
+}
 
 /// Writes the PLY file `ply` with new vertex positions: the same header (format, comments,
 /// elements, properties), the same encoding and every element as read, except `x`, `y`, `z`
@@ -17,7 +34,7 @@ use crate::mesh::Faces;
 ///
 /// Header comments are written before `obj_info` lines and elements, as `ply-rs-bw` keeps
 /// them; the data parse back identical.
-pub(crate) fn write_faithful(
+pub(crate) fn write_parsed(
     out: &mut impl Write,
     ply: &Ply<DefaultElement>,
     original: &[DVec3],
@@ -49,10 +66,10 @@ pub(crate) fn write_faithful(
     out.flush()
 }
 
-/// Whether [`write_faithful`] stores some coordinate of `ply` as f32: `x`, `y` or `z` of its
-/// `vertex` element is declared `float` (the others are written as `double`).
-pub(crate) fn stores_f32(ply: &Ply<DefaultElement>) -> bool {
-    let vertex = ply.header.elements.get("vertex");
+/// Whether [`write_faithful`] stores some coordinate of a file of `header` as f32: `x`, `y` or
+/// `z` of its `vertex` element is declared `float` (the others are written as `double`).
+pub(crate) fn stores_f32(header: &Header) -> bool {
+    let vertex = header.elements.get("vertex");
     ["x", "y", "z"].iter().any(|name| {
         matches!(
             vertex.and_then(|v| v.properties.get(*name)).map(|p| &p.data_type),
@@ -100,21 +117,43 @@ fn write_element<E: PropertyAccess>(
 /// indices when there are more than `i32::MAX` vertices.
 pub(crate) fn write_generic(out: &mut impl Write, positions: &[DVec3], faces: &Faces) -> io::Result<()> {
     let header = generic_header(positions.len(), faces);
-    let writer = Writer::<Element>::new();
-    writer.write_header(out, &header)?;
-    let (vertex_def, face_def) = (&header.elements[0], &header.elements[1]);
-    let mut element = Element::new();
-    for p in positions {
-        element.xyz = p.as_vec3().to_array();
-        writer.write_little_endian_element(out, &element, vertex_def)?;
+    Writer::<DefaultElement>::new().write_header(out, &header)?;
+    // The payload as `ply-rs-bw` writes it for this header: little-endian f32 x, y, z per
+    // vertex, then per face the count (u8 or u32) and the indices (i32 or u32, the same bits).
+    let wide_count = matches!(
+        header.elements["face"].properties["vertex_indices"].data_type,
+        PropertyType::List(ScalarType::UInt, _)
+    );
+    let mut block = Vec::with_capacity(BLOCK * 12);
+    for chunk in positions.chunks(BLOCK) {
+        block.clear();
+        for p in chunk {
+            for c in p.as_vec3().to_array() {
+                block.extend_from_slice(&c.to_le_bytes());
+            }
+        }
+        out.write_all(&block)?;
     }
-    for face in faces.iter() {
-        element.indices.clear();
-        element.indices.extend_from_slice(face);
-        writer.write_little_endian_element(out, &element, face_def)?;
+    for first in (0..faces.len()).step_by(BLOCK) {
+        block.clear();
+        for f in first..(first + BLOCK).min(faces.len()) {
+            let face = faces.face(f);
+            if wide_count {
+                block.extend_from_slice(&(face.len() as u32).to_le_bytes());
+            } else {
+                block.push(face.len() as u8);
+            }
+            for &v in face {
+                block.extend_from_slice(&v.to_le_bytes());
+            }
+        }
+        out.write_all(&block)?;
     }
     out.flush()
 }
+
+/// Vertices or faces per block of a generic write.
+const BLOCK: usize = 1 << 16;
 
 fn generic_header(vertex_count: usize, faces: &Faces) -> Header {
     let mut header = Header::new();
@@ -139,36 +178,6 @@ fn generic_header(vertex_count: usize, faces: &Faces) -> Header {
     header
 }
 
-/// A vertex or a face of a generic PLY file, as the writer reads it.
-struct Element {
-    xyz: [f32; 3],
-    indices: Vec<u32>,
-}
-
-impl PropertyAccess for Element {
-    fn new() -> Self {
-        Element { xyz: [0.0; 3], indices: Vec::new() }
-    }
-
-    fn get_float(&self, name: &str) -> Option<f32> {
-        match name {
-            "x" => Some(self.xyz[0]),
-            "y" => Some(self.xyz[1]),
-            "z" => Some(self.xyz[2]),
-            _ => None,
-        }
-    }
-
-    /// Only used when every index is at most `i32::MAX` (see [`generic_header`]).
-    fn get_list_int(&self, name: &str) -> Option<&[i32]> {
-        (name == "vertex_indices").then(|| bytemuck::cast_slice(&self.indices))
-    }
-
-    fn get_list_uint(&self, name: &str) -> Option<&[u32]> {
-        (name == "vertex_indices").then_some(&self.indices[..])
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use std::path::Path;
@@ -184,16 +193,16 @@ mod tests {
 
     #[test]
     fn faithful_unchanged_parses_to_the_same_data() {
-        let mesh = read(Path::new("m.ply"), ASCII.as_bytes()).unwrap();
+        let mesh = read(Path::new("m.ply"), ASCII.as_bytes().to_vec()).unwrap();
         let original = parse(ASCII.as_bytes());
         let mut out = Vec::new();
-        write_faithful(&mut out, &original, &mesh.positions, &mesh.positions).unwrap();
+        write_parsed(&mut out, &original, &mesh.positions, &mesh.positions).unwrap();
         assert_eq!(parse(&out), original);
     }
 
     #[test]
     fn faithful_moved_vertex_changes_only_its_coordinates_in_their_types() {
-        let mesh = read(Path::new("m.ply"), ASCII.as_bytes()).unwrap();
+        let mesh = read(Path::new("m.ply"), ASCII.as_bytes().to_vec()).unwrap();
         let original = parse(ASCII.as_bytes());
         let mut moved = mesh.positions.clone();
         moved[1] = DVec3::new(0.1, 0.2, 0.3);
@@ -201,7 +210,7 @@ mod tests {
             let mut source = original.clone();
             source.header.encoding = encoding;
             let mut out = Vec::new();
-            write_faithful(&mut out, &source, &mesh.positions, &moved).unwrap();
+            write_parsed(&mut out, &source, &mesh.positions, &moved).unwrap();
             let back = parse(&out);
             assert_eq!(back.header, source.header);
             let mut expected = source.clone();
@@ -243,12 +252,67 @@ mod tests {
         faces.push(&(0..n).collect::<Vec<u32>>());
         let mut out = Vec::new();
         write_generic(&mut out, &positions, &faces).unwrap();
-        let mesh = read(Path::new("m.ply"), &out).unwrap();
+        let mesh = read(Path::new("m.ply"), out.clone()).unwrap();
         assert_eq!(mesh.faces, faces);
         let back = parse(&out);
         assert_eq!(
             back.header.elements["face"].properties["vertex_indices"].data_type,
             PropertyType::List(ScalarType::UInt, ScalarType::Int)
         );
+    }
+
+    /// The generic file as `ply-rs-bw` writes it from the same header, element by element.
+    fn written_by_ply_rs(positions: &[DVec3], faces: &Faces) -> Vec<u8> {
+        let header = generic_header(positions.len(), faces);
+        let index_type = match &header.elements["face"].properties["vertex_indices"].data_type {
+            PropertyType::List(_, t) => t.clone(),
+            PropertyType::Scalar(_) => unreachable!(),
+        };
+        let mut ply = Ply::<DefaultElement>::new();
+        ply.header = header;
+        let vertices = positions
+            .iter()
+            .map(|p| {
+                let mut e = DefaultElement::new();
+                for (name, c) in ["x", "y", "z"].into_iter().zip(p.as_vec3().to_array()) {
+                    e.insert(name.into(), Property::Float(c));
+                }
+                e
+            })
+            .collect();
+        let faces = faces
+            .iter()
+            .map(|f| {
+                let mut e = DefaultElement::new();
+                let list = match index_type {
+                    ScalarType::Int => Property::ListInt(f.iter().map(|&v| v as i32).collect()),
+                    _ => Property::ListUInt(f.to_vec()),
+                };
+                e.insert("vertex_indices".into(), list);
+                e
+            })
+            .collect();
+        ply.payload.insert("vertex".into(), vertices);
+        ply.payload.insert("face".into(), faces);
+        let mut out = Vec::new();
+        Writer::new().write_ply(&mut out, &mut ply).unwrap();
+        out
+    }
+
+    #[test]
+    fn generic_payload_is_what_ply_rs_writes() {
+        let n = 3 * BLOCK as u32 + 7;
+        let positions: Vec<DVec3> = (0..n).map(|i| DVec3::new(f64::from(i) * 0.1, -f64::from(i), 1e-3)).collect();
+        let mut faces = Faces::new();
+        for f in 0..n - 3 {
+            faces.push(&[f, f + 1, f + 2]);
+        }
+        let mut out = Vec::new();
+        write_generic(&mut out, &positions, &faces).unwrap();
+        assert!(out == written_by_ply_rs(&positions, &faces), "small faces differ");
+        faces.push(&(0..300).collect::<Vec<u32>>());
+        let mut out = Vec::new();
+        write_generic(&mut out, &positions, &faces).unwrap();
+        assert!(out == written_by_ply_rs(&positions, &faces), "a face of 300 vertices differs");
     }
 }
