@@ -28,6 +28,13 @@ pub fn add(a: F8, b: F8) -> F8 {
     _mm256_add_ps(a, b)
 }
 
+/// a − b.
+#[target_feature(enable = "avx2,fma")]
+#[inline]
+pub fn sub(a: F8, b: F8) -> F8 {
+    _mm256_sub_ps(a, b)
+}
+
 /// a·b.
 #[target_feature(enable = "avx2,fma")]
 #[inline]

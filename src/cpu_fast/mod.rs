@@ -7,14 +7,16 @@
 //! band records, tightly packed f32 positions), so a binding made here deforms on the GPU and
 //! back. [`deform::deform`] evaluates Eq. 2 (+h) eight vertices to a register where the CPU has
 //! AVX2 and FMA ([`Isa`], detected at run time), one by one elsewhere; [`bind::bind`] runs the
-//! twin's root finding per vertex, in parallel and without allocating; falloff band vertices, few,
-//! go through the band twin ([`bands`]). Results equal the twins' to rounding, not bit for bit;
+//! twin's root finding eight vertices to a register (with the twin's rounding), in parallel and
+//! without allocating; falloff band vertices, few, go through the band twin ([`bands`]). Results equal the twins' to rounding, not bit for bit;
 //! the f64 reference ([`crate::bind`], [`crate::deform`]) stays the oracle.
 //!
 //! [`GpuBinding`]: crate::coeffs::GpuBinding
 
 pub mod bands;
 pub mod bind;
+#[cfg(target_arch = "x86_64")]
+mod bind_avx2;
 pub mod deform;
 #[cfg(target_arch = "x86_64")]
 mod deform_avx2;
