@@ -2,8 +2,9 @@
 //! one sweep, each knot interval's binding quintic g(s) = ⟨v − C(s), n(s)⟩, its Bernstein
 //! coefficients on [0, 1] and their sign variations, and the bracketed Newton refinement of an
 //! interval's single root, in registers of eight vertices, with the statements (and the
-//! rounding: no fused multiply-adds) of [`crate::cpu::bind`]; then each vertex's binding from its
-//! nearest root by [`super::bind::finish`], one by one, since its cells differ.
+//! rounding: no fused multiply-adds, so s is the twin's bit for bit) of [`crate::cpu::bind`];
+//! then each vertex's θ, cell, φ, d and h from its nearest root, in registers when the eight roots
+//! lie on one knot interval (to rounding), else one by one by [`super::bind::finish`].
 //!
 //! A vertex whose interval needs subdivision (more than one sign variation), or whose quintic
 //! vanishes exactly at an end of an interval, is bound again by the twin alone
@@ -12,10 +13,11 @@
 use std::arch::x86_64::*;
 
 use super::bind::finish;
-use super::lanes8::{F8, add, mul, splat, sub, to_array};
+use super::lanes8::{F8, add, cubic, mul, splat, sub, to_array};
 use crate::coeffs::{BAND_FLAG, BindSegment, GpuBinding, SweepInfo, UNOWNED};
 use crate::cpu::bind::{BindInputs, bind_vertex};
 use crate::cpu::position;
+use crate::cpu::sweep_eval::radius_at;
 
 /// Vertices per batch.
 pub const LANES: usize = 8;
@@ -227,7 +229,17 @@ fn bind_batch(inputs: &BindInputs, sweep: SweepInfo, owners: &[u32; LANES], v: [
             _mm256_castsi256_ps(best_k),
         ));
     }
-    let (alone, found, s) = (bits(alone), bits(found), to_array(best_s));
+    let (alone, found) = (bits(alone), bits(found));
+    let k0 = _mm256_cvtsi256_si32(best_k);
+    let same_k = bits(_mm256_castsi256_ps(_mm256_cmpeq_epi32(best_k, _mm256_set1_epi32(k0)))) == 0xff;
+    if found == 0xff && same_k {
+        finish_batch(inputs, sweep, sweep.first_cell + k0 as u32 * sweep.samples, best_s, &v, owners, out);
+        for lane in (0..LANES).filter(|lane| alone & (1 << lane) != 0) {
+            out[lane] = bind_vertex(inputs, owners[lane], lane_position(&v, lane));
+        }
+        return;
+    }
+    let s = to_array(best_s);
     let mut k = [0i32; LANES];
     // SAFETY: `k` is eight i32.
     unsafe { _mm256_storeu_si256(k.as_mut_ptr() as *mut __m256i, best_k) };
@@ -242,6 +254,99 @@ fn bind_batch(inputs: &BindInputs, sweep: SweepInfo, owners: &[u32; LANES], v: [
             finish(inputs, sweep, nearest, p, owners[lane] & BAND_FLAG)
         };
     }
+}
+
+/// Vertex `lane` of `v`.
+#[target_feature(enable = "avx2,fma")]
+#[inline]
+fn lane_position(v: &[F8; 3], lane: usize) -> glam::Vec3 {
+    glam::Vec3::new(to_array(v[0])[lane], to_array(v[1])[lane], to_array(v[2])[lane])
+}
+
+/// [`finish`] for eight vertices whose nearest roots lie on one knot interval (first cell
+/// `interval`), at local parameters `s`: the same statements in registers (rounded
+/// differently: this part of the binding is the twin's to rounding, not bit for bit), the
+/// radius of each vertex's cell broadcast when the eight share it and read lane by lane when not.
+#[target_feature(enable = "avx2,fma")]
+fn finish_batch(
+    inputs: &BindInputs,
+    sweep: SweepInfo,
+    interval: u32,
+    s: F8,
+    v: &[F8; 3],
+    owners: &[u32; LANES],
+    out: &mut [GpuBinding],
+) {
+    let cell = &inputs.cells[interval as usize];
+    let c = curve_at(&cell.curve, s);
+    let q = |k: usize| add(splat(cell.q0[k]), mul(s, splat(cell.dq[k])));
+    // R(t)ᵀ·(v − C(t)): the inverse rotation, by the conjugate quaternion.
+    let inverse =
+        [sub(_mm256_setzero_ps(), q(0)), sub(_mm256_setzero_ps(), q(1)), sub(_mm256_setzero_ps(), q(2)), q(3)];
+    let local = super::deform_avx2::rotate(inverse, [sub(v[0], c[0]), sub(v[1], c[1]), sub(v[2], c[2])]);
+    let zero = _mm256_setzero_ps();
+    let off_axis = or(_mm256_cmp_ps::<_CMP_NEQ_UQ>(local[0], zero), _mm256_cmp_ps::<_CMP_NEQ_UQ>(local[1], zero));
+    let tau = splat(std::f32::consts::TAU);
+    let mut theta = and(off_axis, add(splat(cell.curve[0][3]), angle_of(local[0], local[1])));
+    theta = select(less(theta, zero), add(theta, tau), theta);
+    theta = select(_mm256_cmp_ps::<_CMP_GE_OQ>(theta, tau), sub(theta, tau), theta);
+    let x = mul(theta, splat(sweep.samples as f32 / std::f32::consts::TAU));
+    let j = _mm256_min_epi32(_mm256_cvttps_epi32(x), _mm256_set1_epi32(sweep.samples as i32 - 1));
+    let j = _mm256_max_epi32(j, _mm256_setzero_si256());
+    let phi = _mm256_min_ps(_mm256_max_ps(sub(x, _mm256_cvtepi32_ps(j)), zero), splat(1.0));
+    let j0 = _mm256_cvtsi256_si32(j);
+    let same_j = bits(_mm256_castsi256_ps(_mm256_cmpeq_epi32(j, _mm256_set1_epi32(j0)))) == 0xff;
+    let mut j_lanes = [0i32; LANES];
+    // SAFETY: `j_lanes` is eight i32.
+    unsafe { _mm256_storeu_si256(j_lanes.as_mut_ptr() as *mut __m256i, j) };
+    let (s_lanes, phi_lanes) = (to_array(s), to_array(phi));
+    let r = if same_j {
+        let radius = &inputs.cells[(interval + j0 as u32) as usize].radius;
+        let row = |q: usize| [splat(radius[q][0]), splat(radius[q][1]), splat(radius[q][2]), splat(radius[q][3])];
+        let rows = [row(0), row(1), row(2), row(3)];
+        let in_phi = |p: usize| cubic([rows[0][p], rows[1][p], rows[2][p], rows[3][p]], phi);
+        to_array(cubic([in_phi(0), in_phi(1), in_phi(2), in_phi(3)], s))
+    } else {
+        std::array::from_fn(|lane| {
+            let cell = &inputs.cells[(interval + j_lanes[lane] as u32) as usize];
+            radius_at(cell, s_lanes[lane], phi_lanes[lane])
+        })
+    };
+    let radial = _mm256_sqrt_ps(add(mul(local[0], local[0]), mul(local[1], local[1])));
+    let (radial, h) = (to_array(radial), to_array(local[2]));
+    for lane in 0..LANES {
+        out[lane] = GpuBinding {
+            cell: (interval + j_lanes[lane] as u32) | (owners[lane] & BAND_FLAG),
+            s: s_lanes[lane],
+            phi: phi_lanes[lane],
+            d: radial[lane] - r[lane],
+            h: h[lane],
+        };
+    }
+}
+
+/// [`crate::cpu::angle::angle_of`] in every lane: the angle of (x, y) in [−π, π] by octant
+/// reduction and the odd series to z¹⁵; meaningless where x = y = 0.
+#[target_feature(enable = "avx2,fma")]
+#[inline]
+fn angle_of(x: F8, y: F8) -> F8 {
+    use std::f32::consts::PI;
+    let abs = |x: F8| _mm256_andnot_ps(splat(-0.0), x);
+    let (ax, ay) = (abs(x), abs(y));
+    let a = _mm256_div_ps(_mm256_min_ps(ax, ay), _mm256_max_ps(ax, ay));
+    let far = _mm256_cmp_ps::<_CMP_GT_OQ>(a, splat(0.41421356));
+    let a = select(far, _mm256_div_ps(sub(a, splat(1.0)), add(a, splat(1.0))), a);
+    let base = and(far, splat(0.25 * PI));
+    let z2 = mul(a, a);
+    let mut series = splat(1.0 / 15.0);
+    for k in [13.0, 11.0, 9.0, 7.0, 5.0, 3.0] {
+        series = sub(splat(1.0 / k), mul(z2, series));
+    }
+    let series = mul(a, sub(splat(1.0), mul(z2, series)));
+    let mut angle = add(base, series);
+    angle = select(_mm256_cmp_ps::<_CMP_GT_OQ>(ay, ax), sub(splat(0.5 * PI), angle), angle);
+    angle = select(less(x, _mm256_setzero_ps()), sub(splat(PI), angle), angle);
+    select(less(y, _mm256_setzero_ps()), sub(_mm256_setzero_ps(), angle), angle)
 }
 
 /// Binds the vertices of `positions` (tightly packed xyz) owned by `owners` into `out`: batches

@@ -141,7 +141,7 @@ fn evaluate(c: &Coefficients, b: &Batch) -> [F8; 3] {
 /// v rotated by q/|q| ([`crate::cpu::sweep_eval::rotate`]): v + w·t + u × t, t = 2(u × v)/|q|².
 #[target_feature(enable = "avx2,fma")]
 #[inline]
-pub fn rotate(q: [F8; 4], v: [F8; 3]) -> [F8; 3] {
+pub(super) fn rotate(q: [F8; 4], v: [F8; 3]) -> [F8; 3] {
     let norm2 = fma(q[0], q[0], fma(q[1], q[1], fma(q[2], q[2], mul(q[3], q[3]))));
     let scale = _mm256_div_ps(splat(2.0), norm2);
     let u = [q[0], q[1], q[2]];
