@@ -251,3 +251,34 @@ fn a_binding_past_the_cells_panics() {
     let bindings = vec![GpuBinding { cell: coefficients.cells.len() as u32, s: 0.5, phi: 0.5, d: 0.0, h: 0.0 }; 16];
     cpu_fast::deform::deform(&coefficients.cells, &bindings, &mut [0.0; 48]);
 }
+
+#[test]
+#[ignore = "a timing, not a check: cargo test --release --test cpu_fast -- --ignored --nocapture"]
+fn shuffled_vertex_order_throughput() {
+    // A tube's vertices in a scrambled order, so that no batch of eight shares a cell: the
+    // fast deform's lane-by-lane coefficient path, against the twin.
+    let tube = Tube::with_vertex_count(1_000_000, 4.0, 0.5);
+    let rig = tube_rig(&tube, 8, 16);
+    let mesh = tube.mesh();
+    let n = mesh.positions.len();
+    let order: Vec<usize> = (0..n).map(|i| (i * 7_919) % n).collect();
+    let positions: Vec<f32> = order.iter().flat_map(|&i| mesh.positions[i].as_vec3().to_array()).collect();
+    let bindings = cpu::bind::bind_to(rig.rest(), &vec![0; n], &positions);
+    let mut posed = SweepCoefficients::new(rig.rest());
+    posed.update(&rig.pose(&POSE.keys(&rig)).unwrap()).unwrap();
+    let mut out = positions.clone();
+    let time = |work: &mut dyn FnMut()| {
+        let mut samples: Vec<f64> = (0..7)
+            .map(|_| {
+                let start = std::time::Instant::now();
+                work();
+                start.elapsed().as_secs_f64()
+            })
+            .collect();
+        samples.sort_by(f64::total_cmp);
+        n as f64 / samples[3] / 1e6
+    };
+    let fast = time(&mut || cpu_fast::deform::deform(&posed.cells, &bindings, &mut out));
+    let twin = time(&mut || cpu::deform::deform(&posed.cells, &bindings, &mut out));
+    println!("shuffled 1M tube: fast {fast:.1} M vertices/s, twin {twin:.1} M vertices/s");
+}

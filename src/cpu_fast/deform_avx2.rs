@@ -3,7 +3,8 @@
 //! v = C(s) + R(s)·((r(s, φ) + d)·cos δ, (r(s, φ) + d)·sin δ, h)) with each f32 a register of
 //! eight vertices. Consecutive vertices mostly lie in one cell, so a batch whose eight share one
 //! broadcasts that cell's coefficients; a batch spread over several cells, or with vertices the
-//! kernel leaves alone (unbound, or in a falloff band), gathers them lane by lane.
+//! kernel leaves alone (unbound, or in a falloff band), loads each lane's record and transposes
+//! them.
 
 use std::arch::x86_64::*;
 
@@ -12,9 +13,6 @@ use crate::coeffs::{CellCoeffs, GpuBinding};
 
 /// Vertices per batch.
 pub const LANES: usize = 8;
-
-/// Floats in one [`CellCoeffs`] record.
-const CELL_WORDS: i32 = (size_of::<CellCoeffs>() / 4) as i32;
 
 const _: () = assert!(size_of::<CellCoeffs>() == 160 && size_of::<GpuBinding>() == 20);
 
@@ -49,37 +47,70 @@ impl Coefficients {
         }
     }
 
-    /// Lane i holds the coefficients of cell `index[i]` where `active` is set, zeros elsewhere.
-    ///
-    /// # Safety
-    ///
-    /// Every active index is below `cells.len()`, and `cells.len()·40` fits in an i32.
+    /// Lane i holds the coefficients of cell `index[i]`: each record's 40 floats loaded as five
+    /// registers, and each block of eight records' registers transposed (gathers are slow on
+    /// many CPUs).
     #[target_feature(enable = "avx2,fma")]
     #[inline]
-    unsafe fn gather(cells: &[CellCoeffs], index: __m256i, active: __m256) -> Coefficients {
-        let base = cells.as_ptr() as *const f32;
-        let words = _mm256_mullo_epi32(index, _mm256_set1_epi32(CELL_WORDS));
-        let word = |offset: i32| {
-            // SAFETY: active lanes read word `offset` < 40 of a record in `cells` (the caller's
-            // promise); inactive lanes read nothing.
-            unsafe {
-                _mm256_mask_i32gather_ps::<4>(
-                    _mm256_setzero_ps(),
-                    base,
-                    _mm256_add_epi32(words, _mm256_set1_epi32(offset)),
-                    active,
-                )
-            }
+    fn transposed(cells: &[CellCoeffs], index: [usize; LANES]) -> Coefficients {
+        let records = index.map(|i| &cells[i]);
+        // Block b of a record holds its floats 8b..8b + 8: radius[0..2], radius[2..4],
+        // curve[0..2], curve[2..4], then q0 and dq.
+        let block = |b: usize| {
+            let rows = records.map(|record| {
+                let words: &[f32; 40] = bytemuck::cast_ref(record);
+                // SAFETY: floats 8b..8b + 8 of a 40-float record, b < 5.
+                unsafe { _mm256_loadu_ps(words.as_ptr().add(8 * b)) }
+            });
+            transpose8(rows)
         };
-        // Offsets in floats of CellCoeffs' fields: radius 0..16, curve 16..32, q0 32..36, dq 36..40.
+        let (b0, b1, b2, b3, b4) = (block(0), block(1), block(2), block(3), block(4));
+        let four = |b: &[F8; 8], at: usize| [b[at], b[at + 1], b[at + 2], b[at + 3]];
+        let three = |b: &[F8; 8], at: usize| [b[at], b[at + 1], b[at + 2]];
         Coefficients {
-            radius: [0, 4, 8, 12].map(|q| [word(q), word(q + 1), word(q + 2), word(q + 3)]),
-            curve: [16, 20, 24, 28].map(|i| [word(i), word(i + 1), word(i + 2)]),
-            half_step: word(19),
-            q0: [word(32), word(33), word(34), word(35)],
-            dq: [word(36), word(37), word(38), word(39)],
+            radius: [four(&b0, 0), four(&b0, 4), four(&b1, 0), four(&b1, 4)],
+            curve: [three(&b2, 0), three(&b2, 4), three(&b3, 0), three(&b3, 4)],
+            half_step: b2[3],
+            q0: four(&b4, 0),
+            dq: four(&b4, 4),
         }
     }
+}
+
+/// The 8 × 8 transpose: lane i of output k is lane k of row i.
+#[target_feature(enable = "avx2,fma")]
+#[inline]
+fn transpose8(r: [F8; 8]) -> [F8; 8] {
+    let t = [
+        _mm256_unpacklo_ps(r[0], r[1]),
+        _mm256_unpackhi_ps(r[0], r[1]),
+        _mm256_unpacklo_ps(r[2], r[3]),
+        _mm256_unpackhi_ps(r[2], r[3]),
+        _mm256_unpacklo_ps(r[4], r[5]),
+        _mm256_unpackhi_ps(r[4], r[5]),
+        _mm256_unpacklo_ps(r[6], r[7]),
+        _mm256_unpackhi_ps(r[6], r[7]),
+    ];
+    let u = [
+        _mm256_shuffle_ps::<0x44>(t[0], t[2]),
+        _mm256_shuffle_ps::<0xee>(t[0], t[2]),
+        _mm256_shuffle_ps::<0x44>(t[1], t[3]),
+        _mm256_shuffle_ps::<0xee>(t[1], t[3]),
+        _mm256_shuffle_ps::<0x44>(t[4], t[6]),
+        _mm256_shuffle_ps::<0xee>(t[4], t[6]),
+        _mm256_shuffle_ps::<0x44>(t[5], t[7]),
+        _mm256_shuffle_ps::<0xee>(t[5], t[7]),
+    ];
+    [
+        _mm256_permute2f128_ps::<0x20>(u[0], u[4]),
+        _mm256_permute2f128_ps::<0x20>(u[1], u[5]),
+        _mm256_permute2f128_ps::<0x20>(u[2], u[6]),
+        _mm256_permute2f128_ps::<0x20>(u[3], u[7]),
+        _mm256_permute2f128_ps::<0x31>(u[0], u[4]),
+        _mm256_permute2f128_ps::<0x31>(u[1], u[5]),
+        _mm256_permute2f128_ps::<0x31>(u[2], u[6]),
+        _mm256_permute2f128_ps::<0x31>(u[3], u[7]),
+    ]
 }
 
 /// The bindings of a batch, one field per register.
@@ -186,7 +217,6 @@ fn cos_sin_small(delta: F8) -> (F8, F8) {
 /// If a binding that is neither unbound nor in a band names a cell past `cells`.
 #[target_feature(enable = "avx2,fma")]
 pub fn deform_batches(cells: &[CellCoeffs], bindings: &[GpuBinding], positions: &mut [f32]) {
-    assert!(cells.len() < (i32::MAX / CELL_WORDS) as usize, "too many cells to index in 32 bits");
     let (batches, _) = bindings.as_chunks::<LANES>();
     let (outputs, _) = positions.as_chunks_mut::<{ 3 * LANES }>();
     let cell_count = _mm256_set1_epi32(cells.len() as i32);
@@ -218,9 +248,10 @@ pub fn deform_batches(cells: &[CellCoeffs], bindings: &[GpuBinding], positions: 
         if moved_bits == 0 {
             continue;
         }
-        // SAFETY: the active lanes' cells are below cells.len() (checked above), and
-        // cells.len()·40 fits in an i32 (asserted above).
-        let c = unsafe { Coefficients::gather(cells, cell, _mm256_castsi256_ps(in_range)) };
+        // Lanes left alone read cell 0 (there is one: some lane moves) and are not written.
+        let index =
+            std::array::from_fn(|lane| if in_range_bits & (1 << lane) != 0 { batch[lane].cell as usize } else { 0 });
+        let c = Coefficients::transposed(cells, index);
         let xyz = evaluate(&c, &b);
         if moved_bits == 0xff {
             store_xyz(xyz, out);
