@@ -34,7 +34,7 @@ impl Device {
         match self {
             Device::Gpu(_) => "GPU",
             Device::Cpu => "CPU",
-            Device::Reference => "CPU (f64 reference)",
+            Device::Reference => "f64 reference",
         }
     }
 }
