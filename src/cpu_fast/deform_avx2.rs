@@ -219,7 +219,7 @@ fn cos_sin_small(delta: F8) -> (F8, F8) {
 pub fn deform_batches(cells: &[CellCoeffs], bindings: &[GpuBinding], positions: &mut [f32]) {
     let (batches, _) = bindings.as_chunks::<LANES>();
     let (outputs, _) = positions.as_chunks_mut::<{ 3 * LANES }>();
-    let cell_count = _mm256_set1_epi32(cells.len() as i32);
+    let cell_count = _mm256_set1_epi32(cells.len().min(i32::MAX as usize) as i32);
     // The broadcast coefficients of the last uniform batch's cell, which the next batch often
     // shares.
     let mut last: Option<(u32, Coefficients)> = None;
