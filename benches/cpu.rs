@@ -1,15 +1,19 @@
-//! CPU throughput of binding and deformation on a synthetic tube (f64 reference path and the
-//! f32 twin of the GPU kernels), with a memory-copy baseline measured in the same run, and of
-//! the falloff bands of binding, with the normals' adjacency build as the baseline.
+//! CPU throughput of binding and deformation on a synthetic tube (the fast f32 path of
+//! `--backend cpu`, the f64 reference path of `--backend reference` and the f32 twin of the GPU
+//! kernels), with a memory-copy and a four-influence linear-blend-skinning baseline measured in
+//! the same run, and of the falloff bands of binding, with the normals' adjacency build as the
+//! baseline.
 //!
 //! `cargo bench --bench cpu`; criterion reports vertices per second (throughput elements).
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use glam::DVec3;
+use sweepffd::bench::{skinning_influences, skinning_joints};
 use sweepffd::bind::falloff::band_weights;
 use sweepffd::bind::{UNOWNED, bind_vertices};
-use sweepffd::coeffs::{SweepCoefficients, bind_segments};
+use sweepffd::coeffs::{GpuBinding, SweepCoefficients, bind_segments};
 use sweepffd::cpu;
+use sweepffd::cpu_fast;
 use sweepffd::deform::deform_vertices;
 use sweepffd::mesh::Mesh;
 use sweepffd::normals::NormalAdjacency;
@@ -51,6 +55,10 @@ fn bind(c: &mut Criterion) {
         group.bench_function(BenchmarkId::new("f32_twin", n), |b| {
             b.iter(|| cpu::bind::bind(&inputs, &scene.owners, &positions))
         });
+        let mut out = vec![GpuBinding::default(); scene.owners.len()];
+        group.bench_function(BenchmarkId::new("fast", n), |b| {
+            b.iter(|| cpu_fast::bind::bind(&inputs, &scene.owners, &positions, &mut out))
+        });
     }
     group.finish();
 }
@@ -73,6 +81,14 @@ fn deform(c: &mut Criterion) {
         let mut out32 = positions.clone();
         group.bench_function(BenchmarkId::new("f32_twin", n), |b| {
             b.iter(|| cpu::deform::deform(&coefficients.cells, &gpu_bindings, &mut out32))
+        });
+        group.bench_function(BenchmarkId::new("fast", n), |b| {
+            b.iter(|| cpu_fast::deform::deform(&coefficients.cells, &gpu_bindings, &mut out32))
+        });
+        // Baseline: four-influence linear-blend skinning (the f32 twin of the GPU baseline).
+        let (joints, influences) = (skinning_joints(), skinning_influences(count));
+        group.bench_function(BenchmarkId::new("lbs_baseline", n), |b| {
+            b.iter(|| cpu::skinning::skinning(&joints, &positions, &influences, &mut out32))
         });
         // Baseline: moving the bytes the f64 path reads and writes, with no arithmetic.
         let source = scene.mesh.positions.clone();

@@ -51,6 +51,8 @@
 //! - [`mesh`]: meshes in code, and mesh files in and out (feature `formats`).
 //! - [`coeffs`]: sweeps as compact f32 coefficient arrays, the GPU buffer layouts.
 //! - [`cpu`]: f32 twins of the WGSL kernels in `shaders/`.
+//! - [`cpu_fast`]: the fast CPU path, those kernels vectorized across vertices (AVX2 + FMA
+//!   where the CPU has them) on every core.
 //! - [`synthetic`]: procedural meshes, rigs and poses.
 //! - [`limits`]: the largest inputs accepted, checked before allocating.
 //! - [`parallel`]: the CPU paths on every core (feature `parallel`) or on the calling thread.
@@ -86,6 +88,7 @@ pub mod bench;
 pub mod bind;
 pub mod coeffs;
 pub mod cpu;
+pub mod cpu_fast;
 pub mod deform;
 pub mod edit;
 pub mod fit;

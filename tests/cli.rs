@@ -110,7 +110,7 @@ fn demo_writes_its_scene_and_deform_reproduces_it() {
             "--out",
             "again.obj",
             "--backend",
-            "cpu",
+            "reference",
         ],
     );
     let again = Mesh::load(&dir.path().join("again.obj")).unwrap();
@@ -307,7 +307,7 @@ fn bind_file_round_trips_through_the_library() {
 
     let stdout = succeed(
         dir.path(),
-        &["bind", "--mesh", "tube.obj", "--rig", "rig.json", "--out", "tube.sffd", "--backend", "cpu"],
+        &["bind", "--mesh", "tube.obj", "--rig", "rig.json", "--out", "tube.sffd", "--backend", "reference"],
     );
     let count = tube.vertex_count();
     assert!(stdout.starts_with(&format!("bound {count} of {count} vertices to 1 sweeps")), "{stdout}");
@@ -494,6 +494,13 @@ fn bench_prints_one_json_line_with_every_figure() {
         } else {
             for field in ["frame_cpu_ms", "fused_over_copy", "normals_angle_p99_deg"] {
                 assert!(report[field].is_null(), "{field} in {stdout}");
+            }
+            // The fast path's figures above, the f64 reference's in the same run.
+            let cpu = &report["cpu"];
+            assert!(cpu["isa"].is_string(), "{stdout}");
+            for field in ["reference_deform_verts_per_s", "reference_bind_verts_per_s", "reference_over_fast"] {
+                let value = cpu[field].as_f64().unwrap_or_else(|| panic!("cpu.{field} missing in {stdout}"));
+                assert!(value.is_finite() && value > 0.0, "cpu.{field} = {value}");
             }
         }
     }

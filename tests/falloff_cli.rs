@@ -1,5 +1,5 @@
-//! Falloff through the command line: `deform` on either backend, with fresh bindings or a
-//! bindings file from `bind` on either backend, gives the f64 reference's blended deformation;
+//! Falloff through the command line: `deform` on every backend, with fresh bindings or a
+//! bindings file from `bind` on every backend, gives the f64 reference's blended deformation;
 //! vertices at weight 0 and unowned ones keep their input coordinates exactly.
 
 mod common;
@@ -41,7 +41,7 @@ fn every_path_of_the_command_line_deforms_with_the_bands() {
     deform_vertices(rig.rest(), &rig.pose(posing.keys()).unwrap(), &bindings, &mesh.positions, &mut reference);
     let keeps = bindings.keeps_rest();
 
-    let backends: &[&str] = if common::gpu().is_some() { &["cpu", "gpu"] } else { &["cpu"] };
+    let backends: &[&str] = if common::gpu().is_some() { &["reference", "cpu", "gpu"] } else { &["reference", "cpu"] };
     let deform = ["deform", "--mesh", "tube.obj", "--rig", "rig.json", "--pose", "pose.json"];
     for &bind_backend in backends {
         let file = format!("{bind_backend}.sffd");
@@ -59,8 +59,8 @@ fn every_path_of_the_command_line_deforms_with_the_bands() {
                 }
                 succeed(dir.path(), &args);
                 let deformed = Mesh::load(&dir.path().join(&out)).unwrap();
-                // GPU bindings (a file from `bind --backend gpu`) and GPU positions are f32.
-                let f64_only = backend == "cpu" && (bind_backend == "cpu" || !saved);
+                // Bindings from `bind --backend cpu|gpu` and positions from either are f32.
+                let f64_only = backend == "reference" && (bind_backend == "reference" || !saved);
                 let tolerance = if f64_only { 1e-9 } else { 1e-5 } * mesh.diagonal();
                 let (mut worst, mut at) = (0.0, 0);
                 for (v, (p, q)) in deformed.positions.iter().zip(&reference).enumerate() {

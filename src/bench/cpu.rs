@@ -1,47 +1,84 @@
-//! The CPU bench: the f64 reference path on all cores, with the f32 twins of the copy and
-//! skinning baselines.
+//! The CPU bench: the fast f32 path ([`crate::cpu_fast`], `--backend cpu`) on all cores, with
+//! the f64 reference path (`--backend reference`) and the f32 twins of the copy and skinning
+//! baselines timed in the same rounds.
+
+use std::time::Instant;
 
 use glam::DVec3;
 
 use super::skinning::{skinning_influences, skinning_joints};
-use std::time::Instant;
-
-use super::{BenchReport, BenchScene, FalloffReport, Round, median, median_seconds};
+use super::{BenchReport, BenchScene, CpuPathReport, FalloffReport, Round, median, median_seconds};
 use crate::bind::MeshBindings;
-use crate::coeffs::GpuBinding;
+use crate::coeffs::{BandRecord, BindSegment, GpuBinding, SweepCoefficients, bind_segments};
 use crate::cpu;
+use crate::cpu::bind::BindInputs;
+use crate::cpu_fast::{self, Isa};
 use crate::deform::deform_vertices;
 
 const WARMUP: usize = 1;
 
-/// The CPU path on one scene.
-pub struct CpuBench {
-    scene: BenchScene,
-    bindings: MeshBindings,
-    falloff_bindings: Vec<MeshBindings>,
-    twin_bindings: Vec<GpuBinding>,
+/// A scene bound once on both paths: the f64 reference bindings, and the fast path's (GPU
+/// form, band vertices flagged) with its band records and rest cells.
+struct Bound {
+    reference: MeshBindings,
+    bindings: Vec<GpuBinding>,
+    bands: Vec<BandRecord>,
+    rest: SweepCoefficients,
+    tables: Vec<BindSegment>,
+    flagged_owners: Vec<u32>,
     rest_f32: Vec<f32>,
 }
 
-impl CpuBench {
-    /// Binds the scene once (for the deform and copy timings).
-    pub fn new(scene: BenchScene) -> CpuBench {
-        let bindings = scene.rig.bind_mesh(&scene.mesh, &scene.owners, &|_| {});
-        let rest = scene.rig.rest();
+impl Bound {
+    fn new(scene: &BenchScene) -> Bound {
+        let rest_sweeps = scene.rig.rest();
+        let reference = scene.rig.bind_mesh(&scene.mesh, &scene.owners, &|_| {});
+        let rest = SweepCoefficients::new(rest_sweeps);
+        let tables = bind_segments(rest_sweeps);
         let rest_f32 = cpu::packed(&scene.mesh.positions);
-        let twin_bindings = cpu::bind::bind_to(rest, &scene.owners, &rest_f32);
-        let falloff_bindings =
-            scene.with_falloff.iter().map(|(_, s)| s.rig.bind_mesh(&s.mesh, &s.owners, &|_| {})).collect();
-        CpuBench { scene, bindings, falloff_bindings, twin_bindings, rest_f32 }
+        let weights = scene.rig.band_weights(&scene.mesh, &scene.owners);
+        let flagged_owners = cpu_fast::bands::flagged_owners(&scene.owners, &weights);
+        let inputs = BindInputs { cells: &rest.cells, bind_segments: &tables, sweeps: &rest.sweeps };
+        let mut bindings = vec![GpuBinding::default(); flagged_owners.len()];
+        cpu_fast::bind::bind(&inputs, &flagged_owners, &rest_f32, &mut bindings);
+        let bands = cpu_fast::bands::band_records(&inputs, &weights, &rest_f32);
+        Bound { reference, bindings, bands, rest, tables, flagged_owners, rest_f32 }
+    }
+
+    fn inputs(&self) -> BindInputs<'_> {
+        BindInputs { cells: &self.rest.cells, bind_segments: &self.tables, sweeps: &self.rest.sweeps }
+    }
+}
+
+/// The CPU paths on one scene.
+pub struct CpuBench {
+    scene: BenchScene,
+    bound: Bound,
+    falloff: Vec<Bound>,
+}
+
+impl CpuBench {
+    /// Binds the scene and its falloff variants once on both paths (for the deform, copy and
+    /// skinning timings).
+    pub fn new(scene: BenchScene) -> CpuBench {
+        let bound = Bound::new(&scene);
+        let falloff = scene.with_falloff.iter().map(|(_, variant)| Bound::new(variant)).collect();
+        CpuBench { scene, bound, falloff }
     }
 
     /// Every figure of the report, each the median of `runs` runs after warm-up.
     pub fn report(&self, runs: usize) -> BenchReport {
         let scene = &self.scene;
         let n = scene.vertex_count();
+        let isa = Isa::detect();
         let mut out = vec![DVec3::ZERO; n];
         let mut out_f32 = vec![0.0f32; 3 * n];
+        let mut bindings = vec![GpuBinding::default(); n];
+        let inputs = self.bound.inputs();
         let bind = median_seconds(WARMUP, runs, || {
+            cpu_fast::bind::bind(&inputs, &self.bound.flagged_owners, &self.bound.rest_f32, &mut bindings);
+        });
+        let reference_bind = median_seconds(WARMUP, runs, || {
             scene.rig.bind_mesh(&scene.mesh, &scene.owners, &|_| {});
         });
         let (joints, influences) = (skinning_joints(), skinning_influences(n));
@@ -50,34 +87,60 @@ impl CpuBench {
             work();
             start.elapsed().as_secs_f64()
         };
+        let mut posed = SweepCoefficients::new(scene.rig.rest());
+        posed.update(&scene.posed).expect("the bench pose fits its rig");
+        let falloff_posed: Vec<SweepCoefficients> = scene
+            .with_falloff
+            .iter()
+            .map(|(_, variant)| {
+                let mut posed = SweepCoefficients::new(variant.rig.rest());
+                posed.update(&variant.posed).expect("the bench pose fits its rig");
+                posed
+            })
+            .collect();
+        let mut pose = scene.rig.pose_buffer();
+        let mut frame_cells = posed.clone();
         let mut rounds = Vec::with_capacity(runs);
+        let mut reference = Vec::with_capacity(runs);
         for round in 0..WARMUP + runs {
+            let reference_deform = time(&mut || {
+                deform_vertices(scene.rig.rest(), &scene.posed, &self.bound.reference, &scene.mesh.positions, &mut out)
+            });
             let times = Round {
                 instances: (0.0, 1.0),
                 partial: (0.0, 1.0),
                 fused: 0.0,
                 wide_copy: 1.0,
-                deform: time(&mut || {
-                    deform_vertices(scene.rig.rest(), &scene.posed, &self.bindings, &scene.mesh.positions, &mut out)
-                }),
-                falloff: scene
-                    .with_falloff
+                deform: time(&mut || cpu_fast::deform::deform(&posed.cells, &self.bound.bindings, &mut out_f32)),
+                falloff: self
+                    .falloff
                     .iter()
-                    .zip(&self.falloff_bindings)
-                    .map(|((_, variant), bindings)| {
-                        let (rest, positions) = (variant.rig.rest(), &variant.mesh.positions);
-                        time(&mut || deform_vertices(rest, &variant.posed, bindings, positions, &mut out))
+                    .zip(&falloff_posed)
+                    .map(|(bound, posed)| {
+                        let mut positions = bound.rest_f32.clone();
+                        let (cells, rest) = (&posed.cells, &bound.rest.cells);
+                        time(&mut || {
+                            cpu_fast::deform::deform_with_bands(
+                                cells,
+                                rest,
+                                &bound.bindings,
+                                &bound.bands,
+                                &mut positions,
+                            )
+                        })
                     })
                     .collect(),
-                copy: time(&mut || cpu::copy::copy(&self.twin_bindings, &mut out_f32)),
-                lbs: time(&mut || cpu::skinning::skinning(&joints, &self.rest_f32, &influences, &mut out_f32)),
+                copy: time(&mut || cpu::copy::copy(&self.bound.bindings, &mut out_f32)),
+                lbs: time(&mut || cpu::skinning::skinning(&joints, &self.bound.rest_f32, &influences, &mut out_f32)),
                 frame: time(&mut || {
-                    let posed = scene.rig.pose(&scene.keys).expect("the bench pose fits its rig");
-                    deform_vertices(scene.rig.rest(), &posed, &self.bindings, &scene.mesh.positions, &mut out);
+                    scene.rig.pose_into(&scene.keys, &mut pose).expect("the bench pose fits its rig");
+                    frame_cells.update(pose.sweeps()).expect("the bench pose fits its rig");
+                    cpu_fast::deform::deform(&frame_cells.cells, &self.bound.bindings, &mut out_f32);
                 }),
                 normals: 0.0,
             };
             if round >= WARMUP {
+                reference.push((reference_deform, reference_deform / times.deform));
                 rounds.push(times);
             }
         }
@@ -95,6 +158,12 @@ impl CpuBench {
             lbs_verts_per_s: n_f / lbs,
             deform_over_copy: column(|r| r.deform / r.copy),
             deform_over_lbs: column(|r| r.deform / r.lbs),
+            cpu: Some(CpuPathReport {
+                isa: isa.name(),
+                reference_deform_verts_per_s: n_f / median(&mut reference.iter().map(|r| r.0).collect::<Vec<_>>()),
+                reference_bind_verts_per_s: n_f / reference_bind,
+                reference_over_fast: median(&mut reference.iter().map(|r| r.1).collect::<Vec<_>>()),
+            }),
             frame_ms: frame * 1e3,
             frame_cpu_ms: None,
             normals_ms: 0.0,
@@ -108,11 +177,11 @@ impl CpuBench {
             falloff: scene
                 .with_falloff
                 .iter()
-                .zip(&self.falloff_bindings)
+                .zip(&self.falloff)
                 .enumerate()
-                .map(|(i, ((kind, _), bindings))| FalloffReport {
+                .map(|(i, ((kind, _), bound))| FalloffReport {
                     kind: *kind,
-                    band_fraction: bindings.bands.len() as f64 / n_f,
+                    band_fraction: bound.bands.len() as f64 / n_f,
                     deform_verts_per_s: n_f / median(&mut rounds.iter().map(|r| r.falloff[i]).collect::<Vec<_>>()),
                     over_plain: median(&mut rounds.iter().map(|r| r.falloff[i] / r.deform).collect::<Vec<_>>()),
                     device_bytes_per_vertex: None,

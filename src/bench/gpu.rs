@@ -304,6 +304,7 @@ impl GpuBench {
             lbs_verts_per_s: n / column(|r| r.lbs),
             deform_over_copy: column(|r| r.deform / r.copy),
             deform_over_lbs: column(|r| r.deform / r.lbs),
+            cpu: None,
             frame_ms: column(|r| r.frame) * 1e3,
             frame_cpu_ms: Some(frame_cpu),
             normals_ms: column(|r| r.normals) * 1e3,

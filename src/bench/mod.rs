@@ -48,6 +48,9 @@ pub struct BenchReport {
     pub deform_over_copy: f64,
     /// Deform time over skinning time.
     pub deform_over_lbs: f64,
+    /// The CPU backend's fast f32 path against the f64 reference in the same rounds (`null` on
+    /// the GPU): there `bind_verts_per_s` and `deform_verts_per_s` are the fast path's.
+    pub cpu: Option<CpuPathReport>,
     /// One frame: the rig posed from keys, its coefficients, their upload and the deform
     /// dispatch, waited for, no readback; milliseconds.
     pub frame_ms: f64,
@@ -85,6 +88,20 @@ pub struct BenchReport {
     pub runs: usize,
     /// Whether GPU times come from timestamp queries.
     pub timestamps: bool,
+}
+
+/// The fast CPU path (`--backend cpu`) against the f64 reference (`--backend reference`),
+/// measured in the same run as the report's figures.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CpuPathReport {
+    /// The fast path's instruction set: `"avx2+fma"` or `"scalar"`.
+    pub isa: &'static str,
+    /// Vertices deformed per second by the f64 reference, in the same rounds as the fast path.
+    pub reference_deform_verts_per_s: f64,
+    /// Vertices bound per second by the f64 reference (with the falloff bands, as `sweepffd bind`).
+    pub reference_bind_verts_per_s: f64,
+    /// Reference deform time over fast deform time, same round.
+    pub reference_over_fast: f64,
 }
 
 /// The deform pass with falloff bands against the same mesh without, in the same rounds.

@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 
 use super::CliResult;
-use super::backend::{Backend, resolve};
+use super::backend::{Backend, Device, resolve};
 use sweepffd::bench::{BenchReport, BenchScene, CpuBench, FalloffKind, GpuBench, check_runs, tube_vertex_count};
 use sweepffd::mesh::Mesh;
 use sweepffd::rig::Rig;
@@ -22,7 +22,8 @@ pub struct Args {
     /// The rest rig of --mesh.
     #[arg(long)]
     pub rig: Option<PathBuf>,
-    /// Where to measure.
+    /// Where to measure (cpu and reference run the same CPU bench, which times the fast path
+    /// and the f64 reference in the same rounds).
     #[arg(long, value_enum, default_value_t = Backend::Auto)]
     pub backend: Backend,
     /// Timed runs per figure (each figure is their median), 1 to 10000.
@@ -56,8 +57,8 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     };
     let runs = args.runs;
     let report = match resolve(args.backend, quiet || args.json)? {
-        Some(context) => GpuBench::new(&context, scene)?.report(runs)?,
-        None => CpuBench::new(scene).report(runs),
+        Device::Gpu(context) => GpuBench::new(&context, scene)?.report(runs)?,
+        Device::Cpu | Device::Reference => CpuBench::new(scene).report(runs),
     };
     if args.json {
         println!("{}", serde_json::to_string(&report)?);
@@ -77,6 +78,15 @@ fn print_table(r: &BenchReport) {
         r.deform_over_copy,
         r.deform_over_lbs
     );
+    if let Some(cpu) = &r.cpu {
+        println!("  (bind and deform: the fast f32 path on {})", cpu.isa);
+        println!("  reference bind   {}   (f64, with the falloff bands)", rate(cpu.reference_bind_verts_per_s));
+        println!(
+            "  reference deform {}   ({:.2} × the fast path's time)",
+            rate(cpu.reference_deform_verts_per_s),
+            cpu.reference_over_fast
+        );
+    }
     println!("  copy      {}   (baseline: the deform kernel's bytes)", rate(r.copy_verts_per_s));
     println!("  skinning  {}   (baseline: 4-influence linear-blend skinning)", rate(r.lbs_verts_per_s));
     println!("  frame     {:>10.3} ms (pose to coefficients, upload, deform)", r.frame_ms);

@@ -4,11 +4,12 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use super::CliResult;
-use super::backend::{Backend, resolve};
+use super::backend::{Backend, Device, resolve};
 use super::progress::vertex_bar;
 use sweepffd::bind::MeshBindings;
 use sweepffd::bind::band::bind_bands;
 use sweepffd::coeffs::SweepCoefficients;
+use sweepffd::cpu_fast::FastMesh;
 use sweepffd::gpu::{BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, GpuError};
 use sweepffd::mesh::Mesh;
 use sweepffd::rig::Rig;
@@ -26,7 +27,8 @@ pub struct Args {
     /// Where to write the bindings file.
     #[arg(long)]
     pub out: PathBuf,
-    /// Where to bind: the GPU kernels, the CPU, or the GPU when one is available.
+    /// Where to bind: the GPU kernels, the fast f32 CPU path, the f64 reference on the CPU, or
+    /// the GPU when one is available.
     #[arg(long, value_enum, default_value_t = Backend::Auto)]
     pub backend: Backend,
 }
@@ -59,6 +61,17 @@ pub fn bind_on_gpu(context: &GpuContext, inputs: &Inputs) -> Result<MeshBindings
     Ok(MeshBindings { vertices, bands: bind_bands(rest, &inputs.mesh.positions, &weights) })
 }
 
+/// Binds on the fast CPU path, in the reference form as the GPU's bindings are read back; the
+/// falloff bands' second bindings are made in f64, as the file stores them.
+pub fn bind_on_cpu(inputs: &Inputs) -> MeshBindings {
+    let rest = inputs.rig.rest();
+    let weights = inputs.rig.band_weights(&inputs.mesh, &inputs.owners);
+    let positions = sweepffd::cpu::packed(&inputs.mesh.positions);
+    let fast = FastMesh::bind(rest, &inputs.owners, &weights, &positions);
+    let vertices = fast.bindings.iter().map(|b| fast.rest.reference_binding(rest, b)).collect();
+    MeshBindings { vertices, bands: bind_bands(rest, &inputs.mesh.positions, &weights) }
+}
+
 /// Binds with a progress bar (f64 reference path, all cores), with the falloff bands.
 pub fn bind_with_progress(inputs: &Inputs, quiet: bool) -> MeshBindings {
     let bar = vertex_bar(inputs.mesh.positions.len(), "binding", quiet);
@@ -75,17 +88,19 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     let context = resolve(args.backend, quiet)?;
     let start = Instant::now();
     let bindings = match &context {
-        Some(context) => bind_on_gpu(context, &inputs)?,
-        None => bind_with_progress(&inputs, quiet),
+        Device::Gpu(context) => bind_on_gpu(context, &inputs)?,
+        Device::Cpu => bind_on_cpu(&inputs),
+        Device::Reference => bind_with_progress(&inputs, quiet),
     };
     let seconds = start.elapsed().as_secs_f64();
     let owned = inputs.owners.iter().filter(|&&o| o != sweepffd::bind::UNOWNED).count();
     BindingsFile::new(&inputs.rig, &inputs.mesh.positions, bindings).save(out)?;
     if !quiet {
         println!(
-            "bound {owned} of {} vertices to {} sweeps in {seconds:.3} s -> {}",
+            "bound {owned} of {} vertices to {} sweeps on the {} in {seconds:.3} s -> {}",
             inputs.mesh.positions.len(),
             inputs.rig.sweeps().len(),
+            context.name(),
             out.display()
         );
     }

@@ -6,10 +6,12 @@ use std::time::Instant;
 use glam::{DVec3, Vec3};
 
 use super::CliResult;
-use super::backend::{Backend, resolve};
+use super::backend::{Backend, Device, resolve};
 use super::bind::{Inputs, bind_with_progress, load_inputs};
+use sweepffd::bind::falloff::BandWeight;
 use sweepffd::bind::{MeshBindings, UNOWNED};
 use sweepffd::coeffs::SweepCoefficients;
+use sweepffd::cpu_fast::FastMesh;
 use sweepffd::deform::deform_vertices;
 use sweepffd::gpu::{BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, GpuError};
 use sweepffd::mesh::Format;
@@ -34,7 +36,8 @@ pub struct Args {
     /// Bindings saved by `sweepffd bind` for this mesh and rig (otherwise binds anew).
     #[arg(long)]
     pub bindings: Option<PathBuf>,
-    /// Where to bind and deform: the GPU kernels, the CPU, or the GPU when one is available.
+    /// Where to bind and deform: the GPU kernels, the fast f32 CPU path, the f64 reference on
+    /// the CPU, or the GPU when one is available.
     #[arg(long, value_enum, default_value_t = Backend::Auto)]
     pub backend: Backend,
 }
@@ -55,8 +58,9 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     let context = resolve(args.backend, quiet)?;
     let start = Instant::now();
     let (positions, owners) = match &context {
-        Some(context) => deform_on_gpu(context, &inputs, &posed, saved.as_ref())?,
-        None => {
+        Device::Gpu(context) => deform_on_gpu(context, &inputs, &posed, saved.as_ref())?,
+        Device::Cpu => deform_on_cpu(&inputs, &posed, saved.as_ref()),
+        Device::Reference => {
             let bindings = saved.clone().unwrap_or_else(|| bind_with_progress(&inputs, quiet));
             let mut positions = vec![DVec3::ZERO; inputs.mesh.positions.len()];
             deform_vertices(inputs.rig.rest(), &posed, &bindings, &inputs.mesh.positions, &mut positions);
@@ -75,8 +79,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     inputs.mesh.save(&args.out, &positions)?;
     if !quiet {
         let owned = owners.iter().filter(|&&o| o != UNOWNED).count();
-        let (source, backend) =
-            (if saved.is_some() { "saved" } else { "new" }, if context.is_some() { "GPU" } else { "CPU" });
+        let (source, backend) = (if saved.is_some() { "saved" } else { "new" }, context.name());
         println!(
             "deformed {owned} of {} vertices on the {backend} ({source} bindings) in {seconds:.3} s -> {}",
             positions.len(),
@@ -109,7 +112,36 @@ fn deform_on_gpu(
     let positions = sweepffd::gpu::rest_positions(&inputs.mesh.positions);
     let mut deformer = GpuDeformer::new(context, &DeformerDescriptor::new(rest, &positions, source))?;
     deformer.deform(posed)?;
-    let deformed = deformer.read_positions()?;
+    Ok(f32_result(inputs, saved, &weights, &deformer.read_positions()?))
+}
+
+/// Binds (or converts `saved` bindings) and deforms on the fast CPU path, as on the GPU.
+/// Returns the positions and owners.
+fn deform_on_cpu(inputs: &Inputs, posed: &[Sweep], saved: Option<&MeshBindings>) -> (Vec<DVec3>, Vec<u32>) {
+    let rest = inputs.rig.rest();
+    let mut positions = sweepffd::cpu::packed(&inputs.mesh.positions);
+    let (mut fast, weights) = match saved {
+        Some(saved) => {
+            let (bindings, bands) = SweepCoefficients::new(rest).gpu_mesh_bindings(rest, saved);
+            (FastMesh::with_bindings(rest, bindings, bands), Vec::new())
+        }
+        None => {
+            let weights = inputs.rig.band_weights(&inputs.mesh, &inputs.owners);
+            (FastMesh::bind(rest, &inputs.owners, &weights, &positions), weights)
+        }
+    };
+    fast.deform(posed, &mut positions).expect("a pose loaded for this rig fits it");
+    f32_result(inputs, saved, &weights, &positions)
+}
+
+/// The f32 positions `deformed` in f64, the vertices no sweep moves (unowned, or at weight 0
+/// against the rest position) at their exact rest positions; and the owners.
+fn f32_result(
+    inputs: &Inputs,
+    saved: Option<&MeshBindings>,
+    weights: &[BandWeight],
+    deformed: &[f32],
+) -> (Vec<DVec3>, Vec<u32>) {
     let owners: Vec<u32> = match saved {
         Some(saved) => saved.vertices.iter().map(|b| b.sweep).collect(),
         None => inputs.owners.clone(),
@@ -129,5 +161,5 @@ fn deform_on_gpu(
         .zip(&keeps_rest)
         .map(|((p, rest), &keeps)| if keeps { *rest } else { Vec3::from_slice(p).as_dvec3() })
         .collect();
-    Ok((positions, owners))
+    (positions, owners)
 }

@@ -35,6 +35,6 @@ pub fn packed(positions: &[DVec3]) -> Vec<f32> {
 }
 
 /// The vertex at index `i` of a tightly packed xyz array.
-fn position(positions: &[f32], i: usize) -> Vec3 {
+pub(crate) fn position(positions: &[f32], i: usize) -> Vec3 {
     Vec3::new(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2])
 }

@@ -1,0 +1,29 @@
+//! The fast CPU path: the f32 kernels of [`crate::cpu`] (the twins of the WGSL shaders)
+//! vectorized across vertices and run on every core, for machines without a GPU.
+//!
+//! Data flow: rig → sweep → sweep coefficients → **bind → deform** → normals → output.
+//!
+//! The inputs and outputs are the GPU's ([`crate::coeffs`]: cell records, [`GpuBinding`]s,
+//! band records, tightly packed f32 positions), so a binding made here deforms on the GPU and
+//! back. [`deform::deform`] evaluates Eq. 2 (+h) eight vertices to a register where the CPU has
+//! AVX2 and FMA ([`Isa`], detected at run time), one by one elsewhere; [`bind::bind`] runs the
+//! twin's root finding eight vertices to a register (with the twin's rounding), in parallel and
+//! without allocating; falloff band vertices, few, go through the band twin ([`bands`]). Results equal the twins' to rounding, not bit for bit;
+//! the f64 reference ([`crate::bind`], [`crate::deform`]) stays the oracle.
+//!
+//! [`GpuBinding`]: crate::coeffs::GpuBinding
+
+pub mod bands;
+pub mod bind;
+#[cfg(target_arch = "x86_64")]
+mod bind_avx2;
+pub mod deform;
+#[cfg(target_arch = "x86_64")]
+mod deform_avx2;
+mod isa;
+#[cfg(target_arch = "x86_64")]
+mod lanes8;
+pub mod mesh;
+
+pub use isa::Isa;
+pub use mesh::FastMesh;
