@@ -1,3 +1,5 @@
+#![allow(dead_code, reason = "each test binary uses a different subset of the star's helpers")]
+
 //! A procedural "star": a ball of radius 1 with five round-ended tubes of radius
 //! [`TUBE_RADIUS`] along known axes from its center, blended into it by a smooth minimum, as
 //! one closed, connected, consistently oriented triangle mesh.
