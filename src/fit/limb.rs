@@ -13,9 +13,11 @@
 //! 2. P(d_k) at levels d_k = k·h, h = length / [`LEVELS_PER_LENGTH`], from the segments where
 //!    the piecewise-linear d crosses d_k on each triangle.
 //! 3. The first level k, at least [`START`] × the length from the tip (past a hand's or a
-//!    foot's widening below its fingers or toes), where (P(d_k) − P(d_{k−w}))/(w·h) exceeds
-//!    [`OPENING`] with w = [`WINDOW`]: the limb is the vertices with d < d_{k−w}, where the
-//!    opening began.
+//!    foot's widening below its fingers or toes) and past the tip's own cap (where the rate
+//!    first falls below [`CAPPED`]), where (P(d_k) − P(d_{k−w}))/(w·h) exceeds
+//!    [`OPENING`] with w = [`WINDOW`], sustained (P does not fall back by more than
+//!    1 − [`KEEPS`] over the next [`SUSTAIN`] levels, as it does past a hand or a foot): the
+//!    limb is the vertices with d < d_{k−w}, where the opening began.
 //! 4. Tubularity: a limb shorter than [`TUBULAR`] × the radius P/2π of its cut is a bump,
 //!    not a limb. Where no level opens and d reaches the whole component (a spout or a handle
 //!    that is a component of its own, a snake), the component is the limb if it is that
@@ -43,6 +45,8 @@ pub const START: f64 = 0.25;
 pub const WINDOW: usize = 4;
 /// The rate dP/dd above which a level set opens onto the body (2π sin 23.5°).
 pub const OPENING: f64 = 2.5;
+/// The rate dP/dd below which the level sets have left the tip's cap (2π sin 18.6°).
+pub const CAPPED: f64 = 2.0;
 /// The levels after an opening over which the perimeter never falls below [`KEEPS`] times the
 /// largest it has been since.
 pub const SUSTAIN: usize = 20;
@@ -107,8 +111,10 @@ pub fn limb(
     let levels = (limit / h).ceil() as usize;
     let perimeter = perimeters(positions, triangles, &d, h, levels, limit);
     let start = (START * LEVELS_PER_LENGTH).ceil() as usize;
-    // Past the tip's own cap: the first level at least a diameter from the tip.
-    let past_cap = (1..levels).find(|&k| k as f64 * h >= 2.0 * perimeter[k] / TAU).unwrap_or(levels);
+    let rate = |k: usize| (perimeter[k] - perimeter[k - WINDOW]) / (WINDOW as f64 * h);
+    // Past the tip's own cap (a round end, a hoof's sole), where the level sets grow like
+    // circles around a point: the first level where they grow slower than [`CAPPED`].
+    let past_cap = (WINDOW..levels).find(|&k| rate(k) < CAPPED).unwrap_or(levels);
     let opening = ((start + WINDOW).max(past_cap + WINDOW)..levels).find(|&k| {
         let rate = (perimeter[k] - perimeter[k - WINDOW]) / (WINDOW as f64 * h);
         // A widening that narrows again (a hand's or a foot's below its wrist or ankle) is

@@ -115,7 +115,7 @@ pub fn protrusions(mesh: &Mesh, min_length: f64, max_parts: usize) -> Vec<Protru
 }
 
 /// For each vertex, the first vertex at the same position (bit for bit).
-fn weld(positions: &[DVec3]) -> Vec<u32> {
+pub(crate) fn weld(positions: &[DVec3]) -> Vec<u32> {
     let mut first: HashMap<[u64; 3], u32> = HashMap::new();
     positions
         .iter()
