@@ -103,21 +103,20 @@ fn the_bunny_gets_its_two_ears_each_with_its_tip() {
     }
 }
 
-#[test]
-fn a_rigidly_moved_bunny_gets_the_same_parts_and_the_moved_keys() {
-    let Some(path) = common::shared_mesh("bunny_stanford_zipper.obj") else { return };
-    let mesh = Mesh::load(&path).unwrap();
+/// `mesh` (named `name`) and a rigidly moved copy give the same parts, with the moved keys
+/// (centers within 1e-6 of each part's length), and the same mesh twice the same rig.
+fn moved_mesh_gets_the_moved_rig(name: &str, mesh: &Mesh) {
     let rotation = DQuat::from_axis_angle(DVec3::new(0.2, 0.9, -0.4).normalize(), 2.3);
     let translation = DVec3::new(-3.0, 0.5, 10.0);
     let mut moved = mesh.clone();
     for p in &mut moved.positions {
         *p = rotation * *p + translation;
     }
-    let here = autorig(&mesh, &AutorigOptions::default()).unwrap();
+    let here = autorig(mesh, &AutorigOptions::default()).unwrap();
     let there = autorig(&moved, &AutorigOptions::default()).unwrap();
-    assert_eq!(here.parts.len(), there.parts.len());
+    assert_eq!(here.parts.len(), there.parts.len(), "{name}");
     for (a, b) in here.parts.iter().zip(&there.parts) {
-        assert_eq!(a.vertices, b.vertices, "{}", a.name);
+        assert_eq!(a.vertices, b.vertices, "{name} {}", a.name);
         let length: f64 = a.fit.keys.windows(2).map(|w| w[0].center.distance(w[1].center)).sum();
         let worst = a
             .fit
@@ -126,11 +125,22 @@ fn a_rigidly_moved_bunny_gets_the_same_parts_and_the_moved_keys() {
             .zip(&b.fit.keys)
             .map(|(k, m)| (rotation * k.center + translation).distance(m.center))
             .fold(0.0, f64::max);
-        eprintln!("moved bunny {}: worst key center {:.2e} of the part's length", a.name, worst / length);
-        assert!(worst <= 1e-6 * length, "{}: {worst} of {length}", a.name);
+        eprintln!("moved {name} {}: worst key center {:.2e} of the part's length", a.name, worst / length);
+        assert!(worst <= 1e-6 * length, "{name} {}: {worst} of {length}", a.name);
     }
-    // And the same mesh twice gives the same rig.
-    assert_eq!(autorig(&mesh, &AutorigOptions::default()).unwrap().document(), here.document());
+    assert_eq!(autorig(mesh, &AutorigOptions::default()).unwrap().document(), here.document(), "{name}");
+}
+
+#[test]
+fn a_rigidly_moved_bunny_gets_the_same_parts_and_the_moved_keys() {
+    let Some(path) = common::shared_mesh("bunny_stanford_zipper.obj") else { return };
+    moved_mesh_gets_the_moved_rig("bunny", &Mesh::load(&path).unwrap());
+}
+
+#[test]
+fn a_rigidly_moved_spot_gets_the_same_legs_and_the_moved_keys() {
+    let Some(path) = common::shared_mesh("spot_triangulated.obj") else { return };
+    moved_mesh_gets_the_moved_rig("spot", &Mesh::load(&path).unwrap());
 }
 
 /// The chair's four legs (their tips on the floor, y ≈ 0), and its back, whose flat panel no

@@ -87,7 +87,12 @@ pub fn protrusions(mesh: &Mesh, min_length: f64, max_parts: usize) -> Vec<Protru
         }
         found.extend(component_protrusions(mesh, &graph, &triangles, &component, min_length));
     }
-    found.sort_by(|a, b| b.length.total_cmp(&a.length).then(a.tip.cmp(&b.tip)));
+    // Longest first; lengths within rounding of each other (mirror twins, such as a pair of
+    // legs, whose lengths a rigid motion perturbs in the last bits) by tip index, so that a
+    // moved mesh names its parts alike.
+    let quantum = 1e-9 * found.iter().map(|p| p.length).fold(0.0, f64::max);
+    let rounded = |p: &Protrusion| if quantum > 0.0 { (p.length / quantum).round() as i64 } else { 0 };
+    found.sort_by(|a, b| rounded(b).cmp(&rounded(a)).then(a.tip.cmp(&b.tip)));
     found.truncate(max_parts);
     // Each welded vertex stands for every vertex at its position.
     let mut members: HashMap<u32, Vec<u32>> = HashMap::new();
