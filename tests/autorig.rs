@@ -8,7 +8,7 @@ use std::f64::consts::PI;
 use std::fs;
 
 use glam::{DQuat, DVec3};
-use sweepffd::fit::autorig::{Autorig, AutorigOptions, autorig};
+use sweepffd::fit::autorig::{Autorig, AutorigOptions, RiggedPart, autorig};
 use sweepffd::fit::largest_connected;
 use sweepffd::mesh::{Faces, Mesh};
 
@@ -103,21 +103,20 @@ fn the_bunny_gets_its_two_ears_each_with_its_tip() {
     }
 }
 
-#[test]
-fn a_rigidly_moved_bunny_gets_the_same_parts_and_the_moved_keys() {
-    let Some(path) = common::shared_mesh("bunny_stanford_zipper.obj") else { return };
-    let mesh = Mesh::load(&path).unwrap();
+/// `mesh` (named `name`) and a rigidly moved copy give the same parts, with the moved keys
+/// (centers within 1e-6 of each part's length), and the same mesh twice the same rig.
+fn moved_mesh_gets_the_moved_rig(name: &str, mesh: &Mesh) {
     let rotation = DQuat::from_axis_angle(DVec3::new(0.2, 0.9, -0.4).normalize(), 2.3);
     let translation = DVec3::new(-3.0, 0.5, 10.0);
     let mut moved = mesh.clone();
     for p in &mut moved.positions {
         *p = rotation * *p + translation;
     }
-    let here = autorig(&mesh, &AutorigOptions::default()).unwrap();
+    let here = autorig(mesh, &AutorigOptions::default()).unwrap();
     let there = autorig(&moved, &AutorigOptions::default()).unwrap();
-    assert_eq!(here.parts.len(), there.parts.len());
+    assert_eq!(here.parts.len(), there.parts.len(), "{name}");
     for (a, b) in here.parts.iter().zip(&there.parts) {
-        assert_eq!(a.vertices, b.vertices, "{}", a.name);
+        assert_eq!(a.vertices, b.vertices, "{name} {}", a.name);
         let length: f64 = a.fit.keys.windows(2).map(|w| w[0].center.distance(w[1].center)).sum();
         let worst = a
             .fit
@@ -126,11 +125,22 @@ fn a_rigidly_moved_bunny_gets_the_same_parts_and_the_moved_keys() {
             .zip(&b.fit.keys)
             .map(|(k, m)| (rotation * k.center + translation).distance(m.center))
             .fold(0.0, f64::max);
-        eprintln!("moved bunny {}: worst key center {:.2e} of the part's length", a.name, worst / length);
-        assert!(worst <= 1e-6 * length, "{}: {worst} of {length}", a.name);
+        eprintln!("moved {name} {}: worst key center {:.2e} of the part's length", a.name, worst / length);
+        assert!(worst <= 1e-6 * length, "{name} {}: {worst} of {length}", a.name);
     }
-    // And the same mesh twice gives the same rig.
-    assert_eq!(autorig(&mesh, &AutorigOptions::default()).unwrap().document(), here.document());
+    assert_eq!(autorig(mesh, &AutorigOptions::default()).unwrap().document(), here.document(), "{name}");
+}
+
+#[test]
+fn a_rigidly_moved_bunny_gets_the_same_parts_and_the_moved_keys() {
+    let Some(path) = common::shared_mesh("bunny_stanford_zipper.obj") else { return };
+    moved_mesh_gets_the_moved_rig("bunny", &Mesh::load(&path).unwrap());
+}
+
+#[test]
+fn a_rigidly_moved_spot_gets_the_same_legs_and_the_moved_keys() {
+    let Some(path) = common::shared_mesh("spot_triangulated.obj") else { return };
+    moved_mesh_gets_the_moved_rig("spot", &Mesh::load(&path).unwrap());
 }
 
 /// The chair's four legs (their tips on the floor, y ≈ 0), and its back, whose flat panel no
@@ -176,26 +186,104 @@ fn the_command_writes_the_rig_and_reports_each_part() {
     assert!(!dir.path().join("empty.json").exists());
 }
 
-/// The armadillo's hands, feet and tail are found, each part holding its tip. Each part also takes in some of the body where the limb meets it (the
-/// parts end where the limb's superlevel set meets the body's, not at the hip or shoulder),
-/// so these fits stay far looser than a leg selected by hand (see tests/fit_skeleton.rs).
+/// The vertex of `mesh` that maximizes `score`, among those that `inside` accepts.
+fn extreme(mesh: &Mesh, inside: impl Fn(DVec3) -> bool, score: impl Fn(DVec3) -> f64) -> u32 {
+    (0..mesh.positions.len() as u32)
+        .filter(|&v| inside(mesh.positions[v as usize]))
+        .max_by(|&a, &b| score(mesh.positions[a as usize]).total_cmp(&score(mesh.positions[b as usize])))
+        .unwrap()
+}
+
+/// The part of `rigged` holding vertex `tip`, checked against its fit target: RMS |d| within
+/// `target` of the mean radius, where `bound` (≥ `target`) is what this method reaches today
+/// and is asserted; a fit between the two is printed as missing the target.
+fn part_at<'a>(rigged: &'a Autorig, name: &str, tip: u32, target: f64, bound: f64) -> &'a RiggedPart {
+    let part = rigged.parts.iter().find(|p| p.vertices.binary_search(&tip).is_ok());
+    let part = part.unwrap_or_else(|| panic!("{name}: no part holds its tip, vertex {tip}"));
+    let q = part.fit.quality;
+    let crescents = part.fit.sections.iter().filter(|s| s.several_crossings > 0).count();
+    let verdict = if q.rms_d <= target { "within the target" } else { "MISSES the target" };
+    eprintln!(
+        "{name}: {} ({} vertices), RMS |d| {:.2}% ({verdict} of {:.0}%), max {:.1}%, {crescents} of {} sections \
+         not star-shaped, {:.3} s",
+        part.name,
+        part.vertices.len(),
+        100.0 * q.rms_d,
+        100.0 * target,
+        100.0 * q.max_d,
+        part.fit.sections.len(),
+        part.seconds
+    );
+    assert_eq!(q.without_root, 0, "{name}: every owned vertex binds with a root");
+    assert!(q.rms_d <= bound, "{name}: {q:?}");
+    part
+}
+
+/// Spot's four legs, each holding its hoof's lowest vertex (its head is towards −z, its front
+/// legs at z ≈ 0.06, its hind legs at z ≈ 0.79); the head, horns and ears are not found (their
+/// persistence, 0.04–0.07 of its size for the horns and ears, is under `--min-length`; the
+/// head's level sets never open into the body before its own reach).
 #[test]
-fn the_armadillo_gets_its_hands_feet_and_tail() {
+fn spot_gets_its_four_legs() {
+    let Some(path) = common::shared_mesh("spot_triangulated.obj") else { return };
+    let mesh = Mesh::load(&path).unwrap();
+    let rigged = autorig(&mesh, &AutorigOptions::default()).unwrap();
+    print_parts("spot", &mesh, &rigged);
+    assert_eq!(rigged.parts.len(), 4, "four legs and nothing else");
+    let mut owners = Vec::new();
+    for (leg, sx, z0, bound) in [
+        ("front +x", 1.0, 0.06, 0.10),
+        ("front −x", -1.0, 0.06, 0.10),
+        ("hind +x", 1.0, 0.79, 0.14),
+        ("hind −x", -1.0, 0.79, 0.14),
+    ] {
+        let hoof = extreme(&mesh, |p| p.x * sx > 0.0 && (p.z - z0).abs() < 0.25, |p| -p.y);
+        owners.push(part_at(&rigged, &format!("spot {leg} leg"), hoof, 0.10, bound).name.clone());
+    }
+    owners.sort();
+    owners.dedup();
+    assert_eq!(owners.len(), 4, "one part per leg");
+}
+
+/// The armadillo's four limbs, two ears and tail, each part holding the limb's extreme vertex
+/// (a foot's lowest, a hand's outermost, an ear's highest, the tail's rearmost), and no part
+/// on the head itself.
+#[test]
+fn the_armadillo_gets_its_limbs_ears_and_tail() {
     let Some(path) = common::shared_mesh("armadillo_50k.obj") else { return };
     let mesh = Mesh::load(&path).unwrap();
-    let started = std::time::Instant::now();
     let rigged = autorig(&mesh, &AutorigOptions::default()).unwrap();
-    let seconds = started.elapsed().as_secs_f64();
-    let tips: Vec<DVec3> = rigged.parts.iter().map(|p| mesh.positions[p.tip as usize]).collect();
     print_parts("armadillo", &mesh, &rigged);
-    for part in &rigged.parts {
-        assert_eq!(part.fit.quality.without_root, 0, "{}", part.name);
-    }
-    eprintln!("armadillo: {} parts in {seconds:.3} s", rigged.parts.len());
-    let count = |test: &dyn Fn(&DVec3) -> bool| tips.iter().filter(|t| test(t)).count();
-    assert_eq!(count(&|t| t.y < -45.0), 2, "feet: {tips:?}");
-    assert_eq!(count(&|t| t.x.abs() > 45.0 && t.y > 60.0), 2, "hands: {tips:?}");
-    assert_eq!(count(&|t| t.z > 45.0 && t.y < 0.0), 1, "tail: {tips:?}");
-    // The time is printed, not asserted: tests share the cores with each other; `cargo bench
-    // --bench fit` measures it alone.
+    let limbs: [(&str, u32, f64); 7] = [
+        ("foot −x", extreme(&mesh, |p| p.x < 0.0, |p| -p.y), 0.13),
+        ("foot +x", extreme(&mesh, |p| p.x > 0.0, |p| -p.y), 0.13),
+        ("hand −x", extreme(&mesh, |p| p.y > 40.0, |p| -p.x), 0.22),
+        ("hand +x", extreme(&mesh, |p| p.y > 40.0, |p| p.x), 0.22),
+        ("ear −x", extreme(&mesh, |p| p.x < -10.0 && p.x > -35.0, |p| p.y), 0.15),
+        ("ear +x", extreme(&mesh, |p| p.x > 10.0 && p.x < 35.0, |p| p.y), 0.23),
+        ("tail", extreme(&mesh, |_| true, |p| p.z), 0.10),
+    ];
+    let mut owners: Vec<String> = limbs
+        .iter()
+        .map(|&(limb, tip, bound)| part_at(&rigged, &format!("armadillo {limb}"), tip, 0.10, bound).name.clone())
+        .collect();
+    owners.sort();
+    owners.dedup();
+    assert_eq!(owners.len(), 7, "one part per limb, ear and tail");
+    assert_eq!(rigged.parts.len(), 7, "and nothing else (no part on the head)");
+}
+
+/// The Newell teapot (patches, unwelded seams; the spout a component of its own, the handle
+/// touching the pot at one vertex): its spout and handle, each holding its outermost vertex;
+/// the lid's flange, found too, fits no sweep and is left out.
+#[test]
+fn the_teapot_gets_its_spout_and_handle() {
+    let Some(path) = common::shared_mesh("teapot_newell.obj") else { return };
+    let mesh = Mesh::load(&path).unwrap();
+    let rigged = autorig(&mesh, &AutorigOptions::default()).unwrap();
+    print_parts("teapot", &mesh, &rigged);
+    let spout = part_at(&rigged, "teapot spout", extreme(&mesh, |_| true, |p| p.x), 0.10, 0.14);
+    let handle = part_at(&rigged, "teapot handle", extreme(&mesh, |_| true, |p| -p.x), 0.10, 0.10);
+    assert_ne!(spout.name, handle.name);
+    assert_eq!(rigged.parts.len(), 2, "{} parts", rigged.parts.len());
 }

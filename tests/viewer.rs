@@ -1,7 +1,8 @@
 //! The viewer, driven by scripts in a virtual X display (Xvfb) on the GPU adapter (lavapipe in
 //! CI): a scripted drag of the mesh changes the picture where the mesh moved, its saved pose is
 //! exactly what `sweepffd pose` makes of the same drag_point edit, undo and redo walk back and
-//! forth, a mesh without a rig gets a sweep fitted to a clicked part, and the weight paint shows
+//! forth, a mesh without a rig gets a sweep fitted to a clicked part or a whole rig from the
+//! auto-rig key, and the weight paint shows
 //! a falloff band that a scripted falloff change widens, moving the posed mesh to what a rig
 //! with that falloff draws.
 //!
@@ -10,6 +11,8 @@
 #![cfg(feature = "viewer")]
 
 mod common;
+#[path = "common/star.rs"]
+mod star;
 
 use std::io::{BufRead, BufReader};
 use std::path::Path;
@@ -202,6 +205,27 @@ fn mesh_without_a_rig_gets_a_sweep_fitted_to_a_clicked_part() {
     let mesh = sweepffd::mesh::Mesh::load(&dir.path().join("demo/rest.obj")).unwrap();
     let owners = rig.owners(&mesh, "rest.obj").unwrap();
     assert!(owners.iter().filter(|&&o| o == 0).count() > mesh.positions.len() / 2);
+}
+
+/// The auto-rig key (the panel's "Auto-rig" button) rigs a loaded mesh as `sweepffd autorig`
+/// does: the star (a ball with five tubes) gets the same five sweeps.
+#[test]
+fn the_auto_rig_key_rigs_the_loaded_mesh_as_the_command_does() {
+    let Some(display) = display() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = star::star_mesh(0.06);
+    mesh.save(&dir.path().join("star.obj"), &mesh.positions).unwrap();
+    write(
+        &dir.path().join("auto.json"),
+        r#"[{"wait": 0.1}, {"key": "a"}, {"wait": 0.1}, {"save_rig": "auto-rig.json"}]"#,
+    );
+    let Some(report) = view(&display, dir.path(), &["--mesh", "star.obj", "--script", "auto.json"]) else { return };
+    assert_eq!(report["errors"], Value::Array(vec![]), "{report}");
+    let saved = sweepffd::rig::RigDocument::load(&dir.path().join("auto-rig.json")).unwrap();
+    let loaded = sweepffd::mesh::Mesh::load(&dir.path().join("star.obj")).unwrap();
+    let command = sweepffd::fit::autorig::autorig(&loaded, &Default::default()).unwrap().document();
+    assert_eq!(saved.sweeps.len(), 5);
+    assert_eq!(saved, command);
 }
 
 #[test]

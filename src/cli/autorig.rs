@@ -21,7 +21,7 @@ pub struct Args {
     #[arg(long)]
     pub out: PathBuf,
     /// The shortest protrusion kept, as a fraction of the mesh's bounding-box diagonal.
-    #[arg(long, default_value_t = 0.08)]
+    #[arg(long, default_value_t = 0.04)]
     pub min_length: f64,
     /// The most parts kept, the longest first.
     #[arg(long, default_value_t = 16)]
@@ -94,6 +94,14 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
         eprintln!(
             "notice: {file}: found no protrusion longer than --min-length {}; wrote an empty rig",
             args.min_length
+        );
+    }
+    for r in &rigged.rejected {
+        eprintln!(
+            "notice: {file}: left out a part of {} vertices at tip vertex {}: no sweep fits it (RMS |d| {:.0}% of the mean radius)",
+            r.vertices,
+            r.tip,
+            100.0 * r.rms_d
         );
     }
     for p in &parts {

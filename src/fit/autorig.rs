@@ -1,6 +1,9 @@
 //! Rigging a whole mesh in one call: its protrusions ([`super::protrusions`]) each get one
 //! fitted sweep ([`super::fit`]), key 0 at the part's attachment (its rim), with the fit's
-//! falloff; the rest of the mesh (the body) stays unowned.
+//! falloff; the rest of the mesh (the body) stays unowned. The fits run on the mesh with its
+//! bit-identical vertices joined (a patch mesh's unwelded seams), so a part's sections close;
+//! a part whose fit misses its surface by more than [`MAX_RMS`] (a lid's flange, a ring) is
+//! no limb and is left out, and reported in [`Autorig::rejected`].
 //!
 //! Data flow: mesh → protrusions → **fit** per part → rig document.
 
@@ -27,7 +30,7 @@ pub struct AutorigOptions {
 
 impl Default for AutorigOptions {
     fn default() -> AutorigOptions {
-        AutorigOptions { min_length: 0.08, max_parts: 16, falloff: None }
+        AutorigOptions { min_length: 0.04, max_parts: 16, falloff: None }
     }
 }
 
@@ -53,6 +56,8 @@ pub struct RiggedPart {
 pub struct Autorig {
     /// The parts.
     pub parts: Vec<RiggedPart>,
+    /// The parts found but left out: their fits were looser than [`MAX_RMS`].
+    pub rejected: Vec<Rejected>,
     /// Seconds finding the parts took.
     pub search_seconds: f64,
 }
@@ -87,10 +92,22 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
     let found = protrusions(mesh, options.min_length * diagonal, options.max_parts);
     let search_seconds = started.elapsed().as_secs_f64();
     let fit_options = FitOptions { falloff: options.falloff, ..FitOptions::default() };
+    // Fitted across unwelded seams (a patch mesh's), so that a part's sections close.
+    let welded = welded(mesh);
+    let fitted_on = welded.as_ref().unwrap_or(mesh);
     let mut parts = Vec::new();
+    let mut rejected = Vec::new();
     for protrusion in found {
         let started = Instant::now();
-        let Ok(fitted) = fit(mesh, &protrusion.vertices, &fit_options) else { continue };
+        let Ok(fitted) = fit(fitted_on, &protrusion.vertices, &fit_options) else { continue };
+        if fitted.quality.rms_d > MAX_RMS {
+            rejected.push(Rejected {
+                tip: protrusion.tip,
+                vertices: protrusion.vertices.len(),
+                rms_d: fitted.quality.rms_d,
+            });
+            continue;
+        }
         parts.push(RiggedPart {
             name: format!("part{}", parts.len()),
             vertices: protrusion.vertices,
@@ -100,5 +117,39 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
             seconds: started.elapsed().as_secs_f64(),
         });
     }
-    Ok(Autorig { parts, search_seconds })
+    Ok(Autorig { parts, rejected, search_seconds })
+}
+
+/// A part found whose fit is looser than [`MAX_RMS`]: a flange, a ring or a flat panel, no
+/// limb.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Rejected {
+    /// Its tip.
+    pub tip: u32,
+    /// Its vertex count.
+    pub vertices: usize,
+    /// Its fit's RMS |d| over the mean radius.
+    pub rms_d: f64,
+}
+
+/// A found part whose fitted sweep misses its surface by more than this RMS |d| (over the mean
+/// radius) is no limb and is left out of the rig.
+pub const MAX_RMS: f64 = 0.35;
+
+/// `mesh` with the vertices at bit-identical positions joined in its faces (the vertices stay,
+/// those joined away left without faces); `None` when no two are.
+fn welded(mesh: &Mesh) -> Option<Mesh> {
+    let weld = super::protrusions::weld(&mesh.positions);
+    if weld.iter().enumerate().all(|(v, &w)| w as usize == v) {
+        return None;
+    }
+    let mut faces = crate::mesh::Faces::new();
+    for face in mesh.faces.iter() {
+        let joined: Vec<u32> = face.iter().map(|&v| weld[v as usize]).collect();
+        let distinct = joined.iter().enumerate().all(|(i, v)| !joined[..i].contains(v));
+        if distinct {
+            faces.push(&joined);
+        }
+    }
+    Mesh::from_parts(mesh.positions.clone(), faces, Vec::new()).ok()
 }

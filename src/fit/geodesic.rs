@@ -64,6 +64,13 @@ impl EdgeGraph {
     /// The edge-path distance of every vertex from the nearest of `sources` (0 at a source,
     /// `f64::INFINITY` where no path reaches).
     pub fn distances(&self, sources: &[u32]) -> Vec<f64> {
+        self.distances_within(sources, f64::INFINITY)
+    }
+
+    /// [`EdgeGraph::distances`] up to `limit`: every vertex whose distance is at most `limit`
+    /// gets it, the others (which the search stops before settling) `f64::INFINITY` or a
+    /// distance above `limit`.
+    pub fn distances_within(&self, sources: &[u32], limit: f64) -> Vec<f64> {
         let mut distance = vec![f64::INFINITY; self.len()];
         let mut queue = BinaryHeap::new();
         for &s in sources {
@@ -73,6 +80,9 @@ impl EdgeGraph {
             }
         }
         while let Some(Pending { distance: d, vertex }) = queue.pop() {
+            if d > limit {
+                break;
+            }
             if d > distance[vertex as usize] {
                 continue;
             }
@@ -129,6 +139,16 @@ mod tests {
         let d = graph.distances(&[0, 1, 6, 7]);
         assert_eq!(d[2], 1.0);
         assert_eq!(d[4], 1.0);
+    }
+
+    #[test]
+    fn a_bounded_search_settles_the_vertices_within_its_limit() {
+        let positions: Vec<DVec3> = (0..6).map(|i| DVec3::new(i as f64, 0.0, 0.0)).collect();
+        let triangles: Vec<[u32; 3]> = (0..5u32).map(|i| [i, i + 1, i]).collect();
+        let graph = EdgeGraph::new(&positions, &triangles);
+        let d = graph.distances_within(&[0], 2.5);
+        assert_eq!(&d[..3], &[0.0, 1.0, 2.0]);
+        assert!(d[3..].iter().all(|&x| x > 2.5), "{d:?}");
     }
 
     #[test]

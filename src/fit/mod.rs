@@ -55,6 +55,7 @@ mod error;
 pub mod falloff;
 pub mod frames;
 pub mod geodesic;
+pub mod limb;
 pub mod part;
 pub mod protrusions;
 pub mod quality;

@@ -18,11 +18,13 @@
 //!    level g(v), with persistence g(tip) − g(v). The farthest tip's branch never ends: it
 //!    is closed at the highest level where a kept branch ends in it.
 //! 4. **Parts.** Branches with persistence at least `min_length` are kept, the longest first,
-//!    at most `max_parts`; each part is the tip's connected superlevel set at its end level,
-//!    trimmed where its cross-sections widen into the body, less vertices already in a longer
-//!    part; a part holding more than a quarter of its component is the body's far side and
-//!    is dropped. Low-persistence bumps (fingers, claws, a scan's
-//!    noise) stay inside the branch they end in.
+//!    at most `max_parts`; each part is its tip's limb ([`super::limb`]): the vertices nearer
+//!    the tip than where the level sets of distance from it open onto the body, the tip moved
+//!    to the limb's end along its skeleton so the cut is normal to the limb. A branch whose
+//!    level sets never open (a bump, the body's far side) gives no part; a part more than
+//!    half inside a longer one (a finger of a hand) stays in it; a part holding more than a
+//!    quarter of its component, unless it is the whole component (a spout that is a mesh
+//!    component of its own), is the body's far side and is dropped.
 //!
 //! Everything depends on edge lengths, connectivity and the order of distances (ties broken
 //! by vertex index), so a rigidly moved mesh gives the same parts.
@@ -32,6 +34,7 @@ use std::collections::HashMap;
 use glam::DVec3;
 
 use super::geodesic::EdgeGraph;
+use super::limb::aligned_limb;
 use crate::mesh::Mesh;
 
 /// A protrusion: a tip and the vertices of its branch.
@@ -84,7 +87,12 @@ pub fn protrusions(mesh: &Mesh, min_length: f64, max_parts: usize) -> Vec<Protru
         }
         found.extend(component_protrusions(mesh, &graph, &triangles, &component, min_length));
     }
-    found.sort_by(|a, b| b.length.total_cmp(&a.length).then(a.tip.cmp(&b.tip)));
+    // Longest first; lengths within rounding of each other (mirror twins, such as a pair of
+    // legs, whose lengths a rigid motion perturbs in the last bits) by tip index, so that a
+    // moved mesh names its parts alike.
+    let quantum = 1e-9 * found.iter().map(|p| p.length).fold(0.0, f64::max);
+    let rounded = |p: &Protrusion| if quantum > 0.0 { (p.length / quantum).round() as i64 } else { 0 };
+    found.sort_by(|a, b| rounded(b).cmp(&rounded(a)).then(a.tip.cmp(&b.tip)));
     found.truncate(max_parts);
     // Each welded vertex stands for every vertex at its position.
     let mut members: HashMap<u32, Vec<u32>> = HashMap::new();
@@ -97,6 +105,12 @@ pub fn protrusions(mesh: &Mesh, min_length: f64, max_parts: usize) -> Vec<Protru
     for part in &mut found {
         let mut vertices: Vec<u32> =
             part.vertices.iter().flat_map(|v| members.get(v).into_iter().flatten().chain([v])).copied().collect();
+        let before = vertices.len();
+        // A part mostly inside a longer one (a finger of a hand) stays in it.
+        if vertices.iter().filter(|&&v| taken[v as usize]).count() * 2 > before {
+            part.vertices.clear();
+            continue;
+        }
         vertices.retain(|&v| !std::mem::replace(&mut taken[v as usize], true));
         vertices.sort_unstable();
         part.vertices = vertices;
@@ -106,7 +120,7 @@ pub fn protrusions(mesh: &Mesh, min_length: f64, max_parts: usize) -> Vec<Protru
 }
 
 /// For each vertex, the first vertex at the same position (bit for bit).
-fn weld(positions: &[DVec3]) -> Vec<u32> {
+pub(crate) fn weld(positions: &[DVec3]) -> Vec<u32> {
     let mut first: HashMap<[u64; 3], u32> = HashMap::new();
     positions
         .iter()
@@ -170,77 +184,20 @@ fn component_protrusions(
         kept.push((eldest, eldest_end));
     }
     kept.into_iter()
-        .map(|(tip, end)| {
-            let region = flood(graph, tip, |v| g[v as usize] > end);
-            let vertices = trimmed(mesh, graph, triangles, tip, region);
-            Protrusion { vertices, tip, length: g[tip as usize] - end }
+        .filter_map(|(tip, end)| {
+            let length = g[tip as usize] - end;
+            let (vertices, tip) = aligned_limb(mesh, graph, triangles, tip, length, component.len())?;
+            Some(Protrusion { vertices, tip, length })
         })
-        .filter(|p| p.vertices.len() as f64 <= MAX_SHARE * component.len() as f64)
+        .filter(|p| {
+            p.vertices.len() as f64 <= MAX_SHARE * component.len() as f64 || p.vertices.len() == component.len()
+        })
         .collect()
-}
-
-/// The part of `region` (increasing) up to where its cross-sections widen into the body: the
-/// level sets of distance from the tip, cut at [`TRIM_LEVELS`] levels, are measured (their
-/// total length, the perimeter); the region is cut at the first level from [`TRIM_START`] on
-/// whose perimeter exceeds [`TRIM_JUMP`] × the largest of the [`TRIM_WINDOW`] before it.
-fn trimmed(mesh: &Mesh, graph: &EdgeGraph, triangles: &[[u32; 3]], tip: u32, region: Vec<u32>) -> Vec<u32> {
-    let d = graph.distances(&[tip]);
-    let mut inside = vec![false; mesh.positions.len()];
-    for &v in &region {
-        inside[v as usize] = true;
-    }
-    let reach = region.iter().map(|&v| d[v as usize]).fold(0.0, f64::max);
-    if reach <= 0.0 {
-        return region;
-    }
-    let step = reach / TRIM_LEVELS as f64;
-    let mut perimeter = vec![0.0; TRIM_LEVELS];
-    for t in triangles.iter().filter(|t| t.iter().all(|&v| inside[v as usize])) {
-        let h = t.map(|v| d[v as usize]);
-        let (lo, hi) = (h[0].min(h[1]).min(h[2]), h[0].max(h[1]).max(h[2]));
-        let first = (lo / step).floor() as usize + 1;
-        let last = ((hi / step).ceil() as usize).min(TRIM_LEVELS);
-        for (k, sum) in perimeter.iter_mut().enumerate().take(last).skip(first) {
-            let level = k as f64 * step;
-            let mut ends = Vec::with_capacity(2);
-            for e in 0..3 {
-                let (a, b) = (e, (e + 1) % 3);
-                if (h[a] < level) != (h[b] < level) {
-                    let (pa, pb) = (mesh.positions[t[a] as usize], mesh.positions[t[b] as usize]);
-                    ends.push(pa + (pb - pa) * ((level - h[a]) / (h[b] - h[a])));
-                }
-            }
-            if let [a, b] = ends[..] {
-                *sum += a.distance(b);
-            }
-        }
-    }
-    let cut = (TRIM_START..TRIM_LEVELS).find(|&k| {
-        let before = perimeter[k - TRIM_WINDOW..k].iter().copied().fold(0.0, f64::max);
-        before > 0.0 && perimeter[k] > TRIM_JUMP * before
-    });
-    match cut {
-        Some(k) => {
-            let level = (k as f64 - 0.5) * step;
-            region.into_iter().filter(|&v| d[v as usize] < level).collect()
-        }
-        None => region,
-    }
 }
 
 /// A part holds at most this share of its component's vertices: more is the body's far side
 /// (the eldest branch of a body with short protrusions, such as the bunny's back), not a limb.
 const MAX_SHARE: f64 = 0.25;
-/// Levels of distance from a part's tip at which its cross-sections are measured.
-const TRIM_LEVELS: usize = 40;
-/// The first level at which a part may be cut (a part is at least this many levels long,
-/// past a hand's or a foot's widening below its fingers or toes).
-const TRIM_START: usize = 10;
-/// The levels before a level whose widest section it is compared with.
-const TRIM_WINDOW: usize = 4;
-/// A cross-section this many times the widest of the [`TRIM_WINDOW`] before it meets the body.
-const TRIM_JUMP: f64 = 1.5;
-
 /// The branches of the merge tree of superlevel sets of `g` over `component` and the
 /// eldest tip (the farthest vertex).
 fn merge_tree(graph: &EdgeGraph, component: &[u32], g: &[f64]) -> (Vec<Branch>, u32) {

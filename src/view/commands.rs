@@ -1,5 +1,5 @@
 //! Keyboard and panel commands: settings, undo and redo, saving and loading, fitting a sweep to
-//! the selected part, and the volumes the panel shows.
+//! the selected part or rigging the whole mesh, and the volumes the panel shows.
 
 use std::io::Write;
 use std::path::Path;
@@ -10,6 +10,7 @@ use super::draw::MeshDraw;
 use super::gesture::KeyTool;
 use super::input::Command;
 use crate::edit::{DragMode, KeyMode, VolumeRule};
+use crate::fit::autorig::{AutorigOptions, autorig};
 use crate::fit::{FitOptions, fit};
 use crate::mesh::write_atomically;
 
@@ -61,6 +62,10 @@ impl App {
             Command::RotateTool => self.panel.tool = KeyTool::Rotate,
             Command::ScaleTool => self.panel.tool = KeyTool::Scale,
             Command::Fit => self.fit_part(),
+            Command::AutoRig => {
+                let outcome = self.try_auto_rig();
+                self.report(outcome.map_err(|e| e.to_string()));
+            }
             Command::ResetCamera => {
                 let (min, max) = self.model.mesh.bounds();
                 let size = self.size();
@@ -215,6 +220,34 @@ impl App {
             100.0 * q.rms_d,
             fitted.falloff
         ))
+    }
+
+    /// Rigs the loaded mesh as `sweepffd autorig` does with its defaults
+    /// ([`crate::fit::autorig::autorig`]): one fitted sweep per protrusion, replacing the rig;
+    /// a mesh with none keeps its rig and says so.
+    fn try_auto_rig(&mut self) -> Result<String, ViewError> {
+        let rigged = autorig(&self.model.mesh, &AutorigOptions::default())
+            .map_err(|e| ViewError::Input(format!("auto-rig: {e}")))?;
+        if rigged.parts.is_empty() {
+            return Ok("auto-rig found no protrusion; the rig is unchanged".to_string());
+        }
+        self.model.set_rig(rigged.document(), None)?;
+        if let Some(running) = &mut self.running {
+            let model = &self.model;
+            let rig = model.rig.as_ref().map(|r| (r, &model.owners[..], &model.bands[..]));
+            running.mesh = MeshDraw::new(&running.gpu.context, &model.mesh, rig)?;
+        }
+        self.part = None;
+        self.show_part();
+        self.selected_key = None;
+        self.pose_changed = true;
+        self.measure_rest_volumes();
+        let parts: Vec<String> = rigged
+            .parts
+            .iter()
+            .map(|p| format!("{} ({} vertices, RMS |d| {:.1}%)", p.name, p.vertices.len(), 100.0 * p.fit.quality.rms_d))
+            .collect();
+        Ok(format!("auto-rig: {} sweeps: {}", parts.len(), parts.join(", ")))
     }
 
     /// The rest volumes of the sweeps (Eq. 1) and of the mesh.

@@ -63,6 +63,8 @@ pub enum Command {
     ScaleTool,
     /// F: fit a sweep to the selected part.
     Fit,
+    /// A: rig the whole mesh, one fitted sweep per protrusion (`sweepffd autorig`).
+    AutoRig,
     /// Home: frame the mesh again.
     ResetCamera,
     /// Escape: cancel the gesture, clear the selection.
@@ -91,6 +93,7 @@ impl Command {
             ("r", ..) => Command::RotateTool,
             ("s", ..) => Command::ScaleTool,
             ("f", ..) => Command::Fit,
+            ("a", ..) => Command::AutoRig,
             ("home", ..) => Command::ResetCamera,
             ("escape", ..) => Command::Cancel,
             _ => return None,

@@ -278,6 +278,9 @@ fn fitting(ui: &mut egui::Ui, facts: &PanelFacts, state: &mut PanelState, action
             ui.label("nothing selected");
         }
     }
+    if ui.button("Auto-rig (A)").on_hover_text("one fitted sweep per protrusion, replacing the rig").clicked() {
+        actions.push(PanelAction::Command(Command::AutoRig));
+    }
     ui.horizontal_wrapped(|ui| {
         ui.label("rig");
         ui.add(egui::TextEdit::singleline(&mut state.rig_path).desired_width(130.0));
