@@ -12,23 +12,7 @@ use sweepffd::fit::autorig::{Autorig, AutorigOptions, RiggedPart, autorig};
 use sweepffd::fit::largest_connected;
 use sweepffd::mesh::{Faces, Mesh};
 
-/// Prints each part of `rigged`, found on `mesh` (named `name`): vertices, tip, keys, fit
-/// quality and time.
-fn print_parts(name: &str, mesh: &Mesh, rigged: &Autorig) {
-    for part in &rigged.parts {
-        let q = part.fit.quality;
-        eprintln!(
-            "{name} {}: {} vertices, tip {:.3}, {} keys, RMS |d| {:.2}%, max {:.1}%, {:.3} s",
-            part.name,
-            part.vertices.len(),
-            mesh.positions[part.tip as usize],
-            part.fit.keys.len(),
-            100.0 * q.rms_d,
-            100.0 * q.max_d,
-            part.seconds
-        );
-    }
-}
+use common::autorig_report::print_parts;
 
 /// A UV sphere of radius 1: `rings` − 1 latitude rings of `around` vertices and two poles.
 fn sphere(rings: u32, around: u32) -> Mesh {

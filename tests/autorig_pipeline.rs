@@ -13,55 +13,13 @@ mod star;
 
 use std::path::PathBuf;
 
-use glam::{DQuat, DVec3};
+use glam::DVec3;
 use sweepffd::deform::deform_vertices;
-use sweepffd::edit::{Edit, KeyMode, Posing};
 use sweepffd::fit::autorig::{AutorigOptions, autorig};
 use sweepffd::mesh::Mesh;
 use sweepffd::rig::Rig;
-use sweepffd::sweep::Key;
 
-/// The direction, in the plane of `key`, of its widest diameter: bending about it folds the
-/// part across its thin side.
-fn widest_axis(key: &Key) -> DVec3 {
-    let m = key.radii.len();
-    let diameter = |j: usize| key.radii[j] + key.radii[(j + m / 2) % m];
-    let widest = (0..m).max_by(|&a, &b| diameter(a).total_cmp(&diameter(b))).unwrap_or(0);
-    let theta = std::f64::consts::TAU * widest as f64 / m as f64;
-    key.rotation.normalize() * DVec3::new(theta.cos(), theta.sin(), 0.0)
-}
-
-/// Every sweep's middle key turned by `degrees` about its widest diameter, the keys after it
-/// following (local mode).
-fn bent(rig: &Rig, degrees: f64) -> Vec<Vec<Key>> {
-    let mut posing = Posing::new(rig);
-    for sweep in rig.sweeps() {
-        let key = sweep.keys.len() / 2;
-        let axis = widest_axis(&sweep.keys[key]);
-        posing
-            .apply(&Edit::MoveKey {
-                sweep: sweep.name.clone(),
-                key,
-                translate: [0.0; 3],
-                rotate: DQuat::from_axis_angle(axis, degrees.to_radians()).to_array(),
-                mode: KeyMode::Local,
-            })
-            .unwrap();
-    }
-    posing.keys().to_vec()
-}
-
-/// The largest deformed / rest length over the mesh's edges of nonzero rest length that
-/// `counts`.
-fn largest_stretch(mesh: &Mesh, posed: &[DVec3], counts: impl Fn(u32, u32) -> bool) -> f64 {
-    let rest = &mesh.positions;
-    mesh.faces
-        .triangles()
-        .flat_map(|[a, b, c]| [(a, b), (b, c), (c, a)])
-        .filter(|&(a, b)| rest[a as usize] != rest[b as usize] && counts(a, b))
-        .map(|(a, b)| posed[a as usize].distance(posed[b as usize]) / rest[a as usize].distance(rest[b as usize]))
-        .fold(0.0, f64::max)
-}
+use common::bends::{largest_stretch, turned_keys};
 
 /// Rigs `mesh`, bends every part by 45° at its middle key and checks the deformation; returns
 /// the largest edge stretch.
@@ -72,7 +30,7 @@ fn bend_every_part(name: &str, mesh: &Mesh, expected_parts: usize) -> f64 {
     let rig = Rig::from_document(&document, None).unwrap();
     let owners = rig.owners(mesh, name).unwrap();
     let bindings = rig.bind_mesh(mesh, &owners, &|_| {});
-    let keys = bent(&rig, 45.0);
+    let keys = turned_keys(&rig, true, 45.0);
     let posed = rig.pose(&keys).unwrap();
     let mut out = vec![DVec3::ZERO; mesh.positions.len()];
     deform_vertices(rig.rest(), &posed, &bindings, &mesh.positions, &mut out);
@@ -105,8 +63,8 @@ fn bend_every_part(name: &str, mesh: &Mesh, expected_parts: usize) -> f64 {
             (knots[middle - 1]..=knots[middle + 1]).contains(&binding.params.t)
         }
     };
-    let stretch = largest_stretch(mesh, &out, |a, b| !crease(a) && !crease(b));
-    let in_crease = largest_stretch(mesh, &out, |a, b| crease(a) || crease(b));
+    let (stretch, _) = largest_stretch(mesh, &out, |(a, b)| !crease(a) && !crease(b));
+    let (in_crease, _) = largest_stretch(mesh, &out, |(a, b)| crease(a) || crease(b));
     eprintln!(
         "{name}: {} parts bent 45° at the middle key; largest edge stretch {stretch:.3} outside the bends' creases \
          ({in_crease:.3} in them); {} unowned body vertices kept",

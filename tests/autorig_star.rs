@@ -3,6 +3,8 @@
 //! tip, and each part's fitted key centers (within 2% of the tube's radius) and first-guess
 //! skeleton (within 3%) lie on the tube's axis.
 
+#[path = "common/autorig_report.rs"]
+mod autorig_report;
 #[path = "common/star.rs"]
 mod star;
 
@@ -12,6 +14,7 @@ use sweepffd::fit::largest_connected;
 use sweepffd::fit::part::Part;
 use sweepffd::fit::skeleton::skeleton;
 
+use autorig_report::print_parts;
 use star::{TUBE_RADIUS, Tube, off_axis, star_mesh, tubes};
 
 /// The tube whose axis the direction of `p` from the center is nearest.
@@ -55,19 +58,7 @@ fn the_star_mesh_is_closed_and_connected() {
 fn the_star_gets_exactly_its_five_tubes_each_on_its_axis() {
     let mesh = star_mesh(0.06);
     let rigged = autorig(&mesh, &AutorigOptions::default()).unwrap();
-    for part in &rigged.parts {
-        let q = part.fit.quality;
-        eprintln!(
-            "star {}: {} vertices, tip {:.3}, {} keys, RMS |d| {:.2}%, max {:.1}%, {:.3} s",
-            part.name,
-            part.vertices.len(),
-            mesh.positions[part.tip as usize],
-            part.fit.keys.len(),
-            100.0 * q.rms_d,
-            100.0 * q.max_d,
-            part.seconds
-        );
-    }
+    print_parts("star", &mesh, &rigged);
     assert_eq!(rigged.parts.len(), 5, "one part per tube");
     let mut found = [false; 5];
     for part in &rigged.parts {

@@ -4,11 +4,10 @@
 
 mod common;
 
-use glam::{DQuat, DVec3};
+use glam::DVec3;
 use sweepffd::bind::MeshBindings;
 use sweepffd::cpu;
 use sweepffd::deform::deform_vertices;
-use sweepffd::edit::{Edit, KeyMode, Posing};
 use sweepffd::fit::attached::reversed;
 use sweepffd::fit::{FitOptions, fit, largest_connected};
 use sweepffd::gpu::BindingSource;
@@ -16,6 +15,8 @@ use sweepffd::mesh::Mesh;
 use sweepffd::rig::{Rig, RigSweep, VertexSelection};
 use sweepffd::sweep::Key;
 use sweepffd::synthetic::BendTwistTaper;
+
+use common::bends::{largest_stretch, turned_keys};
 
 /// The bunny's ear that bends towards −z (as the zipper scan is oriented, y up).
 fn bunny_front_ear(p: DVec3) -> bool {
@@ -64,65 +65,12 @@ fn fitted_rig(mesh: &Mesh, parts: &[(&str, Vec<u32>)], falloff: Option<f64>, key
     Rig::new(sweeps).unwrap()
 }
 
-/// The direction, in the plane of `key`, of its widest diameter: bending about it folds the
-/// part across its thin side, as an ear folds.
-fn widest_axis(key: &Key) -> DVec3 {
-    let m = key.radii.len();
-    let diameter = |j: usize| key.radii[j] + key.radii[(j + m / 2) % m];
-    let widest = (0..m).max_by(|&a, &b| diameter(a).total_cmp(&diameter(b))).unwrap_or(0);
-    let theta = std::f64::consts::TAU * widest as f64 / m as f64;
-    key.rotation.normalize() * DVec3::new(theta.cos(), theta.sin(), 0.0)
-}
-
+/// Every mesh edge once.
 /// The two poses of the acceptance, for every sweep at once: key 0 turned by 30° about its
 /// local x axis, and the middle key bent by 60° about its widest diameter; both local (the keys
 /// after the edited one follow).
 fn poses(rig: &Rig) -> Vec<(&'static str, Vec<Vec<Key>>)> {
-    let turned = |middle: bool, degrees: f64| {
-        let mut posing = Posing::new(rig);
-        for sweep in rig.sweeps() {
-            let key = if middle { sweep.keys.len() / 2 } else { 0 };
-            let axis =
-                if middle { widest_axis(&sweep.keys[key]) } else { sweep.keys[key].rotation.normalize() * DVec3::X };
-            posing
-                .apply(&Edit::MoveKey {
-                    sweep: sweep.name.clone(),
-                    key,
-                    translate: [0.0; 3],
-                    rotate: DQuat::from_axis_angle(axis, degrees.to_radians()).to_array(),
-                    mode: KeyMode::Local,
-                })
-                .unwrap();
-        }
-        posing.keys().to_vec()
-    };
-    vec![("key 0 turned 30°", turned(false, 30.0)), ("middle key bent 60°", turned(true, 60.0))]
-}
-
-/// Every mesh edge once.
-fn edges(mesh: &Mesh) -> Vec<(u32, u32)> {
-    let mut edges: Vec<(u32, u32)> = mesh
-        .faces
-        .triangles()
-        .flat_map(|[a, b, c]| [(a, b), (b, c), (c, a)])
-        .map(|(a, b)| (a.min(b), a.max(b)))
-        .collect();
-    edges.sort_unstable();
-    edges.dedup();
-    edges
-}
-
-/// The largest deformed / rest length over the edges of the mesh that `counts`, and its edge.
-fn largest_stretch(mesh: &Mesh, posed: &[DVec3], counts: impl Fn((u32, u32)) -> bool) -> (f64, (u32, u32)) {
-    let rest = &mesh.positions;
-    edges(mesh)
-        .into_iter()
-        .filter(|&(a, b)| rest[a as usize] != rest[b as usize] && counts((a, b)))
-        .map(|(a, b)| {
-            let (i, j) = (a as usize, b as usize);
-            (posed[i].distance(posed[j]) / rest[i].distance(rest[j]), (a, b))
-        })
-        .fold((0.0, (0, 0)), |best, next| if next.0 > best.0 { next } else { best })
+    vec![("key 0 turned 30°", turned_keys(rig, false, 30.0)), ("middle key bent 60°", turned_keys(rig, true, 60.0))]
 }
 
 /// The largest turn of a triangle's normal between rest and pose, over the triangles with a

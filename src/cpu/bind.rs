@@ -196,17 +196,29 @@ pub fn bind_vertex(inputs: &BindInputs, flagged_owner: u32, v: Vec3) -> GpuBindi
     for k in 0..sweep.segment_count {
         roots_on_segment(inputs, sweep.first_segment + k, sweep.first_cell + k * sweep.samples, v, &mut nearest);
     }
-    if !nearest.found {
-        // Beyond an end: the nearer of C(0) and C(1).
+    binding_at(inputs, sweep, nearest.found.then_some((nearest.cell, nearest.s)), v, band)
+}
+
+/// The end of [`bind_vertex`] for vertex `v` of sweep `sweep` once its nearest root is known:
+/// `nearest` is the first cell of the root's knot interval and its local s, or `None` when there
+/// is no root (beyond an end: the nearer of C(0) and C(1)); then θ, the cell and φ,
+/// d = |v̂_xy| − r(θ, t) and h = v̂_z with v̂ = R(t)ᵀ·(v − C(t)). `band` is the owner's
+/// [`BAND_FLAG`], kept in the cell.
+pub fn binding_at(
+    inputs: &BindInputs,
+    sweep: SweepInfo,
+    nearest: Option<(u32, f32)>,
+    v: Vec3,
+    band: u32,
+) -> GpuBinding {
+    let (cell, s) = nearest.unwrap_or_else(|| {
         let last = sweep.first_cell + (sweep.segment_count - 1) * sweep.samples;
         let to_start = v - curve_at(&inputs.cells[sweep.first_cell as usize], 0.0);
         let to_end = v - curve_at(&inputs.cells[last as usize], 1.0);
-        if to_end.dot(to_end) < to_start.dot(to_start) {
-            nearest = Nearest { cell: last, s: 1.0, distance2: 0.0, found: true };
-        }
-    }
-    let interval = &inputs.cells[nearest.cell as usize];
-    let local = rotate_inverse(quat_at(interval, nearest.s), v - curve_at(interval, nearest.s));
+        if to_end.dot(to_end) < to_start.dot(to_start) { (last, 1.0) } else { (sweep.first_cell, 0.0) }
+    });
+    let interval = &inputs.cells[cell as usize];
+    let local = rotate_inverse(quat_at(interval, s), v - curve_at(interval, s));
     // The interval's first cell is turned by its middle angle π/M. On the axis θ is arbitrary:
     // every path pins it to 0.
     let mut theta = 0.0;
@@ -222,9 +234,8 @@ pub fn bind_vertex(inputs: &BindInputs, flagged_owner: u32, v: Vec3) -> GpuBindi
     let x = theta * (sweep.samples as f32 / TAU);
     let j = (x as u32).min(sweep.samples - 1);
     let phi = (x - j as f32).clamp(0.0, 1.0);
-    let cell = nearest.cell + j;
-    let r = radius_at(&inputs.cells[cell as usize], nearest.s, phi);
-    GpuBinding { cell: cell | band, s: nearest.s, phi, d: local.truncate().length() - r, h: local.z }
+    let r = radius_at(&inputs.cells[(cell + j) as usize], s, phi);
+    GpuBinding { cell: (cell + j) | band, s, phi, d: local.truncate().length() - r, h: local.z }
 }
 
 /// The bindings of `positions` (tightly packed xyz) owned by `owners[i]` to the rest sweeps

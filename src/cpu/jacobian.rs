@@ -85,21 +85,16 @@ pub fn normal_coordinates(cell: &CellCoeffs, binding: &GpuBinding, n: Vec3) -> V
     }
     let m = det.signum() * Vec3::new(a.dot(n), b.dot(n), c.dot(n));
     let mode = if beyond_end { NORMAL_BEYOND_END } else { NORMAL_JACOBIAN };
-    normalize_or_zero(m).extend(mode)
+    m.normalize_or_zero().extend(mode)
 }
 
 /// The deformed unit normal (zero where the deformation degenerates) of a vertex whose frame
 /// on its posed `cell` is `frame`, from its normal coordinates record.
 pub fn deformed_normal(cell: &CellCoeffs, binding: &GpuBinding, frame: &PointFrame, coordinates: Vec4) -> Vec3 {
     if coordinates.w == NORMAL_FRAME {
-        return normalize_or_zero(rotate(quat_at(cell, binding.s), coordinates.xyz()));
+        return rotate(quat_at(cell, binding.s), coordinates.xyz()).normalize_or_zero();
     }
-    normalize_or_zero(cofactor_times(frame, coordinates.xyz()))
-}
-
-fn normalize_or_zero(v: Vec3) -> Vec3 {
-    let length2 = v.dot(v);
-    if length2 > 0.0 { v * (1.0 / length2.sqrt()) } else { Vec3::ZERO }
+    cofactor_times(frame, coordinates.xyz()).normalize_or_zero()
 }
 
 /// Every invocation of `shaders/normal_coords.wgsl`: the normal coordinates record of each

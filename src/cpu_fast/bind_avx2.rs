@@ -4,7 +4,7 @@
 //! interval's single root, in registers of eight vertices, with the statements (and the
 //! rounding: no fused multiply-adds, so s is the twin's bit for bit) of [`crate::cpu::bind`];
 //! then each vertex's θ, cell, φ, d and h from its nearest root, in registers when the eight roots
-//! lie on one knot interval (to rounding), else one by one by [`super::bind::finish`].
+//! lie on one knot interval (to rounding), else one by one by [`crate::cpu::bind::binding_at`].
 //!
 //! A vertex whose interval needs subdivision (more than one sign variation), or whose quintic
 //! vanishes exactly at an end of an interval, is bound again by the twin alone
@@ -12,10 +12,9 @@
 
 use std::arch::x86_64::*;
 
-use super::bind::finish;
 use super::lanes8::{F8, add, cubic, mul, splat, sub, to_array};
 use crate::coeffs::{BAND_FLAG, BindSegment, GpuBinding, SweepInfo, UNOWNED};
-use crate::cpu::bind::{BindInputs, bind_vertex};
+use crate::cpu::bind::{BindInputs, bind_vertex, binding_at};
 use crate::cpu::position;
 use crate::cpu::sweep_eval::radius_at;
 
@@ -251,7 +250,7 @@ fn bind_batch(inputs: &BindInputs, sweep: SweepInfo, owners: &[u32; LANES], v: [
         } else {
             let nearest =
                 (found & (1 << lane) != 0).then(|| (sweep.first_cell + k[lane] as u32 * sweep.samples, s[lane]));
-            finish(inputs, sweep, nearest, p, owners[lane] & BAND_FLAG)
+            binding_at(inputs, sweep, nearest, p, owners[lane] & BAND_FLAG)
         };
     }
 }
@@ -263,7 +262,7 @@ fn lane_position(v: &[F8; 3], lane: usize) -> glam::Vec3 {
     glam::Vec3::new(to_array(v[0])[lane], to_array(v[1])[lane], to_array(v[2])[lane])
 }
 
-/// [`finish`] for eight vertices whose nearest roots lie on one knot interval (first cell
+/// [`binding_at`] for eight vertices whose nearest roots lie on one knot interval (first cell
 /// `interval`), at local parameters `s`: the same statements in registers (rounded
 /// differently: this part of the binding is the twin's to rounding, not bit for bit), the
 /// radius of each vertex's cell broadcast when the eight share it and read lane by lane when not.

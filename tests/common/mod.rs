@@ -164,6 +164,8 @@ pub fn sweepffd(dir: &std::path::Path) -> std::process::Command {
     command
 }
 
+pub mod autorig_report;
+pub mod bends;
 pub mod falloff_tubes;
 mod teapot;
 mod twin;
