@@ -80,14 +80,19 @@ struct DispatchParams {
     _pad: u32,
 }
 
-// The deform and band kernels run over every instance at once, one workgroup layer z each:
-// instance first_instance + z reads its cells at (first_instance + z) * cells_per_instance and
-// writes its positions z * instance_stride floats into the dispatch's window.
+// The deform and band kernels run over every instance at once, one workgroup layer z each (or
+// instance_count instances numbered flat, deform_instances_main): instance first_instance + z
+// reads its cells at (first_instance + z) * cells_per_instance and writes its positions
+// z * instance_stride floats into the dispatch's window.
 struct InstanceParams {
     vertex_count: u32,
     cells_per_instance: u32,
     instance_stride: u32,
     first_instance: u32,
+    instance_count: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 // Linear-blend-skinning baseline: four joint indices and four unorm8 weights, packed in bytes.

@@ -131,6 +131,35 @@ fn many_instances_with_falloff_bands_in_the_storage_variant_equal_single_deforme
     instances_equal_single_deformers(40, &tube.mesh(), &attached_tube_rig(&tube, 8, 16, 0.6));
 }
 
+/// The instanced deform kernel numbers its invocations flat over instances × vertices, so one
+/// workgroup of 128 spans several instances of a small mesh (here 18 vertices: up to 9) or
+/// the end of one and the start of the next (here 130 vertices); every instance still equals,
+/// bit for bit, a one-instance deformer posed the same.
+#[test]
+fn instances_numbered_flat_across_workgroups_equal_single_deformers_bit_for_bit() {
+    let Some(context) = common::gpu() else { return };
+    for (around, n) in [(8, 37), (64, 11)] {
+        let tube = Tube { rings: 2, around, length: 1.0, radius: 0.3 };
+        let (mesh, rig) = (tube.mesh(), tube_rig(&tube, 4, 8));
+        let owners = rig.owners(&mesh, "tube").unwrap();
+        let positions = sweepffd::gpu::rest_positions(&mesh.positions);
+        let base = descriptor(&rig, &positions, &owners);
+        let mut many = GpuDeformer::new(context, &base.with_instances(n)).unwrap();
+        let mut one = GpuDeformer::new(context, &base).unwrap();
+        for i in 0..n {
+            many.set_pose(i, &pose(&rig, i as usize, n as usize)).unwrap();
+        }
+        encode_and_submit(context, &mut many);
+        let all = read_all(context, &many, many.positions());
+        for i in 0..n {
+            one.deform(&pose(&rig, i as usize, n as usize)).unwrap();
+            let vertices = mesh.positions.len();
+            assert!(all[i as usize] == one.read_positions().unwrap(), "{vertices} vertices × {n}: instance {i}");
+        }
+        assert_ne!(all[0], all[n as usize - 1], "the poses move the vertices differently");
+    }
+}
+
 #[test]
 fn a_pose_for_an_instance_that_does_not_exist_is_refused() {
     let Some(context) = common::gpu() else { return };

@@ -178,9 +178,10 @@ pub struct DispatchParams {
 }
 
 /// Per-dispatch constants of the deform and band kernels, which run over every instance of a
-/// mesh at once (one workgroup layer z per instance): instance `first_instance + z` reads its
-/// cell records at `(first_instance + z) · cells_per_instance` and writes its positions
-/// `z · instance_stride` floats into the dispatch's window. 16 bytes.
+/// mesh at once (one workgroup layer z per instance, or `instance_count` instances numbered
+/// flat for the instanced deform kernel): instance `first_instance + z` reads its cell records
+/// at `(first_instance + z) · cells_per_instance` and writes its positions
+/// `z · instance_stride` floats into the dispatch's window. 32 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Pod, Zeroable)]
 pub struct InstanceParams {
@@ -192,6 +193,14 @@ pub struct InstanceParams {
     pub instance_stride: u32,
     /// The instance of workgroup layer z = 0.
     pub first_instance: u32,
+    /// Instances in this dispatch (read by the flat-numbered instanced deform kernel).
+    pub instance_count: u32,
+    /// Unused.
+    pub _pad0: u32,
+    /// Unused.
+    pub _pad1: u32,
+    /// Unused.
+    pub _pad2: u32,
 }
 
 /// One vertex's skinning influences for the linear-blend-skinning baseline: four joint
@@ -220,7 +229,7 @@ const _: () = assert!(size_of::<SweepInfo>() == 16);
 const _: () = assert!(size_of::<BindSegment>() == 96);
 const _: () = assert!(size_of::<GpuBinding>() == 20);
 const _: () = assert!(size_of::<DispatchParams>() == 16);
-const _: () = assert!(size_of::<InstanceParams>() == 16);
+const _: () = assert!(size_of::<InstanceParams>() == 32);
 const _: () = assert!(size_of::<BandRecord>() == 16);
 const _: () = assert!(size_of::<BandFlag>() == 16);
 const _: () = assert!(size_of::<SkinInfluence>() == 8);

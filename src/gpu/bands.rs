@@ -18,7 +18,7 @@ use super::GpuContext;
 use super::binder::Binder;
 use super::buffers::{empty_binding_buffer, params_buffer, upload_positions};
 use super::chunks::{ChunkLimits, dispatch_grid};
-use super::deformer::instances::{InstanceDispatch, PosedCells, PositionTargets};
+use super::deformer::instances::{InstanceDispatch, Numbering, PosedCells, PositionTargets};
 use super::kernels::{DeformVariant, Kernel};
 use super::readback::read_bytes;
 use crate::bind::falloff::BandWeight;
@@ -142,6 +142,7 @@ impl BandStage {
                 plan.targets,
                 range,
                 count,
+                Numbering::Layered,
                 plan.limits,
                 |params, cells, _, _, out| {
                     kernel.bind_group(

@@ -17,7 +17,7 @@ use std::sync::Arc;
 
 use self::bounds::BoundsStage;
 use self::descriptor::triangle_faces;
-use self::instances::{InstanceDispatch, PosedCells, PositionTargets};
+use self::instances::{InstanceDispatch, Numbering, PosedCells, PositionTargets};
 use self::normal_coords::NormalCoordinates;
 use self::set_bands::{BandMember, Rebanding};
 use self::uploads::PoseUploads;
@@ -142,7 +142,7 @@ impl DeformChunk {
     #[expect(clippy::too_many_arguments, reason = "the chunk's inputs, each used once")]
     fn new(
         device: &wgpu::Device,
-        kernel: &Kernel,
+        (kernel, numbering): (&Kernel, Numbering),
         range: Range<u32>,
         bindings: wgpu::Buffer,
         cells: &PosedCells,
@@ -157,6 +157,7 @@ impl DeformChunk {
             targets,
             &range,
             count,
+            numbering,
             limits,
             |params, cells, parity, group, out| {
                 let mut resources = vec![params.as_entire_binding(), cells, bindings.as_entire_binding(), out];
@@ -267,9 +268,12 @@ impl GpuDeformer {
         let cells = PosedCells::new(device, &coefficients.cells, instances, variant);
         let uploads = PoseUploads::new(device, cells.used_bytes, pose_uploads);
         let rest_cells = cells_buffer(device, &coefficients, variant);
-        let kernel = match jacobian_normals {
-            true => context.kernels().deform_normals(device, variant),
-            false => context.kernels().deform(device, variant),
+        // Several instances of the plain kernel are numbered flat: with one workgroup layer per
+        // instance, a small mesh's last workgroup of every instance runs nearly empty.
+        let (kernel, numbering) = match (jacobian_normals, instances > 1) {
+            (true, _) => (context.kernels().deform_normals(device, variant), Numbering::Layered),
+            (false, false) => (context.kernels().deform(device, variant), Numbering::Layered),
+            (false, true) => (context.kernels().deform_instances(device, variant), Numbering::Flat),
         };
         let mut encoder =
             device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd bind") });
@@ -359,8 +363,16 @@ impl GpuDeformer {
                     coordinates
                 });
                 let normals = coordinates.as_ref().map(|c| (&c.buffer, &normals[..]));
-                let chunk =
-                    DeformChunk::new(device, &kernel, range, bindings_buffer, &cells, &targets, normals, &limits);
+                let chunk = DeformChunk::new(
+                    device,
+                    (&kernel, numbering),
+                    range,
+                    bindings_buffer,
+                    &cells,
+                    &targets,
+                    normals,
+                    &limits,
+                );
                 (chunk, coordinates)
             })
             .collect();

@@ -15,6 +15,7 @@ type Slot = OnceLock<Arc<Kernel>>;
 pub(crate) struct KernelCache {
     bind: Slot,
     deform: [Slot; 2],
+    deform_instances: [Slot; 2],
     deform_normals: [Slot; 2],
     normal_coords: [Slot; 2],
     band: [Slot; 2],
@@ -51,6 +52,11 @@ impl KernelCache {
     /// `shaders/deform.wgsl` for cell records of `variant`.
     pub(crate) fn deform(&self, device: &wgpu::Device, variant: DeformVariant) -> Arc<Kernel> {
         self.get(&self.deform[variant_index(variant)], || kernels::deform(device, variant))
+    }
+
+    /// `shaders/deform.wgsl`'s flat-numbered instances kernel for cell records of `variant`.
+    pub(crate) fn deform_instances(&self, device: &wgpu::Device, variant: DeformVariant) -> Arc<Kernel> {
+        self.get(&self.deform_instances[variant_index(variant)], || kernels::deform_instances(device, variant))
     }
 
     /// `shaders/deform_normals.wgsl` for cell records of `variant`.

@@ -130,6 +130,23 @@ pub fn deform(device: &wgpu::Device, variant: DeformVariant) -> Kernel {
     Kernel::new(device, "sweepffd deform", source, "deform_main", &[Uniform, cells, Read, ReadWrite])
 }
 
+/// `shaders/deform.wgsl`'s `deform_instances_main`, the deform kernel of several instances
+/// numbered flat (one invocation per vertex of each instance, no workgroup layers): the same
+/// bindings and arithmetic as [`deform`].
+pub fn deform_instances(device: &wgpu::Device, variant: DeformVariant) -> Kernel {
+    let (source, cells) = match variant {
+        DeformVariant::Uniform => (shaders::DEFORM_UNIFORM, Uniform),
+        DeformVariant::Storage => (shaders::DEFORM_STORAGE, Read),
+    };
+    Kernel::new(
+        device,
+        "sweepffd deform instances",
+        source,
+        "deform_instances_main",
+        &[Uniform, cells, Read, ReadWrite],
+    )
+}
+
 /// `shaders/deform_normals.wgsl`: params, cells (uniform or storage), bindings (read),
 /// positions (written), normal coordinates (read), normals (written).
 pub fn deform_normals(device: &wgpu::Device, variant: DeformVariant) -> Kernel {

@@ -5,10 +5,11 @@
 /// Binding (§3) of every owned vertex: `shaders/bind.wgsl`, entry point `bind_main`.
 pub const BIND: &str = include_str!(concat!(env!("OUT_DIR"), "/bind.wgsl"));
 /// Eq. 2 for every bound vertex, cell records in a uniform buffer: `shaders/deform.wgsl` after
-/// `shaders/cells_uniform.wgsl`, entry point `deform_main`.
+/// `shaders/cells_uniform.wgsl`, entry points `deform_main` (one workgroup layer per instance) and
+/// `deform_instances_main` (instances numbered flat).
 pub const DEFORM_UNIFORM: &str = include_str!(concat!(env!("OUT_DIR"), "/deform_uniform.wgsl"));
 /// Eq. 2 for every bound vertex, cell records in a storage buffer: `shaders/deform.wgsl` after
-/// `shaders/cells_storage.wgsl`, entry point `deform_main`.
+/// `shaders/cells_storage.wgsl`, entry points `deform_main` and `deform_instances_main`.
 pub const DEFORM_STORAGE: &str = include_str!(concat!(env!("OUT_DIR"), "/deform_storage.wgsl"));
 /// Eq. 2 fused with the Jacobian normals, cell records in a uniform buffer:
 /// `shaders/deform_normals.wgsl` after `shaders/cells_uniform.wgsl` and `shaders/jacobian.wgsl`,
@@ -59,10 +60,12 @@ pub const SKINNING: &str = include_str!(concat!(env!("OUT_DIR"), "/skinning.wgsl
 pub const TANGENTS: &str = include_str!(concat!(env!("OUT_DIR"), "/tangents.wgsl"));
 
 /// Every kernel as (name, composed source, entry point).
-pub const ALL: [(&str, &str, &str); 19] = [
+pub const ALL: [(&str, &str, &str); 21] = [
     ("bind", BIND, "bind_main"),
     ("deform_uniform", DEFORM_UNIFORM, "deform_main"),
     ("deform_storage", DEFORM_STORAGE, "deform_main"),
+    ("deform_instances_uniform", DEFORM_UNIFORM, "deform_instances_main"),
+    ("deform_instances_storage", DEFORM_STORAGE, "deform_instances_main"),
     ("deform_normals_uniform", DEFORM_NORMALS_UNIFORM, "deform_normals_main"),
     ("deform_normals_storage", DEFORM_NORMALS_STORAGE, "deform_normals_main"),
     ("normal_coords_uniform", NORMAL_COORDS_UNIFORM, "normal_coords_main"),

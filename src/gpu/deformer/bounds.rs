@@ -83,6 +83,7 @@ impl BoundsStage {
                             cells_per_instance: 0,
                             instance_stride: 3 * targets.stride,
                             first_instance: group.start,
+                            ..Default::default()
                         };
                         let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                             label: Some("sweepffd bounds params"),

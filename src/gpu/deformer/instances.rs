@@ -140,6 +140,16 @@ impl PositionTargets {
     }
 }
 
+/// How a dispatch over several instances numbers its invocations.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Numbering {
+    /// One workgroup layer z per instance: every kernel over instances.
+    Layered,
+    /// Vertex i of instance z at invocation z · count + i, so that only the dispatch's last
+    /// workgroup is partly empty: `deform_instances_main`.
+    Flat,
+}
+
 /// One dispatch over some instances: a bind group per position buffer (`parity`).
 #[derive(Debug)]
 pub(crate) struct InstanceDispatch {
@@ -152,13 +162,15 @@ impl InstanceDispatch {
     /// their band records), one per instance group; `group_of(params, cells, positions)` makes
     /// the bind group of one position buffer from the dispatch's params, the cells and the
     /// window of the position buffer (the group's parity and instances given too, for windows
-    /// of other buffers laid out as the positions).
+    /// of other buffers laid out as the positions), the invocations numbered as `numbering` says.
+    #[expect(clippy::too_many_arguments, reason = "the dispatch's inputs, each used once")]
     pub(crate) fn plan<'a>(
         device: &wgpu::Device,
         cells: &'a PosedCells,
         targets: &'a PositionTargets,
         range: &Range<u32>,
         count: u32,
+        numbering: Numbering,
         limits: &ChunkLimits,
         group_of: impl Fn(
             &wgpu::Buffer,
@@ -177,6 +189,8 @@ impl InstanceDispatch {
                     cells_per_instance: cells.per_instance,
                     instance_stride: 3 * targets.stride,
                     first_instance: group.start,
+                    instance_count: group.len() as u32,
+                    ..Default::default()
                 };
                 let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                     label: Some("sweepffd instance params"),
@@ -188,8 +202,18 @@ impl InstanceDispatch {
                         group_of(&params, cells.binding(), parity, group, targets.window(parity, range, group))
                     })
                     .collect();
-                let (x, y) = dispatch_grid(count, limits);
-                InstanceDispatch { groups, grid: (x, y, group.len() as u32) }
+                let grid = match numbering {
+                    Numbering::Layered => {
+                        let (x, y) = dispatch_grid(count, limits);
+                        (x, y, group.len() as u32)
+                    }
+                    // count · instances stays below 2^32: their positions fit one binding.
+                    Numbering::Flat => {
+                        let (x, y) = dispatch_grid(count * group.len() as u32, limits);
+                        (x, y, 1)
+                    }
+                };
+                InstanceDispatch { groups, grid }
             })
             .collect()
     }
