@@ -256,3 +256,68 @@ fn previous_positions_are_last_frames_output_bit_for_bit() {
     assert!(deformer.previous_positions().is_some());
     assert!(GpuDeformer::new(context, &descriptor.with_instances(1)).unwrap().previous_positions().is_some());
 }
+
+/// An app's buffer of `bytes` bytes from `offset` on (and 64 past), filled with a sentinel.
+fn app_buffer(context: &GpuContext, offset: u64, bytes: u64) -> wgpu::Buffer {
+    let buffer = context.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("an app's vertex buffer"),
+        size: offset + bytes + 64,
+        usage: wgpu::BufferUsages::VERTEX
+            | wgpu::BufferUsages::STORAGE
+            | wgpu::BufferUsages::COPY_DST
+            | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    context.queue.write_buffer(&buffer, 0, &vec![0xa5u8; buffer.size() as usize]);
+    buffer
+}
+
+#[test]
+fn previous_positions_in_two_app_buffers_equal_the_deformers_own_bit_for_bit() {
+    let Some(context) = common::gpu() else { return };
+    let tube = Tube::with_vertex_count(2_000, 4.0, 0.5);
+    let (mesh, rig) = (tube.mesh(), attached_tube_rig(&tube, 6, 8, 0.0));
+    let owners = rig.owners(&mesh, "tube").unwrap();
+    let positions = sweepffd::gpu::rest_positions(&mesh.positions);
+    let triangles: Vec<u32> = mesh.faces.triangles().flatten().collect();
+    let base = descriptor(&rig, &positions, &owners).with_instances(2).with_triangles(&triangles);
+    let mut own = GpuDeformer::new(context, &base.with_previous_positions()).unwrap();
+    let offset = 256 * context.device.limits().min_storage_buffer_offset_alignment as u64;
+    let bytes = own.instance_offset(1) + own.vertex_count() as u64 * 12;
+    let (first, second) = (app_buffer(context, offset, bytes), app_buffer(context, offset, bytes));
+    let mut supplied = GpuDeformer::new(context, &base.with_outputs(&first, &second, offset)).unwrap();
+    assert_eq!(supplied.positions(), &first, "the first buffer holds the rest positions before any encode");
+    assert_eq!(supplied.previous_positions(), Some(&second));
+    for frame in 0..3 {
+        for deformer in [&mut own, &mut supplied] {
+            for i in 0..2 {
+                deformer.set_pose(i, &pose(&rig, frame + i as usize, 5)).unwrap();
+            }
+            encode_and_submit(context, deformer);
+        }
+        let (latest, other) = if frame % 2 == 0 { (&second, &first) } else { (&first, &second) };
+        assert_eq!(supplied.positions(), latest, "frame {frame}: the encodes alternate between the app's buffers");
+        assert_eq!(supplied.previous_positions(), Some(other), "frame {frame}");
+        for i in 0..2 {
+            let (mine, theirs) =
+                (supplied.read_instance_positions(i).unwrap(), own.read_instance_positions(i).unwrap());
+            assert!(mine == theirs, "frame {frame}, instance {i}: positions");
+            let previous = (supplied.read_previous_positions(i).unwrap(), own.read_previous_positions(i).unwrap());
+            assert!(previous.0 == previous.1, "frame {frame}, instance {i}: previous positions");
+            assert!(supplied.read_instance_normals(i).unwrap() == own.read_instance_normals(i).unwrap(), "normals {i}");
+        }
+    }
+    for buffer in [&first, &second] {
+        let all = read_bytes(context, buffer, 0, buffer.size()).unwrap();
+        assert!(all[..offset as usize].iter().all(|&b| b == 0xa5), "bytes before the offset were written");
+        assert!(all[(offset + bytes) as usize..].iter().all(|&b| b == 0xa5), "bytes past the positions were written");
+    }
+    let one_buffer = base.with_output(&first, offset).with_previous_positions();
+    let error = GpuDeformer::new(context, &one_buffer).unwrap_err().to_string();
+    assert!(error.contains("two buffers (with_outputs)"), "{error}");
+    let same = base.with_outputs(&first, &first, offset);
+    assert!(GpuDeformer::new(context, &same).unwrap_err().to_string().contains("must differ"));
+    let small = app_buffer(context, offset, bytes - 128);
+    let too_small = base.with_outputs(&first, &small, offset);
+    assert!(GpuDeformer::new(context, &too_small).unwrap_err().to_string().contains("bytes"));
+}

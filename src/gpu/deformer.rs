@@ -233,10 +233,10 @@ impl GpuDeformer {
                     output.offset, limits.offset_alignment
                 )));
             }
-            if output.offset + targets.bytes() > output.buffer.size() {
+            if let Some(buffer) = output.buffers().find(|b| output.offset + targets.bytes() > b.size()) {
                 return Err(GpuError::Input(format!(
                     "the output buffer holds {} bytes; the positions need {} from offset {}",
-                    output.buffer.size(),
+                    buffer.size(),
                     targets.bytes(),
                     output.offset
                 )));
@@ -251,8 +251,10 @@ impl GpuDeformer {
         // an upload of their own when the application supplies the output.
         let rest_buffer = match output {
             Some(output) => {
-                context.queue.write_buffer(output.buffer, output.offset, bytemuck::cast_slice(&image));
-                targets.buffers = vec![output.buffer.clone()];
+                targets.buffers = output.buffers().cloned().collect();
+                for buffer in &targets.buffers {
+                    context.queue.write_buffer(buffer, output.offset, bytemuck::cast_slice(&image));
+                }
                 targets.offset = output.offset;
                 upload_positions(device, positions)
             }
@@ -478,7 +480,9 @@ impl GpuDeformer {
     /// The positions of the encode before the last (the rest positions before two encodes),
     /// laid out as [`positions`](GpuDeformer::positions): the other buffer of the ping-pong,
     /// no copy made. `None` unless the descriptor asked for
-    /// [`with_previous_positions`](DeformerDescriptor::with_previous_positions).
+    /// [`with_previous_positions`](DeformerDescriptor::with_previous_positions) (or
+    /// [`with_outputs`](DeformerDescriptor::with_outputs): then one of the application's two
+    /// buffers).
     pub fn previous_positions(&self) -> Option<&wgpu::Buffer> {
         let parities = self.targets.buffers.len();
         (parities == 2).then(|| &self.targets.buffers[1 - self.current])

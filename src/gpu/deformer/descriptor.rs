@@ -63,14 +63,24 @@ pub struct DeformerDescriptor<'a> {
 /// `STORAGE | COPY_DST` usage (`COPY_SRC` to read it back), `offset` a multiple of the device's
 /// `min_storage_buffer_offset_alignment`, and room for every instance. The deformer writes the
 /// rest positions into it at creation (unbound vertices are never written again) and the
-/// deformed ones each frame; the application must not write that range. Not combined with
-/// previous positions, which need two buffers of the deformer's own.
+/// deformed ones each frame; the application must not write that range. With `previous`, the
+/// deformer keeps previous positions in the two buffers, alternating, laid out alike from the
+/// same offset ([`DeformerDescriptor::with_outputs`]).
 #[derive(Clone, Copy, Debug)]
 pub struct OutputBuffer<'a> {
     /// The buffer.
     pub buffer: &'a wgpu::Buffer,
     /// Byte offset of instance 0's first position.
     pub offset: u64,
+    /// The second buffer of the previous positions' ping-pong, if any.
+    pub previous: Option<&'a wgpu::Buffer>,
+}
+
+impl<'a> OutputBuffer<'a> {
+    /// The buffer, then the previous positions' second one if any.
+    pub fn buffers(&self) -> impl Iterator<Item = &'a wgpu::Buffer> + use<'a> {
+        std::iter::once(self.buffer).chain(self.previous)
+    }
 }
 
 impl<'a> DeformerDescriptor<'a> {
@@ -138,7 +148,23 @@ impl<'a> DeformerDescriptor<'a> {
 
     /// The same, writing the positions into the application's `buffer` from byte `offset` on.
     pub fn with_output(self, buffer: &'a wgpu::Buffer, offset: u64) -> DeformerDescriptor<'a> {
-        DeformerDescriptor { output: Some(OutputBuffer { buffer, offset }), ..self }
+        DeformerDescriptor { output: Some(OutputBuffer { buffer, offset, previous: None }), ..self }
+    }
+
+    /// The same, keeping the previous frame's positions in two of the application's buffers:
+    /// each encode writes the one the encode before did not, so that
+    /// [`positions`](crate::gpu::GpuDeformer::positions) is the latest and
+    /// [`previous_positions`](crate::gpu::GpuDeformer::previous_positions) the other (`first`
+    /// before the first encode), both laid out from `offset` as [`with_output`](Self::with_output)
+    /// says. Two different buffers, each meeting `with_output`'s conditions.
+    pub fn with_outputs(
+        self,
+        first: &'a wgpu::Buffer,
+        second: &'a wgpu::Buffer,
+        offset: u64,
+    ) -> DeformerDescriptor<'a> {
+        let output = OutputBuffer { buffer: first, offset, previous: Some(second) };
+        DeformerDescriptor { output: Some(output), previous_positions: true, ..self }
     }
 
     /// The same, dispatching over every vertex (see [`full_dispatch`](Self::full_dispatch)).
@@ -164,15 +190,27 @@ impl<'a> DeformerDescriptor<'a> {
             return Err(GpuError::Input("rest tangents need triangles: tangents turn with the normals".into()));
         }
         if let Some(output) = self.output {
-            if self.previous_positions {
-                return Err(GpuError::Input("previous positions need the deformer's own position buffers".into()));
+            match output.previous {
+                None if self.previous_positions => {
+                    return Err(GpuError::Input(
+                        "previous positions with the application's output need two buffers (with_outputs)".into(),
+                    ));
+                }
+                Some(previous) if previous == output.buffer => {
+                    return Err(GpuError::Input(
+                        "the two output buffers of previous positions are one buffer; they must differ".into(),
+                    ));
+                }
+                _ => {}
             }
             let needed = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
-            if !output.buffer.usage().contains(needed) {
-                return Err(GpuError::Input(format!(
-                    "the output buffer has usage {:?}; the deformer needs STORAGE | COPY_DST",
-                    output.buffer.usage()
-                )));
+            for buffer in output.buffers() {
+                if !buffer.usage().contains(needed) {
+                    return Err(GpuError::Input(format!(
+                        "the output buffer has usage {:?}; the deformer needs STORAGE | COPY_DST",
+                        buffer.usage()
+                    )));
+                }
             }
         }
         if let Some(triangles) = self.triangles {
