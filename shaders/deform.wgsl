@@ -25,10 +25,12 @@ fn deform_main(
     deform_vertex(i, group.z);
 }
 
-// Several instances numbered flat, vertex i of instance z at invocation z * vertex_count + i, so
-// that every workgroup but the dispatch's last is full however few vertices an instance has (one
-// workgroup layer per instance leaves the last workgroup of every instance nearly empty). The
-// division runs once per workgroup; a workgroup spans at most 128 / vertex_count + 2 instances.
+// Several instances numbered flat, each invocation deforming one vertex of INSTANCES_PER_INVOCATION
+// consecutive instances: invocation g = w * vertex_count + i deforms vertex i of instances
+// w * INSTANCES_PER_INVOCATION onwards. Each binding is read once for those instances (the
+// instances share it), and every workgroup but the dispatch's last is full however few vertices
+// an instance has (one workgroup layer per instance leaves the last workgroup of every instance
+// nearly empty). The division runs once per workgroup.
 @compute @workgroup_size(WORKGROUP_SIZE)
 fn deform_instances_main(
     @builtin(workgroup_id) group: vec3<u32>,
@@ -36,16 +38,24 @@ fn deform_instances_main(
     @builtin(local_invocation_index) lane: u32,
 ) {
     let first = invocation_index(group, groups, 0u);
-    var z = first / params.vertex_count;
-    var i = first - z * params.vertex_count + lane;
+    var w = first / params.vertex_count;
+    var i = first - w * params.vertex_count + lane;
     while (i >= params.vertex_count) {
         i -= params.vertex_count;
-        z += 1u;
+        w += 1u;
     }
-    if (z >= params.instance_count) {
+    let z0 = w * INSTANCES_PER_INVOCATION;
+    if (z0 >= params.instance_count) {
         return;
     }
-    deform_vertex(i, z);
+    let binding = bindings[i];
+    if (binding.cell >= BAND_FLAG) {
+        return;
+    }
+    let last = min(z0 + INSTANCES_PER_INVOCATION, params.instance_count);
+    for (var z = z0; z < last; z++) {
+        deform_bound_vertex(i, z, binding);
+    }
 }
 
 // Vertex i of the dispatch's instance z.
@@ -56,6 +66,11 @@ fn deform_vertex(i: u32, z: u32) {
     if (binding.cell >= BAND_FLAG) {
         return;
     }
+    deform_bound_vertex(i, z, binding);
+}
+
+// Vertex i of the dispatch's instance z, bound by `binding` (no falloff band).
+fn deform_bound_vertex(i: u32, z: u32, binding: GpuBinding) {
     let cell = cells[(params.first_instance + z) * params.cells_per_instance + binding.cell];
     let rho = radius_at(cell, binding.s, binding.phi) + binding.d;
     let direction = direction_at(cell, binding.phi);

@@ -8,6 +8,9 @@ const BAND_FLAG: u32 = 0x80000000u;
 // Set in a BandFlag's vertex for a vertex that keeps its rest position in the new bands.
 const KEEPS_REST: u32 = 0x40000000u;
 
+// Instances one invocation of the instanced deform kernel deforms (deform_instances_main).
+const INSTANCES_PER_INVOCATION: u32 = 4u;
+
 // Most cells a rig may have for the deform kernel to read them from a uniform buffer (64 KiB).
 const UNIFORM_CELL_CAPACITY: u32 = 409u;
 

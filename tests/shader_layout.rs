@@ -5,8 +5,8 @@
 use std::mem::{offset_of, size_of};
 
 use sweepffd::coeffs::{
-    BAND_FLAG, BandFlag, BandRecord, BindSegment, CellCoeffs, DispatchParams, GpuBinding, InstanceParams, Joint,
-    KEEPS_REST, SkinInfluence, SweepInfo, UNIFORM_CELL_CAPACITY, UNOWNED, WORKGROUP_SIZE,
+    BAND_FLAG, BandFlag, BandRecord, BindSegment, CellCoeffs, DispatchParams, GpuBinding, INSTANCES_PER_INVOCATION,
+    InstanceParams, Joint, KEEPS_REST, SkinInfluence, SweepInfo, UNIFORM_CELL_CAPACITY, UNOWNED, WORKGROUP_SIZE,
 };
 use sweepffd::gpu::shaders;
 use sweepffd::normals::{FAN_INDEX, FAN_START};
@@ -115,6 +115,8 @@ fn shared_constants_have_the_rust_values() {
         assert_eq!(u32_constant(&module, "UNOWNED"), Some(UNOWNED), "{name}");
         assert_eq!(u32_constant(&module, "BAND_FLAG"), Some(BAND_FLAG), "{name}");
         assert_eq!(u32_constant(&module, "KEEPS_REST"), Some(KEEPS_REST), "{name}");
+        let per_invocation = u32_constant(&module, "INSTANCES_PER_INVOCATION");
+        assert_eq!(per_invocation, Some(INSTANCES_PER_INVOCATION), "{name}");
     }
     for source in [shaders::NORMALS_ONE_WINDOW, shaders::NORMALS_TWO_WINDOWS] {
         let normals = parse("normals", source);

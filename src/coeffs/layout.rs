@@ -28,6 +28,10 @@ pub const KEEPS_REST: u32 = 1 << 30;
 /// the portable limit); larger rigs use the storage-buffer variant of the kernel.
 pub const UNIFORM_CELL_CAPACITY: u32 = 409;
 
+/// Instances one invocation of the instanced deform kernel (`deform_instances_main`) deforms:
+/// it reads each binding once for them all.
+pub const INSTANCES_PER_INVOCATION: u32 = 4;
+
 /// Everything a vertex needs to follow its posed sweep, for one cell: knot interval k of a
 /// sweep and angular interval j of its radius function (§3). Rebuilt every frame; 160 bytes.
 ///

@@ -11,7 +11,7 @@ use wgpu::util::DeviceExt;
 use super::super::buffers::POSITION_STRIDE;
 use super::super::chunks::{ChunkLimits, dispatch_grid};
 use super::super::kernels::DeformVariant;
-use crate::coeffs::{CellCoeffs, InstanceParams, UNIFORM_CELL_CAPACITY};
+use crate::coeffs::{CellCoeffs, INSTANCES_PER_INVOCATION, InstanceParams, UNIFORM_CELL_CAPACITY};
 
 /// With several instances each instance's positions start a multiple of this many vertices
 /// apart (64 × 12 bytes = 3 × 256), so every instance's windows are aligned on any device.
@@ -145,8 +145,9 @@ impl PositionTargets {
 pub(crate) enum Numbering {
     /// One workgroup layer z per instance: every kernel over instances.
     Layered,
-    /// Vertex i of instance z at invocation z · count + i, so that only the dispatch's last
-    /// workgroup is partly empty: `deform_instances_main`.
+    /// Vertex i of instances k·z … k·z + k − 1 at invocation z · count + i (k =
+    /// [`INSTANCES_PER_INVOCATION`]), so that only the dispatch's last workgroup is partly
+    /// empty and each binding is read once for k instances: `deform_instances_main`.
     Flat,
 }
 
@@ -209,7 +210,8 @@ impl InstanceDispatch {
                     }
                     // count · instances stays below 2^32: their positions fit one binding.
                     Numbering::Flat => {
-                        let (x, y) = dispatch_grid(count * group.len() as u32, limits);
+                        let invocations = count * (group.len() as u32).div_ceil(INSTANCES_PER_INVOCATION);
+                        let (x, y) = dispatch_grid(invocations, limits);
                         (x, y, 1)
                     }
                 };
