@@ -9,7 +9,7 @@ use sweepffd::coeffs::{
     InstanceParams, Joint, KEEPS_REST, SkinInfluence, SweepInfo, UNIFORM_CELL_CAPACITY, UNOWNED, WORKGROUP_SIZE,
 };
 use sweepffd::gpu::shaders;
-use sweepffd::normals::{FAN_INDEX, FAN_START};
+use sweepffd::normals::{FAN_CLOSE, FAN_END, FAN_INDEX, FAN_START};
 
 /// (struct name, size, [(member, offset)]) of a Rust buffer struct.
 type RustLayout = (&'static str, usize, Vec<(&'static str, usize)>);
@@ -121,6 +121,8 @@ fn shared_constants_have_the_rust_values() {
     for source in [shaders::NORMALS_ONE_WINDOW, shaders::NORMALS_TWO_WINDOWS] {
         let normals = parse("normals", source);
         assert_eq!(u32_constant(&normals, "FAN_START"), Some(FAN_START));
+        assert_eq!(u32_constant(&normals, "FAN_CLOSE"), Some(FAN_CLOSE));
+        assert_eq!(u32_constant(&normals, "FAN_END"), Some(FAN_END));
         assert_eq!(u32_constant(&normals, "FAN_INDEX"), Some(FAN_INDEX));
     }
 }

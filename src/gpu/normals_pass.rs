@@ -21,7 +21,7 @@ use super::kernels::Kernel;
 use super::{GpuContext, GpuError};
 use crate::coeffs::DispatchParams;
 use crate::mesh::Faces;
-use crate::normals::{FAN_INDEX, FAN_START, NormalAdjacency, dirty_vertices, instanced};
+use crate::normals::{FAN_INDEX, NormalAdjacency, dirty_vertices, instanced};
 
 /// One dispatch: its bind group and workgroup grid.
 pub(crate) type Dispatch = (wgpu::BindGroup, (u32, u32));
@@ -177,7 +177,11 @@ impl NormalsStage {
             normals: &buffer,
             limits,
         };
-        let every = instanced(&(0..vertex_count).collect::<Vec<u32>>(), stride, instances.max(1));
+        // A vertex without incident triangles keeps the zero the buffer starts with; the kernel
+        // reads a row up to its FAN_END, so it is given only non-empty rows.
+        let with_triangles: Vec<u32> =
+            (0..vertex_count).filter(|&v| !adjacency.fans_of(v as usize).is_empty()).collect();
+        let every = instanced(&with_triangles, stride, instances.max(1));
         record(encoder, "sweepffd rest normals", &kernel, &plan.dispatches(device, &every)?.0);
         let moving = dirty_vertices(&adjacency, |v| moves[v]);
         let dirty = instanced(&moving, stride, instances.max(1));
@@ -194,8 +198,9 @@ impl NormalsStage {
 }
 
 impl NormalsPlan<'_> {
-    /// The dispatches computing the normals of `vertices` (ascending, over all instances), and
-    /// the bytes of the vertex, offset and fan lists they bind.
+    /// The dispatches computing the normals of `vertices` (ascending, over all instances, each
+    /// with at least one incident triangle), and the bytes of the vertex, offset and fan lists
+    /// they bind.
     fn dispatches(&self, device: &wgpu::Device, vertices: &[u32]) -> Result<(Vec<Dispatch>, u64), GpuError> {
         let n = self.stride;
         let row = |g: u32| self.adjacency.fans_of((g % n) as usize).len() as u64;
@@ -207,13 +212,15 @@ impl NormalsPlan<'_> {
             .iter()
             .map(|chunk| {
                 let list = &vertices[chunk.items.clone()];
-                let (mut offsets, mut fans) = (vec![0u32], Vec::new());
+                // Row starts only: each row ends with the entry carrying FAN_END.
+                let (mut offsets, mut fans) = (Vec::with_capacity(list.len()), Vec::new());
                 for &g in list {
                     // Instance k's copy of a fan entry is the same neighbour in instance k.
                     let base = g / n * n;
                     let entries = self.adjacency.fans_of((g % n) as usize);
-                    fans.extend(entries.iter().map(|&e| ((e & FAN_INDEX) + base) | (e & FAN_START)));
+                    debug_assert!(!entries.is_empty(), "vertex {g} has no row for the kernel to end");
                     offsets.push(fans.len() as u32);
+                    fans.extend(entries.iter().map(|&e| ((e & FAN_INDEX) + base) | (e & !FAN_INDEX)));
                 }
                 list_bytes += 4 * (list.len() + offsets.len() + fans.len()) as u64;
                 let params = params_buffer(

@@ -25,16 +25,25 @@ pub use reach::jacobian_reach;
 
 /// Marks the first neighbour of a fan in [`NormalAdjacency::fans`].
 pub const FAN_START: u32 = 1 << 31;
-/// The neighbour's vertex index in a [`NormalAdjacency::fans`] entry.
-pub const FAN_INDEX: u32 = FAN_START - 1;
+/// Marks the last neighbour of a closed fan in [`NormalAdjacency::fans`]: the fan's last
+/// triangle runs from this neighbour back to the fan's first, which is not repeated.
+pub const FAN_CLOSE: u32 = 1 << 30;
+/// Marks the last entry of a vertex's row in [`NormalAdjacency::fans`], so that a reader needs
+/// only the row's start.
+pub const FAN_END: u32 = 1 << 29;
+/// The neighbour's vertex index in a [`NormalAdjacency::fans`] entry (the bits below the
+/// flags).
+pub const FAN_INDEX: u32 = FAN_END - 1;
 
 /// For each vertex i, its incident triangles as fans: runs of one-ring neighbours j_0, j_1, …
 /// where each consecutive pair (j_m, j_{m+1}) makes the triangle (i, j_m, j_{m+1}) in winding
 /// order, so that (p_{j_m} − p_i) × (p_{j_{m+1}} − p_i) is its area-weighted normal. A closed
-/// manifold vertex of m triangles is one fan of m + 1 entries (the first neighbour repeated at
-/// the end); a boundary or non-manifold vertex has several fans, each entry that starts one
-/// carrying [`FAN_START`]. Every triangle is counted once. Compressed rows: vertex i's entries
-/// are `fans[offsets[i]..offsets[i + 1]]`.
+/// manifold vertex of m triangles is one fan of m entries, the last carrying [`FAN_CLOSE`]: its
+/// last triangle (i, j_{m−1}, j_0) closes back to the first neighbour, which is not repeated
+/// (a reader keeps p_{j_0} rather than loading it twice). A boundary or non-manifold vertex has
+/// several fans, each entry that starts one carrying [`FAN_START`]. Every triangle is counted
+/// once. Compressed rows: vertex i's entries are `fans[offsets[i]..offsets[i + 1]]`, the last
+/// of a non-empty row carrying [`FAN_END`].
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct NormalAdjacency {
     /// `vertex count + 1` row starts into `fans`.
@@ -45,7 +54,7 @@ pub struct NormalAdjacency {
 
 impl NormalAdjacency {
     /// Builds the fans of the fan triangulation of `faces` over `vertex_count` vertices
-    /// (`vertex_count` below 2³¹).
+    /// (`vertex_count` at most [`FAN_INDEX`] + 1).
     pub fn new(faces: &Faces, vertex_count: usize) -> NormalAdjacency {
         // Each vertex's triangles as directed edges (j → k) of its one-ring, grouped by vertex.
         let mut starts = vec![0usize; vertex_count + 1];
@@ -69,7 +78,13 @@ impl NormalAdjacency {
         let mut fans = Vec::with_capacity(edges.len() + vertex_count);
         offsets.push(0);
         for i in 0..vertex_count {
+            let row = fans.len();
             chain_edges(&mut edges[starts[i]..starts[i + 1]], &mut fans);
+            if fans.len() > row
+                && let Some(last) = fans.last_mut()
+            {
+                *last |= FAN_END;
+            }
             offsets.push(fans.len() as u32);
         }
         NormalAdjacency { offsets, fans }
@@ -88,7 +103,9 @@ impl NormalAdjacency {
 
 /// Appends to `fans` the one-ring edges (j → k) of one vertex chained into fans: first from
 /// every j that no edge ends at (boundaries), then around the remaining cycles. Each edge is
-/// used once. Sorting by j makes finding the edge that continues a fan a binary search.
+/// used once; a fan of two or more edges that ends at its first neighbour drops that repeat
+/// and flags its new last entry [`FAN_CLOSE`]. Sorting by j makes finding the edge that
+/// continues a fan a binary search.
 fn chain_edges(edges: &mut [(u32, u32)], fans: &mut Vec<u32>) {
     edges.sort_unstable();
     let mut ends: Vec<u32> = edges.iter().map(|&(_, k)| k).collect();
@@ -105,12 +122,19 @@ fn chain_edges(edges: &mut [(u32, u32)], fans: &mut Vec<u32>) {
         }
         used[start] = true;
         let (j, mut k) = edges[start];
+        let first = fans.len();
         fans.push(j | FAN_START);
         fans.push(k);
         while let Some(e) = next_unused(&used, k) {
             used[e] = true;
             k = edges[e].1;
             fans.push(k);
+        }
+        if k == j && fans.len() - first >= 3 {
+            fans.pop();
+            if let Some(last) = fans.last_mut() {
+                *last |= FAN_CLOSE;
+            }
         }
     }
 }
@@ -122,11 +146,16 @@ pub fn vertex_normals(positions: &[DVec3], adjacency: &NormalAdjacency) -> Vec<D
         .into_par_iter()
         .map(|i| {
             let p = positions[i];
-            let (mut sum, mut previous) = (DVec3::ZERO, DVec3::ZERO);
+            let (mut sum, mut previous, mut first) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
             for &entry in adjacency.fans_of(i) {
                 let q = positions[(entry & FAN_INDEX) as usize] - p;
                 if entry & FAN_START == 0 {
                     sum += previous.cross(q);
+                } else {
+                    first = q;
+                }
+                if entry & FAN_CLOSE != 0 {
+                    sum += q.cross(first);
                 }
                 previous = q;
             }

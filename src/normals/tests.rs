@@ -39,15 +39,22 @@ fn direct_sums(positions: &[DVec3], faces: &Faces) -> Vec<DVec3> {
 }
 
 /// The triangles (i, j, k) the fans of vertex i stand for, with k and j rotated so that the
-/// smallest index comes first.
+/// smallest index comes first. Checks that only the row's last entry carries [`FAN_END`].
 fn fan_triangles(adjacency: &NormalAdjacency, i: u32) -> Vec<[u32; 3]> {
     let mut triangles = Vec::new();
-    let mut previous = 0;
-    for &entry in adjacency.fans_of(i as usize) {
+    let (mut previous, mut first) = (0, 0);
+    let row = adjacency.fans_of(i as usize);
+    for (c, &entry) in row.iter().enumerate() {
         let j = entry & FAN_INDEX;
         if entry & FAN_START == 0 {
             triangles.push(canonical([i, previous, j]));
+        } else {
+            first = j;
         }
+        if entry & FAN_CLOSE != 0 {
+            triangles.push(canonical([i, j, first]));
+        }
+        assert_eq!(entry & FAN_END != 0, c + 1 == row.len(), "vertex {i} entry {c}");
         previous = j;
     }
     triangles.sort_unstable();
@@ -78,15 +85,37 @@ fn octahedron_vertex_normals_are_its_axes() {
 }
 
 #[test]
-fn closed_vertex_is_one_fan_with_its_first_neighbour_repeated() {
+fn closed_vertex_is_one_fan_that_closes_without_repeating_its_first_neighbour() {
     let (positions, faces) = octahedron();
     let adjacency = NormalAdjacency::new(&faces, positions.len());
     for i in 0..positions.len() {
         let fans = adjacency.fans_of(i);
-        assert_eq!(fans.len(), 5, "four triangles, one fan");
+        assert_eq!(fans.len(), 4, "four triangles, one fan of four neighbours");
         assert_eq!(fans.iter().filter(|&&e| e & FAN_START != 0).count(), 1);
-        assert_eq!(fans[0] & FAN_INDEX, fans[4]);
+        assert_eq!(fans[0] & FAN_START, FAN_START);
+        assert_eq!(fans[3] & (FAN_CLOSE | FAN_END), FAN_CLOSE | FAN_END);
+        assert!(fans[..3].iter().all(|&e| e & (FAN_CLOSE | FAN_END) == 0));
+        let mut neighbours: Vec<u32> = fans.iter().map(|&e| e & FAN_INDEX).collect();
+        neighbours.sort_unstable();
+        neighbours.dedup();
+        assert_eq!(neighbours.len(), 4, "each neighbour once");
     }
+}
+
+#[test]
+fn boundary_fans_do_not_close_and_a_degenerate_fan_keeps_its_repeat() {
+    // An open strip: every fan ends at a boundary neighbour, none closes.
+    let mut strip = Faces::new();
+    for i in 0..6u32 {
+        strip.push(&[i, i + 1, i + 2]);
+    }
+    let adjacency = NormalAdjacency::new(&strip, 8);
+    assert!(adjacency.fans.iter().all(|&e| e & FAN_CLOSE == 0));
+    // The triangle (0, 1, 1): vertex 0's one fan is 1 → 1, two entries, kept as they are.
+    let mut degenerate = Faces::new();
+    degenerate.push(&[0, 1, 1]);
+    let adjacency = NormalAdjacency::new(&degenerate, 2);
+    assert_eq!(adjacency.fans_of(0), [1 | FAN_START, 1 | FAN_END]);
 }
 
 #[test]
@@ -135,4 +164,52 @@ fn isolated_vertex_has_zero_normal() {
     positions.push(DVec3::splat(9.0));
     let normals = vertex_normals(&positions, &NormalAdjacency::new(&faces, positions.len()));
     assert_eq!(normals[8], DVec3::ZERO);
+}
+
+/// The f32 normal of vertex `i` as the kernel summed it when a closed fan repeated its first
+/// neighbour at its end, each cross product taken from positions read afresh.
+fn normal_with_repeated_first_neighbour(positions: &[f32], row: &[u32], i: usize) -> glam::Vec3 {
+    let position = |v: u32| glam::Vec3::from_slice(&positions[3 * v as usize..3 * v as usize + 3]);
+    let mut expanded = Vec::new();
+    let mut first = 0;
+    for &entry in row {
+        if entry & FAN_START != 0 {
+            first = entry & FAN_INDEX;
+        }
+        expanded.push(entry & (FAN_START | FAN_INDEX));
+        if entry & FAN_CLOSE != 0 {
+            expanded.push(first);
+        }
+    }
+    let p = position(i as u32);
+    let (mut sum, mut previous) = (glam::Vec3::ZERO, glam::Vec3::ZERO);
+    for entry in expanded {
+        let q = position(entry & FAN_INDEX) - p;
+        if entry & FAN_START == 0 {
+            sum += previous.cross(q);
+        }
+        previous = q;
+    }
+    let length2 = sum.dot(sum);
+    if length2 > 0.0 { sum * length2.sqrt().recip() } else { glam::Vec3::ZERO }
+}
+
+#[test]
+fn closing_a_fan_from_a_register_changes_no_bit_of_the_twin() {
+    let mesh = crate::synthetic::Tube { rings: 9, around: 13, length: 2.0, radius: 0.5 }.mesh();
+    let adjacency = NormalAdjacency::new(&mesh.faces, mesh.positions.len());
+    let positions: Vec<f32> = mesh
+        .positions
+        .iter()
+        .flat_map(|p| [(p.x + 0.3 * p.z.sin()) as f32, (p.y * (1.0 + 0.2 * p.z)) as f32, (p.z + 0.1 * p.x) as f32])
+        .collect();
+    let mut closed = 0;
+    for i in 0..mesh.positions.len() {
+        let row = adjacency.fans_of(i);
+        closed += row.iter().filter(|&&e| e & FAN_CLOSE != 0).count();
+        let twin = crate::cpu::normals::vertex_normal(&positions, &adjacency.offsets, &adjacency.fans, i);
+        let repeated = normal_with_repeated_first_neighbour(&positions, row, i);
+        assert_eq!(twin.to_array().map(f32::to_bits), repeated.to_array().map(f32::to_bits), "vertex {i}");
+    }
+    assert_eq!(closed, mesh.positions.len(), "every vertex of a closed tube closes one fan");
 }
