@@ -5,6 +5,7 @@
 
 mod common;
 
+use common::app_buffer::{app_buffer, assert_untouched_around};
 use sweepffd::coeffs::SweepCoefficients;
 use sweepffd::cpu;
 use sweepffd::gpu::{BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, read_bytes};
@@ -257,21 +258,6 @@ fn previous_positions_are_last_frames_output_bit_for_bit() {
     assert!(GpuDeformer::new(context, &descriptor.with_instances(1)).unwrap().previous_positions().is_some());
 }
 
-/// An app's buffer of `bytes` bytes from `offset` on (and 64 past), filled with a sentinel.
-fn app_buffer(context: &GpuContext, offset: u64, bytes: u64) -> wgpu::Buffer {
-    let buffer = context.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("an app's vertex buffer"),
-        size: offset + bytes + 64,
-        usage: wgpu::BufferUsages::VERTEX
-            | wgpu::BufferUsages::STORAGE
-            | wgpu::BufferUsages::COPY_DST
-            | wgpu::BufferUsages::COPY_SRC,
-        mapped_at_creation: false,
-    });
-    context.queue.write_buffer(&buffer, 0, &vec![0xa5u8; buffer.size() as usize]);
-    buffer
-}
-
 #[test]
 fn previous_positions_in_two_app_buffers_equal_the_deformers_own_bit_for_bit() {
     let Some(context) = common::gpu() else { return };
@@ -308,9 +294,7 @@ fn previous_positions_in_two_app_buffers_equal_the_deformers_own_bit_for_bit() {
         }
     }
     for buffer in [&first, &second] {
-        let all = read_bytes(context, buffer, 0, buffer.size()).unwrap();
-        assert!(all[..offset as usize].iter().all(|&b| b == 0xa5), "bytes before the offset were written");
-        assert!(all[(offset + bytes) as usize..].iter().all(|&b| b == 0xa5), "bytes past the positions were written");
+        assert_untouched_around(context, buffer, offset, bytes);
     }
     let one_buffer = base.with_output(&first, offset).with_previous_positions();
     let error = GpuDeformer::new(context, &one_buffer).unwrap_err().to_string();

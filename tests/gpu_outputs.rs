@@ -3,6 +3,7 @@
 
 mod common;
 
+use common::app_buffer::{app_buffer, assert_untouched_around};
 use sweepffd::gpu::{BindingSource, DeformerDescriptor, GpuDeformer};
 use sweepffd::synthetic::{BendTwistTaper, Tube, attached_tube_rig};
 
@@ -83,17 +84,7 @@ fn positions_written_into_an_app_buffer_at_an_offset_equal_the_deformers_own_bit
     let mut own = GpuDeformer::new(context, &base).unwrap();
     let offset = 3 * context.device.limits().min_storage_buffer_offset_alignment as u64;
     let bytes = own.instance_offset(n - 1) + own.vertex_count() as u64 * 12;
-    let app = context.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("the app's vertex buffer"),
-        size: offset + bytes + 64,
-        usage: wgpu::BufferUsages::VERTEX
-            | wgpu::BufferUsages::STORAGE
-            | wgpu::BufferUsages::COPY_DST
-            | wgpu::BufferUsages::COPY_SRC,
-        mapped_at_creation: false,
-    });
-    let sentinel = vec![0xa5u8; app.size() as usize];
-    context.queue.write_buffer(&app, 0, &sentinel);
+    let app = app_buffer(context, offset, bytes);
     let mut supplied = GpuDeformer::new(context, &base.with_output(&app, offset)).unwrap();
     assert_eq!(supplied.positions(), &app);
     for deformer in [&mut own, &mut supplied] {
@@ -112,9 +103,7 @@ fn positions_written_into_an_app_buffer_at_an_offset_equal_the_deformers_own_bit
         assert!(supplied.read_instance_normals(i).unwrap() == own.read_instance_normals(i).unwrap(), "normals {i}");
     }
     assert_eq!(supplied.read_bounds().unwrap(), own.read_bounds().unwrap());
-    let all = sweepffd::gpu::read_bytes(context, &app, 0, app.size()).unwrap();
-    assert!(all[..offset as usize].iter().all(|&b| b == 0xa5), "bytes before the offset were written");
-    assert!(all[(offset + bytes) as usize..].iter().all(|&b| b == 0xa5), "bytes past the positions were written");
+    assert_untouched_around(context, &app, offset, bytes);
     let misaligned = base.with_output(&app, offset + 4);
     assert!(GpuDeformer::new(context, &misaligned).unwrap_err().to_string().contains("alignment"));
     let too_small = base.with_instances(n + 1).with_output(&app, offset);

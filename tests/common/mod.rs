@@ -164,6 +164,7 @@ pub fn sweepffd(dir: &std::path::Path) -> std::process::Command {
     command
 }
 
+pub mod app_buffer;
 pub mod autorig_report;
 pub mod bends;
 pub mod falloff_tubes;
