@@ -153,7 +153,7 @@ pub(crate) fn write_faithful(
             let Some(line) = Scanner::new(&bytes[start..]).next() else { continue };
             let code = scan::code(&line.body);
             let (_, args) = scan::keyword(code);
-            let Ok((_, tail)) = scan::vertex(code, args) else { continue };
+            let Some(tail) = after_position(code, args) else { continue };
             let text = &mut patch.text;
             text.extend_from_slice(b"v ");
             push_position(text, positions[i]);
@@ -183,6 +183,13 @@ pub(crate) fn write_faithful(
         }
     }
     out.write_all(&bytes[copied..])
+}
+
+/// The offset in `code` just past the third word of `args`, where the tail of a `v` statement
+/// begins: what `scan::vertex` finds, without parsing the numbers again (the file was read
+/// without fault, so the three words are its position).
+fn after_position(code: &[u8], args: Range<usize>) -> Option<usize> {
+    scan::words(&code[args.clone()]).nth(2).map(|word| args.start + word.end)
 }
 
 /// Whether two positions are equal bit for bit (so −0.0 differs from 0.0).
@@ -433,6 +440,15 @@ mod tests {
             }
         };
         DVec3::new(c(), c(), c())
+    }
+
+    #[test]
+    fn the_tail_starts_where_scan_vertex_finds_it() {
+        for code in [&b"v 1 2 3"[..], b"  v\t1e-3  -0 4.5 1.0 ", b"v 1 2 3 0.5 0.25 0.125", b"v 0 \x0c1 2\t"] {
+            let (_, args) = scan::keyword(code);
+            let (_, tail) = scan::vertex(code, args.clone()).unwrap();
+            assert_eq!(after_position(code, args), Some(tail));
+        }
     }
 
     #[test]
