@@ -24,6 +24,11 @@ use std::sync::{Mutex, MutexGuard, PoisonError};
 /// Tells temporary files of one process apart.
 static COUNTER: AtomicU64 = AtomicU64::new(0);
 
+/// The bytes gathered before each write to the file (1 MiB): writers that emit many short
+/// pieces (the faithful OBJ writer's lines between copied runs) then make few system calls;
+/// a piece at least this long is written straight through.
+const WRITE_BUFFER: usize = 1 << 20;
+
 /// How many temporary names to try when one is taken.
 const ATTEMPTS: usize = 16;
 
@@ -68,7 +73,7 @@ pub fn write_atomically(path: &Path, fill: impl FnOnce(&mut BufWriter<File>) -> 
         // Keep the permissions of the file being replaced; not fatal if the platform refuses.
         let _ = file.set_permissions(meta.permissions());
     }
-    let mut out = BufWriter::new(file);
+    let mut out = BufWriter::with_capacity(WRITE_BUFFER, file);
     fill(&mut out)?;
     out.flush()?;
     let file = out.into_inner().map_err(io::IntoInnerError::into_error)?;

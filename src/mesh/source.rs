@@ -51,14 +51,16 @@ pub(crate) struct Original<F> {
 
 #[cfg_attr(not(feature = "formats"), expect(dead_code, reason = "only the file readers and writers use it"))]
 impl<F> Original<F> {
-    /// Wraps `file` with a copy of the mesh data read from it.
+    /// Wraps `file` with a copy of the mesh data read from it (the positions and the faces
+    /// copied at once on two cores, with the feature `parallel`).
     pub fn new(file: F, mesh: &Mesh) -> Arc<Self> {
-        Arc::new(Self {
-            file,
-            positions: mesh.positions.clone(),
-            faces: mesh.faces.clone(),
-            groups: mesh.groups.clone(),
-        })
+        let copy_positions = || mesh.positions.clone();
+        let copy_faces = || mesh.faces.clone();
+        #[cfg(feature = "parallel")]
+        let (positions, faces) = rayon::join(copy_positions, copy_faces);
+        #[cfg(not(feature = "parallel"))]
+        let (positions, faces) = (copy_positions(), copy_faces());
+        Arc::new(Self { file, positions, faces, groups: mesh.groups.clone() })
     }
 
     /// Whether `mesh` still has this file's connectivity (vertex count, faces and groups),

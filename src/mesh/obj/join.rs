@@ -9,6 +9,7 @@ use glam::DVec3;
 use super::read::Part;
 use crate::mesh::source::Source;
 use crate::mesh::{FaceGroup, Faces, Limited, Mesh};
+use crate::parallel::prelude::*;
 
 /// A `g` or `o` statement, kept by a part for the join to replay.
 #[derive(Debug)]
@@ -52,36 +53,83 @@ pub(crate) fn joinable(parts: &[Part]) -> bool {
 
 /// Joins `parts` (checked by [`joinable`], or a single part that starts the file) into the
 /// mesh and the byte offset of each vertex's logical line.
-pub(crate) fn join(parts: Vec<Part>) -> (Mesh, Vec<usize>) {
-    let vertices: usize = parts.iter().map(|p| p.positions.len()).sum();
-    let (faces, indices): (usize, usize) =
-        parts.iter().fold((0, 0), |(f, i), p| (f + p.faces.len(), i + p.faces.indices.len()));
-    let mut positions: Vec<DVec3> = Vec::with_capacity(vertices);
-    let mut lines = Vec::with_capacity(vertices);
-    let mut all = Faces { offsets: Vec::with_capacity(faces + 1), indices: Vec::with_capacity(indices) };
-    all.offsets.push(0);
-    let mut groups = Groups::default();
-    for part in parts {
-        let (first_vertex, first_face, first_index) = (positions.len(), all.len(), all.indices.len());
-        positions.extend_from_slice(&part.positions);
-        lines.extend_from_slice(&part.lines);
-        let shift = first_index as u32;
-        all.offsets.extend(part.faces.offsets.iter().skip(1).map(|&o| o + shift));
-        all.indices.extend_from_slice(&part.faces.indices);
-        for &(at, resolved) in &part.relative {
-            all.indices[first_index + at] = (first_vertex as i64 + resolved) as u32;
-        }
-        let mut at = 0;
-        for (before, change) in part.events {
-            groups.assign(first_face + at..first_face + before);
-            groups.apply(change);
-            at = before;
-        }
-        groups.assign(first_face + at..all.len());
+///
+/// A single part is moved as it is. Otherwise the vertices, lines and faces are copied into
+/// arrays allocated once at their final size (zeroed pages, which the copies touch first), one
+/// part to a task on every core; the groups are replayed in order on the calling thread.
+pub(crate) fn join(mut parts: Vec<Part>) -> (Mesh, Vec<usize>) {
+    if parts.len() == 1 {
+        let part = parts.pop().unwrap_or_default();
+        let mut groups = Groups::default();
+        let faces = part.faces;
+        groups.replay(&part.events, 0, faces.len());
+        let mesh = Mesh { positions: part.positions, faces, groups: groups.finish(), source: Source::Code };
+        return (mesh, part.lines);
     }
-    let mut groups = groups.groups;
-    groups.retain(|g| !g.faces.is_empty());
-    (Mesh { positions, faces: all, groups, source: Source::Code }, lines)
+    let vertices: usize = parts.iter().map(|p| p.positions.len()).sum();
+    let faces: usize = parts.iter().map(|p| p.faces.len()).sum();
+    let indices: usize = parts.iter().map(|p| p.faces.indices.len()).sum();
+    let mut positions: Vec<DVec3> = bytemuck::zeroed_vec(vertices);
+    let mut lines = vec![0usize; vertices];
+    let mut all = Faces { offsets: vec![0u32; faces + 1], indices: vec![0u32; indices] };
+    let mut slots = Vec::with_capacity(parts.len());
+    let (mut p, mut l) = (&mut positions[..], &mut lines[..]);
+    let (mut o, mut ix) = (&mut all.offsets[1..], &mut all.indices[..]);
+    let (mut first_vertex, mut first_index) = (0, 0);
+    for part in &parts {
+        let (positions, rest) = std::mem::take(&mut p).split_at_mut(part.positions.len());
+        p = rest;
+        let (lines, rest) = std::mem::take(&mut l).split_at_mut(part.lines.len());
+        l = rest;
+        let (offsets, rest) = std::mem::take(&mut o).split_at_mut(part.faces.len());
+        o = rest;
+        let (indices, rest) = std::mem::take(&mut ix).split_at_mut(part.faces.indices.len());
+        ix = rest;
+        slots.push(Slot { part, positions, lines, offsets, indices, first_vertex, first_index });
+        first_vertex += part.positions.len();
+        first_index += part.faces.indices.len();
+    }
+    slots.par_iter_mut().for_each(Slot::fill);
+    drop(slots);
+    let mut groups = Groups::default();
+    let mut first_face = 0;
+    for part in &parts {
+        groups.replay(&part.events, first_face, first_face + part.faces.len());
+        first_face += part.faces.len();
+    }
+    drop(parts);
+    (Mesh { positions, faces: all, groups: groups.finish(), source: Source::Code }, lines)
+}
+
+/// A part and where its data go in the joined arrays.
+struct Slot<'a> {
+    part: &'a Part,
+    positions: &'a mut [DVec3],
+    lines: &'a mut [usize],
+    /// Its faces' end offsets (the joined `offsets` less the leading 0).
+    offsets: &'a mut [u32],
+    indices: &'a mut [u32],
+    /// The number of vertices and of face indices of the parts before it.
+    first_vertex: usize,
+    first_index: usize,
+}
+
+impl Slot<'_> {
+    /// Copies the part's data, its face offsets shifted past the earlier parts' indices and its
+    /// negative indices resolved against the earlier parts' vertices.
+    fn fill(&mut self) {
+        let part = self.part;
+        self.positions.copy_from_slice(&part.positions);
+        self.lines.copy_from_slice(&part.lines);
+        let shift = self.first_index as u32;
+        for (joined, &end) in self.offsets.iter_mut().zip(part.faces.offsets.iter().skip(1)) {
+            *joined = end + shift;
+        }
+        self.indices.copy_from_slice(&part.faces.indices);
+        for &(at, resolved) in &part.relative {
+            self.indices[at] = (self.first_vertex as i64 + resolved) as u32;
+        }
+    }
 }
 
 /// The groups met so far and the current ones.
@@ -96,10 +144,29 @@ struct Groups {
 }
 
 impl Groups {
-    fn apply(&mut self, change: GroupChange) {
+    /// Replays a part's `g` and `o` statements, `events`, over its faces, which are the faces
+    /// `first..end` of the file.
+    fn replay(&mut self, events: &[(usize, GroupChange)], first: usize, end: usize) {
+        let mut at = first;
+        for (before, change) in events {
+            self.assign(at..first + before);
+            self.apply(change);
+            at = first + before;
+        }
+        self.assign(at..end);
+    }
+
+    /// The groups that have faces, in order of first appearance.
+    fn finish(self) -> Vec<FaceGroup> {
+        let mut groups = self.groups;
+        groups.retain(|g| !g.faces.is_empty());
+        groups
+    }
+
+    fn apply(&mut self, change: &GroupChange) {
         match change {
-            GroupChange::Groups(names) => self.current = names.into_iter().map(|name| self.id(name)).collect(),
-            GroupChange::Object(name) => self.object = name.map(|name| self.id(name)),
+            GroupChange::Groups(names) => self.current = names.iter().map(|name| self.id(name)).collect(),
+            GroupChange::Object(name) => self.object = name.as_ref().map(|name| self.id(name)),
         }
     }
 
@@ -118,13 +185,13 @@ impl Groups {
         }
     }
 
-    fn id(&mut self, name: String) -> usize {
-        if let Some(&id) = self.ids.get(&name) {
+    fn id(&mut self, name: &str) -> usize {
+        if let Some(&id) = self.ids.get(name) {
             return id;
         }
         let id = self.groups.len();
-        self.groups.push(FaceGroup { name: name.clone(), faces: Vec::new() });
-        self.ids.insert(name, id);
+        self.groups.push(FaceGroup { name: name.to_owned(), faces: Vec::new() });
+        self.ids.insert(name.to_owned(), id);
         id
     }
 }

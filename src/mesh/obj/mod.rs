@@ -13,8 +13,10 @@
 //! vertices read so far), `g name…` and `o name` (both name groups, see [`read`]). Every other
 //! statement (`vt`, `vn`, `usemtl`, `mtllib`, `s`, `l`, `p`, …) is kept verbatim and ignored.
 
+mod float;
 mod join;
 mod pieces;
+mod plain;
 pub(crate) mod read;
 pub(crate) mod scan;
 pub(crate) mod write;

@@ -19,6 +19,7 @@ use glam::DVec3;
 
 use super::ObjFile;
 use super::join::{GroupChange, join};
+use super::plain;
 use super::scan::{self, Keyword, Scanner, VertexIssue};
 use crate::mesh::source::{Original, Source};
 use crate::mesh::{Faces, Limited, Mesh, MeshError, ObjLineError};
@@ -53,8 +54,8 @@ pub(crate) fn read_whole(path: &Path, bytes: &[u8]) -> Result<(Mesh, Vec<usize>)
 fn finite_numbers(text: &[u8], what: &'static str) -> Result<(), ObjLineError> {
     for range in scan::words(text) {
         let word = &text[range];
-        let value: f64 =
-            scan::number(word).ok_or_else(|| ObjLineError::NotANumber { what, token: scan::lossy(word) })?;
+        let value =
+            super::float::parse(word).ok_or_else(|| ObjLineError::NotANumber { what, token: scan::lossy(word) })?;
         if !value.is_finite() {
             return Err(ObjLineError::NonFiniteValue { what, token: scan::lossy(word) });
         }
@@ -86,12 +87,34 @@ pub(crate) struct Part {
 /// Reads the logical lines of `bytes`, which lie at byte `offset` of the file; `starts_file`
 /// when `offset` is 0. Stops at the first fault, with its line, counted from 1 at the start of
 /// `bytes`: the file's line, vertex numbers and limits are exact only when `starts_file`.
+///
+/// A plain `v` or `f` line is read by the fast path ([`super::plain`]), every other logical
+/// line by the statement reader, which gives the same result for plain lines.
 pub(crate) fn read_part(bytes: &[u8], offset: usize, starts_file: bool) -> Result<Part, (usize, ObjLineError)> {
-    let mut reader = Reader { part: Part::default(), starts_file, offset, line: 0, face: Vec::new() };
+    let mut reader =
+        Reader { part: Part::default(), starts_file, offset, line: 0, face: Vec::new(), indices: Vec::new() };
     reader.part.faces = Faces::new();
-    for line in Scanner::new(bytes) {
-        reader.line = line.number;
-        reader.statement(line.start, &line.body).map_err(|problem| (line.number, problem))?;
+    let (mut pos, mut number) = (0, 1);
+    while pos < bytes.len() {
+        reader.line = number;
+        let (end, next) = match memchr::memchr(b'\n', &bytes[pos..]) {
+            Some(i) => (pos + i, pos + i + 1),
+            None => (bytes.len(), bytes.len()),
+        };
+        let content = &bytes[pos..if end > pos && bytes[end - 1] == b'\r' { end - 1 } else { end }];
+        if content.last() == Some(&b'\\') {
+            // A continued line: the scanner joins the logical line.
+            let mut scanner = Scanner::resume(bytes, pos, number);
+            if let Some(line) = scanner.next() {
+                reader.statement(line.start, &line.body).map_err(|problem| (line.number, problem))?;
+            }
+            (pos, number) = scanner.position();
+            continue;
+        }
+        if !reader.plain(pos, content).map_err(|problem| (number, problem))? {
+            reader.statement(pos, content).map_err(|problem| (number, problem))?;
+        }
+        (pos, number) = (next, number + 1);
     }
     Ok(reader.part)
 }
@@ -106,9 +129,32 @@ struct Reader {
     line: usize,
     /// The face being read, as zero-based indices.
     face: Vec<u32>,
+    /// The indices of a plain face line, as written.
+    indices: Vec<i64>,
 }
 
 impl Reader {
+    /// Reads the physical line `line` at byte `start` of the part if it is a plain `v` or `f`
+    /// line ([`super::plain`]); returns whether it was.
+    fn plain(&mut self, start: usize, line: &[u8]) -> Result<bool, ObjLineError> {
+        match line.first() {
+            Some(b'v') => {
+                let Some([x, y, z]) = plain::vertex(line) else { return Ok(false) };
+                self.push_vertex(start, DVec3::new(x, y, z))?;
+            }
+            Some(b'f') => {
+                let mut indices = std::mem::take(&mut self.indices);
+                let plain = plain::face(line, &mut indices);
+                let read = if plain { self.push_face(indices.iter().copied()) } else { Ok(()) };
+                self.indices = indices;
+                read?;
+                return Ok(plain);
+            }
+            _ => return Ok(false),
+        }
+        Ok(true)
+    }
+
     /// Reads the statement `body` of the logical line at byte `start` of the part.
     fn statement(&mut self, start: usize, body: &[u8]) -> Result<(), ObjLineError> {
         let code = scan::code(body);
@@ -147,6 +193,12 @@ impl Reader {
             return Err(ObjLineError::NonFinite { vertex });
         }
         finite_numbers(&code[tail..], "vertex value")?;
+        self.push_vertex(start, p)
+    }
+
+    /// Adds the vertex `p` whose logical line starts at byte `start` of the part.
+    fn push_vertex(&mut self, start: usize, p: DVec3) -> Result<(), ObjLineError> {
+        let positions = &mut self.part.positions;
         Limited::Vertices.check(positions.len() as u64 + 1).map_err(ObjLineError::Limit)?;
         positions.push(p);
         self.part.lines.push(self.offset + start);
@@ -154,13 +206,28 @@ impl Reader {
     }
 
     fn face(&mut self, args: &[u8]) -> Result<(), ObjLineError> {
-        self.face.clear();
-        for w in scan::words(args) {
+        let indices = scan::words(args).map(|w| {
             let word = &args[w];
             let index = word.split(|&b| b == b'/').next().unwrap_or(word);
-            let index = scan::integer(index)
-                .ok_or_else(|| ObjLineError::NotANumber { what: "face index", token: scan::lossy(word) })?;
-            let resolved = self.resolve(index)?;
+            scan::integer(index)
+                .ok_or_else(|| ObjLineError::NotANumber { what: "face index", token: scan::lossy(word) })
+        });
+        self.push_face_checked(indices)
+    }
+
+    /// Adds the face of the OBJ indices `indices` (as written).
+    fn push_face(&mut self, indices: impl Iterator<Item = i64>) -> Result<(), ObjLineError> {
+        self.push_face_checked(indices.map(Ok))
+    }
+
+    /// Adds the face of the OBJ indices `indices`, stopping at the first that is a fault.
+    fn push_face_checked(
+        &mut self,
+        indices: impl Iterator<Item = Result<i64, ObjLineError>>,
+    ) -> Result<(), ObjLineError> {
+        self.face.clear();
+        for index in indices {
+            let resolved = self.resolve(index?)?;
             Limited::FaceCorners.check(self.face.len() as u64 + 1).map_err(ObjLineError::Limit)?;
             self.face.push(resolved);
         }

@@ -38,6 +38,16 @@ impl<'a> Scanner<'a> {
         Self { bytes, pos: 0, line: 1 }
     }
 
+    /// Scans `bytes` from the byte `pos`, the start of its physical line `line` (1-based).
+    pub fn resume(bytes: &'a [u8], pos: usize, line: usize) -> Self {
+        Self { bytes, pos, line }
+    }
+
+    /// Where the next logical line starts: its byte offset and its line number.
+    pub fn position(&self) -> (usize, usize) {
+        (self.pos, self.line)
+    }
+
     /// The next physical line from `pos`: (content range, ending range).
     fn physical(&self, pos: usize) -> (Range<usize>, Range<usize>) {
         match memchr::memchr(b'\n', &self.bytes[pos..]) {
@@ -161,7 +171,7 @@ pub(crate) fn vertex(code: &[u8], args: Range<usize>) -> Result<([f64; 3], usize
     let mut found = 0;
     for range in words(&code[args.clone()]).take(3) {
         let word = &code[args.start + range.start..args.start + range.end];
-        xyz[found] = number(word).ok_or_else(|| VertexIssue::NotANumber(lossy(word)))?;
+        xyz[found] = super::float::parse(word).ok_or_else(|| VertexIssue::NotANumber(lossy(word)))?;
         end = args.start + range.end;
         found += 1;
     }
@@ -169,11 +179,6 @@ pub(crate) fn vertex(code: &[u8], args: Range<usize>) -> Result<([f64; 3], usize
         return Err(VertexIssue::Missing(found));
     }
     Ok((xyz, end))
-}
-
-/// Parses a word as a number of type `T`; `None` if it is not valid UTF-8 or not a number.
-pub(crate) fn number<T: std::str::FromStr>(word: &[u8]) -> Option<T> {
-    std::str::from_utf8(word).ok()?.parse().ok()
 }
 
 /// Parses a word as an `i64` exactly as `str::parse::<i64>` does (an optional `+` or `-`, then

@@ -1,8 +1,8 @@
 //! Writing OBJ files: faithfully over the file a mesh was read from, or generically.
 //!
 //! Both build their text in blocks of [`BLOCK`] vertices, a window of blocks at a time on every
-//! core (with the feature `parallel`), and write each block with one call: the output is the
-//! same bytes whatever the number of threads.
+//! core (with the feature `parallel`), and write the blocks in order: the output is the same
+//! bytes whatever the number of threads.
 
 use std::io::{self, Write};
 use std::ops::Range;
@@ -59,27 +59,62 @@ pub(crate) fn push_position(out: &mut Vec<u8>, p: DVec3) {
     push_coordinate(out, p.z);
 }
 
+/// The blocks of [`BLOCK`] items that `count` items make, in order.
+fn blocks(count: usize) -> Vec<Range<usize>> {
+    (0..count).step_by(BLOCK).map(|s| s..(s + BLOCK).min(count)).collect()
+}
+
 /// Builds the text of each of `count` items in blocks of [`BLOCK`] (`block` gives the text of
-/// a range of items, or `None` for "copy the original bytes of the range", which `original`
-/// gives), a window at a time in parallel, and writes them in order.
-fn write_blocks<'a>(
-    out: &mut impl Write,
-    count: usize,
-    block: impl Fn(Range<usize>) -> Option<Vec<u8>> + Sync,
-    original: impl Fn(Range<usize>) -> &'a [u8],
-) -> io::Result<()> {
-    let blocks: Vec<Range<usize>> = (0..count).step_by(BLOCK).map(|s| s..(s + BLOCK).min(count)).collect();
-    for window in blocks.chunks(WINDOW) {
-        let texts: Vec<Option<Vec<u8>>> = window.par_iter().map(|range| block(range.clone())).collect();
-        for (range, text) in window.iter().zip(texts) {
-            match text {
-                Some(text) => out.write_all(&text)?,
-                None => out.write_all(original(range.clone()))?,
-            }
+/// a range of items), a window at a time in parallel, and writes them in order.
+fn write_blocks(out: &mut impl Write, count: usize, block: impl Fn(Range<usize>) -> Vec<u8> + Sync) -> io::Result<()> {
+    for window in blocks(count).chunks(WINDOW) {
+        let texts: Vec<Vec<u8>> = window.par_iter().map(|range| block(range.clone())).collect();
+        for text in texts {
+            out.write_all(&text)?;
         }
     }
     Ok(())
 }
+
+/// The new statements of the moved vertices of a block: each one's logical line (its bytes in
+/// the file) and the end of its new text in `text`.
+#[derive(Default)]
+struct Patch {
+    lines: Vec<(Range<usize>, usize)>,
+    text: Vec<u8>,
+}
+
+impl Patch {
+    /// Writes the bytes of `file` from `copied` to the end of the patch's last line, each
+    /// patched line replaced by its new text; returns where the copy stopped.
+    fn write(&self, out: &mut impl Write, bytes: &[u8], mut copied: usize) -> io::Result<usize> {
+        let mut written = 0;
+        for (line, end) in &self.lines {
+            out.write_all(&bytes[copied..line.start])?;
+            out.write_all(&self.text[written..*end])?;
+            (copied, written) = (line.end, *end);
+        }
+        Ok(copied)
+    }
+
+    /// The patch as one text from `from` to `to` in the file.
+    fn into_text(self, bytes: &[u8], from: usize, to: usize) -> Vec<u8> {
+        let mut text = Vec::with_capacity(to - from + self.text.len());
+        let copied = self.write(&mut text, bytes, from).unwrap_or(to);
+        text.extend_from_slice(&bytes[copied..to]);
+        text
+    }
+}
+
+/// A block of vertices to write: its new statements, or, when they are many, its whole text.
+enum Block {
+    Patch(Patch),
+    Text(Vec<u8>),
+}
+
+/// A block where at least one vertex in `DENSE` moved is built as one text and written with
+/// one call; sparser ones have their unchanged runs written straight from the file.
+const DENSE: usize = 4;
 
 /// Writes the OBJ file `file` with new vertex positions.
 ///
@@ -89,6 +124,10 @@ fn write_blocks<'a>(
 /// its original text after the third number (w or colour, a comment), then its original line
 /// ending; a `\`-continued statement becomes one line. With unchanged positions the output is
 /// byte-identical to the file.
+///
+/// The new statements are built in blocks of [`BLOCK`] vertices, a window of blocks at a time
+/// on every core; the unchanged bytes around few moved vertices are written straight from the
+/// file, not copied.
 pub(crate) fn write_faithful(
     out: &mut impl Write,
     file: &ObjFile,
@@ -99,19 +138,14 @@ pub(crate) fn write_faithful(
     let count = file.lines.len().min(original.len()).min(positions.len());
     // Vertices first..last own the bytes from the first's statement (the file's start for
     // vertex 0) to the next vertex's statement (the file's end after the last vertex).
-    let span = |vertices: Range<usize>| {
+    let span = |vertices: &Range<usize>| {
         let start = if vertices.start == 0 { 0 } else { file.lines[vertices.start] };
         let end = if vertices.end >= count { bytes.len() } else { file.lines[vertices.end] };
         start..end
     };
-    if count == 0 {
-        return out.write_all(bytes);
-    }
     let block = |vertices: Range<usize>| {
-        let span = span(vertices.clone());
-        let mut text: Option<Vec<u8>> = None;
-        let mut copied = span.start;
-        for i in vertices {
+        let mut patch = Patch::default();
+        for i in vertices.clone() {
             if same_bits(original[i], positions[i]) {
                 continue;
             }
@@ -119,20 +153,43 @@ pub(crate) fn write_faithful(
             let Some(line) = Scanner::new(&bytes[start..]).next() else { continue };
             let code = scan::code(&line.body);
             let (_, args) = scan::keyword(code);
-            let Ok((_, tail)) = scan::vertex(code, args) else { continue };
-            let text = text.get_or_insert_with(|| Vec::with_capacity(span.len() + 1024));
-            text.extend_from_slice(&bytes[copied..start]);
+            let Some(tail) = after_position(code, args) else { continue };
+            let text = &mut patch.text;
             text.extend_from_slice(b"v ");
             push_position(text, positions[i]);
             text.extend_from_slice(&line.body[tail..]);
             text.extend_from_slice(line.ending);
-            copied = start + line.raw.len();
+            patch.lines.push((start..start + line.raw.len(), text.len()));
         }
-        let mut text = text?;
-        text.extend_from_slice(&bytes[copied..span.end]);
-        Some(text)
+        if patch.lines.len() * DENSE < vertices.len() {
+            return Block::Patch(patch);
+        }
+        let span = span(&vertices);
+        Block::Text(patch.into_text(bytes, span.start, span.end))
     };
-    write_blocks(out, count, block, |vertices| &bytes[span(vertices)])
+    let mut copied = 0;
+    for window in blocks(count).chunks(WINDOW) {
+        let built: Vec<Block> = window.par_iter().map(|range| block(range.clone())).collect();
+        for (range, block) in window.iter().zip(built) {
+            match block {
+                Block::Patch(patch) => copied = patch.write(out, bytes, copied)?,
+                Block::Text(text) => {
+                    let span = span(range);
+                    out.write_all(&bytes[copied..span.start])?;
+                    out.write_all(&text)?;
+                    copied = span.end;
+                }
+            }
+        }
+    }
+    out.write_all(&bytes[copied..])
+}
+
+/// The offset in `code` just past the third word of `args`, where the tail of a `v` statement
+/// begins: what `scan::vertex` finds, without parsing the numbers again (the file was read
+/// without fault, so the three words are its position).
+fn after_position(code: &[u8], args: Range<usize>) -> Option<usize> {
+    scan::words(&code[args.clone()]).nth(2).map(|word| args.start + word.end)
 }
 
 /// Whether two positions are equal bit for bit (so −0.0 differs from 0.0).
@@ -162,9 +219,9 @@ pub(crate) fn write_generic(
             push_position(&mut text, p);
             text.push(b'\n');
         }
-        Some(text)
+        text
     };
-    write_blocks(out, positions.len(), vertices, |_| &[])?;
+    write_blocks(out, positions.len(), vertices)?;
     let owner = first_groups(faces.len(), groups);
     write_faces(out, faces, &owner, None)?;
     for (g, group) in groups.iter().enumerate() {
@@ -203,9 +260,9 @@ fn write_faces(out: &mut impl Write, faces: &Faces, owner: &[Option<usize>], gro
             }
             text.push(b'\n');
         }
-        Some(text)
+        text
     };
-    write_blocks(out, faces.len(), block, |_| &[])
+    write_blocks(out, faces.len(), block)
 }
 
 /// Appends the decimal digits of `n`.
@@ -383,6 +440,15 @@ mod tests {
             }
         };
         DVec3::new(c(), c(), c())
+    }
+
+    #[test]
+    fn the_tail_starts_where_scan_vertex_finds_it() {
+        for code in [&b"v 1 2 3"[..], b"  v\t1e-3  -0 4.5 1.0 ", b"v 1 2 3 0.5 0.25 0.125", b"v 0 \x0c1 2\t"] {
+            let (_, args) = scan::keyword(code);
+            let (_, tail) = scan::vertex(code, args.clone()).unwrap();
+            assert_eq!(after_position(code, args), Some(tail));
+        }
     }
 
     #[test]
