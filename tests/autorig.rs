@@ -239,11 +239,11 @@ fn the_armadillo_gets_its_limbs_ears_and_tail() {
     let rigged = autorig(&mesh, &AutorigOptions::default()).unwrap();
     print_parts("armadillo", &mesh, &rigged);
     let limbs: [(&str, u32, f64); 7] = [
-        ("foot −x", extreme(&mesh, |p| p.x < 0.0, |p| -p.y), 0.13),
-        ("foot +x", extreme(&mesh, |p| p.x > 0.0, |p| -p.y), 0.13),
-        ("hand −x", extreme(&mesh, |p| p.y > 40.0, |p| -p.x), 0.22),
-        ("hand +x", extreme(&mesh, |p| p.y > 40.0, |p| p.x), 0.22),
-        ("ear −x", extreme(&mesh, |p| p.x < -10.0 && p.x > -35.0, |p| p.y), 0.15),
+        ("foot −x", extreme(&mesh, |p| p.x < 0.0, |p| -p.y), 0.12),
+        ("foot +x", extreme(&mesh, |p| p.x > 0.0, |p| -p.y), 0.12),
+        ("hand −x", extreme(&mesh, |p| p.y > 40.0, |p| -p.x), 0.19),
+        ("hand +x", extreme(&mesh, |p| p.y > 40.0, |p| p.x), 0.19),
+        ("ear −x", extreme(&mesh, |p| p.x < -10.0 && p.x > -35.0, |p| p.y), 0.14),
         ("ear +x", extreme(&mesh, |p| p.x > 10.0 && p.x < 35.0, |p| p.y), 0.23),
         ("tail", extreme(&mesh, |_| true, |p| p.z), 0.10),
     ];
