@@ -180,10 +180,19 @@ pub fn around(contours: &[Contour], q: DVec2) -> Option<Vec<&Contour>> {
     let mut chosen: Vec<bool> =
         contours.iter().map(|c| std::ptr::eq(c, primary) || c.distance_to(q) <= reach).collect();
     let gap = GAP * reach;
+    // Bounding boxes first: two contours whose boxes lie farther apart than the gap are.
+    let boxes: Vec<(DVec2, DVec2)> = contours
+        .iter()
+        .map(|c| c.points.iter().fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p))))
+        .collect();
+    let near = |i: usize, j: usize| {
+        let ((lo_i, hi_i), (lo_j, hi_j)) = (boxes[i], boxes[j]);
+        (lo_i - hi_j).max(lo_j - hi_i).max(DVec2::ZERO).length() <= gap && contours[i].gap_to(&contours[j]) <= gap
+    };
     loop {
         let joined: Vec<usize> = (0..contours.len())
             .filter(|&i| !chosen[i] && contours[i].closed)
-            .filter(|&i| (0..contours.len()).any(|j| chosen[j] && contours[i].gap_to(&contours[j]) <= gap))
+            .filter(|&i| (0..contours.len()).any(|j| chosen[j] && near(i, j)))
             .collect();
         if joined.is_empty() {
             break;
