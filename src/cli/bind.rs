@@ -12,8 +12,8 @@ use sweepffd::coeffs::SweepCoefficients;
 use sweepffd::cpu_fast::FastMesh;
 use sweepffd::gpu::{BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, GpuError};
 use sweepffd::mesh::Mesh;
-use sweepffd::rig::Rig;
 use sweepffd::rig::bindings_file::BindingsFile;
+use sweepffd::rig::{Rig, RigError, RigErrorKind};
 
 /// The arguments of `sweepffd bind`.
 #[derive(Debug, clap::Args)]
@@ -46,6 +46,13 @@ pub fn load_inputs(mesh_path: &Path, rig_path: &Path) -> Result<Inputs, Box<dyn 
     let rig = Rig::load(rig_path)?;
     let owners = rig.owners(&mesh, &mesh_path.display().to_string())?;
     Ok(Inputs { mesh, rig, owners })
+}
+
+/// Whether an error of [`load_inputs`] is the rig file's having no sweeps (as `sweepffd
+/// autorig` writes for a mesh with no protrusion), which `deform` and `render` take as leaving
+/// the mesh as it is.
+pub fn is_empty_rig(error: &(dyn std::error::Error + 'static)) -> bool {
+    error.downcast_ref::<RigError>().is_some_and(|e| matches!(e.kind, RigErrorKind::NoSweeps))
 }
 
 /// Binds on the GPU, read back in the reference form; the falloff bands' second bindings are

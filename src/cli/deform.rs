@@ -7,14 +7,14 @@ use glam::{DVec3, Vec3};
 
 use super::CliResult;
 use super::backend::{Backend, Device, resolve};
-use super::bind::{Inputs, bind_with_progress, load_inputs};
+use super::bind::{Inputs, bind_with_progress, is_empty_rig, load_inputs};
 use sweepffd::bind::falloff::BandWeight;
 use sweepffd::bind::{MeshBindings, UNOWNED};
 use sweepffd::coeffs::SweepCoefficients;
 use sweepffd::cpu_fast::FastMesh;
 use sweepffd::deform::deform_vertices;
 use sweepffd::gpu::{BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, GpuError};
-use sweepffd::mesh::Format;
+use sweepffd::mesh::{Format, Mesh};
 use sweepffd::rig::bindings_file::BindingsFile;
 use sweepffd::sweep::Sweep;
 
@@ -45,7 +45,16 @@ pub struct Args {
 pub fn run(args: &Args, quiet: bool) -> CliResult {
     // Refuse an unsupported output before any work is done.
     Format::of(&args.out)?;
-    let inputs = load_inputs(&args.mesh, &args.rig)?;
+    let inputs = match load_inputs(&args.mesh, &args.rig) {
+        Err(error) if is_empty_rig(&*error) => {
+            // A rig of no sweeps moves nothing: the mesh is written as it is.
+            let mesh = Mesh::load(&args.mesh)?;
+            mesh.save(&args.out, &mesh.positions)?;
+            eprintln!("notice: {error}; wrote the mesh unchanged to {}", args.out.display());
+            return Ok(());
+        }
+        loaded => loaded?,
+    };
     let posed = inputs.rig.load_pose(&args.pose)?;
     let saved = match &args.bindings {
         Some(path) => {

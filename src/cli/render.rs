@@ -7,7 +7,7 @@ use std::time::Instant;
 use glam::DVec3;
 
 use super::CliResult;
-use super::bind::load_inputs;
+use super::bind::{is_empty_rig, load_inputs};
 use sweepffd::deform::deform_vertices;
 use sweepffd::mesh::Mesh;
 use sweepffd::render::{CLAY, Renderer, Scene, SweepStyle, ViewAngles, add_sweeps, save_png, union_bounds};
@@ -106,7 +106,15 @@ fn build_scenes(args: &Args) -> Result<Vec<Scene>, Box<dyn std::error::Error>> {
         let mesh = Mesh::load(&args.mesh)?;
         return Ok(vec![mesh_scene(&mesh, &mesh.positions)]);
     };
-    let inputs = load_inputs(&args.mesh, rig_path)?;
+    let inputs = match load_inputs(&args.mesh, rig_path) {
+        Err(error) if is_empty_rig(&*error) => {
+            // A rig of no sweeps moves nothing and has no sweeps to show: the mesh alone.
+            eprintln!("notice: {error}; drawing the mesh as it is");
+            let mesh = Mesh::load(&args.mesh)?;
+            return Ok(vec![mesh_scene(&mesh, &mesh.positions)]);
+        }
+        loaded => loaded?,
+    };
     let mesh = &inputs.mesh;
     let rest = inputs.rig.rest();
     let Some(pose_path) = &args.pose else {

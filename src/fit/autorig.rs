@@ -75,7 +75,8 @@ impl Autorig {
 }
 
 /// Finds `mesh`'s protrusions and fits a sweep to each; a part the fit refuses is left out.
-/// An empty rig for a mesh with none (a sphere).
+/// An empty rig for a mesh with none (a sphere), which `sweepffd deform` and `render` take as
+/// leaving the mesh as it is.
 pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitError> {
     if !(options.min_length.is_finite() && options.min_length > 0.0) {
         return Err(FitError::Options(format!(

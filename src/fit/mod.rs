@@ -17,8 +17,11 @@
 //!    the first [`FitStep`].
 //! 3. **Key sections** (Fig. 3b, c): `keys` planes along the axis, normal to it, cut the
 //!    part's faces ([`section::cut`]). Each key's section is the smallest closed contour around
-//!    the key's center (or the nearest contour) plus the contours as near as that one reaches;
-//!    its center is their area centroid, and M radii are sampled from that center to the
+//!    the key's center (or the nearest contour) plus the contours as near as that one reaches
+//!    and the closed contours separated from those by gaps no wider than that reach (a foot's
+//!    toes, a hand's fingers: one section around them all, [`section::around`]); a ray of such
+//!    a section that passes through a gap takes interpolated radii and leaves the section
+//!    complete; its center is their area centroid, and M radii are sampled from that center to the
 //!    outermost crossing of each ray ([`radii::sample`]). A ray that crosses the boundary
 //!    more than once (a section that is not star-shaped around its center) is counted in
 //!    [`SectionReport::several_crossings`]; a ray that meets nothing takes the value

@@ -50,9 +50,10 @@ struct Cut {
 }
 
 impl Cut {
-    /// Closed contours met by every ray: the section is the part's whole cross-section.
+    /// Closed contours met by every ray, or several closed contours (toes, fingers) whose
+    /// gaps some rays pass through: the section is the part's whole cross-section.
     fn complete(&self) -> bool {
-        !self.report.open && self.report.missed == 0
+        !self.report.open && (self.report.missed == 0 || self.contours.len() > 1)
     }
 }
 

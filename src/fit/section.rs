@@ -65,6 +65,16 @@ impl Contour {
         self.segments().map(|(a, b)| segment_distance(q, a, b)).chain(point_distance).fold(f64::INFINITY, f64::min)
     }
 
+    /// The least distance between a point of this contour and a point of `other` (their
+    /// vertices, which lie a triangle's size apart along each).
+    pub fn gap_to(&self, other: &Contour) -> f64 {
+        self.points
+            .iter()
+            .flat_map(|p| other.points.iter().map(move |o| p.distance_squared(*o)))
+            .fold(f64::INFINITY, f64::min)
+            .sqrt()
+    }
+
     /// Whether a closed contour winds around `q` (even-odd rule).
     pub fn encloses(&self, q: DVec2) -> bool {
         self.closed
@@ -157,7 +167,9 @@ fn chain(points: &[DVec2], segments: &[[usize; 2]]) -> Vec<Contour> {
 /// The contours that make up the section around `q` (in-plane coordinates of the key's current
 /// center): the smallest closed contour around `q`, or failing that the contour nearest to
 /// `q`, together with every other contour that comes as near to `q` as that contour's
-/// farthest point. `None` when there are no contours.
+/// farthest point, and then every closed contour separated from those chosen by a gap of at
+/// most [`GAP`] times that reach, again and again (the toes of a foot, the fingers of a hand:
+/// one section whose radii span them all). `None` when there are no contours.
 pub fn around(contours: &[Contour], q: DVec2) -> Option<Vec<&Contour>> {
     let enclosing = contours
         .iter()
@@ -165,8 +177,36 @@ pub fn around(contours: &[Contour], q: DVec2) -> Option<Vec<&Contour>> {
         .min_by(|a, b| a.signed_area().abs().total_cmp(&b.signed_area().abs()));
     let primary = enclosing.or_else(|| contours.iter().min_by(|a, b| a.distance_to(q).total_cmp(&b.distance_to(q))))?;
     let reach = primary.points.iter().map(|p| p.distance(q)).fold(0.0, f64::max);
-    Some(contours.iter().filter(|c| std::ptr::eq(*c, primary) || c.distance_to(q) <= reach).collect())
+    let mut chosen: Vec<bool> =
+        contours.iter().map(|c| std::ptr::eq(c, primary) || c.distance_to(q) <= reach).collect();
+    let gap = GAP * reach;
+    // Bounding boxes first: two contours whose boxes lie farther apart than the gap are.
+    let boxes: Vec<(DVec2, DVec2)> = contours
+        .iter()
+        .map(|c| c.points.iter().fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p))))
+        .collect();
+    let near = |i: usize, j: usize| {
+        let ((lo_i, hi_i), (lo_j, hi_j)) = (boxes[i], boxes[j]);
+        (lo_i - hi_j).max(lo_j - hi_i).max(DVec2::ZERO).length() <= gap && contours[i].gap_to(&contours[j]) <= gap
+    };
+    loop {
+        let joined: Vec<usize> = (0..contours.len())
+            .filter(|&i| !chosen[i] && contours[i].closed)
+            .filter(|&i| (0..contours.len()).any(|j| chosen[j] && near(i, j)))
+            .collect();
+        if joined.is_empty() {
+            break;
+        }
+        for i in joined {
+            chosen[i] = true;
+        }
+    }
+    Some(contours.iter().zip(chosen).filter(|(_, c)| *c).map(|(c, _)| c).collect())
 }
+
+/// Closed contours separated from a section's chosen contours by at most this multiple of the
+/// section's reach (see [`around`]) belong to the same section.
+pub const GAP: f64 = 1.0;
 
 /// The center of a section: the area centroid of its closed contours, or the length-weighted
 /// centroid of its segments when none encloses any area.
