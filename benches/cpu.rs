@@ -1,8 +1,8 @@
 //! CPU throughput of binding and deformation on a synthetic tube (the fast f32 path of
 //! `--backend cpu`, the f64 reference path of `--backend reference` and the f32 twin of the GPU
 //! kernels), with a memory-copy and a four-influence linear-blend-skinning baseline measured in
-//! the same run, and of the falloff bands of binding, with the normals' adjacency build as the
-//! baseline.
+//! the same run, the fused deform with Jacobian normals (fast and twin) beside them, and of the
+//! falloff bands of binding, with the normals' adjacency build as the baseline.
 //!
 //! `cargo bench --bench cpu`; criterion reports vertices per second (throughput elements).
 
@@ -36,6 +36,14 @@ fn scene(vertices: usize) -> Scene {
     let pose = BendTwistTaper { bend: 1.5, twist: 2.0, taper: 0.5 };
     let posed = rig.pose(&pose.keys(&rig)).unwrap();
     Scene { mesh, rig, owners, posed }
+}
+
+/// The rest vertex normals of `mesh` (the normals kernel's twin), tightly packed.
+fn rest_normals(mesh: &Mesh) -> Vec<f32> {
+    let positions = cpu::packed(&mesh.positions);
+    let mut normals = vec![0.0; positions.len()];
+    cpu::normals::normals(&positions, &NormalAdjacency::new(&mesh.faces, mesh.positions.len()), &mut normals);
+    normals
 }
 
 fn bind(c: &mut Criterion) {
@@ -84,6 +92,33 @@ fn deform(c: &mut Criterion) {
         });
         group.bench_function(BenchmarkId::new("fast", n), |b| {
             b.iter(|| cpu_fast::deform::deform(&coefficients.cells, &gpu_bindings, &mut out32))
+        });
+        // Fused with the Jacobian normals, on the fast path and on the twin.
+        let rest_normals = rest_normals(&scene.mesh);
+        let records =
+            cpu::jacobian::coordinates(&SweepCoefficients::new(scene.rig.rest()).cells, &gpu_bindings, &rest_normals);
+        let mut normals32 = rest_normals.clone();
+        group.bench_function(BenchmarkId::new("fast_normals", n), |b| {
+            b.iter(|| {
+                cpu_fast::deform::deform_with_normals(
+                    &coefficients.cells,
+                    &gpu_bindings,
+                    &records,
+                    &mut out32,
+                    &mut normals32,
+                )
+            })
+        });
+        group.bench_function(BenchmarkId::new("f32_twin_normals", n), |b| {
+            b.iter(|| {
+                cpu::deform::deform_with_normals(
+                    &coefficients.cells,
+                    &gpu_bindings,
+                    &records,
+                    &mut out32,
+                    &mut normals32,
+                )
+            })
         });
         // Baseline: four-influence linear-blend skinning (the f32 twin of the GPU baseline).
         let (joints, influences) = (skinning_joints(), skinning_influences(count));

@@ -10,6 +10,8 @@ use super::Isa;
 use crate::coeffs::{BAND_FLAG, BandRecord, CellCoeffs, GpuBinding};
 use crate::cpu::deform::deform_vertex;
 
+pub use super::deform_normals::{deform_with_normals, deform_with_normals_with};
+
 /// Vertices per parallel task: big enough that scheduling is noise, small enough for two
 /// threads to share the work evenly at 100k vertices.
 pub const CHUNK: usize = 16 * 1024;

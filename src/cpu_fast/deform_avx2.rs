@@ -18,15 +18,15 @@ const _: () = assert!(size_of::<CellCoeffs>() == 160 && size_of::<GpuBinding>() 
 
 /// One cell's coefficients in every lane (the same cell, or each lane's own): the fields of
 /// [`CellCoeffs`].
-struct Coefficients {
+pub(super) struct Coefficients {
     /// `radius[q][p]`: the coefficient of φ^q·s^p.
-    radius: [[F8; 4]; 4],
+    pub radius: [[F8; 4]; 4],
     /// `curve[i][axis]`: the coefficient of s^i.
-    curve: [[F8; 3]; 4],
+    pub curve: [[F8; 3]; 4],
     /// π/M.
-    half_step: F8,
-    q0: [F8; 4],
-    dq: [F8; 4],
+    pub half_step: F8,
+    pub q0: [F8; 4],
+    pub dq: [F8; 4],
 }
 
 impl Coefficients {
@@ -52,7 +52,7 @@ impl Coefficients {
     /// many CPUs).
     #[target_feature(enable = "avx2,fma")]
     #[inline]
-    fn transposed(cells: &[CellCoeffs], index: [usize; LANES]) -> Coefficients {
+    pub(super) fn transposed(cells: &[CellCoeffs], index: [usize; LANES]) -> Coefficients {
         let records = index.map(|i| &cells[i]);
         // Block b of a record holds its floats 8b..8b + 8: radius[0..2], radius[2..4],
         // curve[0..2], curve[2..4], then q0 and dq.
@@ -114,33 +114,125 @@ fn transpose8(r: [F8; 8]) -> [F8; 8] {
 }
 
 /// The bindings of a batch, one field per register.
-struct Batch {
-    s: F8,
-    phi: F8,
-    d: F8,
-    h: F8,
+pub(super) struct Batch {
+    pub s: F8,
+    pub phi: F8,
+    pub d: F8,
+    pub h: F8,
 }
 
 impl Batch {
-    /// Loads (s, φ, d, h) of each binding as four floats, binding i beside binding i + 4 in one
-    /// register, and transposes each 4 × 4 block: gathers are slow on many CPUs.
+    /// (s, φ, d, h) of each binding: [`load4`].
     #[target_feature(enable = "avx2,fma")]
     #[inline]
-    fn load(bindings: &[GpuBinding; LANES]) -> Batch {
-        let fields = |i: usize| {
-            let (low, high) = (&bindings[i].s as *const f32, &bindings[i + 4].s as *const f32);
-            // SAFETY: s, φ, d and h are four consecutive f32 fields of each `#[repr(C)]` binding.
-            unsafe { _mm256_loadu2_m128(high, low) }
-        };
-        let (r0, r1, r2, r3) = (fields(0), fields(1), fields(2), fields(3));
-        let (t0, t1) = (_mm256_unpacklo_ps(r0, r1), _mm256_unpackhi_ps(r0, r1));
-        let (t2, t3) = (_mm256_unpacklo_ps(r2, r3), _mm256_unpackhi_ps(r2, r3));
-        Batch {
-            s: _mm256_shuffle_ps::<0x44>(t0, t2),
-            phi: _mm256_shuffle_ps::<0xee>(t0, t2),
-            d: _mm256_shuffle_ps::<0x44>(t1, t3),
-            h: _mm256_shuffle_ps::<0xee>(t1, t3),
+    pub(super) fn load(bindings: &[GpuBinding; LANES]) -> Batch {
+        let rows = [0, 1, 2, 3, 4, 5, 6, 7].map(|i| &bindings[i].s as *const f32);
+        // SAFETY: s, φ, d and h are four consecutive f32 fields of each `#[repr(C)]` binding.
+        let [s, phi, d, h] = unsafe { load4(rows) };
+        Batch { s, phi, d, h }
+    }
+}
+
+/// Four consecutive floats from each of eight rows, one register per float: row i beside row
+/// i + 4 in one register, each 4 × 4 block transposed (gathers are slow on many CPUs).
+///
+/// # Safety
+///
+/// Each pointer reads four floats.
+#[target_feature(enable = "avx2,fma")]
+#[inline]
+pub(super) unsafe fn load4(rows: [*const f32; LANES]) -> [F8; 4] {
+    // SAFETY: the caller's.
+    let fields = |i: usize| unsafe { _mm256_loadu2_m128(rows[i + 4], rows[i]) };
+    let (r0, r1, r2, r3) = (fields(0), fields(1), fields(2), fields(3));
+    let (t0, t1) = (_mm256_unpacklo_ps(r0, r1), _mm256_unpackhi_ps(r0, r1));
+    let (t2, t3) = (_mm256_unpacklo_ps(r2, r3), _mm256_unpackhi_ps(r2, r3));
+    [
+        _mm256_shuffle_ps::<0x44>(t0, t2),
+        _mm256_shuffle_ps::<0xee>(t0, t2),
+        _mm256_shuffle_ps::<0x44>(t1, t3),
+        _mm256_shuffle_ps::<0xee>(t1, t3),
+    ]
+}
+
+/// The coefficients of a batch's cells, as [`CellCache::pick`] finds them.
+pub(super) enum Picked<'a> {
+    /// No lane moves (unbound or band vertices only).
+    Still,
+    /// Every lane moves, on one cell.
+    Shared(&'a Coefficients),
+    /// The lanes of the mask move (bit i: lane i), each on its own cell, whose index it holds
+    /// (0 in the lanes left alone): [`Coefficients::transposed`] makes their coefficients, in the
+    /// caller's frame, where they stay in registers.
+    Own([usize; LANES], u32),
+}
+
+/// The cells of the batches of one run of the deform kernels, with the broadcast coefficients
+/// of the last uniform batch's cell, which the next batch often shares.
+pub(super) struct CellCache<'c> {
+    cells: &'c [CellCoeffs],
+    count: __m256i,
+    last: Option<(u32, Coefficients)>,
+}
+
+impl<'c> CellCache<'c> {
+    #[target_feature(enable = "avx2,fma")]
+    #[inline]
+    pub(super) fn new(cells: &'c [CellCoeffs]) -> CellCache<'c> {
+        CellCache { cells, count: _mm256_set1_epi32(cells.len().min(i32::MAX as usize) as i32), last: None }
+    }
+
+    /// Which lanes of `batch` the kernel moves (neither unbound nor in a band), and their cells'
+    /// coefficients.
+    ///
+    /// # Panics
+    ///
+    /// If a lane that moves names a cell past the cells.
+    #[target_feature(enable = "avx2,fma")]
+    #[inline]
+    pub(super) fn pick(&mut self, batch: &[GpuBinding; LANES]) -> Picked<'_> {
+        let cells = self.cells;
+        let first = batch[0].cell;
+        if (first as usize) < cells.len() && batch.iter().all(|binding| binding.cell == first) {
+            if self.last.as_ref().is_none_or(|(cell, _)| *cell != first) {
+                self.last = Some((first, Coefficients::broadcast(&cells[first as usize])));
+            }
+            let (_, c) = self.last.as_ref().expect("set just above");
+            return Picked::Shared(c);
         }
+        // Cells below BAND_FLAG are non-negative as i32; those at or past it (bands, unbound)
+        // are negative and stay where they are.
+        let cell = cells_of(batch);
+        let moved = _mm256_cmpgt_epi32(cell, _mm256_set1_epi32(-1));
+        let in_range = _mm256_and_si256(moved, _mm256_cmpgt_epi32(self.count, cell));
+        let (moved_bits, in_range_bits) =
+            (_mm256_movemask_ps(_mm256_castsi256_ps(moved)), _mm256_movemask_ps(_mm256_castsi256_ps(in_range)));
+        if moved_bits != in_range_bits {
+            let lane = (moved_bits ^ in_range_bits).trailing_zeros() as usize;
+            panic!("binding names cell {} of {}", batch[lane].cell, cells.len());
+        }
+        if moved_bits == 0 {
+            return Picked::Still;
+        }
+        // Lanes left alone read cell 0 (there is one: some lane moves) and are not written.
+        let index =
+            std::array::from_fn(|lane| if in_range_bits & (1 << lane) != 0 { batch[lane].cell as usize } else { 0 });
+        Picked::Own(index, moved_bits as u32)
+    }
+}
+
+/// Writes the lanes of `moved` (bit i: lane i) of eight xyz triples to `out` (24 floats,
+/// tightly packed), leaving the others' floats alone.
+#[target_feature(enable = "avx2,fma")]
+#[inline]
+pub(super) fn store_lanes(xyz: [F8; 3], moved: u32, out: &mut [f32; 24]) {
+    if moved == 0xff {
+        store_xyz(xyz, out);
+        return;
+    }
+    let xyz = [to_array(xyz[0]), to_array(xyz[1]), to_array(xyz[2])];
+    for lane in (0..LANES).filter(|lane| moved & (1 << lane) != 0) {
+        out[3 * lane..3 * lane + 3].copy_from_slice(&[xyz[0][lane], xyz[1][lane], xyz[2][lane]]);
     }
 }
 
@@ -187,7 +279,7 @@ pub(super) fn rotate(q: [F8; 4], v: [F8; 3]) -> [F8; 3] {
 #[target_feature(enable = "avx2,fma")]
 #[inline]
 #[expect(clippy::excessive_precision, reason = "the WGSL twin spells the same literals")]
-fn cos_sin_small(delta: F8) -> (F8, F8) {
+pub(super) fn cos_sin_small(delta: F8) -> (F8, F8) {
     let d2 = mul(delta, delta);
     let sin = mul(
         delta,

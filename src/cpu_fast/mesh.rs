@@ -1,8 +1,11 @@
 //! A mesh on the fast path, end to end: bound to a rest rig with its falloff bands, then
-//! deformed by posed sweeps, in the GPU's forms (as [`crate::gpu::GpuDeformer`] holds them).
+//! deformed by posed sweeps, in the GPU's forms (as [`crate::gpu::GpuDeformer`] holds them),
+//! optionally with its vertex normals carried through the deformation's Jacobian.
 
-use super::bands::{band_records, flagged_owners};
-use super::deform::deform_with_bands;
+use glam::Vec4;
+
+use super::bands::{band_records, deform_bands, flagged_owners};
+use super::deform::{deform_with_bands, deform_with_normals};
 use crate::bind::falloff::BandWeight;
 use crate::coeffs::{BandRecord, BindSegment, GpuBinding, StructureMismatch, SweepCoefficients, bind_segments};
 use crate::cpu::bind::BindInputs;
@@ -22,6 +25,9 @@ pub struct FastMesh {
     pub tables: Vec<BindSegment>,
     /// The posed cell records, refilled by [`FastMesh::deform`].
     posed: SweepCoefficients,
+    /// Each vertex's normal coordinates record ([`crate::cpu::jacobian::coordinates`]); empty
+    /// until [`FastMesh::with_rest_normals`].
+    records: Vec<Vec4>,
 }
 
 impl FastMesh {
@@ -49,7 +55,25 @@ impl FastMesh {
         bindings: Vec<GpuBinding>,
         bands: Vec<BandRecord>,
     ) -> FastMesh {
-        FastMesh { bindings, bands, posed: rest.clone(), rest, tables }
+        FastMesh { bindings, bands, posed: rest.clone(), rest, tables, records: Vec::new() }
+    }
+
+    /// Keeps Jacobian normals: each vertex's normal coordinates record, made from its rest
+    /// normal in `rest_normals` (tightly packed xyz, one triple per binding), on the rest rig,
+    /// for [`FastMesh::deform_with_normals`].
+    ///
+    /// # Panics
+    ///
+    /// If `rest_normals` is not three floats per binding.
+    pub fn with_rest_normals(mut self, rest_normals: &[f32]) -> FastMesh {
+        assert_eq!(rest_normals.len(), 3 * self.bindings.len(), "three rest normal floats per vertex");
+        self.records = crate::cpu::jacobian::coordinates(&self.rest.cells, &self.bindings, rest_normals);
+        self
+    }
+
+    /// Whether [`FastMesh::with_rest_normals`] gave the mesh its normal coordinates.
+    pub fn has_normals(&self) -> bool {
+        self.records.len() == self.bindings.len()
     }
 
     /// Overwrites the moving vertices of `positions` (tightly packed xyz, rest positions before
@@ -59,6 +83,31 @@ impl FastMesh {
     pub fn deform(&mut self, posed: &[Sweep], positions: &mut [f32]) -> Result<(), StructureMismatch> {
         self.posed.update(posed)?;
         deform_with_bands(&self.posed.cells, &self.rest.cells, &self.bindings, &self.bands, positions);
+        Ok(())
+    }
+
+    /// [`FastMesh::deform`], and the deformed unit normals of the vertices it moves outside the
+    /// falloff bands written into `normals` (tightly packed xyz): each rest normal carried
+    /// through the parameter Jacobian of Eq. 2 (cof(DP)·m, [`crate::deform::jacobian`]), in the
+    /// same pass. The normals of unbound and band vertices are left alone: recompute those (and
+    /// those of vertices whose one-ring another sweep moves, [`crate::normals::jacobian_reach`])
+    /// from the deformed triangles ([`crate::cpu::normals::normals_of`]), as the GPU deformer's
+    /// normals pass does. Fails, changing nothing, if `posed` lacks the rest rig's structure.
+    ///
+    /// # Panics
+    ///
+    /// If the mesh has no normal coordinates ([`FastMesh::with_rest_normals`]), or `positions`
+    /// or `normals` is not three floats per vertex.
+    pub fn deform_with_normals(
+        &mut self,
+        posed: &[Sweep],
+        positions: &mut [f32],
+        normals: &mut [f32],
+    ) -> Result<(), StructureMismatch> {
+        assert!(self.has_normals(), "FastMesh::deform_with_normals needs FastMesh::with_rest_normals");
+        self.posed.update(posed)?;
+        deform_with_normals(&self.posed.cells, &self.bindings, &self.records, positions, normals);
+        deform_bands(&self.posed.cells, &self.rest.cells, &self.bindings, &self.bands, positions);
         Ok(())
     }
 }
