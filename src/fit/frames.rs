@@ -29,7 +29,8 @@ pub fn transported_frames(normals: &[DVec3], reference: Option<DVec3>) -> Vec<DQ
 }
 
 /// `reference` without its component along `normal`, where that leaves at least 1e-3 of its
-/// length; else [`least_aligned_axis`].
+/// length; else the world axis (X, then Y, then Z on ties) with the smallest component along
+/// `normal`.
 pub fn first_x_axis(normal: DVec3, reference: Option<DVec3>) -> DVec3 {
     reference
         .map(|r| (r, r - normal * r.dot(normal)))

@@ -118,7 +118,9 @@ impl<'a> DeformerDescriptor<'a> {
         DeformerDescriptor { pose_uploads, ..self }
     }
 
-    /// The same, keeping the previous frame's positions.
+    /// The same, keeping the previous frame's positions in two position buffers of the
+    /// deformer's own (with the application's output, [`with_outputs`](Self::with_outputs)
+    /// takes the two buffers).
     pub fn with_previous_positions(self) -> DeformerDescriptor<'a> {
         DeformerDescriptor { previous_positions: true, ..self }
     }
