@@ -7,11 +7,13 @@
 
 mod common;
 
+use common::isas::isas;
 use sweepffd::bind::falloff::BandWeight;
 use sweepffd::coeffs::{BAND_FLAG, BandRecord, GpuBinding, SweepCoefficients, UNOWNED, bind_segments};
 use sweepffd::cpu;
 use sweepffd::cpu::bind::BindInputs;
-use sweepffd::cpu_fast::{self, Isa};
+use sweepffd::cpu_fast;
+use sweepffd::cpu_fast::bands::flagged_owners;
 use sweepffd::mesh::Mesh;
 use sweepffd::rig::Rig;
 use sweepffd::sweep::Sweep;
@@ -21,22 +23,6 @@ const T_TOLERANCE: f64 = 1e-5;
 const POSITION_TOLERANCE: f64 = 1e-5;
 
 const POSE: BendTwistTaper = BendTwistTaper { bend: 1.2, twist: 1.7, taper: 0.6 };
-
-/// The instruction sets to check: the detected one and the scalar fallback.
-fn isas() -> Vec<Isa> {
-    let mut isas = vec![Isa::detect(), Isa::Scalar];
-    isas.dedup();
-    isas
-}
-
-/// The owners as the bind kernel takes them: [`BAND_FLAG`] on the band vertices.
-fn flagged_owners(owners: &[u32], weights: &[BandWeight]) -> Vec<u32> {
-    let mut flagged = owners.to_vec();
-    for weight in weights {
-        flagged[weight.vertex as usize] |= BAND_FLAG;
-    }
-    flagged
-}
 
 /// The worst |Δt| between two bindings of the same vertices (which must agree on which are
 /// bound, and on the band flag), and its vertex.

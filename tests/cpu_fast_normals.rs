@@ -7,7 +7,9 @@
 
 mod common;
 
-use glam::{DVec3, Vec3, Vec4};
+use common::isas::isas;
+use common::normal_angles::{at, worst_angle};
+use glam::{Vec3, Vec4};
 use sweepffd::coeffs::{BAND_FLAG, GpuBinding, SweepCoefficients, UNOWNED, bind_segments};
 use sweepffd::cpu;
 use sweepffd::cpu::bind::BindInputs;
@@ -25,39 +27,6 @@ const POSITION_TOLERANCE: f64 = 1e-5;
 const NORMAL_TOLERANCE: f64 = 2e-5;
 
 const POSE: BendTwistTaper = BendTwistTaper { bend: 1.2, twist: 1.7, taper: 0.6 };
-
-fn isas() -> Vec<Isa> {
-    let mut isas = vec![Isa::detect(), Isa::Scalar];
-    isas.dedup();
-    isas
-}
-
-fn at(values: &[f32], i: usize) -> DVec3 {
-    Vec3::from_slice(&values[3 * i..3 * i + 3]).as_dvec3()
-}
-
-/// The angle between two vectors, atan2(|a × b|, a · b) in f64; zero for two zero vectors, π
-/// for one.
-fn angle(a: DVec3, b: DVec3) -> f64 {
-    match (a == DVec3::ZERO, b == DVec3::ZERO) {
-        (true, true) => 0.0,
-        (false, false) => a.cross(b).length().atan2(a.dot(b)),
-        _ => std::f64::consts::PI,
-    }
-}
-
-/// The worst angle between the normals `a` and `b` and its vertex; NaN counts as π.
-fn worst_angle(a: &[f32], b: &[f32]) -> (f64, usize) {
-    let mut worst = (0.0, 0);
-    for i in 0..a.len() / 3 {
-        let e = angle(at(a, i), at(b, i));
-        let e = if e.is_nan() { std::f64::consts::PI } else { e };
-        if e > worst.0 {
-            worst = (e, i);
-        }
-    }
-    worst
-}
 
 /// The rest normals of `mesh` (the normals kernel's twin), tightly packed.
 fn rest_normals(mesh: &Mesh) -> Vec<f32> {

@@ -8,7 +8,8 @@
 
 mod common;
 
-use glam::{DVec3, Vec3, Vec4};
+use common::normal_angles::{angle, at};
+use glam::{DVec3, Vec4};
 use sweepffd::bind::SweepBinder;
 use sweepffd::coeffs::{BAND_FLAG, GpuBinding, SweepCoefficients, UNOWNED};
 use sweepffd::cpu;
@@ -30,19 +31,6 @@ const P99_TARGET_DEG: f64 = 2.0;
 /// The same on scanned parts whose one-rings bend visibly within one pose (the bunny's thin
 /// ears, the teapot's coarse spout and handle): measured 4.8°.
 const P99_COARSE_DEG: f64 = 6.0;
-
-/// The angle between two vectors, atan2(|a × b|, a · b) in f64; zero for two zero vectors.
-fn angle(a: DVec3, b: DVec3) -> f64 {
-    match (a == DVec3::ZERO, b == DVec3::ZERO) {
-        (true, true) => 0.0,
-        (false, false) => a.cross(b).length().atan2(a.dot(b)),
-        _ => std::f64::consts::PI,
-    }
-}
-
-fn at(values: &[f32], i: usize) -> DVec3 {
-    Vec3::from_slice(&values[3 * i..3 * i + 3]).as_dvec3()
-}
 
 /// The worst angle over `vertices` and its vertex.
 fn worst(vertices: &[usize], a: impl Fn(usize) -> DVec3, b: impl Fn(usize) -> DVec3) -> (f64, usize) {

@@ -11,6 +11,7 @@
 
 mod common;
 
+use common::normal_angles::worst_angle;
 use glam::{DVec3, Vec3};
 use sweepffd::cpu;
 use sweepffd::gpu::BindingSource;
@@ -44,24 +45,6 @@ fn tube_with_open_and_non_manifold_parts(tube: &Tube) -> Mesh {
     }
     positions.push(DVec3::new(0.1, 0.0, 2.0));
     Mesh::from_parts(positions, faces, Vec::new()).unwrap()
-}
-
-/// The largest angle between corresponding normals, atan2(|a × b|, a · b) in f64, and its
-/// vertex; a zero normal against a non-zero one counts as π.
-fn worst_angle(a: &[f32], b: &[f32]) -> (f64, usize) {
-    let mut worst = (0.0, 0);
-    for (i, (x, y)) in a.chunks_exact(3).zip(b.chunks_exact(3)).enumerate() {
-        let (x, y) = (Vec3::from_slice(x).as_dvec3(), Vec3::from_slice(y).as_dvec3());
-        let angle = match (x == DVec3::ZERO, y == DVec3::ZERO) {
-            (true, true) => 0.0,
-            (false, false) => x.cross(y).length().atan2(x.dot(y)),
-            _ => std::f64::consts::PI,
-        };
-        if angle > worst.0 {
-            worst = (angle, i);
-        }
-    }
-    worst
 }
 
 #[test]

@@ -168,6 +168,8 @@ pub mod app_buffer;
 pub mod autorig_report;
 pub mod bends;
 pub mod falloff_tubes;
+pub mod isas;
+pub mod normal_angles;
 mod teapot;
 mod twin;
 
