@@ -116,6 +116,35 @@ mod tests {
     }
 
     #[test]
+    fn a_coarse_tube_leaves_the_rings_the_jacobian_misses() {
+        // Eight facets around: each ring spans a quarter turn of the sweep's radius field.
+        let tube = Tube { rings: 6, around: 8, length: 4.0, radius: 0.5 };
+        let (mesh, rig) = (tube.mesh(), tube_rig(&tube, 4, 8));
+        let positions: Vec<[f32; 3]> = mesh.positions.iter().map(|p| p.as_vec3().to_array()).collect();
+        let triangles: Vec<u32> = mesh.faces.triangles().flatten().collect();
+        let adjacency = NormalAdjacency::new(&mesh.faces, positions.len());
+        let influence = vec![0; positions.len()];
+        let kept = jacobian_normal_vertices(rig.rest(), &positions, &adjacency, &triangles, &influence);
+        // The same decision from the whole mesh's normals, rest and probed.
+        let rest: Vec<DVec3> = positions.iter().map(|&p| Vec3::from_array(p).as_dvec3()).collect();
+        let (sweep, binder) = (&rig.rest()[0], SweepBinder::new(&rig.rest()[0]));
+        let probe = probe_sweep(sweep).unwrap();
+        let bindings: Vec<VertexBinding> = rest.iter().map(|&p| binder.bind(p)).collect();
+        let probed: Vec<DVec3> = bindings.iter().map(|b| deform_vertex(&probe, b)).collect();
+        let (rest_normals, facets) =
+            (super::super::vertex_normals(&rest, &adjacency), super::super::vertex_normals(&probed, &adjacency));
+        let mut left = 0;
+        for i in 0..positions.len() {
+            let coordinates = normal_coordinates(sweep, &bindings[i], rest_normals[i]);
+            let jacobian = deformed_normal(&probe, &bindings[i], &coordinates);
+            let degrees = jacobian.cross(facets[i]).length().atan2(jacobian.dot(facets[i])).to_degrees();
+            assert_eq!(kept[i], degrees <= PROBE_TOLERANCE_DEG, "vertex {i}: {degrees}°");
+            left += usize::from(!kept[i]);
+        }
+        assert!(left > 0, "no ring of the coarse tube left to the triangles");
+    }
+
+    #[test]
     fn unowned_vertices_stay_out() {
         let tube = Tube { rings: 9, around: 12, length: 4.0, radius: 0.5 };
         let (mesh, rig) = (tube.mesh(), tube_rig(&tube, 4, 12));
