@@ -40,7 +40,8 @@ pub const PROBE_TOLERANCE_DEG: f64 = 1.5;
 /// lies within [`PROBE_TOLERANCE_DEG`] of the area-weighted normal of its deformed one-ring
 /// (`adjacency` of the same triangles, rest `positions`, each vertex bound to the rest sweep of
 /// its influence in `rest`). A sweep whose probe cannot be built keeps its whole reach; a
-/// vertex whose rest normal is zero keeps its answer from the reach.
+/// vertex whose rest normal is zero keeps its answer from the reach, one whose probed normals
+/// vanish (a ring the probe collapses) keeps the Jacobian, and a NaN leaves the reach.
 pub fn jacobian_normal_vertices(
     rest: &[Sweep],
     positions: &[[f32; 3]],
@@ -61,7 +62,7 @@ pub fn jacobian_normal_vertices(
         .map(|i| {
             let (true, Some(binding)) = (reach[i], bindings[i]) else { return reach[i] };
             let sweep = influence[i] as usize;
-            let Some(probe) = &probes[sweep] else { return true };
+            let Some(Some(probe)) = probes.get(sweep) else { return true };
             let normal = fan_normal(adjacency, i, rest_at);
             if normal == DVec3::ZERO {
                 return true;
