@@ -2,8 +2,9 @@
 // through its Jacobian: each bound vertex reads its binding and normal coordinates once and
 // writes its position and its normal once (src/deform/jacobian.rs). The positions equal
 // deform.wgsl's. Vertices whose one-ring two influences move (falloff bands, hard seams between
-// sweeps, unbound vertices beside moving ones) get their normals from the normals pass, which
-// runs after this one (src/normals/reach.rs).
+// sweeps, unbound vertices beside moving ones) and those whose rings are too coarse for the
+// deformation get their normals from the normals pass, which runs after this one
+// (src/normals/reach.rs, src/normals/probe.rs).
 // Composed after layout.wgsl, cells_uniform.wgsl or cells_storage.wgsl (binding 1: the cell
 // records), sweep_eval.wgsl and jacobian.wgsl. Twin: src/cpu/deform.rs (deform_with_normals).
 // Every instance in one dispatch: workgroup layer z is instance params.first_instance + z.

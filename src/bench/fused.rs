@@ -18,8 +18,10 @@ const RECORD_STRIDE: u64 = 16;
 pub(super) struct FusedComparison {
     deformer: GpuDeformer,
     wide_copy: Dispatches,
-    /// The 99th percentile of the angle between the fused kernel's normals and the triangle
-    /// normals of the same positions, over the vertices it writes, degrees.
+    /// The 99th percentile of the angle between the fused deformer's normals and the triangle
+    /// normals of the same positions, over the Jacobian reach (the vertices the kernel writes,
+    /// and those [`crate::normals::jacobian_normal_vertices`] leaves to the normals pass),
+    /// degrees.
     pub(super) angle_p99_deg: f64,
 }
 
@@ -88,7 +90,7 @@ impl FusedComparison {
 }
 
 /// The 99th percentile of the angle between `fused`'s normals and `plain`'s over the vertices
-/// whose normals the fused kernel writes, degrees.
+/// of the Jacobian reach, degrees.
 fn normals_angle_p99_deg(fused: &GpuDeformer, plain: &GpuDeformer, triangles: &[u32]) -> Result<f64, GpuError> {
     let bindings = fused.read_bindings()?;
     // One sweep moves every bound vertex of the bench's rig, without bands.

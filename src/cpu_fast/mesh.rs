@@ -90,9 +90,10 @@ impl FastMesh {
     /// falloff bands written into `normals` (tightly packed xyz): each rest normal carried
     /// through the parameter Jacobian of Eq. 2 (cof(DP)·m, [`crate::deform::jacobian`]), in the
     /// same pass. The normals of unbound and band vertices are left alone: recompute those (and
-    /// those of vertices whose one-ring another sweep moves, [`crate::normals::jacobian_reach`])
-    /// from the deformed triangles ([`crate::cpu::normals::normals_of`]), as the GPU deformer's
-    /// normals pass does. Fails, changing nothing, if `posed` lacks the rest rig's structure.
+    /// those outside [`crate::normals::jacobian_normal_vertices`]: vertices whose one-ring
+    /// another sweep moves, or too coarse for the deformation) from the deformed triangles
+    /// ([`crate::cpu::normals::normals_of`]), as the GPU deformer's normals pass does. Fails,
+    /// changing nothing, if `posed` lacks the rest rig's structure.
     ///
     /// # Panics
     ///

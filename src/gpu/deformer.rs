@@ -35,7 +35,7 @@ use super::tangents_pass::{TANGENT_STRIDE, TangentStage};
 use super::{GpuContext, GpuError};
 use crate::bind::falloff::BandWeight;
 use crate::coeffs::{BAND_FLAG, BandRecord, CellCoeffs, GpuBinding, SweepCoefficients, UNOWNED};
-use crate::normals::jacobian_reach;
+use crate::normals::{NormalAdjacency, jacobian_normal_vertices};
 use crate::sweep::Sweep;
 
 /// Storage buffers the bind kernel uses in one stage, the most of any kernel.
@@ -293,10 +293,11 @@ impl GpuDeformer {
             BindingSource::Precomputed { bands, .. } => bands.iter().map(|b| b.vertex).collect(),
         };
         // With Jacobian normals the deform kernel writes the normals of the vertices whose
-        // one-ring one sweep moves whole (crate::normals::jacobian_reach); the normals pass
+        // one-ring one sweep moves whole (crate::normals::jacobian_reach) and whose Jacobian
+        // predicts their facets (crate::normals::jacobian_normal_vertices); the normals pass
         // computes the others, after it.
-        let by_deform: Option<Vec<bool>> = match (jacobian_normals, triangles) {
-            (true, Some(triangles)) => {
+        let by_deform: Option<Vec<bool>> = match (jacobian_normals, triangles, &faces) {
+            (true, Some(triangles), Some(faces)) => {
                 let mut influence: Vec<u32> = match bindings {
                     BindingSource::Bind { owners, .. } => owners.to_vec(),
                     BindingSource::Precomputed { bindings, .. } => {
@@ -306,7 +307,8 @@ impl GpuDeformer {
                 for &v in &band_vertices {
                     influence[v as usize] = UNOWNED;
                 }
-                Some(jacobian_reach(triangles, &influence))
+                let adjacency = NormalAdjacency::new(faces, vertex_count as usize);
+                Some(jacobian_normal_vertices(rest, positions, &adjacency, triangles, &influence))
             }
             _ => None,
         };

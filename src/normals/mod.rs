@@ -17,10 +17,12 @@ use glam::DVec3;
 use crate::mesh::Faces;
 
 mod dirty;
+mod probe;
 mod reach;
 pub mod tangents;
 
 pub use dirty::{dirty_vertices, instanced};
+pub use probe::{PROBE, PROBE_TOLERANCE_DEG, jacobian_normal_vertices};
 pub use reach::jacobian_reach;
 
 /// Marks the first neighbour of a fan in [`NormalAdjacency::fans`].
@@ -142,26 +144,27 @@ fn chain_edges(edges: &mut [(u32, u32)], fans: &mut Vec<u32>) {
 /// Area-weighted unit normals of every vertex (f64 reference). A vertex with no incident
 /// triangle, or whose triangles cancel or have no area, gets the zero vector.
 pub fn vertex_normals(positions: &[DVec3], adjacency: &NormalAdjacency) -> Vec<DVec3> {
-    (0..adjacency.vertex_count())
-        .into_par_iter()
-        .map(|i| {
-            let p = positions[i];
-            let (mut sum, mut previous, mut first) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
-            for &entry in adjacency.fans_of(i) {
-                let q = positions[(entry & FAN_INDEX) as usize] - p;
-                if entry & FAN_START == 0 {
-                    sum += previous.cross(q);
-                } else {
-                    first = q;
-                }
-                if entry & FAN_CLOSE != 0 {
-                    sum += q.cross(first);
-                }
-                previous = q;
-            }
-            sum.normalize_or_zero()
-        })
-        .collect()
+    (0..adjacency.vertex_count()).into_par_iter().map(|i| fan_normal(adjacency, i, |v| positions[v])).collect()
+}
+
+/// The area-weighted unit normal of vertex `i` from the `position` of each vertex of its fans
+/// (f64), or the zero vector as in [`vertex_normals`].
+pub(crate) fn fan_normal(adjacency: &NormalAdjacency, i: usize, position: impl Fn(usize) -> DVec3) -> DVec3 {
+    let p = position(i);
+    let (mut sum, mut previous, mut first) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
+    for &entry in adjacency.fans_of(i) {
+        let q = position((entry & FAN_INDEX) as usize) - p;
+        if entry & FAN_START == 0 {
+            sum += previous.cross(q);
+        } else {
+            first = q;
+        }
+        if entry & FAN_CLOSE != 0 {
+            sum += q.cross(first);
+        }
+        previous = q;
+    }
+    sum.normalize_or_zero()
 }
 
 #[cfg(test)]

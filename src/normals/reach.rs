@@ -2,7 +2,8 @@
 //! one-ring one sweep moves by one smooth map. There the normal of the deformation is the limit
 //! of the deformed facets' normals; across a hard boundary between two sweeps (or a sweep and
 //! the unmoved rest) and in falloff bands the facets bend by two maps at once, and the normals
-//! of the deformed triangles are the right ones.
+//! of the deformed triangles are the right ones. Within the reach,
+//! [`super::jacobian_normal_vertices`] leaves out the rings too coarse for the deformation.
 
 use crate::coeffs::UNOWNED;
 

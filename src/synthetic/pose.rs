@@ -25,7 +25,9 @@ impl BendTwistTaper {
         rig.sweeps().iter().zip(rig.rest()).map(|(sweep, rest)| self.sweep_keys(&sweep.keys, rest.knots())).collect()
     }
 
-    fn sweep_keys(&self, keys: &[Key], knots: &[f64]) -> Vec<Key> {
+    /// The posed keys of one sweep's `keys` at its `knots`, as [`BendTwistTaper::keys`] poses
+    /// each sweep of a rig.
+    pub fn sweep_keys(&self, keys: &[Key], knots: &[f64]) -> Vec<Key> {
         let axis = keys[0].rotation.normalize() * DVec3::X;
         let mut posed: Vec<Key> = Vec::with_capacity(keys.len());
         for (i, (key, &u)) in keys.iter().zip(knots).enumerate() {

@@ -140,9 +140,11 @@ impl<'a> DeformerDescriptor<'a> {
     /// the deformation (Nanson's formula, [`crate::deform::jacobian`]) in the deform kernel
     /// itself: each such vertex's binding is read once and its position and normal written
     /// once, with no gather over its triangles. It covers the vertices whose whole one-ring one
-    /// sweep moves ([`crate::normals::jacobian_reach`]); the others (falloff bands, hard seams
-    /// between sweeps, unbound vertices beside moving ones) keep the triangle normals. Needs
-    /// triangles; the falloff bands are then fixed
+    /// sweep moves ([`crate::normals::jacobian_reach`]) and whose Jacobian normals match their
+    /// facets under a probe pose ([`crate::normals::jacobian_normal_vertices`], checked once
+    /// here, binding the mesh on the CPU in f64); the others (falloff bands, hard seams between
+    /// sweeps, unbound vertices beside moving ones, rings too coarse for the deformation) keep
+    /// the triangle normals. Needs triangles; the falloff bands are then fixed
     /// ([`set_bands`](crate::gpu::GpuDeformer::set_bands) refuses).
     pub fn with_jacobian_normals(self) -> DeformerDescriptor<'a> {
         DeformerDescriptor { jacobian_normals: true, ..self }
