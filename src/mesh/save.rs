@@ -49,9 +49,7 @@ impl Mesh {
         let format = Format::of(path)?;
         check_writable(path, positions, self.stores_f32(format))?;
         write_atomically(path, |out| match (&self.source, format) {
-            (Source::Obj(o), Format::Obj) if o.describes(self) => {
-                obj::write::write_faithful(out, &o.file, &o.positions, positions)
-            }
+            (Source::Obj(o), Format::Obj) if o.describes(self) => obj::write::write_faithful(out, o, positions),
             (Source::Ply(p), Format::Ply) if p.describes(self) => {
                 ply::write::write_faithful(out, &p.file, &p.positions, positions)
             }

@@ -22,9 +22,9 @@ pub(crate) enum Source {
     /// Built in code by [`Mesh::from_parts`]: no file to be faithful to.
     #[default]
     Code,
-    /// Read from an OBJ file: its bytes and where each vertex's statement lies.
+    /// Read from an OBJ file: its bytes, what they gave and where each vertex's statement lies.
     #[cfg(feature = "formats")]
-    Obj(Arc<Original<ObjFile>>),
+    Obj(Arc<ObjFile>),
     /// Read from a PLY file: its bytes and where the vertices lie, or every element as parsed.
     #[cfg(feature = "formats")]
     Ply(Arc<Original<PlyFile>>),
@@ -75,7 +75,7 @@ impl fmt::Debug for Source {
         match self {
             Source::Code => f.write_str("Code"),
             #[cfg(feature = "formats")]
-            Source::Obj(o) => write!(f, "Obj({} bytes)", o.file.bytes.len()),
+            Source::Obj(o) => write!(f, "Obj({} bytes)", o.bytes.len()),
             #[cfg(feature = "formats")]
             Source::Ply(p) => write!(f, "Ply({:?})", p.file.header().encoding),
             #[cfg(feature = "formats")]

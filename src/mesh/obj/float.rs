@@ -40,32 +40,17 @@ fn fast(word: &[u8]) -> Option<f64> {
     };
     let mut significand: u64 = 0;
     let mut digits = 0; // significant digits read (leading zeros left out)
+    let start = at;
+    at = read_digits(word, at, &mut significand, &mut digits)?;
+    let mut any = at > start;
     let mut exponent: i32 = 0;
-    let mut any = false;
-    let mut read_digit = |b: u8, significand: &mut u64| -> Option<()> {
-        let d = b.wrapping_sub(b'0');
-        if *significand != 0 || d != 0 {
-            digits += 1;
-            if digits > 19 {
-                return None;
-            }
-        }
-        *significand = *significand * 10 + u64::from(d);
-        Some(())
-    };
-    while let Some(&b) = word.get(at).filter(|b| b.is_ascii_digit()) {
-        read_digit(b, &mut significand)?;
-        any = true;
-        at += 1;
-    }
     if word.get(at) == Some(&b'.') {
-        at += 1;
-        while let Some(&b) = word.get(at).filter(|b| b.is_ascii_digit()) {
-            read_digit(b, &mut significand)?;
-            exponent -= 1;
-            any = true;
-            at += 1;
-        }
+        let start = at + 1;
+        at = read_digits(word, start, &mut significand, &mut digits)?;
+        // Each digit after the point, leading zeros included, lowers the exponent; a count
+        // past 2³⁰ is held there (no f64 is that small, and the exponent's sum cannot wrap).
+        exponent = -((at - start).min(1 << 30) as i32);
+        any |= at > start;
     }
     if !any {
         return None;
@@ -109,6 +94,53 @@ fn fast(word: &[u8]) -> Option<f64> {
         lemire(exponent, significand)?
     };
     Some(if negative { -magnitude } else { magnitude })
+}
+
+/// Reads the ASCII digits of `word` from `at` on into `significand` (ten times it plus the
+/// digit, for each), counting its significant digits (leading zeros left out) in `digits`;
+/// the offset past the digits, or `None` past 19 significant digits. Once a significant digit
+/// is read, eight digits at a time where there are eight ([`eight_digits`]).
+fn read_digits(word: &[u8], mut at: usize, significand: &mut u64, digits: &mut u32) -> Option<usize> {
+    loop {
+        if *significand != 0
+            && *digits + 8 <= 19
+            && let Some(eight) = word.get(at..at + 8).and_then(eight_digits)
+        {
+            *significand = *significand * 100_000_000 + eight;
+            *digits += 8;
+            at += 8;
+            continue;
+        }
+        let Some(&b) = word.get(at).filter(|b| b.is_ascii_digit()) else { return Some(at) };
+        let d = u64::from(b - b'0');
+        if *significand != 0 || d != 0 {
+            *digits += 1;
+            if *digits > 19 {
+                return None;
+            }
+        }
+        *significand = *significand * 10 + d;
+        at += 1;
+    }
+}
+
+/// The value of eight bytes that are all ASCII digits, read as one word (the first byte the
+/// most significant digit), or `None` if any is not a digit; by the SWAR method of Lemire's
+/// `fast_float` (its `parse_eight_digits_unrolled`): the digit pairs, then the quadruples,
+/// then the whole, each by one multiplication of the word.
+fn eight_digits(bytes: &[u8]) -> Option<u64> {
+    let v = u64::from_le_bytes(bytes.try_into().ok()?);
+    // Each byte is a digit when its high nibble is 3, and still is once 6 is added (a byte of
+    // 0xfa or more, whose sum carries into the next byte, fails the first test already).
+    let high = 0xf0f0_f0f0_f0f0_f0f0;
+    if (v & high) | ((v.wrapping_add(0x0606_0606_0606_0606) & high) >> 4) != 0x3333_3333_3333_3333 {
+        return None;
+    }
+    let v = v - 0x3030_3030_3030_3030;
+    let pairs = v.wrapping_mul(10).wrapping_add(v >> 8);
+    let low = (pairs & 0x0000_00ff_0000_00ff).wrapping_mul(100 + (1_000_000 << 32));
+    let high = ((pairs >> 16) & 0x0000_00ff_0000_00ff).wrapping_mul(1 + (10_000 << 32));
+    Some(u64::from((low.wrapping_add(high) >> 32) as u32))
 }
 
 /// The smallest and largest decimal exponents of [`FIVES`].
@@ -209,6 +241,52 @@ mod tests {
             "{:?}: {got:?}, str::parse {expected:?}",
             String::from_utf8_lossy(word)
         );
+    }
+
+    #[test]
+    fn eight_digits_read_every_digit_word_and_refuse_every_other_byte() {
+        let mut state = 3_u64;
+        for round in 0..20_000 {
+            state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+            let value = (state >> 20) % 100_000_000;
+            let word = format!("{value:08}");
+            assert_eq!(eight_digits(word.as_bytes()), Some(value), "{word}");
+            // Any byte other than a digit, at any place, is refused.
+            let mut bytes = word.into_bytes();
+            bytes[round % 8] = [b'/', b':', b' ', b'.', b'e', 0, 0x80, 0xfa, 0xff, b'0' + 0x80][round % 10];
+            assert_eq!(eight_digits(&bytes), None, "{bytes:?}");
+        }
+        for byte in (0..=255u8).filter(|b| !b.is_ascii_digit()) {
+            for place in 0..8 {
+                let mut bytes = *b"99999999";
+                bytes[place] = byte;
+                assert_eq!(eight_digits(&bytes), None, "{bytes:?}");
+            }
+        }
+        assert_eq!(eight_digits(b"00000000"), Some(0));
+        assert_eq!(eight_digits(b"99999999"), Some(99_999_999));
+        assert_eq!(eight_digits(b"1234567"), None);
+    }
+
+    #[test]
+    fn long_runs_of_digits_read_as_str_parse_reads_them() {
+        for word in [
+            &b"0.050528833333333335"[..],
+            b"-0.06668822222222225",
+            b"1234567890123456789",
+            b"12345678901234567890",
+            b"1234567890.123456789",
+            b"1234567890.1234567891",
+            b"0.00000000000000000000000000000000001234567812345678",
+            b"00000000000000000000000012345678.12345678e-3",
+            b"9999999999999999999",
+            b"99999999.99999999999",
+            b"0.12345678",
+            b"12345678.",
+            b".12345678",
+        ] {
+            check(word);
+        }
     }
 
     #[test]

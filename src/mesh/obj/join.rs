@@ -6,6 +6,7 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 
+use super::as_read::{AsRead, Run};
 use super::read::Part;
 use crate::mesh::source::Source;
 use crate::mesh::{FaceGroup, Faces, Limited, Mesh};
@@ -52,42 +53,48 @@ pub(crate) fn joinable(parts: &[Part]) -> bool {
 }
 
 /// Joins `parts` (checked by [`joinable`], or a single part that starts the file) into the
-/// mesh and the byte offset of each vertex's logical line.
+/// mesh and the file's data as read.
 ///
-/// A single part is moved as it is. Otherwise the vertices, lines and faces are copied into
-/// arrays allocated once at their final size (zeroed pages, which the copies touch first), one
-/// part to a task on every core; the groups are replayed in order on the calling thread.
-pub(crate) fn join(mut parts: Vec<Part>) -> (Mesh, Vec<usize>) {
+/// A single part is moved into the mesh as it is and copied (the positions and the faces at
+/// once on two cores, with the feature `parallel`) to be kept as read. Otherwise the vertices
+/// and faces are copied into arrays allocated once at their final size (zeroed pages, which the
+/// copies touch first), one part to a task on every core, and the parts are kept as read; the
+/// groups are replayed in order on the calling thread.
+pub(crate) fn join(mut parts: Vec<Part>) -> (Mesh, AsRead) {
     if parts.len() == 1 {
         let part = parts.pop().unwrap_or_default();
         let mut groups = Groups::default();
-        let faces = part.faces;
-        groups.replay(&part.events, 0, faces.len());
-        let mesh = Mesh { positions: part.positions, faces, groups: groups.finish(), source: Source::Code };
-        return (mesh, part.lines);
+        groups.replay(&part.events, 0, part.faces.len());
+        let copy_positions = || part.positions.clone();
+        let copy_faces = || part.faces.clone();
+        #[cfg(feature = "parallel")]
+        let (positions, faces) = rayon::join(copy_positions, copy_faces);
+        #[cfg(not(feature = "parallel"))]
+        let (positions, faces) = (copy_positions(), copy_faces());
+        let run = Run { positions, lines: part.lines, faces };
+        let mesh = Mesh { positions: part.positions, faces: part.faces, groups: groups.finish(), source: Source::Code };
+        return (mesh, AsRead::new(vec![run]));
     }
     let vertices: usize = parts.iter().map(|p| p.positions.len()).sum();
     let faces: usize = parts.iter().map(|p| p.faces.len()).sum();
     let indices: usize = parts.iter().map(|p| p.faces.indices.len()).sum();
     let mut positions: Vec<DVec3> = bytemuck::zeroed_vec(vertices);
-    let mut lines = vec![0usize; vertices];
     let mut all = Faces { offsets: vec![0u32; faces + 1], indices: vec![0u32; indices] };
     let mut slots = Vec::with_capacity(parts.len());
-    let (mut p, mut l) = (&mut positions[..], &mut lines[..]);
+    let mut p = &mut positions[..];
     let (mut o, mut ix) = (&mut all.offsets[1..], &mut all.indices[..]);
     let (mut first_vertex, mut first_index) = (0, 0);
-    for part in &parts {
+    for part in &mut parts {
         let (positions, rest) = std::mem::take(&mut p).split_at_mut(part.positions.len());
         p = rest;
-        let (lines, rest) = std::mem::take(&mut l).split_at_mut(part.lines.len());
-        l = rest;
         let (offsets, rest) = std::mem::take(&mut o).split_at_mut(part.faces.len());
         o = rest;
         let (indices, rest) = std::mem::take(&mut ix).split_at_mut(part.faces.indices.len());
         ix = rest;
-        slots.push(Slot { part, positions, lines, offsets, indices, first_vertex, first_index });
-        first_vertex += part.positions.len();
-        first_index += part.faces.indices.len();
+        let (vertices, face_indices) = (part.positions.len(), part.faces.indices.len());
+        slots.push(Slot { part, positions, offsets, indices, first_vertex, first_index });
+        first_vertex += vertices;
+        first_index += face_indices;
     }
     slots.par_iter_mut().for_each(Slot::fill);
     drop(slots);
@@ -97,15 +104,15 @@ pub(crate) fn join(mut parts: Vec<Part>) -> (Mesh, Vec<usize>) {
         groups.replay(&part.events, first_face, first_face + part.faces.len());
         first_face += part.faces.len();
     }
-    drop(parts);
-    (Mesh { positions, faces: all, groups: groups.finish(), source: Source::Code }, lines)
+    let runs = parts.into_iter().map(|part| Run { positions: part.positions, lines: part.lines, faces: part.faces });
+    let mesh = Mesh { positions, faces: all, groups: groups.finish(), source: Source::Code };
+    (mesh, AsRead::new(runs.collect()))
 }
 
 /// A part and where its data go in the joined arrays.
 struct Slot<'a> {
-    part: &'a Part,
+    part: &'a mut Part,
     positions: &'a mut [DVec3],
-    lines: &'a mut [usize],
     /// Its faces' end offsets (the joined `offsets` less the leading 0).
     offsets: &'a mut [u32],
     indices: &'a mut [u32],
@@ -115,20 +122,20 @@ struct Slot<'a> {
 }
 
 impl Slot<'_> {
-    /// Copies the part's data, its face offsets shifted past the earlier parts' indices and its
-    /// negative indices resolved against the earlier parts' vertices.
+    /// Resolves the part's negative indices against the earlier parts' vertices, in the part
+    /// (which is kept as read) and in the joined indices, and copies the part's data, its face
+    /// offsets shifted past the earlier parts' indices.
     fn fill(&mut self) {
-        let part = self.part;
+        let part = &mut *self.part;
+        for &(at, resolved) in &part.relative {
+            part.faces.indices[at] = (self.first_vertex as i64 + resolved) as u32;
+        }
         self.positions.copy_from_slice(&part.positions);
-        self.lines.copy_from_slice(&part.lines);
         let shift = self.first_index as u32;
         for (joined, &end) in self.offsets.iter_mut().zip(part.faces.offsets.iter().skip(1)) {
             *joined = end + shift;
         }
         self.indices.copy_from_slice(&part.faces.indices);
-        for &(at, resolved) in &part.relative {
-            self.indices[at] = (self.first_vertex as i64 + resolved) as u32;
-        }
     }
 }
 

@@ -13,6 +13,7 @@
 //! vertices read so far), `g name…` and `o name` (both name groups, see [`read`]). Every other
 //! statement (`vt`, `vn`, `usemtl`, `mtllib`, `s`, `l`, `p`, …) is kept verbatim and ignored.
 
+mod as_read;
 mod float;
 mod join;
 mod pieces;
@@ -21,12 +22,28 @@ pub(crate) mod read;
 pub(crate) mod scan;
 pub(crate) mod write;
 
-/// An OBJ file as read, for the faithful writer: its bytes and where each vertex's `v`
-/// statement starts (the byte offset of its logical line), so that a write visits only the
-/// statements of moved vertices.
+use as_read::AsRead;
+
+use super::{FaceGroup, Mesh};
+
+/// An OBJ file as read, for the faithful writer: its bytes and what they gave ([`AsRead`]:
+/// the positions, the faces and where each vertex's `v` statement starts, the byte offset of
+/// its logical line, so that a write visits only the statements of moved vertices).
 pub(crate) struct ObjFile {
     /// The file.
     pub bytes: Vec<u8>,
-    /// `lines[i]`: the offset in `bytes` of the logical line of vertex i's `v` statement.
-    pub lines: Vec<usize>,
+    /// The positions, faces and vertex lines read from it.
+    pub read: AsRead,
+    /// The groups read from it.
+    pub groups: Vec<FaceGroup>,
+}
+
+impl ObjFile {
+    /// Whether `mesh` still has this file's connectivity (vertex count, faces and groups),
+    /// so that the file can be written back with only positions changed.
+    pub fn describes(&self, mesh: &Mesh) -> bool {
+        mesh.positions.len() == self.read.vertex_count()
+            && mesh.groups == self.groups
+            && self.read.has_faces(&mesh.faces)
+    }
 }

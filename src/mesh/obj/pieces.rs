@@ -11,6 +11,7 @@
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
+use super::as_read::AsRead;
 use super::join::{join, joinable};
 use super::read::{Part, read_part};
 use crate::mesh::{Limited, Mesh};
@@ -19,11 +20,11 @@ use crate::parallel::prelude::*;
 /// The length a piece is cut at (it then runs to the end of its logical line).
 pub(crate) const PIECE_BYTES: usize = 1 << 20;
 
-/// The mesh and the byte offset of each vertex's logical line, read in pieces on every core,
+/// The mesh and the file's data as read ([`AsRead`]), read in pieces on every core,
 /// or `None` when the file is to be read as one part: without the feature `parallel` or with
 /// one thread, for a file of one piece, or when a piece finds a fault or the counts cross a
 /// limit (reading it whole then finds the first fault and its line).
-pub(crate) fn read_in_pieces(bytes: &[u8]) -> Option<(Mesh, Vec<usize>)> {
+pub(crate) fn read_in_pieces(bytes: &[u8]) -> Option<(Mesh, AsRead)> {
     #[cfg(feature = "parallel")]
     let threads = rayon::current_num_threads();
     #[cfg(not(feature = "parallel"))]
@@ -35,7 +36,7 @@ pub(crate) fn read_in_pieces(bytes: &[u8]) -> Option<(Mesh, Vec<usize>)> {
 }
 
 /// [`read_in_pieces`] with pieces cut at `piece_bytes`.
-pub(crate) fn read_pieces(bytes: &[u8], piece_bytes: usize) -> Option<(Mesh, Vec<usize>)> {
+pub(crate) fn read_pieces(bytes: &[u8], piece_bytes: usize) -> Option<(Mesh, AsRead)> {
     let pieces = cut(bytes, piece_bytes);
     if pieces.len() < 2 {
         return None;
@@ -198,13 +199,17 @@ mod tests {
     /// the pieces were read.
     fn check_pieces(bytes: &[u8], piece_bytes: usize) -> bool {
         let whole = read_whole(Path::new("m.obj"), bytes);
-        let Some((mesh, lines)) = read_pieces(bytes, piece_bytes) else { return false };
-        let (expected, expected_lines) = whole.unwrap_or_else(|e| panic!("pieces read what is an error whole: {e}"));
+        let Some((mesh, read)) = read_pieces(bytes, piece_bytes) else { return false };
+        let (expected, expected_read) = whole.unwrap_or_else(|e| panic!("pieces read what is an error whole: {e}"));
         let bits = |m: &Mesh| m.positions.iter().map(|p| p.to_array().map(f64::to_bits)).collect::<Vec<_>>();
         assert_eq!(bits(&mesh), bits(&expected), "positions, pieces of {piece_bytes}");
         assert_eq!(mesh.faces, expected.faces, "faces, pieces of {piece_bytes}");
         assert_eq!(mesh.groups, expected.groups, "groups, pieces of {piece_bytes}");
-        assert_eq!(lines, expected_lines, "vertex lines, pieces of {piece_bytes}");
+        let lines = |read: &AsRead| (0..read.vertex_count()).map(|v| read.line(v)).collect::<Vec<_>>();
+        assert_eq!(lines(&read), lines(&expected_read), "vertex lines, pieces of {piece_bytes}");
+        let as_read = |read: &AsRead| read.vertices(0..read.vertex_count()).collect::<Vec<_>>();
+        assert_eq!(as_read(&read), as_read(&expected_read), "vertices as read, pieces of {piece_bytes}");
+        assert!(read.has_faces(&mesh.faces) && expected_read.has_faces(&mesh.faces), "faces as read");
         true
     }
 

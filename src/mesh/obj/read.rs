@@ -14,29 +14,31 @@
 //! first fault in file order: errors name the same line as reading line by line would.
 
 use std::path::Path;
+use std::sync::Arc;
 
 use glam::DVec3;
 
 use super::ObjFile;
+use super::as_read::AsRead;
 use super::join::{GroupChange, join};
 use super::plain;
 use super::scan::{self, Keyword, Scanner, VertexIssue};
-use crate::mesh::source::{Original, Source};
+use crate::mesh::source::Source;
 use crate::mesh::{Faces, Limited, Mesh, MeshError, ObjLineError};
 
 /// Reads the OBJ file `bytes` (read from `path`, which errors name).
 pub(crate) fn read(path: &Path, bytes: Vec<u8>) -> Result<Mesh, MeshError> {
-    let (mesh, lines) = match super::pieces::read_in_pieces(&bytes) {
+    let (mesh, read) = match super::pieces::read_in_pieces(&bytes) {
         Some(read) => read,
         None => read_whole(path, &bytes)?,
     };
-    let file = ObjFile { bytes, lines };
-    Ok(Mesh { source: Source::Obj(Original::new(file, &mesh)), ..mesh })
+    let file = ObjFile { bytes, read, groups: mesh.groups.clone() };
+    Ok(Mesh { source: Source::Obj(Arc::new(file)), ..mesh })
 }
 
-/// Reads `bytes` as one part, on the calling thread: the mesh and the byte offset of each
-/// vertex's logical line, or the first fault in file order.
-pub(crate) fn read_whole(path: &Path, bytes: &[u8]) -> Result<(Mesh, Vec<usize>), MeshError> {
+/// Reads `bytes` as one part, on the calling thread: the mesh and the file's data as read,
+/// or the first fault in file order.
+pub(crate) fn read_whole(path: &Path, bytes: &[u8]) -> Result<(Mesh, AsRead), MeshError> {
     let obj_error = |line, problem| MeshError::Obj { path: path.to_path_buf(), line, problem };
     let part = read_part(bytes, 0, true).map_err(|(line, problem)| obj_error(line, problem))?;
     let count = part.positions.len();

@@ -119,44 +119,38 @@ const DENSE: usize = 4;
 /// Writes the OBJ file `file` with new vertex positions.
 ///
 /// Every byte is copied as it is except the `v` statements of vertices whose position changed
-/// (any coordinate differs bit for bit from `original`, the positions read from the file).
-/// Such a statement is written `v x y z` (shortest round-trip digits, see [`Coordinate`]), then
-/// its original text after the third number (w or colour, a comment), then its original line
+/// (any coordinate differs bit for bit from the position read from the file). Such a
+/// statement is written `v x y z` (shortest round-trip digits, see [`Coordinate`]), then its
+/// original text after the third number (w or colour, a comment), then its original line
 /// ending; a `\`-continued statement becomes one line. With unchanged positions the output is
 /// byte-identical to the file.
 ///
 /// The new statements are built in blocks of [`BLOCK`] vertices, a window of blocks at a time
 /// on every core; the unchanged bytes around few moved vertices are written straight from the
 /// file, not copied.
-pub(crate) fn write_faithful(
-    out: &mut impl Write,
-    file: &ObjFile,
-    original: &[DVec3],
-    positions: &[DVec3],
-) -> io::Result<()> {
+pub(crate) fn write_faithful(out: &mut impl Write, file: &ObjFile, positions: &[DVec3]) -> io::Result<()> {
     let bytes = &file.bytes[..];
-    let count = file.lines.len().min(original.len()).min(positions.len());
+    let count = file.read.vertex_count().min(positions.len());
     // Vertices first..last own the bytes from the first's statement (the file's start for
     // vertex 0) to the next vertex's statement (the file's end after the last vertex).
     let span = |vertices: &Range<usize>| {
-        let start = if vertices.start == 0 { 0 } else { file.lines[vertices.start] };
-        let end = if vertices.end >= count { bytes.len() } else { file.lines[vertices.end] };
+        let start = if vertices.start == 0 { 0 } else { file.read.line(vertices.start) };
+        let end = if vertices.end >= count { bytes.len() } else { file.read.line(vertices.end) };
         start..end
     };
     let block = |vertices: Range<usize>| {
         let mut patch = Patch::default();
-        for i in vertices.clone() {
-            if same_bits(original[i], positions[i]) {
+        for ((start, original), &p) in file.read.vertices(vertices.clone()).zip(&positions[vertices.clone()]) {
+            if same_bits(original, p) {
                 continue;
             }
-            let start = file.lines[i];
             let Some(line) = Scanner::new(&bytes[start..]).next() else { continue };
             let code = scan::code(&line.body);
             let (_, args) = scan::keyword(code);
             let Some(tail) = after_position(code, args) else { continue };
             let text = &mut patch.text;
             text.extend_from_slice(b"v ");
-            push_position(text, positions[i]);
+            push_position(text, p);
             text.extend_from_slice(&line.body[tail..]);
             text.extend_from_slice(line.ending);
             patch.lines.push((start..start + line.raw.len(), text.len()));
@@ -285,17 +279,27 @@ mod tests {
     use std::path::Path;
 
     use super::*;
+    use crate::mesh::Mesh;
+    use crate::mesh::obj::as_read::AsRead;
+    use crate::mesh::obj::pieces::read_pieces;
     use crate::mesh::obj::read::{read, read_whole};
 
     const MIXED: &[u8] = b"# exported\r\nmtllib m.mtl\r\no thing\r\n  v 0 0 0 1.0\r\nv 1.0 0.0 0.0 # right\r\nv 0 \\\r\n 1 0\r\nv 0 0 1 0.5 0.25 0.125\nvt 0 0\r\nvn 0 0 1\r\ng a b\r\nusemtl red\r\nf 1/1/1 2/1/1 3/1/1\r\nf 1//1 \\\n 3//1 4//1\r\n\r\n# end";
 
+    /// The faithful write of `text` with `positions`, from the file read whole and, where it
+    /// is more than one piece of 4 KiB, read in pieces (both must give the same bytes).
     fn faithful(text: &[u8], positions: &[DVec3]) -> Vec<u8> {
-        let mesh = read(Path::new("m.obj"), text.to_vec()).unwrap();
-        let (_, lines) = read_whole(Path::new("m.obj"), text).unwrap();
-        let file = ObjFile { bytes: text.to_vec(), lines };
-        let mut out = Vec::new();
-        write_faithful(&mut out, &file, &mesh.positions, positions).unwrap();
-        out
+        let write = |(mesh, read): (Mesh, AsRead)| {
+            let file = ObjFile { bytes: text.to_vec(), read, groups: mesh.groups };
+            let mut out = Vec::new();
+            write_faithful(&mut out, &file, positions).unwrap();
+            out
+        };
+        let whole = write(read_whole(Path::new("m.obj"), text).unwrap());
+        if let Some(pieces) = read_pieces(text, 4096) {
+            assert!(write(pieces) == whole, "the faithful write differs between the file read whole and in pieces");
+        }
+        whole
     }
 
     #[test]
