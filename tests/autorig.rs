@@ -82,8 +82,11 @@ fn the_bunny_gets_its_two_ears_each_with_its_tip() {
         let share = shared as f64 / selected.len() as f64;
         eprintln!("{ear}: {} holds {:.0}% of its {} vertices", owner.name, 100.0 * share, selected.len());
         assert!(share >= 0.8, "{ear}: {} holds {shared} of its {} vertices", owner.name, selected.len());
-        // The front ear within 10%; the back ear's crescent sections stay looser.
-        let target = if ear == "front ear" { 0.10 } else { 0.17 };
+        // The front ear within 10%; the back ear, whose cupped sections are crescents (the fit
+        // reports them), within 15%.
+        let crescents = owner.fit.sections.iter().any(|s| s.several_crossings > 0);
+        let target = if ear == "front ear" { TARGET } else { NOT_STAR_TARGET };
+        assert!(ear == "front ear" || crescents, "{ear}: the fit reports its crescent sections");
         assert!(owner.fit.quality.rms_d <= target, "{ear}: {:?}", owner.fit.quality);
     }
 }
@@ -211,28 +214,35 @@ fn extreme(mesh: &Mesh, inside: impl Fn(DVec3) -> bool, score: impl Fn(DVec3) ->
         .unwrap()
 }
 
-/// The part of `rigged` holding vertex `tip`, checked against its fit target: RMS |d| within
-/// `target` of the mean radius, where `bound` (≥ `target`) is what this method reaches today
-/// and is asserted; a fit between the two is printed as missing the target.
-fn part_at<'a>(rigged: &'a Autorig, name: &str, tip: u32, target: f64, bound: f64) -> &'a RiggedPart {
+/// The issue's fit target: RMS |d| within 10% of the mean radius, or 15% for a part with
+/// sections that are not star-shaped around any center (the fit reports them).
+const TARGET: f64 = 0.10;
+/// See [`TARGET`].
+const NOT_STAR_TARGET: f64 = 0.15;
+
+/// The part of `rigged` holding vertex `tip`, checked against its fit target ([`TARGET`], or
+/// [`NOT_STAR_TARGET`] where the fit reports sections that are not star-shaped), with every
+/// owned vertex binding with a root.
+fn part_at<'a>(rigged: &'a Autorig, name: &str, tip: u32) -> &'a RiggedPart {
     let part = rigged.parts.iter().find(|p| p.vertices.binary_search(&tip).is_ok());
     let part = part.unwrap_or_else(|| panic!("{name}: no part holds its tip, vertex {tip}"));
     let q = part.fit.quality;
     let crescents = part.fit.sections.iter().filter(|s| s.several_crossings > 0).count();
-    let verdict = if q.rms_d <= target { "within the target" } else { "MISSES the target" };
+    let target = if crescents > 0 { NOT_STAR_TARGET } else { TARGET };
     eprintln!(
-        "{name}: {} ({} vertices), RMS |d| {:.2}% ({verdict} of {:.0}%), max {:.1}%, {crescents} of {} sections \
-         not star-shaped, {:.3} s",
+        "{name}: {} ({} vertices), RMS |d| {:.2}% (target {:.0}%), max {:.1}%, {crescents} of {} sections not \
+         star-shaped, {} keys, {:.3} s",
         part.name,
         part.vertices.len(),
         100.0 * q.rms_d,
         100.0 * target,
         100.0 * q.max_d,
         part.fit.sections.len(),
+        part.fit.keys.len(),
         part.seconds
     );
     assert_eq!(q.without_root, 0, "{name}: every owned vertex binds with a root");
-    assert!(q.rms_d <= bound, "{name}: {q:?}");
+    assert!(q.rms_d <= target, "{name}: {q:?}");
     part
 }
 
@@ -248,14 +258,11 @@ fn spot_gets_its_four_legs() {
     print_parts("spot", &mesh, &rigged);
     assert_eq!(rigged.parts.len(), 4, "four legs and nothing else");
     let mut owners = Vec::new();
-    for (leg, sx, z0, bound) in [
-        ("front +x", 1.0, 0.06, 0.10),
-        ("front −x", -1.0, 0.06, 0.10),
-        ("hind +x", 1.0, 0.79, 0.14),
-        ("hind −x", -1.0, 0.79, 0.14),
-    ] {
+    for (leg, sx, z0) in
+        [("front +x", 1.0, 0.06), ("front −x", -1.0, 0.06), ("hind +x", 1.0, 0.79), ("hind −x", -1.0, 0.79)]
+    {
         let hoof = extreme(&mesh, |p| p.x * sx > 0.0 && (p.z - z0).abs() < 0.25, |p| -p.y);
-        owners.push(part_at(&rigged, &format!("spot {leg} leg"), hoof, 0.10, bound).name.clone());
+        owners.push(part_at(&rigged, &format!("spot {leg} leg"), hoof).name.clone());
     }
     owners.sort();
     owners.dedup();
@@ -271,19 +278,17 @@ fn the_armadillo_gets_its_limbs_ears_and_tail() {
     let mesh = Mesh::load(&path).unwrap();
     let rigged = autorig(&mesh, &AutorigOptions::default()).unwrap();
     print_parts("armadillo", &mesh, &rigged);
-    let limbs: [(&str, u32, f64); 7] = [
-        ("foot −x", extreme(&mesh, |p| p.x < 0.0, |p| -p.y), 0.12),
-        ("foot +x", extreme(&mesh, |p| p.x > 0.0, |p| -p.y), 0.12),
-        ("hand −x", extreme(&mesh, |p| p.y > 40.0, |p| -p.x), 0.19),
-        ("hand +x", extreme(&mesh, |p| p.y > 40.0, |p| p.x), 0.19),
-        ("ear −x", extreme(&mesh, |p| p.x < -10.0 && p.x > -35.0, |p| p.y), 0.14),
-        ("ear +x", extreme(&mesh, |p| p.x > 10.0 && p.x < 35.0, |p| p.y), 0.23),
-        ("tail", extreme(&mesh, |_| true, |p| p.z), 0.10),
+    let limbs: [(&str, u32); 7] = [
+        ("foot −x", extreme(&mesh, |p| p.x < 0.0, |p| -p.y)),
+        ("foot +x", extreme(&mesh, |p| p.x > 0.0, |p| -p.y)),
+        ("hand −x", extreme(&mesh, |p| p.y > 40.0, |p| -p.x)),
+        ("hand +x", extreme(&mesh, |p| p.y > 40.0, |p| p.x)),
+        ("ear −x", extreme(&mesh, |p| p.x < -10.0 && p.x > -35.0, |p| p.y)),
+        ("ear +x", extreme(&mesh, |p| p.x > 10.0 && p.x < 35.0, |p| p.y)),
+        ("tail", extreme(&mesh, |_| true, |p| p.z)),
     ];
-    let mut owners: Vec<String> = limbs
-        .iter()
-        .map(|&(limb, tip, bound)| part_at(&rigged, &format!("armadillo {limb}"), tip, 0.10, bound).name.clone())
-        .collect();
+    let mut owners: Vec<String> =
+        limbs.iter().map(|&(limb, tip)| part_at(&rigged, &format!("armadillo {limb}"), tip).name.clone()).collect();
     owners.sort();
     owners.dedup();
     assert_eq!(owners.len(), 7, "one part per limb, ear and tail");
@@ -299,8 +304,8 @@ fn the_teapot_gets_its_spout_and_handle() {
     let mesh = Mesh::load(&path).unwrap();
     let rigged = autorig(&mesh, &AutorigOptions::default()).unwrap();
     print_parts("teapot", &mesh, &rigged);
-    let spout = part_at(&rigged, "teapot spout", extreme(&mesh, |_| true, |p| p.x), 0.10, 0.14);
-    let handle = part_at(&rigged, "teapot handle", extreme(&mesh, |_| true, |p| -p.x), 0.10, 0.10);
+    let spout = part_at(&rigged, "teapot spout", extreme(&mesh, |_| true, |p| p.x));
+    let handle = part_at(&rigged, "teapot handle", extreme(&mesh, |_| true, |p| -p.x));
     assert_ne!(spout.name, handle.name);
     assert_eq!(rigged.parts.len(), 2, "{} parts", rigged.parts.len());
 }

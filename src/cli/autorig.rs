@@ -98,7 +98,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     }
     for r in &rigged.rejected {
         eprintln!(
-            "notice: {file}: left out a part of {} vertices at tip vertex {}: no sweep fits it (RMS |d| {:.0}% of the mean radius)",
+            "notice: {file}: left out a part of {} vertices at tip vertex {}: its sections are no tube's (RMS |d| {:.0}% of the mean radius with their radii)",
             r.vertices,
             r.tip,
             100.0 * r.rms_d

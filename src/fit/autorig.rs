@@ -2,8 +2,8 @@
 //! fitted sweep ([`super::fit`]), key 0 at the part's attachment (its rim), with the fit's
 //! falloff; the rest of the mesh (the body) stays unowned. The fits run on the mesh with its
 //! bit-identical vertices joined (a patch mesh's unwelded seams), so a part's sections close;
-//! a part whose fit misses its surface by more than [`MAX_RMS`] (a lid's flange, a ring) is
-//! no limb and is left out, and reported in [`Autorig::rejected`].
+//! a part whose fit with the radii of its sections misses its surface by more than [`MAX_RMS`]
+//! (a lid's flange, a ring) is no limb and is left out, and reported in [`Autorig::rejected`].
 //!
 //! Data flow: mesh → protrusions → **fit** per part → rig document.
 
@@ -101,12 +101,9 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
     for protrusion in found {
         let started = Instant::now();
         let Ok(fitted) = fit(fitted_on, &protrusion.vertices, &fit_options) else { continue };
-        if fitted.quality.rms_d > MAX_RMS {
-            rejected.push(Rejected {
-                tip: protrusion.tip,
-                vertices: protrusion.vertices.len(),
-                rms_d: fitted.quality.rms_d,
-            });
+        let sections = fitted.sections_quality();
+        if sections.rms_d > MAX_RMS {
+            rejected.push(Rejected { tip: protrusion.tip, vertices: protrusion.vertices.len(), rms_d: sections.rms_d });
             continue;
         }
         parts.push(RiggedPart {
@@ -129,12 +126,14 @@ pub struct Rejected {
     pub tip: u32,
     /// Its vertex count.
     pub vertices: usize,
-    /// Its fit's RMS |d| over the mean radius.
+    /// Its fit's RMS |d| over the mean radius, with the radii sampled from its key sections.
     pub rms_d: f64,
 }
 
-/// A found part whose fitted sweep misses its surface by more than this RMS |d| (over the mean
-/// radius) is no limb and is left out of the rig.
+/// A found part whose fitted sweep, with the radii sampled from its key sections
+/// ([`Fit::sections_quality`]), misses its surface by more than this RMS |d| (over the mean
+/// radius) is no limb and is left out of the rig: its sections are not those of a tube, though
+/// radii fitted to its vertices by least squares may follow them more closely.
 pub const MAX_RMS: f64 = 0.35;
 
 /// `mesh` with the vertices at bit-identical positions joined in its faces (the vertices stay,

@@ -21,10 +21,12 @@
 //!    and the closed contours separated from those by gaps no wider than that reach (a foot's
 //!    toes, a hand's fingers: one section around them all, [`section::around`]); a ray of such
 //!    a section that passes through a gap takes interpolated radii and leaves the section
-//!    complete; its center is their area centroid, and M radii are sampled from that center to the
-//!    outermost crossing of each ray ([`radii::sample`]). A ray that crosses the boundary
-//!    more than once (a section that is not star-shaped around its center) is counted in
-//!    [`SectionReport::several_crossings`]; a ray that meets nothing takes the value
+//!    complete; its center is their area centroid, or where rays from that cross the boundary
+//!    more than once the point inside from which they see most of it ([`star`]), and M radii
+//!    are sampled from that center to the crossing of each ray ([`radii::sample`]). A ray that
+//!    still crosses the boundary more than once (a section that is not star-shaped around any
+//!    center the search finds) is counted in [`SectionReport::several_crossings`] and takes
+//!    the mean distance of the boundary around it ([`hidden`]); a ray that meets nothing takes the value
 //!    interpolated between its neighbours ([`SectionReport::missed`]). A plane that would
 //!    leave the part through its rim (an oblique cut) is tilted towards the rim's plane or
 //!    moved away from it until its section is complete; only where no such plane is found
@@ -39,7 +41,12 @@
 //!    exceeds `tolerance` × the mean radius a key is inserted at the interval's middle, and
 //!    all keys are re-centered again, until no interval is loose, the fit stops improving,
 //!    or `max_keys` is reached.
-//! 7. **Key 0 at the attached end** ([`attached`]): the part's rim, where it meets the rest of
+//! 7. **Least-squares radii** ([`least_squares`]): with the centers and frames fixed, each
+//!    vertex's binding (θ, t) and its distance from the axis are fixed, and d is linear in the
+//!    key radii, so the radii that minimise Σ d² are found by linear least squares (with a
+//!    ridge towards the sampled radii, for the radii no vertex sees) and kept where they
+//!    tighten the fit ([`Fit::sections_quality`] keeps the fit before them).
+//! 8. **Key 0 at the attached end** ([`attached`]): the part's rim, where it meets the rest of
 //!    the mesh, is measured towards each end of the sweep by its edges' parameter t; when the
 //!    rim nearer the last key is strictly longer, the sweep is traversed from its other end
 //!    (the same surface, so the fit is unchanged), so that key 0 sits where the part is
@@ -47,7 +54,7 @@
 //!    loop, so this turns only a part whose rim the fit measures otherwise; a part with no
 //!    rim, or as much at both ends, keeps the skeleton's order. A user's axis keeps its own order: the user's axis
 //!    order wins over the rim.
-//! 8. **Falloff** ([`falloff`]): the width W of the band over which the sweep's deformation
+//! 9. **Falloff** ([`falloff`]): the width W of the band over which the sweep's deformation
 //!    fades at the part's boundary, the user's or a fraction of the part's length.
 
 pub mod attached;
@@ -58,6 +65,8 @@ mod error;
 pub mod falloff;
 pub mod frames;
 pub mod geodesic;
+pub mod hidden;
+pub mod least_squares;
 pub mod limb;
 pub mod part;
 pub mod protrusions;
@@ -199,6 +208,16 @@ pub struct Fit {
 }
 
 impl Fit {
+    /// The fit with the radii sampled from the key sections, before they were fitted to the
+    /// vertices by least squares ([`least_squares`]): how nearly the part is a tube whose
+    /// sections the keys describe. [`Fit::quality`] where least squares did not tighten it.
+    pub fn sections_quality(&self) -> FitQuality {
+        match &self.steps[..] {
+            [.., before, last] if last.label == refine::LEAST_SQUARES_STEP => before.quality,
+            _ => self.quality,
+        }
+    }
+
     /// The fitted sweep as a rig file writes it: named `name`, owning `selection`, hanging
     /// from `parent` if given, knots by chord length, with the fit's falloff (absent when 0).
     pub fn sweep_document(

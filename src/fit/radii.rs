@@ -1,10 +1,12 @@
 //! Sampled radii of a key (§3, Fig. 3b): from the section's center along M rays to the
-//! section's boundary, taking the outermost crossing where a ray crosses more than once.
+//! section's boundary; where a ray crosses it more than once, the mean distance of the
+//! boundary around the ray ([`super::hidden`]).
 
 use std::f64::consts::TAU;
 
 use glam::DVec2;
 
+use super::hidden::mean_radii;
 use super::section::Contour;
 
 /// The radii of one key and how the section met the rays.
@@ -13,7 +15,8 @@ pub struct SampledRadii {
     /// ρ_j at θ_j = 2πj/M.
     pub radii: Vec<f64>,
     /// Rays that crossed the boundary more than once (the section is not star-shaped around
-    /// its center there); each took its outermost crossing.
+    /// its center there); each took the mean distance of the boundary around it
+    /// ([`mean_radii`]), or its outermost crossing where that has none.
     pub several_crossings: usize,
     /// Rays that met no boundary (an open section); each took the value interpolated between
     /// its nearest neighbours that did.
@@ -23,16 +26,22 @@ pub struct SampledRadii {
 /// Samples `count` radii of the section made of `contours` around `center` (all in in-plane
 /// coordinates); `None` when no ray meets the boundary.
 pub fn sample(contours: &[&Contour], center: DVec2, count: usize) -> Option<SampledRadii> {
-    let mut several_crossings = 0;
-    let found: Vec<Option<f64>> = (0..count)
+    let mut several = Vec::new();
+    let mut found: Vec<Option<f64>> = (0..count)
         .map(|j| {
             let (crossings, outermost) = ray_crossings(contours, center, TAU * j as f64 / count as f64);
             if crossings > 1 {
-                several_crossings += 1;
+                several.push(j);
             }
             outermost
         })
         .collect();
+    for (&j, mean) in several.iter().zip(mean_radii(contours, center, count, &several)) {
+        if let Some(mean) = mean {
+            found[j] = Some(mean);
+        }
+    }
+    let several_crossings = several.len();
     let missed = found.iter().filter(|r| r.is_none()).count();
     let radii = fill_periodic_gaps(&found)?;
     Some(SampledRadii { radii, several_crossings, missed })
@@ -112,7 +121,7 @@ mod tests {
     }
 
     #[test]
-    fn a_non_star_section_takes_the_outermost_crossing_and_says_so() {
+    fn a_non_star_section_takes_the_mean_of_the_walls_it_crosses_and_says_so() {
         // A C shape whose slot opens to +x around the center: the rays at θ = π/2, π and 3π/2
         // cross the inner wall, then the outer; the ray at θ = 0 leaves through the slot.
         let c = polygon(&[
@@ -126,8 +135,12 @@ mod tests {
             (-2.0, 2.0),
         ]);
         let sampled = sample(&[&c], DVec2::ZERO, 4).unwrap();
-        assert_eq!(sampled.radii, vec![2.0; 4]);
         assert_eq!((sampled.several_crossings, sampled.missed), (3, 1));
+        // Between the inner wall (1 away) and the outer (2 away), where the outermost crossing
+        // would take 2 and leave the inner wall 1 inside.
+        for r in &sampled.radii[1..] {
+            assert!(*r > 1.0 && *r < 2.0, "{:?}", sampled.radii);
+        }
     }
 
     #[test]

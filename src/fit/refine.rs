@@ -8,6 +8,7 @@ use glam::{DQuat, DVec2, DVec3};
 
 use super::axis::{Polyline, principal_axis};
 use super::frames::{first_x_axis, reference_direction, transported_frames};
+use super::least_squares::fitted_radii;
 use super::part::Part;
 use super::quality::{Measured, measure};
 use super::radii::{ray_crossings, sample};
@@ -28,6 +29,8 @@ const TILTS: [f64; 5] = [-0.3, -0.15, 0.0, 0.15, 0.3];
 const RECENTER_PASSES: usize = 3;
 /// The chord over which the skeleton's tangent is taken, as a fraction of its length.
 const SKELETON_CHORD: f64 = 0.1;
+/// The label of the last step, the radii fitted to the vertices by least squares.
+pub const LEAST_SQUARES_STEP: &str = "radii fitted to the vertices by least squares";
 /// Insertion rounds in a row that may fail to tighten the fit before insertion stops.
 const STALE_ROUNDS: usize = 2;
 
@@ -149,6 +152,10 @@ pub fn run(part: &Part, options: &FitOptions) -> Result<(Fitted, Vec<FitStep>), 
         fitted = trial.clone();
         let label = format!("{inserted} keys inserted where the fit was loose, {} in all", fitted.keys.len());
         steps.push(fitter.step(label, &fitted));
+    }
+    if let Some(polished) = fitter.least_squares(&fitted)? {
+        fitted = polished;
+        steps.push(fitter.step(LEAST_SQUARES_STEP.to_string(), &fitted));
     }
     Ok((fitted, steps))
 }
@@ -482,6 +489,19 @@ impl Fitter<'_> {
         }
         let refined = self.pass(&stations)?;
         Ok(Some(self.recenter(refined)?))
+    }
+
+    /// The fitted keys with their radii fitted to the part's vertices by least squares
+    /// ([`fitted_radii`]), where that tightens the fit; `None` where it does not.
+    fn least_squares(&self, fitted: &Fitted) -> Result<Option<Fitted>, FitError> {
+        let Some(radii) = fitted_radii(&fitted.sweep, &fitted.keys, &self.part.positions) else { return Ok(None) };
+        let keys: Vec<Key> = fitted.keys.iter().zip(radii).map(|(k, radii)| Key { radii, ..k.clone() }).collect();
+        let sweep = Sweep::try_new(&keys, None)?;
+        let measured = measure(&sweep, &self.part.positions);
+        if measured.quality.rms_d >= fitted.measured.quality.rms_d {
+            return Ok(None);
+        }
+        Ok(Some(Fitted { keys, sections: fitted.sections.clone(), sweep, measured }))
     }
 
     fn step(&self, label: String, fitted: &Fitted) -> FitStep {

@@ -1,0 +1,206 @@
+//! Key radii fitted to the part's vertices by least squares: the radii ρ_ij that minimise the
+//! measure the fit is judged by, Σ_v d_v² (§3, Fig. 4; [`super::quality`]), for the fitted
+//! centers and frames.
+//!
+//! A vertex v binds where ⟨v − C(t), N(t)⟩ = 0, which depends on the centers and frames only,
+//! so its (θ_v, t_v) and its distance y_v = |v − C(t_v)| from the axis in its cross-section
+//! do not change with the radii, and d_v = y_v − r(θ_v, t_v). The radius function is the
+//! tensor-product interpolating spline of the key radii (natural in t, periodic in θ;
+//! [`crate::sweep::radius`]), linear in them:
+//!
+//! r(θ, t) = Σ_i Σ_j a_i(t) b_j(θ) ρ_ij,
+//!
+//! with a_i the natural cardinal spline of key i over the knots and b_j the periodic cardinal
+//! spline of node θ_j. So Σ d_v² is a linear least-squares problem in ρ. The cardinal splines
+//! decay by about 2 − √3 per node away from their own; each vertex's row keeps the [`WINDOW`]
+//! nearest keys and nodes on either side, and the truncated system is solved for a correction
+//! to the exact residuals d_v, [`ROUNDS`] times (iterative refinement), by conjugate gradients
+//! on the normal equations with a ridge towards the section radii ρ⁰ (weight [`RIDGE`] times
+//! the mean diagonal), so that a radius no vertex sees (a ray through a gap between toes)
+//! keeps its sampled value. Radii stay at least 0.
+
+use glam::DVec3;
+
+use crate::bind::SweepBinder;
+use crate::sweep::radius::RadiusField;
+use crate::sweep::{Key, Sweep};
+
+/// Keys and angular nodes kept on either side of a vertex's cell.
+pub const WINDOW: usize = 3;
+/// Refinement rounds of the truncated system against the exact residuals.
+pub const ROUNDS: usize = 2;
+/// The ridge weight towards the section radii, a fraction of the normal matrix's mean diagonal.
+pub const RIDGE: f64 = 1e-3;
+/// Conjugate-gradient iterations per round.
+const ITERATIONS: usize = 60;
+
+/// One vertex's row of the truncated system: (unknown index i·M + j, weight a_i b_j).
+struct Row {
+    entries: Vec<(usize, f64)>,
+    /// The distance from the axis y_v.
+    y: f64,
+    theta: f64,
+    t: f64,
+}
+
+/// The radii of `keys` (whose sweep is `sweep`) fitted to `positions` (see the module docs);
+/// `None` when there are no vertices.
+pub fn fitted_radii(sweep: &Sweep, keys: &[Key], positions: &[DVec3]) -> Option<Vec<Vec<f64>>> {
+    if positions.is_empty() {
+        return None;
+    }
+    let knots = sweep.knots().to_vec();
+    let (n, m) = (keys.len(), keys[0].radii.len());
+    let along: Vec<RadiusField> = (0..n)
+        .map(|i| {
+            let rows: Vec<Vec<f64>> = (0..n).map(|k| vec![f64::from(u8::from(k == i)); m]).collect();
+            RadiusField::new(&knots, &rows.iter().map(Vec::as_slice).collect::<Vec<_>>())
+        })
+        .collect();
+    let around: Vec<RadiusField> = (0..m)
+        .map(|j| {
+            let row: Vec<f64> = (0..m).map(|q| f64::from(u8::from(q == j))).collect();
+            RadiusField::new(&[0.0, 1.0], &[&row, &row])
+        })
+        .collect();
+    let binder = SweepBinder::new(sweep);
+    let intervals = knots.len() - 1;
+    let rows: Vec<Row> = positions
+        .iter()
+        .map(|&v| {
+            let b = binder.bind(v);
+            let segment = knots[1..intervals].partition_point(|&u| u <= b.t);
+            let s = ((b.t - knots[segment]) / (knots[segment + 1] - knots[segment])).clamp(0.0, 1.0);
+            let cell = ((b.theta / std::f64::consts::TAU * m as f64).floor() as usize).min(m - 1);
+            let keys_near = segment.saturating_sub(WINDOW - 1)..(segment + 1 + WINDOW).min(n);
+            let mut entries = Vec::new();
+            for i in keys_near {
+                let a = along[i].value(segment, s, 0.0);
+                for offset in 0..2 * WINDOW {
+                    let j = (cell + m + offset + 1 - WINDOW) % m;
+                    if offset >= m {
+                        break;
+                    }
+                    entries.push((i * m + j, a * around[j].value(0, 0.0, b.theta)));
+                }
+            }
+            Row { entries, y: b.d + sweep.radius(b.theta, b.t), theta: b.theta, t: b.t }
+        })
+        .collect();
+    let prior: Vec<f64> = keys.iter().flat_map(|k| k.radii.iter().copied()).collect();
+    let mut rho = prior.clone();
+    let mut diagonal = vec![0.0; n * m];
+    for row in &rows {
+        for &(k, w) in &row.entries {
+            diagonal[k] += w * w;
+        }
+    }
+    let ridge = RIDGE * diagonal.iter().sum::<f64>() / diagonal.len() as f64;
+    for _ in 0..ROUNDS {
+        let current = Sweep::try_new(&with_radii(keys, &rho, m), Some(&knots)).ok()?;
+        let residual: Vec<f64> = rows.iter().map(|r| r.y - current.radius(r.theta, r.t)).collect();
+        // (AᵀA + λI) Δ = Aᵀe − λ(ρ − ρ⁰)
+        let mut rhs = vec![0.0; n * m];
+        for (row, e) in rows.iter().zip(&residual) {
+            for &(k, w) in &row.entries {
+                rhs[k] += w * e;
+            }
+        }
+        for k in 0..n * m {
+            rhs[k] -= ridge * (rho[k] - prior[k]);
+        }
+        let delta = conjugate_gradients(&rows, ridge, &diagonal, &rhs);
+        for (r, d) in rho.iter_mut().zip(delta) {
+            *r = (*r + d).max(0.0);
+        }
+    }
+    Some(rho.chunks(m).map(<[f64]>::to_vec).collect())
+}
+
+/// `keys` with the radii `rho` (key by key, `m` each).
+pub fn with_radii(keys: &[Key], rho: &[f64], m: usize) -> Vec<Key> {
+    keys.iter().zip(rho.chunks(m)).map(|(k, r)| Key { radii: r.to_vec(), ..k.clone() }).collect()
+}
+
+/// Solves (AᵀA + λI) x = b, A's rows being `rows`, by Jacobi-preconditioned conjugate
+/// gradients from x = 0.
+fn conjugate_gradients(rows: &[Row], ridge: f64, diagonal: &[f64], b: &[f64]) -> Vec<f64> {
+    let apply = |x: &[f64]| {
+        let mut out: Vec<f64> = x.iter().map(|v| ridge * v).collect();
+        for row in rows {
+            let ax: f64 = row.entries.iter().map(|&(k, w)| w * x[k]).sum();
+            for &(k, w) in &row.entries {
+                out[k] += w * ax;
+            }
+        }
+        out
+    };
+    let precondition = |r: &[f64]| r.iter().zip(diagonal).map(|(r, d)| r / (d + ridge)).collect::<Vec<f64>>();
+    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(a, b)| a * b).sum::<f64>();
+    let mut x = vec![0.0; b.len()];
+    let mut r = b.to_vec();
+    let mut z = precondition(&r);
+    let mut p = z.clone();
+    let mut rz = dot(&r, &z);
+    let tolerance = 1e-20 * dot(b, b).max(f64::MIN_POSITIVE);
+    for _ in 0..ITERATIONS {
+        if dot(&r, &r) <= tolerance {
+            break;
+        }
+        let ap = apply(&p);
+        let alpha = rz / dot(&p, &ap);
+        for k in 0..x.len() {
+            x[k] += alpha * p[k];
+            r[k] -= alpha * ap[k];
+        }
+        z = precondition(&r);
+        let next = dot(&r, &z);
+        for k in 0..p.len() {
+            p[k] = z[k] + (next / rz) * p[k];
+        }
+        rz = next;
+    }
+    x
+}
+
+#[cfg(test)]
+mod tests {
+    use std::f64::consts::TAU;
+
+    use glam::DQuat;
+
+    use super::*;
+
+    /// Five keys along z whose radii vary around and along the sweep.
+    fn keys(bump: f64) -> Vec<Key> {
+        (0..5)
+            .map(|i| Key {
+                center: DVec3::new(0.0, 0.0, i as f64),
+                rotation: DQuat::IDENTITY,
+                radii: (0..12)
+                    .map(|j| 1.0 + 0.1 * i as f64 + 0.2 * (TAU * j as f64 / 12.0 + i as f64).cos() + bump)
+                    .collect(),
+            })
+            .collect()
+    }
+
+    #[test]
+    fn radii_off_by_a_tenth_are_fitted_back_to_the_surface_they_came_from() {
+        let truth = Sweep::try_new(&keys(0.0), None).unwrap();
+        let points: Vec<DVec3> = (0..40)
+            .flat_map(|b| (0..60).map(move |a| (TAU * a as f64 / 60.0, 0.01 + 0.98 * b as f64 / 39.0)))
+            .map(|(theta, t)| truth.surface_point(theta, t))
+            .collect();
+        let guess = keys(0.1);
+        let sweep = Sweep::try_new(&guess, None).unwrap();
+        let fitted = fitted_radii(&sweep, &guess, &points).unwrap();
+        let worst = fitted
+            .iter()
+            .flatten()
+            .zip(keys(0.0).iter().flat_map(|k| k.radii.clone()))
+            .map(|(f, t)| (f - t).abs())
+            .fold(0.0, f64::max);
+        assert!(worst < 2e-3, "worst radius off by {worst}");
+        assert!(fitted_radii(&sweep, &guess, &[]).is_none());
+    }
+}
