@@ -45,7 +45,11 @@
 //!    vertex's binding (θ, t) and its distance from the axis are fixed, and d is linear in the
 //!    key radii, so the radii that minimise Σ d² are found by linear least squares (with a
 //!    ridge towards the sampled radii, for the radii no vertex sees) and kept where they
-//!    tighten the fit ([`Fit::sections_quality`] keeps the fit before them).
+//!    tighten the fit ([`Fit::sections_quality`] keeps the fit before them). A part with fewer
+//!    than 4 vertices per radius is fitted at its edges' midpoints too, and the result is kept
+//!    only where it does not loosen the fit at its triangles' centroids, which it was not
+//!    fitted to: otherwise the radii of a coarse part pass through its vertices and bulge
+//!    between them.
 //! 8. **Key 0 at the attached end** ([`attached`]): the part's rim, where it meets the rest of
 //!    the mesh, is measured towards each end of the sweep by its edges' parameter t; when the
 //!    rim nearer the last key is strictly longer, the sweep is traversed from its other end

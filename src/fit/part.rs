@@ -47,6 +47,33 @@ impl Part {
         Part { vertices, positions, triangles, rim }
     }
 
+    /// Points on the part's surface to fit to: its vertices, and where it has fewer than
+    /// `at_least` of them, the midpoints of its triangles' edges too (each edge once), so that
+    /// a fit with more unknowns than vertices follows the facets between them rather than the
+    /// vertices alone.
+    pub fn surface_samples(&self, at_least: usize) -> Vec<DVec3> {
+        let mut samples = self.positions.clone();
+        if samples.len() >= at_least {
+            return samples;
+        }
+        let mut edges: Vec<[u32; 2]> = self
+            .triangles
+            .iter()
+            .flat_map(|t| [[t[0], t[1]], [t[1], t[2]], [t[2], t[0]]])
+            .map(|[a, b]| [a.min(b), a.max(b)])
+            .filter(|[a, b]| a != b)
+            .collect();
+        edges.sort_unstable();
+        edges.dedup();
+        samples.extend(edges.iter().map(|&[a, b]| (self.positions[a as usize] + self.positions[b as usize]) / 2.0));
+        samples
+    }
+
+    /// The centroids of the part's triangles.
+    pub fn triangle_centroids(&self) -> Vec<DVec3> {
+        self.triangles.iter().map(|t| t.iter().map(|&v| self.positions[v as usize]).sum::<DVec3>() / 3.0).collect()
+    }
+
     /// The centroid of the part's vertices.
     pub fn centroid(&self) -> DVec3 {
         self.positions.iter().copied().sum::<DVec3>() / self.positions.len() as f64

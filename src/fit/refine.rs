@@ -29,8 +29,11 @@ const TILTS: [f64; 5] = [-0.3, -0.15, 0.0, 0.15, 0.3];
 const RECENTER_PASSES: usize = 3;
 /// The chord over which the skeleton's tangent is taken, as a fraction of its length.
 const SKELETON_CHORD: f64 = 0.1;
-/// The label of the last step, the radii fitted to the vertices by least squares.
-pub const LEAST_SQUARES_STEP: &str = "radii fitted to the vertices by least squares";
+/// The label of the last step, the radii fitted to the part's surface by least squares.
+pub const LEAST_SQUARES_STEP: &str = "radii fitted to the surface by least squares";
+/// Vertices per key radius below which the least-squares radii are fitted to the part's edge
+/// midpoints too.
+const SAMPLES_PER_RADIUS: usize = 4;
 /// Insertion rounds in a row that may fail to tighten the fit before insertion stops.
 const STALE_ROUNDS: usize = 2;
 
@@ -491,15 +494,29 @@ impl Fitter<'_> {
         Ok(Some(self.recenter(refined)?))
     }
 
-    /// The fitted keys with their radii fitted to the part's vertices by least squares
-    /// ([`fitted_radii`]), where that tightens the fit; `None` where it does not.
+    /// The fitted keys with their radii fitted to the part's surface by least squares
+    /// ([`fitted_radii`]), where that tightens the fit; `None` where it does not. A part with
+    /// fewer than [`SAMPLES_PER_RADIUS`] vertices per radius is sampled at its edges' midpoints
+    /// too ([`Part::surface_samples`]): fitted to its vertices alone, the radii of a coarse part
+    /// pass through them and bulge between (spot's hind legs: RMS |d| 3% at the vertices, 24% at
+    /// the edges' midpoints, against 13% and 8% with the sections' radii). The fit is then kept
+    /// only where it tightens the vertices without loosening the triangles' centroids, points
+    /// of the surface it was not fitted to.
     fn least_squares(&self, fitted: &Fitted) -> Result<Option<Fitted>, FitError> {
-        let Some(radii) = fitted_radii(&fitted.sweep, &fitted.keys, &self.part.positions) else { return Ok(None) };
+        let radii_count = fitted.keys.iter().map(|k| k.radii.len()).sum::<usize>();
+        let samples = self.part.surface_samples(SAMPLES_PER_RADIUS * radii_count);
+        let Some(radii) = fitted_radii(&fitted.sweep, &fitted.keys, &samples) else { return Ok(None) };
         let keys: Vec<Key> = fitted.keys.iter().zip(radii).map(|(k, radii)| Key { radii, ..k.clone() }).collect();
         let sweep = Sweep::try_new(&keys, None)?;
         let measured = measure(&sweep, &self.part.positions);
         if measured.quality.rms_d >= fitted.measured.quality.rms_d {
             return Ok(None);
+        }
+        if samples.len() > self.part.positions.len() {
+            let centroids = self.part.triangle_centroids();
+            if measure(&sweep, &centroids).quality.rms_d > measure(&fitted.sweep, &centroids).quality.rms_d {
+                return Ok(None);
+            }
         }
         Ok(Some(Fitted { keys, sections: fitted.sections.clone(), sweep, measured }))
     }
