@@ -30,9 +30,7 @@ fn deform_main(
 // w * INSTANCES_PER_INVOCATION onwards. Each binding is read once for those instances (the
 // instances share it), and every workgroup but the dispatch's last is full however few vertices
 // an instance has (one workgroup layer per instance leaves the last workgroup of every instance
-// nearly empty). The division runs once per workgroup. When every instance's cell records
-// overflow a uniform binding, each dispatch reads a uniform window of the records of its few
-// instances (first_instance 0: the window starts at the dispatch's first).
+// nearly empty). The division runs once per workgroup.
 @compute @workgroup_size(WORKGROUP_SIZE)
 fn deform_instances_main(
     @builtin(workgroup_id) group: vec3<u32>,

@@ -17,7 +17,7 @@ use std::sync::Arc;
 
 use self::bounds::BoundsStage;
 use self::descriptor::triangle_faces;
-use self::instances::{CellLayout, InstanceDispatch, Numbering, PosedCells, PositionTargets};
+use self::instances::{InstanceDispatch, Numbering, PosedCells, PositionTargets};
 use self::normal_coords::NormalCoordinates;
 use self::set_bands::{BandMember, Rebanding};
 use self::uploads::PoseUploads;
@@ -102,7 +102,7 @@ pub struct GpuDeformer {
     vertex_count: u32,
     targets: PositionTargets,
     cells: PosedCells,
-    /// Every instance's cell records, instance i at i × the cell layout's stride: the next encode
+    /// Every instance's cell records, instance i at i × the rig's cell count: the next encode
     /// uploads them.
     poses: Vec<CellCoeffs>,
     uploads: PoseUploads,
@@ -265,22 +265,17 @@ impl GpuDeformer {
             }
         };
         drop(image);
-        // Several instances of the plain kernel are numbered flat: with one workgroup layer per
-        // instance, a small mesh's last workgroup of every instance runs nearly empty.
-        let flat = !jacobian_normals && instances > 1;
-        let layout = CellLayout::new(coefficients.cells.len(), instances, flat, &device_limits);
-        let variant = layout.variant;
-        let poses = layout.image(&coefficients.cells, instances);
-        let cells = PosedCells::new(device, &poses, layout);
+        let total_cells = coefficients.cells.len() * instances as usize;
+        let variant = DeformVariant::for_cells(total_cells, &device_limits);
+        let cells = PosedCells::new(device, &coefficients.cells, instances, variant);
         let uploads = PoseUploads::new(device, cells.used_bytes, pose_uploads);
         let rest_cells = cells_buffer(device, &coefficients, variant);
-        let (kernel, numbering) = match (jacobian_normals, flat) {
+        // Several instances of the plain kernel are numbered flat: with one workgroup layer per
+        // instance, a small mesh's last workgroup of every instance runs nearly empty.
+        let (kernel, numbering) = match (jacobian_normals, instances > 1) {
             (true, _) => (context.kernels().deform_normals(device, variant), Numbering::Layered),
             (false, false) => (context.kernels().deform(device, variant), Numbering::Layered),
-            (false, true) => {
-                let windows = layout.window_instances.map_or(variant, |_| DeformVariant::Uniform);
-                (context.kernels().deform_instances(device, windows), Numbering::Flat)
-            }
+            (false, true) => (context.kernels().deform_instances(device, variant), Numbering::Flat),
         };
         let mut encoder =
             device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd bind") });
@@ -406,6 +401,7 @@ impl GpuDeformer {
         let rebanding = Rebanding::new(rest, binder, members, &bound);
         let ranges: Vec<Range<u32>> = chunks.iter().map(|chunk| chunk.range.clone()).collect();
         let bounds = bounds.then(|| BoundsStage::new(context, &targets, &ranges, positions, &limits));
+        let poses = (0..instances).flat_map(|_| coefficients.cells.iter().copied()).collect();
         let deformer = GpuDeformer {
             context: context.clone(),
             limits,
@@ -447,22 +443,14 @@ impl GpuDeformer {
     /// The device limits a deformer needs, for an application to request on its own device:
     /// `Limits::downlevel_defaults()` with 6 storage buffers per shader stage (the bind
     /// kernel's). Meshes and instance counts larger than those limits' bindings are split into
-    /// more dispatches; rigs and instances of up to 409 cells in all (and, with several instances
-    /// of the plain kernel, up to 408 cells an instance, read in windows of whole instances) use
-    /// the faster uniform cell records when `max_uniform_buffer_binding_size` reaches 64 KiB. Request the
+    /// more dispatches; rigs and instances of up to 409 cells in all use the faster uniform
+    /// cell records when `max_uniform_buffer_binding_size` reaches 64 KiB. Request the
     /// adapter's own limits for the largest meshes (the position buffer is one buffer).
     pub fn required_limits() -> wgpu::Limits {
         wgpu::Limits {
             max_storage_buffers_per_shader_stage: STORAGE_BUFFERS_NEEDED,
             ..wgpu::Limits::downlevel_defaults()
         }
-    }
-
-    /// With several instances whose cell records overflow one uniform binding: how many
-    /// instances each uniform window of the instanced deform kernel reads (one dispatch each);
-    /// `None` where the kernel reads every instance's records through one binding.
-    pub fn cell_window_instances(&self) -> Option<u32> {
-        self.cells.layout.window_instances.filter(|_| !self.jacobian_normals)
     }
 
     /// Number of instances: poses of the one bound mesh deformed together.
@@ -547,7 +535,7 @@ impl GpuDeformer {
         }
         self.coefficients.update(posed)?;
         let n = self.coefficients.cells.len();
-        let at = instance as usize * self.cells.layout.stride as usize;
+        let at = instance as usize * n;
         self.poses[at..at + n].copy_from_slice(&self.coefficients.cells);
         Ok(())
     }

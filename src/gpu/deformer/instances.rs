@@ -3,10 +3,6 @@
 //! Data flow: posed sweeps → **cell records of every instance** (copied in by each encode from
 //! a staging buffer, [`PoseUploads`](super::uploads::PoseUploads)) → deform and band dispatches
 //! over (vertices × instances) → positions, instance i at [`PositionTargets::instance_offset`].
-//!
-//! The instanced deform kernel reads the records through one binding when they fit, else
-//! through uniform windows of a few whole instances each ([`CellLayout`]), one dispatch a
-//! window.
 
 use std::ops::Range;
 
@@ -21,57 +17,7 @@ use crate::coeffs::{CellCoeffs, INSTANCES_PER_INVOCATION, InstanceParams, UNIFOR
 /// apart (64 × 12 bytes = 3 × 256), so every instance's windows are aligned on any device.
 pub const INSTANCE_ALIGNMENT: u32 = 64;
 
-/// With cell windows, each instance's cell records start a multiple of this many records apart
-/// (8 × 160 bytes = 5 × 256), so that a uniform window can start at any instance on any device.
-pub(crate) const CELL_ALIGNMENT: u32 = 8;
-
-/// How the per-frame cell records of every instance are laid out and read.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct CellLayout {
-    /// Where the kernels read them from.
-    pub(crate) variant: DeformVariant,
-    /// Records from one instance's first to the next's: the rig's cell count, rounded up to
-    /// [`CELL_ALIGNMENT`] with windows.
-    pub(crate) stride: u32,
-    /// With the instanced deform kernel reading every instance's records from a storage buffer
-    /// too large for one uniform binding: the instances of each uniform window it reads instead.
-    pub(crate) window_instances: Option<u32>,
-}
-
-impl CellLayout {
-    /// The layout of `instances` instances of `cells` records each on a device with `limits`.
-    /// With several instances whose records overflow a uniform binding but one instance's fit
-    /// it, the plain instanced kernel (`flat`) reads uniform windows of as many instances as fit:
-    /// on lavapipe a storage read of the records costs about 1.7 times a uniform one, and the
-    /// records are most of what the kernel reads.
-    pub(crate) fn new(cells: usize, instances: u32, flat: bool, limits: &wgpu::Limits) -> CellLayout {
-        let variant = DeformVariant::for_cells(cells * instances as usize, limits);
-        let padded = cells.next_multiple_of(CELL_ALIGNMENT as usize);
-        let windowed = flat
-            && instances > 1
-            && variant == DeformVariant::Storage
-            && DeformVariant::for_cells(padded, limits) == DeformVariant::Uniform;
-        match windowed {
-            true => CellLayout {
-                variant,
-                stride: padded as u32,
-                window_instances: Some(UNIFORM_CELL_CAPACITY / padded as u32),
-            },
-            false => CellLayout { variant, stride: cells as u32, window_instances: None },
-        }
-    }
-
-    /// The records of `instances` instances, each a copy of `rest` at its stride (zeros between).
-    pub(crate) fn image(&self, rest: &[CellCoeffs], instances: u32) -> Vec<CellCoeffs> {
-        let mut image = vec![CellCoeffs::default(); self.stride as usize * instances as usize];
-        for instance in image.chunks_exact_mut(self.stride as usize) {
-            instance[..rest.len()].copy_from_slice(rest);
-        }
-        image
-    }
-}
-
-/// The per-frame cell records of every instance, instance i at i × the layout's stride.
+/// The per-frame cell records of every instance, instance i at i × `per_instance`.
 #[derive(Debug)]
 pub(crate) struct PosedCells {
     pub(crate) buffer: wgpu::Buffer,
@@ -79,43 +25,36 @@ pub(crate) struct PosedCells {
     pub(crate) used_bytes: u64,
     /// Bytes of the binding (the uniform array's size for the uniform variant).
     binding_bytes: u64,
-    pub(crate) layout: CellLayout,
+    /// Cell records of one instance.
+    pub(crate) per_instance: u32,
 }
 
 impl PosedCells {
-    /// The records `image` of every instance (see [`CellLayout::image`]), laid out as `layout`.
-    pub(crate) fn new(device: &wgpu::Device, image: &[CellCoeffs], layout: CellLayout) -> PosedCells {
+    /// `instances` copies of the rest records `rest`.
+    pub(crate) fn new(
+        device: &wgpu::Device,
+        rest: &[CellCoeffs],
+        instances: u32,
+        variant: DeformVariant,
+    ) -> PosedCells {
         let record = size_of::<CellCoeffs>() as u64;
-        let used_bytes = image.len() as u64 * record;
-        let window = UNIFORM_CELL_CAPACITY as u64 * record;
-        let binding_bytes = match layout.variant {
-            DeformVariant::Uniform => window,
+        let used_bytes = rest.len() as u64 * instances as u64 * record;
+        let binding_bytes = match variant {
+            DeformVariant::Uniform => UNIFORM_CELL_CAPACITY as u64 * record,
             DeformVariant::Storage => used_bytes,
         };
-        // The last window reaches a whole uniform array past its first instance's records.
-        let instances = image.len() as u64 / layout.stride.max(1) as u64;
-        let last_window = layout.window_instances.map_or(0, |w| {
-            let first = instances.saturating_sub(1) / w as u64 * w as u64;
-            first * layout.stride as u64 * record + window
-        });
-        let mut contents = vec![0u8; binding_bytes.max(last_window) as usize];
-        contents[..used_bytes as usize].copy_from_slice(bytemuck::cast_slice(image));
+        let mut contents = vec![0u8; binding_bytes as usize];
+        let image: &[u8] = bytemuck::cast_slice(rest);
+        for instance in 0..instances as usize {
+            let at = instance * image.len();
+            contents[at..at + image.len()].copy_from_slice(image);
+        }
         let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("sweepffd posed cells"),
             contents: &contents,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
         });
-        PosedCells { buffer, used_bytes, binding_bytes, layout }
-    }
-
-    /// The uniform window of the records from instance `first` on.
-    fn window(&self, first: u32) -> wgpu::BindingResource<'_> {
-        let record = size_of::<CellCoeffs>() as u64;
-        wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-            buffer: &self.buffer,
-            offset: first as u64 * self.layout.stride as u64 * record,
-            size: wgpu::BufferSize::new(UNIFORM_CELL_CAPACITY as u64 * record),
-        })
+        PosedCells { buffer, used_bytes, binding_bytes, per_instance: rest.len() as u32 }
     }
 
     /// The binding of the records.
@@ -242,29 +181,15 @@ impl InstanceDispatch {
             wgpu::BindingResource<'a>,
         ) -> wgpu::BindGroup,
     ) -> Vec<InstanceDispatch> {
-        // The instanced kernel's uniform windows split each group further.
-        let windows = cells.layout.window_instances.filter(|_| numbering == Numbering::Flat);
-        let groups: Vec<Range<u32>> = match windows {
-            Some(w) => targets
-                .groups
-                .iter()
-                .flat_map(|g| g.clone().step_by(w as usize).map(move |first| first..(first + w).min(g.end)))
-                .collect(),
-            None => targets.groups.clone(),
-        };
-        groups
+        targets
+            .groups
             .iter()
             .map(|group| {
-                // A window's records start at its first instance's.
-                let (cells_binding, first_instance) = match windows {
-                    Some(_) => (cells.window(group.start), 0),
-                    None => (cells.binding(), group.start),
-                };
                 let params = InstanceParams {
                     vertex_count: count,
-                    cells_per_instance: cells.layout.stride,
+                    cells_per_instance: cells.per_instance,
                     instance_stride: 3 * targets.stride,
-                    first_instance,
+                    first_instance: group.start,
                     instance_count: group.len() as u32,
                     ..Default::default()
                 };
@@ -275,8 +200,7 @@ impl InstanceDispatch {
                 });
                 let groups = (0..targets.buffers.len())
                     .map(|parity| {
-                        let positions = targets.window(parity, range, group);
-                        group_of(&params, cells_binding.clone(), parity, group, positions)
+                        group_of(&params, cells.binding(), parity, group, targets.window(parity, range, group))
                     })
                     .collect();
                 let grid = match numbering {
@@ -300,32 +224,5 @@ impl InstanceDispatch {
     pub(crate) fn encode(&self, pass: &mut wgpu::ComputePass, parity: usize) {
         pass.set_bind_group(0, &self.groups[parity], &[]);
         pass.dispatch_workgroups(self.grid.0, self.grid.1, self.grid.2);
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn instances_overflowing_a_uniform_binding_get_aligned_windows_of_whole_instances() {
-        let limits = wgpu::Limits::default();
-        // 49 cells: padded to 56, 7 instances a window; every window starts 256-byte aligned.
-        let layout = CellLayout::new(49, 23, true, &limits);
-        assert_eq!(layout, CellLayout { variant: DeformVariant::Storage, stride: 56, window_instances: Some(7) });
-        assert_eq!(layout.stride as usize * size_of::<CellCoeffs>() % 256, 0);
-        let rest: Vec<CellCoeffs> = (0..49).map(|i| CellCoeffs { dq: [i as f32; 4], ..Default::default() }).collect();
-        let image = layout.image(&rest, 23);
-        assert_eq!(image.len(), 23 * 56);
-        assert!(image[56..56 + 49] == rest[..] && image[49..56].iter().all(|c| *c == CellCoeffs::default()));
-        // Few instances fit one uniform binding, the fused kernel and one instance read as
-        // before, and an instance too large for a window reads storage.
-        for (cells, instances, flat) in [(49, 8, true), (49, 23, false), (49, 1, true), (410, 2, true)] {
-            let layout = CellLayout::new(cells, instances, flat, &limits);
-            assert_eq!((layout.stride, layout.window_instances), (cells as u32, None), "{cells} × {instances}");
-        }
-        // A device without 64 KiB uniform bindings reads storage.
-        let small = wgpu::Limits { max_uniform_buffer_binding_size: 16 << 10, ..limits };
-        assert_eq!(CellLayout::new(49, 23, true, &small).window_instances, None);
     }
 }
