@@ -12,23 +12,32 @@ pub struct Polyline {
 }
 
 impl Polyline {
-    /// The polyline through `points`, dropping repeated points; `None` when fewer than two
-    /// distinct points remain.
+    /// The polyline through `points`, dropping repeated points and points so near the previous
+    /// one that the arc length does not grow in floating point (a segment of zero span would
+    /// make [`point`](Polyline::point) divide by zero); `None` when fewer than two distinct
+    /// points remain or a point is not finite.
     pub fn new(points: &[DVec3]) -> Option<Polyline> {
-        let mut kept: Vec<DVec3> = Vec::with_capacity(points.len());
-        for &p in points {
-            if kept.last().is_none_or(|last| last.distance(p) > 0.0) {
-                kept.push(p);
-            }
-        }
-        if kept.len() < 2 || kept.iter().any(|p| !p.is_finite()) {
+        if points.iter().any(|p| !p.is_finite()) {
             return None;
         }
-        let mut lengths = vec![0.0];
-        for pair in kept.windows(2) {
-            lengths.push(lengths.last().copied().unwrap_or(0.0) + pair[0].distance(pair[1]));
+        let mut kept: Vec<DVec3> = Vec::with_capacity(points.len());
+        let mut lengths: Vec<f64> = Vec::with_capacity(points.len());
+        for &p in points {
+            match (kept.last(), lengths.last()) {
+                (Some(&last), Some(&length)) => {
+                    let grown = length + last.distance(p);
+                    if grown > length {
+                        kept.push(p);
+                        lengths.push(grown);
+                    }
+                }
+                _ => {
+                    kept.push(p);
+                    lengths.push(0.0);
+                }
+            }
         }
-        Some(Polyline { points: kept, lengths })
+        (kept.len() >= 2).then_some(Polyline { points: kept, lengths })
     }
 
     /// The polyline's length.
@@ -124,6 +133,20 @@ pub fn principal_axis(points: &[DVec3]) -> (DVec3, DVec3) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_point_too_near_to_grow_the_arc_length_is_dropped() {
+        // 1e-17 from its neighbour, 2 units along: the arc length stays 2.0 in f64. Kept, its
+        // segment's span would be zero and the point at the end infinite.
+        let near = DVec3::new(1e-17, 0.0, 2.0);
+        assert_eq!(2.0 + near.distance(2.0 * DVec3::Z), 2.0);
+        let line = Polyline::new(&[DVec3::ZERO, 2.0 * DVec3::Z, near]).unwrap();
+        assert_eq!(line.length(), 2.0);
+        for s in [0.0, 1.0, 2.0, 2.5] {
+            assert!(line.point(s).is_finite() && line.tangent(s).is_finite(), "at {s}");
+        }
+        assert_eq!(line.point(2.0), 2.0 * DVec3::Z);
+    }
 
     #[test]
     fn polyline_points_tangents_and_projection() {
