@@ -85,3 +85,18 @@ pub fn thread_count() -> usize {
     #[cfg(not(feature = "parallel"))]
     1
 }
+
+/// Runs `a` and `b`, on two threads with the feature `parallel` (rayon's `join`), else one after
+/// the other, and returns both results.
+pub fn join<A, B, RA, RB>(a: A, b: B) -> (RA, RB)
+where
+    A: FnOnce() -> RA + Send,
+    B: FnOnce() -> RB + Send,
+    RA: Send,
+    RB: Send,
+{
+    #[cfg(feature = "parallel")]
+    return rayon::join(a, b);
+    #[cfg(not(feature = "parallel"))]
+    (a(), b())
+}

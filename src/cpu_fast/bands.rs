@@ -3,6 +3,7 @@
 //! vertices are few, and each costs two influences and a blend, so they run one by one, in
 //! parallel.
 
+use crate::parallel::join;
 use crate::parallel::prelude::*;
 
 use crate::bind::falloff::BandWeight;
@@ -82,15 +83,4 @@ fn split_bands(inputs: &BandInputs, bands: &[BandRecord], positions: &mut [f32],
     let middle = high[0].vertex as usize;
     let (low_positions, high_positions) = positions.split_at_mut(3 * (middle - first));
     join(|| split_bands(inputs, low, low_positions, first), || split_bands(inputs, high, high_positions, middle));
-}
-
-/// Runs `a` and `b`, in parallel with the feature `parallel`.
-fn join(a: impl FnOnce() + Send, b: impl FnOnce() + Send) {
-    #[cfg(feature = "parallel")]
-    rayon::join(a, b);
-    #[cfg(not(feature = "parallel"))]
-    {
-        a();
-        b();
-    }
 }

@@ -54,12 +54,7 @@ impl<F> Original<F> {
     /// Wraps `file` with a copy of the mesh data read from it (the positions and the faces
     /// copied at once on two cores, with the feature `parallel`).
     pub fn new(file: F, mesh: &Mesh) -> Arc<Self> {
-        let copy_positions = || mesh.positions.clone();
-        let copy_faces = || mesh.faces.clone();
-        #[cfg(feature = "parallel")]
-        let (positions, faces) = rayon::join(copy_positions, copy_faces);
-        #[cfg(not(feature = "parallel"))]
-        let (positions, faces) = (copy_positions(), copy_faces());
+        let (positions, faces) = crate::parallel::join(|| mesh.positions.clone(), || mesh.faces.clone());
         Arc::new(Self { file, positions, faces, groups: mesh.groups.clone() })
     }
 

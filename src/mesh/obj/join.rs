@@ -65,12 +65,7 @@ pub(crate) fn join(mut parts: Vec<Part>) -> (Mesh, AsRead) {
         let part = parts.pop().unwrap_or_default();
         let mut groups = Groups::default();
         groups.replay(&part.events, 0, part.faces.len());
-        let copy_positions = || part.positions.clone();
-        let copy_faces = || part.faces.clone();
-        #[cfg(feature = "parallel")]
-        let (positions, faces) = rayon::join(copy_positions, copy_faces);
-        #[cfg(not(feature = "parallel"))]
-        let (positions, faces) = (copy_positions(), copy_faces());
+        let (positions, faces) = crate::parallel::join(|| part.positions.clone(), || part.faces.clone());
         let run = Run { positions, lines: part.lines, faces };
         let mesh = Mesh { positions: part.positions, faces: part.faces, groups: groups.finish(), source: Source::Code };
         return (mesh, AsRead::new(vec![run]));
