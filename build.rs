@@ -9,8 +9,8 @@ use std::path::Path;
 /// Each kernel and the files it is composed of, shared files first, its entry point last.
 const KERNELS: &[(&str, &[&str])] = &[
     ("bind", &["layout.wgsl", "cells_storage.wgsl", "sweep_eval.wgsl", "angle.wgsl", "bind.wgsl"]),
-    ("deform_uniform", &["layout.wgsl", "cells_uniform.wgsl", "sweep_eval.wgsl", "deform.wgsl"]),
-    ("deform_storage", &["layout.wgsl", "cells_storage.wgsl", "sweep_eval.wgsl", "deform.wgsl"]),
+    ("deform_uniform", &["layout.wgsl", "cells_uniform.wgsl", "sweep_eval.wgsl", "deform.wgsl", "deform_groups.wgsl"]),
+    ("deform_storage", &["layout.wgsl", "cells_storage.wgsl", "sweep_eval.wgsl", "deform.wgsl", "deform_groups.wgsl"]),
     (
         "deform_normals_uniform",
         &["layout.wgsl", "cells_uniform.wgsl", "sweep_eval.wgsl", "jacobian.wgsl", "deform_normals.wgsl"],
@@ -36,6 +36,7 @@ const KERNELS: &[(&str, &[&str])] = &[
         &["layout.wgsl", "cells_storage.wgsl", "rest_cells_storage.wgsl", "sweep_eval.wgsl", "blend.wgsl", "band.wgsl"],
     ),
     ("band_pack", &["layout.wgsl", "band_pack.wgsl"]),
+    ("cell_order", &["layout.wgsl", "cell_order.wgsl"]),
     ("band_flags", &["layout.wgsl", "band_flags.wgsl"]),
     ("normals_one_window", &["layout.wgsl", "normals.wgsl", "positions_one_window.wgsl"]),
     ("normals_two_windows", &["layout.wgsl", "normals.wgsl", "positions_two_windows.wgsl"]),

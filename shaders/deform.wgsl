@@ -71,7 +71,11 @@ fn deform_vertex(i: u32, z: u32) {
 
 // Vertex i of the dispatch's instance z, bound by `binding` (no falloff band).
 fn deform_bound_vertex(i: u32, z: u32, binding: GpuBinding) {
-    let cell = cells[(params.first_instance + z) * params.cells_per_instance + binding.cell];
+    deform_in_cell(i, z, binding, cells[(params.first_instance + z) * params.cells_per_instance + binding.cell]);
+}
+
+// Vertex i of the dispatch's instance z, bound by `binding` in `cell` (its cell's record).
+fn deform_in_cell(i: u32, z: u32, binding: GpuBinding, cell: CellCoeffs) {
     let rho = radius_at(cell, binding.s, binding.phi) + binding.d;
     let direction = direction_at(cell, binding.phi);
     let local = vec3<f32>(rho * direction.x, rho * direction.y, binding.h);

@@ -11,6 +11,9 @@ const KEEPS_REST: u32 = 0x40000000u;
 // Instances one invocation of the instanced deform kernel deforms (deform_instances_main).
 const INSTANCES_PER_INVOCATION: u32 = 4u;
 
+// Vertices of one cell group (deform_groups.wgsl, cell_order.wgsl).
+const CELL_GROUP: u32 = 4u;
+
 // Most cells a rig may have for the deform kernel to read them from a uniform buffer (64 KiB).
 const UNIFORM_CELL_CAPACITY: u32 = 409u;
 
@@ -96,6 +99,15 @@ struct InstanceParams {
     _pad0: u32,
     _pad1: u32,
     _pad2: u32,
+}
+
+// The cell groups of one chunk (cell_order.wgsl): its vertices, the cells of one instance, and
+// the slots of its groups (CELL_GROUP a group).
+struct CellOrderParams {
+    vertex_count: u32,
+    cell_count: u32,
+    slot_count: u32,
+    _pad: u32,
 }
 
 // Linear-blend-skinning baseline: four joint indices and four unorm8 weights, packed in bytes.

@@ -479,9 +479,11 @@ fn bench_prints_one_json_line_with_every_figure() {
         if backend == "gpu" {
             // Bindings (20) and positions (12); normals (12) and their pass's lists: the vertex
             // (4), its row start (4) and its fan of neighbours, 6 on the tube's grid, closed
-            // without repeating the first (24), fewer on the two boundary rings.
+            // without repeating the first (24), fewer on the two boundary rings; on a CPU
+            // adapter the cell groups too (4, and up to 3 free slots a cell).
             let bytes = report["device_bytes_per_vertex"].as_f64().unwrap();
-            assert!(bytes > 72.0 && bytes <= 76.0, "device bytes per vertex {bytes}");
+            let groups = if report["adapter"].as_str().is_some_and(|a| a.contains("llvmpipe")) { 4.0 } else { 0.0 };
+            assert!(bytes > 72.0 + groups && bytes <= 76.5 + groups, "device bytes per vertex {bytes}");
             assert!(report["readback_ms"].as_f64().is_some_and(|ms| ms > 0.0));
             assert!(report["frame_cpu_ms"].as_f64().is_some_and(|ms| ms > 0.0));
             for field in ["fused_over_copy", "fused_over_separate", "instances_over_single", "partial_over_full"] {

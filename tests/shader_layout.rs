@@ -5,8 +5,9 @@
 use std::mem::{offset_of, size_of};
 
 use sweepffd::coeffs::{
-    BAND_FLAG, BandFlag, BandRecord, BindSegment, CellCoeffs, DispatchParams, GpuBinding, INSTANCES_PER_INVOCATION,
-    InstanceParams, Joint, KEEPS_REST, SkinInfluence, SweepInfo, UNIFORM_CELL_CAPACITY, UNOWNED, WORKGROUP_SIZE,
+    BAND_FLAG, BandFlag, BandRecord, BindSegment, CELL_GROUP, CellCoeffs, CellOrderParams, DispatchParams, GpuBinding,
+    INSTANCES_PER_INVOCATION, InstanceParams, Joint, KEEPS_REST, SkinInfluence, SweepInfo, UNIFORM_CELL_CAPACITY,
+    UNOWNED, WORKGROUP_SIZE,
 };
 use sweepffd::gpu::shaders;
 use sweepffd::normals::{FAN_CLOSE, FAN_END, FAN_INDEX, FAN_START};
@@ -29,6 +30,7 @@ fn rust_layouts() -> Vec<RustLayout> {
         layout!(BandRecord { vertex, weight, cell, s_phi }),
         layout!(BandFlag { vertex, x, y, z }),
         layout!(DispatchParams { vertex_count, first_vertex, window_split, _pad }),
+        layout!(CellOrderParams { vertex_count, cell_count, slot_count, _pad }),
         layout!(InstanceParams {
             vertex_count,
             cells_per_instance,
@@ -94,8 +96,8 @@ fn shared_structs_have_the_rust_layout() {
             checked += 1;
         }
     }
-    // layout.wgsl declares all ten structs and is part of every kernel.
-    assert_eq!(checked, 10 * shaders::ALL.len());
+    // layout.wgsl declares all eleven structs and is part of every kernel.
+    assert_eq!(checked, 11 * shaders::ALL.len());
 }
 
 /// The value of the `u32` constant `name` in a kernel, if it declares it.
@@ -117,6 +119,7 @@ fn shared_constants_have_the_rust_values() {
         assert_eq!(u32_constant(&module, "KEEPS_REST"), Some(KEEPS_REST), "{name}");
         let per_invocation = u32_constant(&module, "INSTANCES_PER_INVOCATION");
         assert_eq!(per_invocation, Some(INSTANCES_PER_INVOCATION), "{name}");
+        assert_eq!(u32_constant(&module, "CELL_GROUP"), Some(CELL_GROUP), "{name}");
     }
     for source in [shaders::NORMALS_ONE_WINDOW, shaders::NORMALS_TWO_WINDOWS] {
         let normals = parse("normals", source);

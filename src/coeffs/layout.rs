@@ -32,6 +32,10 @@ pub const UNIFORM_CELL_CAPACITY: u32 = 409;
 /// it reads each binding once for them all.
 pub const INSTANCES_PER_INVOCATION: u32 = 4;
 
+/// Vertices of one cell group: the deform kernel over cell groups deforms a group's vertices,
+/// which share a cell, reading that cell's record once (`src/gpu/deformer/cell_groups.rs`).
+pub const CELL_GROUP: u32 = 4;
+
 /// Everything a vertex needs to follow its posed sweep, for one cell: knot interval k of a
 /// sweep and angular interval j of its radius function (§3). Rebuilt every frame; 160 bytes.
 ///
@@ -207,6 +211,21 @@ pub struct InstanceParams {
     pub _pad2: u32,
 }
 
+/// The cell groups of one chunk of vertices, for the counting sort that makes them
+/// (`shaders/cell_order.wgsl`). 16 bytes.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Pod, Zeroable)]
+pub struct CellOrderParams {
+    /// Vertices of the chunk.
+    pub vertex_count: u32,
+    /// Cell records of one instance.
+    pub cell_count: u32,
+    /// Slots of the chunk's groups, [`CELL_GROUP`] a group.
+    pub slot_count: u32,
+    /// Unused.
+    pub _pad: u32,
+}
+
 /// One vertex's skinning influences for the linear-blend-skinning baseline: four joint
 /// indices and four weights, each packed as bytes (weights as unorm8, summing to 255). 8 bytes.
 #[repr(C)]
@@ -234,6 +253,7 @@ const _: () = assert!(size_of::<BindSegment>() == 96);
 const _: () = assert!(size_of::<GpuBinding>() == 20);
 const _: () = assert!(size_of::<DispatchParams>() == 16);
 const _: () = assert!(size_of::<InstanceParams>() == 32);
+const _: () = assert!(size_of::<CellOrderParams>() == 16);
 const _: () = assert!(size_of::<BandRecord>() == 16);
 const _: () = assert!(size_of::<BandFlag>() == 16);
 const _: () = assert!(size_of::<SkinInfluence>() == 8);

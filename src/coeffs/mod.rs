@@ -17,8 +17,9 @@ use std::f64::consts::PI;
 use glam::{DQuat, DVec3};
 
 pub use layout::{
-    BAND_FLAG, BandFlag, BandRecord, BindSegment, CellCoeffs, DispatchParams, GpuBinding, INSTANCES_PER_INVOCATION,
-    InstanceParams, Joint, KEEPS_REST, SkinInfluence, SweepInfo, UNIFORM_CELL_CAPACITY, UNOWNED, WORKGROUP_SIZE,
+    BAND_FLAG, BandFlag, BandRecord, BindSegment, CELL_GROUP, CellCoeffs, CellOrderParams, DispatchParams, GpuBinding,
+    INSTANCES_PER_INVOCATION, InstanceParams, Joint, KEEPS_REST, SkinInfluence, SweepInfo, UNIFORM_CELL_CAPACITY,
+    UNOWNED, WORKGROUP_SIZE,
 };
 
 use crate::sweep::Sweep;

@@ -1,7 +1,7 @@
 //! CPU twins of the WGSL kernels: f32 code that mirrors `shaders/*.wgsl` statement by
 //! statement, file for file (`shaders/bind.wgsl` ↔ [`bind`], `shaders/deform.wgsl` ↔
 //! [`deform`], `shaders/band.wgsl` ↔ [`band`], `shaders/band_pack.wgsl` ↔ [`band_pack`],
-//! `shaders/band_flags.wgsl` ↔ [`band_flags`], `shaders/normals.wgsl` ↔ [`normals`],
+//! `shaders/band_flags.wgsl` ↔ [`band_flags`], `shaders/cell_order.wgsl` ↔ [`cell_order`], `shaders/normals.wgsl` ↔ [`normals`],
 //! `shaders/tangents.wgsl` ↔ [`tangents`], and the shared `shaders/sweep_eval.wgsl` ↔
 //! [`sweep_eval`], `shaders/jacobian.wgsl` ↔ [`jacobian`], `shaders/angle.wgsl` ↔ [`angle`], `shaders/blend.wgsl` ↔ [`blend`]; the
 //! benchmark baselines `shaders/copy.wgsl` ↔ [`copy`],
@@ -19,6 +19,7 @@ pub mod band_pack;
 pub mod bind;
 pub mod blend;
 pub mod bounds;
+pub mod cell_order;
 pub mod copy;
 pub mod deform;
 pub mod jacobian;

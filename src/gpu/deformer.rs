@@ -2,6 +2,7 @@
 //! ready to be drawn by the host application.
 
 mod bounds;
+mod cell_groups;
 mod descriptor;
 pub(crate) mod instances;
 mod normal_coords;
@@ -9,6 +10,7 @@ mod set_bands;
 mod uploads;
 
 pub use bounds::BOUNDS_STRIDE;
+pub use cell_groups::DeformOrder;
 pub use descriptor::{DeformerDescriptor, OutputBuffer};
 pub use instances::INSTANCE_ALIGNMENT;
 
@@ -16,6 +18,7 @@ use std::ops::Range;
 use std::sync::Arc;
 
 use self::bounds::BoundsStage;
+use self::cell_groups::CellGroups;
 use self::descriptor::triangle_faces;
 use self::instances::{InstanceDispatch, Numbering, PosedCells, PositionTargets};
 use self::normal_coords::NormalCoordinates;
@@ -34,7 +37,7 @@ use super::readback::{read_bytes, wait};
 use super::tangents_pass::{TANGENT_STRIDE, TangentStage};
 use super::{GpuContext, GpuError};
 use crate::bind::falloff::BandWeight;
-use crate::coeffs::{BAND_FLAG, BandRecord, CellCoeffs, GpuBinding, SweepCoefficients, UNOWNED};
+use crate::coeffs::{BAND_FLAG, BandRecord, CELL_GROUP, CellCoeffs, GpuBinding, SweepCoefficients, UNOWNED};
 use crate::normals::{NormalAdjacency, jacobian_normal_vertices};
 use crate::sweep::Sweep;
 
@@ -126,19 +129,25 @@ pub struct GpuDeformer {
     current: usize,
 }
 
+/// A deform chunk's first vertex and its cell groups ([`GpuDeformer::read_cell_groups`]).
+pub type ChunkGroups = (u32, Vec<u32>);
+
 /// The deform dispatches of one chunk of vertices (one per instance group).
 #[derive(Debug)]
 struct DeformChunk {
     range: Range<u32>,
     bindings: wgpu::Buffer,
     dispatches: Vec<InstanceDispatch>,
+    /// The cell groups the dispatches run over, if they do.
+    groups: Option<CellGroups>,
 }
 
 impl DeformChunk {
     /// The deform dispatches of the vertices in `range`, whose bindings are in `bindings`, for
     /// every instance and position buffer.
     /// With Jacobian normals, `normals` holds the chunk's normal coordinates and the normals
-    /// buffer of each position buffer, which the fused kernel writes too.
+    /// buffer of each position buffer, which the fused kernel writes too; over cell groups,
+    /// `groups` holds the chunk's groups, one invocation each.
     #[expect(clippy::too_many_arguments, reason = "the chunk's inputs, each used once")]
     fn new(
         device: &wgpu::Device,
@@ -147,10 +156,10 @@ impl DeformChunk {
         bindings: wgpu::Buffer,
         cells: &PosedCells,
         targets: &PositionTargets,
-        normals: Option<(&wgpu::Buffer, &[NormalsStage])>,
+        (normals, groups): (Option<(&wgpu::Buffer, &[NormalsStage])>, Option<CellGroups>),
         limits: &ChunkLimits,
     ) -> DeformChunk {
-        let count = range.len() as u32;
+        let count = groups.as_ref().map_or(range.len() as u32, |groups| groups.count);
         let dispatches = InstanceDispatch::plan(
             device,
             cells,
@@ -165,10 +174,13 @@ impl DeformChunk {
                     resources.push(coordinates.as_entire_binding());
                     resources.push(targets.window_of(&stages[parity].buffer, 0, &range, group));
                 }
+                if let Some(groups) = &groups {
+                    resources.push(groups.buffer.as_entire_binding());
+                }
                 kernel.bind_group(device, "sweepffd deform", &resources)
             },
         );
-        DeformChunk { range, bindings, dispatches }
+        DeformChunk { range, bindings, dispatches, groups }
     }
 }
 
@@ -201,6 +213,7 @@ impl GpuDeformer {
             jacobian_normals,
             output,
             full_dispatch,
+            deform_order,
         } = *descriptor;
         let faces = triangles.map(triangle_faces);
         let device = &context.device;
@@ -272,10 +285,16 @@ impl GpuDeformer {
         let rest_cells = cells_buffer(device, &coefficients, variant);
         // Several instances of the plain kernel are numbered flat: with one workgroup layer per
         // instance, a small mesh's last workgroup of every instance runs nearly empty.
-        let (kernel, numbering) = match (jacobian_normals, instances > 1) {
-            (true, _) => (context.kernels().deform_normals(device, variant), Numbering::Layered),
-            (false, false) => (context.kernels().deform(device, variant), Numbering::Layered),
-            (false, true) => (context.kernels().deform_instances(device, variant), Numbering::Flat),
+        let cell_groups = !jacobian_normals && deform_order.groups_on(&context.info);
+        let kernels = context.kernels();
+        let (kernel, numbering) = match (jacobian_normals, cell_groups, instances > 1) {
+            (true, _, _) => (kernels.deform_normals(device, variant), Numbering::Layered),
+            (false, false, false) => (kernels.deform(device, variant), Numbering::Layered),
+            (false, false, true) => (kernels.deform_instances(device, variant), Numbering::Flat),
+            (false, true, flat) => {
+                let numbering = if flat { Numbering::Flat } else { Numbering::Layered };
+                (kernels.deform_groups(device, variant, flat), numbering)
+            }
         };
         let mut encoder =
             device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd bind") });
@@ -367,6 +386,12 @@ impl GpuDeformer {
                     coordinates
                 });
                 let normals = coordinates.as_ref().map(|c| (&c.buffer, &normals[..]));
+                let groups = cell_groups.then(|| {
+                    let cells = coefficients.cells.len() as u32;
+                    let groups = CellGroups::new(context, &bindings_buffer, range.len() as u32, cells, &limits);
+                    groups.encode_sort(&mut encoder);
+                    groups
+                });
                 let chunk = DeformChunk::new(
                     device,
                     (&kernel, numbering),
@@ -374,7 +399,7 @@ impl GpuDeformer {
                     bindings_buffer,
                     &cells,
                     &targets,
-                    normals,
+                    (normals, groups),
                     &limits,
                 );
                 (chunk, coordinates)
@@ -718,7 +743,25 @@ impl GpuDeformer {
         let normals: u64 = self.normals.iter().map(|stage| stage.device_bytes).sum();
         let tangents: u64 = self.tangents.iter().map(|stage| stage.device_bytes).sum();
         let bands = self.bands.as_ref().map_or(0, BandStage::device_bytes);
-        bindings + positions + normals + tangents + bands + self.coordinates_bytes
+        let groups: u64 = self.chunks.iter().filter_map(|chunk| chunk.groups.as_ref()).map(|g| g.buffer.size()).sum();
+        bindings + positions + normals + tangents + bands + self.coordinates_bytes + groups
+    }
+
+    /// Copies the cell groups back to the CPU (blocking), those of each deform chunk with its
+    /// first vertex (`None` if the deform kernel runs over single vertices): [`CELL_GROUP`]
+    /// chunk-relative vertices a group, [`UNOWNED`] in free slots, as
+    /// [`crate::cpu::cell_order::cell_groups`] makes them up to the order of each cell's
+    /// vertices.
+    ///
+    /// [`CELL_GROUP`]: crate::coeffs::CELL_GROUP
+    pub fn read_cell_groups(&self) -> Result<Option<Vec<ChunkGroups>>, GpuError> {
+        let mut all = Vec::with_capacity(self.chunks.len());
+        for chunk in &self.chunks {
+            let Some(groups) = &chunk.groups else { return Ok(None) };
+            let bytes = read_bytes(&self.context, &groups.buffer, 0, groups.count as u64 * 4 * CELL_GROUP as u64)?;
+            all.push((chunk.range.start, bytemuck::pod_collect_to_vec::<u8, u32>(&bytes)));
+        }
+        Ok(Some(all))
     }
 
     /// Copies the bindings back to the CPU (blocking), one per vertex; band vertices carry

@@ -16,6 +16,9 @@ pub(crate) struct KernelCache {
     bind: Slot,
     deform: [Slot; 2],
     deform_instances: [Slot; 2],
+    /// Over cell groups, one workgroup layer per instance, then numbered flat.
+    deform_groups: [[Slot; 2]; 2],
+    cell_order: OnceLock<Arc<[Kernel; 4]>>,
     deform_normals: [Slot; 2],
     normal_coords: [Slot; 2],
     band: [Slot; 2],
@@ -57,6 +60,21 @@ impl KernelCache {
     /// `shaders/deform.wgsl`'s flat-numbered instances kernel for cell records of `variant`.
     pub(crate) fn deform_instances(&self, device: &wgpu::Device, variant: DeformVariant) -> Arc<Kernel> {
         self.get(&self.deform_instances[variant_index(variant)], || kernels::deform_instances(device, variant))
+    }
+
+    /// `shaders/deform_groups.wgsl` for cell records of `variant`, its instances numbered flat
+    /// with `flat`.
+    pub(crate) fn deform_groups(&self, device: &wgpu::Device, variant: DeformVariant, flat: bool) -> Arc<Kernel> {
+        let slot = &self.deform_groups[flat as usize][variant_index(variant)];
+        self.get(slot, || kernels::deform_groups(device, variant, flat))
+    }
+
+    /// `shaders/cell_order.wgsl`'s count, scan, scatter and fill passes.
+    pub(crate) fn cell_order(&self, device: &wgpu::Device) -> Arc<[Kernel; 4]> {
+        Arc::clone(self.cell_order.get_or_init(|| {
+            self.compiled.fetch_add(4, Ordering::Relaxed);
+            Arc::new(kernels::cell_order(device))
+        }))
     }
 
     /// `shaders/deform_normals.wgsl` for cell records of `variant`.

@@ -147,6 +147,26 @@ pub fn deform_instances(device: &wgpu::Device, variant: DeformVariant) -> Kernel
     )
 }
 
+/// `shaders/deform_groups.wgsl`'s `deform_groups_main` (one workgroup layer per instance) or, with
+/// `flat`, `deform_groups_instances_main` (instances numbered flat): the deform kernel over the
+/// cell groups of `cell_groups.rs`, with [`deform`]'s bindings and the groups after them.
+pub fn deform_groups(device: &wgpu::Device, variant: DeformVariant, flat: bool) -> Kernel {
+    let (source, cells) = match variant {
+        DeformVariant::Uniform => (shaders::DEFORM_UNIFORM, Uniform),
+        DeformVariant::Storage => (shaders::DEFORM_STORAGE, Read),
+    };
+    let entry = if flat { "deform_groups_instances_main" } else { "deform_groups_main" };
+    Kernel::new(device, "sweepffd deform groups", source, entry, &[Uniform, cells, Read, ReadWrite, Read])
+}
+
+/// `shaders/cell_order.wgsl`'s four passes, each with params, bindings (read), cursors and
+/// groups (written).
+pub fn cell_order(device: &wgpu::Device) -> [Kernel; 4] {
+    let slots = [Uniform, Read, ReadWrite, ReadWrite];
+    ["cell_order_count_main", "cell_order_scan_main", "cell_order_scatter_main", "cell_order_fill_main"]
+        .map(|entry| Kernel::new(device, "sweepffd cell order", shaders::CELL_ORDER, entry, &slots))
+}
+
 /// `shaders/deform_normals.wgsl`: params, cells (uniform or storage), bindings (read),
 /// positions (written), normal coordinates (read), normals (written).
 pub fn deform_normals(device: &wgpu::Device, variant: DeformVariant) -> Kernel {

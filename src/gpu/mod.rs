@@ -25,7 +25,10 @@ pub use bands::BAND_STRIDE;
 pub use buffers::{BINDING_STRIDE, POSITION_STRIDE};
 pub use chunks::{ChunkLimits, dispatch_grid, normal_chunks, uniform_chunks};
 pub use context::GpuContext;
-pub use deformer::{BOUNDS_STRIDE, BindingSource, DeformerDescriptor, GpuDeformer, INSTANCE_ALIGNMENT, OutputBuffer};
+pub use deformer::{
+    BOUNDS_STRIDE, BindingSource, ChunkGroups, DeformOrder, DeformerDescriptor, GpuDeformer, INSTANCE_ALIGNMENT,
+    OutputBuffer,
+};
 pub use error::GpuError;
 pub use kernels::DeformVariant;
 pub use readback::{read_bytes, read_staging, wait};

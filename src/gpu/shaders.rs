@@ -5,11 +5,12 @@
 /// Binding (§3) of every owned vertex: `shaders/bind.wgsl`, entry point `bind_main`.
 pub const BIND: &str = include_str!(concat!(env!("OUT_DIR"), "/bind.wgsl"));
 /// Eq. 2 for every bound vertex, cell records in a uniform buffer: `shaders/deform.wgsl` after
-/// `shaders/cells_uniform.wgsl`, entry points `deform_main` (one workgroup layer per instance) and
-/// `deform_instances_main` (instances numbered flat).
+/// `shaders/cells_uniform.wgsl` and before `shaders/deform_groups.wgsl`, entry points
+/// `deform_main` (one workgroup layer per instance), `deform_instances_main` (instances numbered
+/// flat), and over cell groups `deform_groups_main` and `deform_groups_instances_main`.
 pub const DEFORM_UNIFORM: &str = include_str!(concat!(env!("OUT_DIR"), "/deform_uniform.wgsl"));
 /// Eq. 2 for every bound vertex, cell records in a storage buffer: `shaders/deform.wgsl` after
-/// `shaders/cells_storage.wgsl`, entry points `deform_main` and `deform_instances_main`.
+/// `shaders/cells_storage.wgsl` and before `shaders/deform_groups.wgsl`, the same entry points.
 pub const DEFORM_STORAGE: &str = include_str!(concat!(env!("OUT_DIR"), "/deform_storage.wgsl"));
 /// Eq. 2 fused with the Jacobian normals, cell records in a uniform buffer:
 /// `shaders/deform_normals.wgsl` after `shaders/cells_uniform.wgsl` and `shaders/jacobian.wgsl`,
@@ -32,6 +33,10 @@ pub const BAND_UNIFORM: &str = include_str!(concat!(env!("OUT_DIR"), "/band_unif
 pub const BAND_STORAGE: &str = include_str!(concat!(env!("OUT_DIR"), "/band_storage.wgsl"));
 /// The band records' second influences from bindings: `shaders/band_pack.wgsl`, `band_pack_main`.
 pub const BAND_PACK: &str = include_str!(concat!(env!("OUT_DIR"), "/band_pack.wgsl"));
+/// The cell groups of a chunk's vertices, a counting sort by cell: `shaders/cell_order.wgsl`,
+/// entry points `cell_order_count_main`, `cell_order_scan_main`, `cell_order_scatter_main` and
+/// `cell_order_fill_main`.
+pub const CELL_ORDER: &str = include_str!(concat!(env!("OUT_DIR"), "/cell_order.wgsl"));
 /// Band membership changes when the falloff bands are replaced: `shaders/band_flags.wgsl`,
 /// `band_flags_main`.
 pub const BAND_FLAGS: &str = include_str!(concat!(env!("OUT_DIR"), "/band_flags.wgsl"));
@@ -60,12 +65,16 @@ pub const SKINNING: &str = include_str!(concat!(env!("OUT_DIR"), "/skinning.wgsl
 pub const TANGENTS: &str = include_str!(concat!(env!("OUT_DIR"), "/tangents.wgsl"));
 
 /// Every kernel as (name, composed source, entry point).
-pub const ALL: [(&str, &str, &str); 21] = [
+pub const ALL: [(&str, &str, &str); 29] = [
     ("bind", BIND, "bind_main"),
     ("deform_uniform", DEFORM_UNIFORM, "deform_main"),
     ("deform_storage", DEFORM_STORAGE, "deform_main"),
     ("deform_instances_uniform", DEFORM_UNIFORM, "deform_instances_main"),
     ("deform_instances_storage", DEFORM_STORAGE, "deform_instances_main"),
+    ("deform_groups_uniform", DEFORM_UNIFORM, "deform_groups_main"),
+    ("deform_groups_storage", DEFORM_STORAGE, "deform_groups_main"),
+    ("deform_groups_instances_uniform", DEFORM_UNIFORM, "deform_groups_instances_main"),
+    ("deform_groups_instances_storage", DEFORM_STORAGE, "deform_groups_instances_main"),
     ("deform_normals_uniform", DEFORM_NORMALS_UNIFORM, "deform_normals_main"),
     ("deform_normals_storage", DEFORM_NORMALS_STORAGE, "deform_normals_main"),
     ("normal_coords_uniform", NORMAL_COORDS_UNIFORM, "normal_coords_main"),
@@ -74,6 +83,10 @@ pub const ALL: [(&str, &str, &str); 21] = [
     ("band_storage", BAND_STORAGE, "band_main"),
     ("band_pack", BAND_PACK, "band_pack_main"),
     ("band_flags", BAND_FLAGS, "band_flags_main"),
+    ("cell_order_count", CELL_ORDER, "cell_order_count_main"),
+    ("cell_order_scan", CELL_ORDER, "cell_order_scan_main"),
+    ("cell_order_scatter", CELL_ORDER, "cell_order_scatter_main"),
+    ("cell_order_fill", CELL_ORDER, "cell_order_fill_main"),
     ("normals_one_window", NORMALS_ONE_WINDOW, "normals_main"),
     ("normals_two_windows", NORMALS_TWO_WINDOWS, "normals_main"),
     ("bounds", BOUNDS, "bounds_main"),

@@ -4,6 +4,7 @@
 
 use super::super::GpuError;
 use super::BindingSource;
+use super::cell_groups::DeformOrder;
 use crate::coeffs::{BAND_FLAG, BandRecord, UNOWNED};
 use crate::mesh::Faces;
 use crate::sweep::Sweep;
@@ -55,6 +56,9 @@ pub struct DeformerDescriptor<'a> {
     /// bound ones (the default): the same positions, bit for bit, more work. For tests and
     /// benches.
     pub full_dispatch: bool,
+    /// Which vertices one invocation of the deform kernel deforms (without Jacobian normals,
+    /// whose fused kernel always deforms one vertex): the same positions, bit for bit.
+    pub deform_order: DeformOrder,
 }
 
 /// An application buffer the deformer writes its positions into (an engine's own vertex buffer):
@@ -99,6 +103,7 @@ impl<'a> DeformerDescriptor<'a> {
             jacobian_normals: false,
             output: None,
             full_dispatch: false,
+            deform_order: DeformOrder::Auto,
         }
     }
 
@@ -174,6 +179,11 @@ impl<'a> DeformerDescriptor<'a> {
     /// The same, dispatching over every vertex (see [`full_dispatch`](Self::full_dispatch)).
     pub fn with_full_dispatch(self) -> DeformerDescriptor<'a> {
         DeformerDescriptor { full_dispatch: true, ..self }
+    }
+
+    /// The same, deforming in `order` (see [`DeformOrder`]; default [`DeformOrder::Auto`]).
+    pub fn with_deform_order(self, deform_order: DeformOrder) -> DeformerDescriptor<'a> {
+        DeformerDescriptor { deform_order, ..self }
     }
 
     /// `Err(Input)` naming the first problem: no vertices, too many, a non-finite position, owners

@@ -161,6 +161,12 @@ impl GpuDeformer {
             device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd set bands") });
         let changes = flag_changes(&self.rebanding.members, weights, rest);
         self.encode_flag_changes(&changes, &mut encoder);
+        if !changes.is_empty() {
+            // Band vertices are in no cell group: the groups follow the new flags.
+            for groups in self.chunks.iter().filter_map(|chunk| chunk.groups.as_ref()) {
+                groups.encode_sort(&mut encoder);
+            }
+        }
         if !weights.is_empty() && self.rebanding.binder.is_none() {
             // The binder takes the sweeps' layout (SweepInfo), which does not change with the pose,
             // from the coefficients, and the rest cells from their own buffer.

@@ -1,0 +1,126 @@
+//! Cell groups: the deform kernel's vertices grouped by the cell they are bound in, so that one
+//! invocation deforms [`CELL_GROUP`] vertices with one read of their cell's record.
+//!
+//! Data flow: bindings (bind kernel) → **counting sort by cell** (`shaders/cell_order.wgsl`, once
+//! at creation, on the GPU, in the creation's encoder) → the groups → the deform kernel over
+//! groups (`shaders/deform_groups.wgsl`) every frame → positions, in the mesh's vertex order.
+//!
+//! Why: on a CPU adapter (lavapipe) every lane gathers its 37 floats of cell record one float at
+//! a time, which costs more than the rest of the kernel; in groups the record is gathered once a
+//! group. On a discrete GPU the records sit in the L1 cache however many lanes read them, while
+//! the groups add a 4-byte index a vertex and read the bindings and write the positions in cell
+//! order rather than in vertex order, so [`DeformOrder::Auto`] keeps the per-vertex kernel
+//! there.
+
+use std::sync::Arc;
+
+use wgpu::util::DeviceExt;
+
+use super::super::GpuContext;
+use super::super::chunks::{ChunkLimits, dispatch_grid};
+use super::super::kernels::Kernel;
+use crate::coeffs::{CELL_GROUP, CellOrderParams};
+use crate::cpu::cell_order::group_slots;
+
+/// Which vertices an invocation of the deform kernel deforms.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum DeformOrder {
+    /// [`CellGroups`](DeformOrder::CellGroups) on a CPU adapter (lavapipe, llvmpipe, SwiftShader),
+    /// [`Vertices`](DeformOrder::Vertices) on any other.
+    #[default]
+    Auto,
+    /// One vertex, in the mesh's order.
+    Vertices,
+    /// [`CELL_GROUP`] vertices bound in one cell, reading its record once: the groups are made
+    /// at creation (a counting sort on the GPU, 4 bytes a slot).
+    CellGroups,
+}
+
+impl DeformOrder {
+    /// Whether the deform kernel runs over cell groups on the adapter `info` describes.
+    pub fn groups_on(self, info: &wgpu::AdapterInfo) -> bool {
+        match self {
+            DeformOrder::Auto => info.device_type == wgpu::DeviceType::Cpu,
+            DeformOrder::Vertices => false,
+            DeformOrder::CellGroups => true,
+        }
+    }
+}
+
+/// One chunk's cell groups, and the passes that sort its vertices into them.
+#[derive(Debug)]
+pub(super) struct CellGroups {
+    /// [`CELL_GROUP`] chunk-relative vertices a group (see `shaders/deform_groups.wgsl`).
+    pub(super) buffer: wgpu::Buffer,
+    /// Groups in the buffer.
+    pub(super) count: u32,
+    cursors: wgpu::Buffer,
+    kernels: Arc<[Kernel; 4]>,
+    /// The bind group and grid of each pass.
+    passes: Vec<(wgpu::BindGroup, (u32, u32))>,
+}
+
+impl CellGroups {
+    /// The groups of the `vertices` vertices bound by `bindings` over `cells` cells a pose,
+    /// sorted by [`encode_sort`](Self::encode_sort).
+    pub(super) fn new(
+        context: &GpuContext,
+        bindings: &wgpu::Buffer,
+        vertices: u32,
+        cells: u32,
+        limits: &ChunkLimits,
+    ) -> CellGroups {
+        let device = &context.device;
+        let kernels = context.kernels().cell_order(device);
+        // At most CELL_GROUP slots a vertex, 16 bytes to the binding's 20: the chunk's
+        // bindings fit one storage binding, so do its groups.
+        let slots = group_slots(vertices, cells) as u32;
+        let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("sweepffd cell groups"),
+            size: slots.max(CELL_GROUP) as u64 * 4,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let cursors = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("sweepffd cell group cursors"),
+            size: cells.max(1) as u64 * 4,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let params = CellOrderParams { vertex_count: vertices, cell_count: cells, slot_count: slots, _pad: 0 };
+        let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("sweepffd cell order params"),
+            contents: bytemuck::bytes_of(&params),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let resources = [
+            params.as_entire_binding(),
+            bindings.as_entire_binding(),
+            cursors.as_entire_binding(),
+            buffer.as_entire_binding(),
+        ];
+        let per_vertex = dispatch_grid(vertices, limits);
+        let grids = [per_vertex, (1, 1), per_vertex, dispatch_grid(slots / CELL_GROUP, limits)];
+        let passes = kernels
+            .iter()
+            .zip(grids)
+            .map(|(kernel, grid)| (kernel.bind_group(device, "sweepffd cell order", &resources), grid))
+            .collect();
+        CellGroups { buffer, count: slots / CELL_GROUP, cursors, kernels, passes }
+    }
+
+    /// Records the sort of the chunk's vertices into the groups, after the passes that write
+    /// the bindings (binding, or new falloff bands).
+    pub(super) fn encode_sort(&self, encoder: &mut wgpu::CommandEncoder) {
+        encoder.clear_buffer(&self.cursors, 0, None);
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("sweepffd cell order"),
+            timestamp_writes: None,
+        });
+        for (kernel, (group, grid)) in self.kernels.iter().zip(&self.passes) {
+            pass.set_pipeline(&kernel.pipeline);
+            pass.set_bind_group(0, group, &[]);
+            pass.dispatch_workgroups(grid.0, grid.1, 1);
+        }
+    }
+}
