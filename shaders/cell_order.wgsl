@@ -1,30 +1,48 @@
-// The cell groups of one chunk's vertices (src/gpu/deformer/cell_groups.rs), a counting sort of
-// its bound vertices by cell, made at creation after binding and again when the falloff bands
-// change, in four passes: cell_order_count_main counts the vertices of each cell,
+// The cell groups of one chunk's vertices (src/gpu/deformer/cell_groups.rs): a counting sort of
+// its deformed vertices by (block, cell), where a block is params.block_size consecutive
+// vertices, so that the groups follow the mesh's vertex order from block to block and the deform
+// kernel reads the bindings and writes the positions near where it did a moment before. Made at
+// creation after binding and again when the falloff bands change, in four passes:
+// cell_order_count_main counts the vertices of each bucket (a block's cell),
 // cell_order_scan_main turns the counts (each rounded up to a multiple of CELL_GROUP) into where
-// each cell's slots start, cell_order_scatter_main writes every vertex into a slot of its cell,
-// and cell_order_fill_main fills a group's free slots with its first vertex (deformed again,
-// to the same position), so that the deform kernel tests no slot. Vertices in falloff bands
-// (the band kernel moves them) and unbound ones are in no group; the groups past the last
-// cell's are free (UNOWNED) and the deform kernel skips them.
+// each bucket's slots start, cell_order_scatter_main writes every vertex into a slot of its
+// bucket, and cell_order_fill_main fills a group's free slots with its first vertex (deformed
+// again, to the same position), so that the deform kernel tests no slot. Vertices in falloff
+// bands (the band kernel moves them) and unbound ones are in no group; the groups past the last
+// bucket's are free (UNOWNED) and the deform dispatches, indirect, stop short of them.
 // Composed after layout.wgsl. Twin: src/cpu/cell_order.rs.
 
 @group(0) @binding(0) var<uniform> params: CellOrderParams;
 @group(0) @binding(1) var<storage, read> bindings: array<GpuBinding>;
-// Per cell: its vertex count (count pass), then the next free slot of its range (scan and
+// Per bucket: its vertex count (count pass), then the next free slot of its range (scan and
 // scatter passes).
 @group(0) @binding(2) var<storage, read_write> cursors: array<atomic<u32>>;
 // params.slot_count entries: CELL_GROUP per group.
 @group(0) @binding(3) var<storage, read_write> groups_order: array<u32>;
+// Written by the scan pass: [0] the groups in use G (copied into the deform dispatches' params,
+// InstanceParams.vertex_count), then for deform dispatch k the workgroups (x, y, 1) of its
+// indirect dispatch, over G * multipliers[k] invocations. A CPU adapter runs every invocation
+// of a workgroup, returned or not: the dispatches cover only the groups in use.
+@group(0) @binding(4) var<storage, read_write> dispatch_args: array<u32>;
+// Per deform dispatch: its invocations per group in use (1, or the instanced kernel's instance
+// layers).
+@group(0) @binding(5) var<storage, read> multipliers: array<u32>;
 
-// Lanes of the scan's one workgroup, each summing a run of consecutive cells.
+// Lanes of the scan's one workgroup, each summing a run of consecutive buckets.
 const SCAN_LANES: u32 = WORKGROUP_SIZE;
 var<workgroup> run_totals: array<u32, SCAN_LANES>;
 
-// The cell of vertex i, or UNOWNED if it is in no group (unbound, in a band, or past the cells).
-fn grouped_cell(i: u32) -> u32 {
+// The bucket of vertex i, or UNOWNED if it is in no group (unbound, in a band, or past the cells).
+fn bucket_of(i: u32) -> u32 {
     let cell = bindings[i].cell;
-    return select(UNOWNED, cell, cell < params.cell_count);
+    if (cell >= params.cell_count) {
+        return UNOWNED;
+    }
+    return i / params.block_size * params.cell_count + cell;
+}
+
+fn bucket_count() -> u32 {
+    return (params.vertex_count + params.block_size - 1u) / params.block_size * params.cell_count;
 }
 
 @compute @workgroup_size(WORKGROUP_SIZE)
@@ -37,24 +55,25 @@ fn cell_order_count_main(
     if (i >= params.vertex_count) {
         return;
     }
-    let cell = grouped_cell(i);
-    if (cell != UNOWNED) {
-        atomicAdd(&cursors[cell], 1u);
+    let bucket = bucket_of(i);
+    if (bucket != UNOWNED) {
+        atomicAdd(&cursors[bucket], 1u);
     }
 }
 
-// One workgroup: lane l takes cells [l * run, (l + 1) * run), sums their rounded-up counts, the
-// lanes' sums are scanned in workgroup memory, and each lane then walks its cells again, writing
-// each cell's first slot into its cursor and UNOWNED into its free slots (the fill pass replaces
-// them); the slots past the last cell's are free too.
+// One workgroup: lane l takes buckets [l * run, (l + 1) * run), sums their rounded-up counts,
+// the lanes' sums are scanned in workgroup memory, and each lane then walks its buckets again,
+// writing each bucket's first slot into its cursor and UNOWNED into its free slots (the fill
+// pass replaces them); the slots past the last bucket's are free too.
 @compute @workgroup_size(WORKGROUP_SIZE)
 fn cell_order_scan_main(@builtin(local_invocation_index) lane: u32) {
-    let run = (params.cell_count + SCAN_LANES - 1u) / SCAN_LANES;
-    let start = min(lane * run, params.cell_count);
-    let end = min(start + run, params.cell_count);
+    let buckets = bucket_count();
+    let run = (buckets + SCAN_LANES - 1u) / SCAN_LANES;
+    let start = min(lane * run, buckets);
+    let end = min(start + run, buckets);
     var total = 0u;
-    for (var c = start; c < end; c++) {
-        total += round_up_to_group(atomicLoad(&cursors[c]));
+    for (var b = start; b < end; b++) {
+        total += round_up_to_group(atomicLoad(&cursors[b]));
     }
     run_totals[lane] = total;
     workgroupBarrier();
@@ -69,16 +88,28 @@ fn cell_order_scan_main(@builtin(local_invocation_index) lane: u32) {
         workgroupBarrier();
     }
     var slot = run_totals[lane] - total;
-    for (var c = start; c < end; c++) {
-        let count = atomicLoad(&cursors[c]);
-        atomicStore(&cursors[c], slot);
+    for (var b = start; b < end; b++) {
+        let count = atomicLoad(&cursors[b]);
+        atomicStore(&cursors[b], slot);
         for (var free = slot + count; free < slot + round_up_to_group(count); free++) {
             groups_order[free] = UNOWNED;
         }
         slot += round_up_to_group(count);
     }
-    for (var free = run_totals[SCAN_LANES - 1u] + lane; free < params.slot_count; free += SCAN_LANES) {
+    let used = run_totals[SCAN_LANES - 1u];
+    for (var free = used + lane; free < params.slot_count; free += SCAN_LANES) {
         groups_order[free] = UNOWNED;
+    }
+    if (lane == 0u) {
+        let groups = used / CELL_GROUP;
+        dispatch_args[0] = groups;
+        for (var k = 0u; k < params.dispatch_count; k++) {
+            let workgroups = max((groups * multipliers[k] + WORKGROUP_SIZE - 1u) / WORKGROUP_SIZE, 1u);
+            let x = min(workgroups, params.max_workgroups);
+            dispatch_args[1u + 3u * k] = x;
+            dispatch_args[2u + 3u * k] = (workgroups + x - 1u) / x;
+            dispatch_args[3u + 3u * k] = 1u;
+        }
     }
 }
 
@@ -96,9 +127,9 @@ fn cell_order_scatter_main(
     if (i >= params.vertex_count) {
         return;
     }
-    let cell = grouped_cell(i);
-    if (cell != UNOWNED) {
-        groups_order[atomicAdd(&cursors[cell], 1u)] = i;
+    let bucket = bucket_of(i);
+    if (bucket != UNOWNED) {
+        groups_order[atomicAdd(&cursors[bucket], 1u)] = i;
     }
 }
 

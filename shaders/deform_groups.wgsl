@@ -11,7 +11,8 @@
 @group(0) @binding(4) var<storage, read> groups_order: array<u32>;
 
 // One invocation per group, workgroup layer z the dispatch's instance z (as deform_main);
-// params.vertex_count counts the chunk's groups.
+// params.vertex_count counts the chunk's groups in use (copied in by the sort), fewer than the
+// dispatch's invocations.
 @compute @workgroup_size(WORKGROUP_SIZE)
 fn deform_groups_main(
     @builtin(workgroup_id) group: vec3<u32>,
@@ -43,6 +44,10 @@ fn deform_groups_instances_main(
     @builtin(num_workgroups) groups: vec3<u32>,
     @builtin(local_invocation_index) lane: u32,
 ) {
+    // No group in use (every vertex in a band): the numbering below would not end.
+    if (params.vertex_count == 0u) {
+        return;
+    }
     let first_invocation = invocation_index(group, groups, 0u);
     var w = first_invocation / params.vertex_count;
     var g = first_invocation - w * params.vertex_count + lane;

@@ -101,13 +101,19 @@ struct InstanceParams {
     _pad2: u32,
 }
 
-// The cell groups of one chunk (cell_order.wgsl): its vertices, the cells of one instance, and
-// the slots of its groups (CELL_GROUP a group).
+// The cell groups of one chunk (cell_order.wgsl): its vertices, the cells of one instance, the
+// slots of its groups (CELL_GROUP a group), the vertices of a block (sorted by cell within), and
+// for the deform dispatches' indirect arguments the device's most workgroups in a dimension and
+// the number of dispatches.
 struct CellOrderParams {
     vertex_count: u32,
     cell_count: u32,
     slot_count: u32,
-    _pad: u32,
+    block_size: u32,
+    max_workgroups: u32,
+    dispatch_count: u32,
+    _pad0: u32,
+    _pad1: u32,
 }
 
 // Linear-blend-skinning baseline: four joint indices and four unorm8 weights, packed in bytes.

@@ -30,7 +30,16 @@ fn rust_layouts() -> Vec<RustLayout> {
         layout!(BandRecord { vertex, weight, cell, s_phi }),
         layout!(BandFlag { vertex, x, y, z }),
         layout!(DispatchParams { vertex_count, first_vertex, window_split, _pad }),
-        layout!(CellOrderParams { vertex_count, cell_count, slot_count, _pad }),
+        layout!(CellOrderParams {
+            vertex_count,
+            cell_count,
+            slot_count,
+            block_size,
+            max_workgroups,
+            dispatch_count,
+            _pad0,
+            _pad1
+        }),
         layout!(InstanceParams {
             vertex_count,
             cells_per_instance,

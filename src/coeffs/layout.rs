@@ -211,8 +211,8 @@ pub struct InstanceParams {
     pub _pad2: u32,
 }
 
-/// The cell groups of one chunk of vertices, for the counting sort that makes them
-/// (`shaders/cell_order.wgsl`). 16 bytes.
+/// The cell groups of one chunk of vertices, for the counting sort by (block, cell) that makes
+/// them (`shaders/cell_order.wgsl`). 32 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Pod, Zeroable)]
 pub struct CellOrderParams {
@@ -222,8 +222,16 @@ pub struct CellOrderParams {
     pub cell_count: u32,
     /// Slots of the chunk's groups, [`CELL_GROUP`] a group.
     pub slot_count: u32,
+    /// Consecutive vertices of one block: the vertices are sorted by cell within each block.
+    pub block_size: u32,
+    /// The device's most workgroups in one dimension of a dispatch.
+    pub max_workgroups: u32,
+    /// Deform dispatches whose indirect arguments the sort writes.
+    pub dispatch_count: u32,
     /// Unused.
-    pub _pad: u32,
+    pub _pad0: u32,
+    /// Unused.
+    pub _pad1: u32,
 }
 
 /// One vertex's skinning influences for the linear-blend-skinning baseline: four joint
@@ -253,7 +261,7 @@ const _: () = assert!(size_of::<BindSegment>() == 96);
 const _: () = assert!(size_of::<GpuBinding>() == 20);
 const _: () = assert!(size_of::<DispatchParams>() == 16);
 const _: () = assert!(size_of::<InstanceParams>() == 32);
-const _: () = assert!(size_of::<CellOrderParams>() == 16);
+const _: () = assert!(size_of::<CellOrderParams>() == 32);
 const _: () = assert!(size_of::<BandRecord>() == 16);
 const _: () = assert!(size_of::<BandFlag>() == 16);
 const _: () = assert!(size_of::<SkinInfluence>() == 8);

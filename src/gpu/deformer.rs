@@ -180,7 +180,21 @@ impl DeformChunk {
                 kernel.bind_group(device, "sweepffd deform", &resources)
             },
         );
+        let mut dispatches = dispatches;
+        if let Some(groups) = &groups {
+            for (k, dispatch) in dispatches.iter_mut().enumerate() {
+                dispatch.indirect = Some((groups.args.clone(), CellGroups::args_offset(k)));
+            }
+        }
         DeformChunk { range, bindings, dispatches, groups }
+    }
+
+    /// Records the sort of the chunk's vertices into its cell groups, if it has them (after the
+    /// passes that write its bindings).
+    fn encode_sort(&self, encoder: &mut wgpu::CommandEncoder) {
+        if let Some(groups) = &self.groups {
+            groups.encode_sort(encoder, self.dispatches.iter().map(|dispatch| &dispatch.params));
+        }
     }
 }
 
@@ -387,10 +401,11 @@ impl GpuDeformer {
                 });
                 let normals = coordinates.as_ref().map(|c| (&c.buffer, &normals[..]));
                 let groups = cell_groups.then(|| {
-                    let cells = coefficients.cells.len() as u32;
-                    let groups = CellGroups::new(context, &bindings_buffer, range.len() as u32, cells, &limits);
-                    groups.encode_sort(&mut encoder);
-                    groups
+                    // The layered kernel over groups runs for one instance only: one layer.
+                    let multipliers: Vec<u32> =
+                        targets.groups.iter().map(|g| numbering.invocations_per_thread(g.len() as u32)).collect();
+                    let sizes = (range.len() as u32, coefficients.cells.len() as u32);
+                    CellGroups::new(context, &bindings_buffer, sizes, &multipliers, &limits)
                 });
                 let chunk = DeformChunk::new(
                     device,
@@ -402,6 +417,7 @@ impl GpuDeformer {
                     (normals, groups),
                     &limits,
                 );
+                chunk.encode_sort(&mut encoder);
                 (chunk, coordinates)
             })
             .collect();
@@ -743,7 +759,8 @@ impl GpuDeformer {
         let normals: u64 = self.normals.iter().map(|stage| stage.device_bytes).sum();
         let tangents: u64 = self.tangents.iter().map(|stage| stage.device_bytes).sum();
         let bands = self.bands.as_ref().map_or(0, BandStage::device_bytes);
-        let groups: u64 = self.chunks.iter().filter_map(|chunk| chunk.groups.as_ref()).map(|g| g.buffer.size()).sum();
+        let groups: u64 =
+            self.chunks.iter().filter_map(|chunk| chunk.groups.as_ref()).map(CellGroups::device_bytes).sum();
         bindings + positions + normals + tangents + bands + self.coordinates_bytes + groups
     }
 

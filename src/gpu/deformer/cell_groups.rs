@@ -20,7 +20,7 @@ use super::super::GpuContext;
 use super::super::chunks::{ChunkLimits, dispatch_grid};
 use super::super::kernels::Kernel;
 use crate::coeffs::{CELL_GROUP, CellOrderParams};
-use crate::cpu::cell_order::group_slots;
+use crate::cpu::cell_order::{block_size, group_slots};
 
 /// Which vertices an invocation of the deform kernel deforms.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -52,8 +52,11 @@ impl DeformOrder {
 pub(super) struct CellGroups {
     /// [`CELL_GROUP`] chunk-relative vertices a group (see `shaders/deform_groups.wgsl`).
     pub(super) buffer: wgpu::Buffer,
-    /// Groups in the buffer.
+    /// Groups the buffer has room for.
     pub(super) count: u32,
+    /// Written by the sort: the groups in use (a `u32`), then the indirect arguments (three
+    /// `u32`) of each deform dispatch, at [`args_offset`](Self::args_offset).
+    pub(super) args: wgpu::Buffer,
     cursors: wgpu::Buffer,
     kernels: Arc<[Kernel; 4]>,
     /// The bind group and grid of each pass.
@@ -62,12 +65,13 @@ pub(super) struct CellGroups {
 
 impl CellGroups {
     /// The groups of the `vertices` vertices bound by `bindings` over `cells` cells a pose,
-    /// sorted by [`encode_sort`](Self::encode_sort).
+    /// sorted by [`encode_sort`](Self::encode_sort), for deform dispatches of `multipliers[k]`
+    /// invocations a group each.
     pub(super) fn new(
         context: &GpuContext,
         bindings: &wgpu::Buffer,
-        vertices: u32,
-        cells: u32,
+        (vertices, cells): (u32, u32),
+        multipliers: &[u32],
         limits: &ChunkLimits,
     ) -> CellGroups {
         let device = &context.device;
@@ -81,23 +85,47 @@ impl CellGroups {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
+        // One counter a bucket (a block's cell): about one a vertex at most.
+        let block = block_size(cells);
+        let buckets = vertices.div_ceil(block) as u64 * cells as u64;
         let cursors = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("sweepffd cell group cursors"),
-            size: cells.max(1) as u64 * 4,
+            size: buckets.max(1) * 4,
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let params = CellOrderParams { vertex_count: vertices, cell_count: cells, slot_count: slots, _pad: 0 };
+        let params = CellOrderParams {
+            vertex_count: vertices,
+            cell_count: cells,
+            slot_count: slots,
+            block_size: block,
+            max_workgroups: limits.max_workgroups,
+            dispatch_count: multipliers.len() as u32,
+            ..Default::default()
+        };
         let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("sweepffd cell order params"),
             contents: bytemuck::bytes_of(&params),
             usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let args = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("sweepffd cell groups in use and dispatches"),
+            size: CellGroups::args_offset(multipliers.len()),
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let multipliers = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("sweepffd cell groups' dispatch multipliers"),
+            contents: bytemuck::cast_slice(&multipliers.iter().copied().chain([0]).collect::<Vec<u32>>()),
+            usage: wgpu::BufferUsages::STORAGE,
         });
         let resources = [
             params.as_entire_binding(),
             bindings.as_entire_binding(),
             cursors.as_entire_binding(),
             buffer.as_entire_binding(),
+            args.as_entire_binding(),
+            multipliers.as_entire_binding(),
         ];
         let per_vertex = dispatch_grid(vertices, limits);
         let grids = [per_vertex, (1, 1), per_vertex, dispatch_grid(slots / CELL_GROUP, limits)];
@@ -106,21 +134,44 @@ impl CellGroups {
             .zip(grids)
             .map(|(kernel, grid)| (kernel.bind_group(device, "sweepffd cell order", &resources), grid))
             .collect();
-        CellGroups { buffer, count: slots / CELL_GROUP, cursors, kernels, passes }
+        CellGroups { buffer, count: slots / CELL_GROUP, args, cursors, kernels, passes }
+    }
+
+    /// The byte offset of deform dispatch `k`'s indirect arguments in [`args`](Self::args).
+    pub(super) fn args_offset(k: usize) -> u64 {
+        4 + 12 * k as u64
     }
 
     /// Records the sort of the chunk's vertices into the groups, after the passes that write
-    /// the bindings (binding, or new falloff bands).
-    pub(super) fn encode_sort(&self, encoder: &mut wgpu::CommandEncoder) {
+    /// the bindings (binding, or new falloff bands), and the copy of the groups in use into the
+    /// `vertex_count` of each of the deform dispatches' `params` (an [`InstanceParams`] each);
+    /// the dispatches themselves are indirect, from [`args`](Self::args).
+    ///
+    /// [`InstanceParams`]: crate::coeffs::InstanceParams
+    pub(super) fn encode_sort<'p>(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        params: impl IntoIterator<Item = &'p wgpu::Buffer>,
+    ) {
         encoder.clear_buffer(&self.cursors, 0, None);
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("sweepffd cell order"),
-            timestamp_writes: None,
-        });
-        for (kernel, (group, grid)) in self.kernels.iter().zip(&self.passes) {
-            pass.set_pipeline(&kernel.pipeline);
-            pass.set_bind_group(0, group, &[]);
-            pass.dispatch_workgroups(grid.0, grid.1, 1);
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("sweepffd cell order"),
+                timestamp_writes: None,
+            });
+            for (kernel, (group, grid)) in self.kernels.iter().zip(&self.passes) {
+                pass.set_pipeline(&kernel.pipeline);
+                pass.set_bind_group(0, group, &[]);
+                pass.dispatch_workgroups(grid.0, grid.1, 1);
+            }
         }
+        for params in params {
+            encoder.copy_buffer_to_buffer(&self.args, 0, params, 0, 4);
+        }
+    }
+
+    /// Device memory the groups keep.
+    pub(super) fn device_bytes(&self) -> u64 {
+        self.buffer.size() + self.cursors.size() + self.args.size()
     }
 }

@@ -151,11 +151,29 @@ pub(crate) enum Numbering {
     Flat,
 }
 
+impl Numbering {
+    /// Invocations a thread (vertex, or cell group) of a dispatch over `instances` instances
+    /// has, in one workgroup layer: one per instance layer of the flat numbering, one for the
+    /// layered (whose layers are the workgroups' z).
+    pub(crate) fn invocations_per_thread(self, instances: u32) -> u32 {
+        match self {
+            Numbering::Layered => 1,
+            Numbering::Flat => instances.div_ceil(INSTANCES_PER_INVOCATION),
+        }
+    }
+}
+
 /// One dispatch over some instances: a bind group per position buffer (`parity`).
 #[derive(Debug)]
 pub(crate) struct InstanceDispatch {
     groups: Vec<wgpu::BindGroup>,
     grid: (u32, u32, u32),
+    /// The dispatch's [`InstanceParams`] (`COPY_DST`: the deform kernel over cell groups gets
+    /// its group count copied in on the GPU).
+    pub(crate) params: wgpu::Buffer,
+    /// Where the dispatch's workgroups are read from instead of `grid`, when the GPU writes them
+    /// (the deform kernel over cell groups): a buffer and a byte offset.
+    pub(crate) indirect: Option<(wgpu::Buffer, u64)>,
 }
 
 impl InstanceDispatch {
@@ -196,7 +214,7 @@ impl InstanceDispatch {
                 let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                     label: Some("sweepffd instance params"),
                     contents: bytemuck::bytes_of(&params),
-                    usage: wgpu::BufferUsages::UNIFORM,
+                    usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
                 });
                 let groups = (0..targets.buffers.len())
                     .map(|parity| {
@@ -210,12 +228,12 @@ impl InstanceDispatch {
                     }
                     // count · instances stays below 2^32: their positions fit one binding.
                     Numbering::Flat => {
-                        let invocations = count * (group.len() as u32).div_ceil(INSTANCES_PER_INVOCATION);
+                        let invocations = count * numbering.invocations_per_thread(group.len() as u32);
                         let (x, y) = dispatch_grid(invocations, limits);
                         (x, y, 1)
                     }
                 };
-                InstanceDispatch { groups, grid }
+                InstanceDispatch { groups, grid, params, indirect: None }
             })
             .collect()
     }
@@ -223,6 +241,9 @@ impl InstanceDispatch {
     /// Records the dispatch writing position buffer `parity` (its pipeline already set).
     pub(crate) fn encode(&self, pass: &mut wgpu::ComputePass, parity: usize) {
         pass.set_bind_group(0, &self.groups[parity], &[]);
-        pass.dispatch_workgroups(self.grid.0, self.grid.1, self.grid.2);
+        match &self.indirect {
+            Some((buffer, offset)) => pass.dispatch_workgroups_indirect(buffer, *offset),
+            None => pass.dispatch_workgroups(self.grid.0, self.grid.1, self.grid.2),
+        }
     }
 }

@@ -163,8 +163,8 @@ impl GpuDeformer {
         self.encode_flag_changes(&changes, &mut encoder);
         if !changes.is_empty() {
             // Band vertices are in no cell group: the groups follow the new flags.
-            for groups in self.chunks.iter().filter_map(|chunk| chunk.groups.as_ref()) {
-                groups.encode_sort(&mut encoder);
+            for chunk in &self.chunks {
+                chunk.encode_sort(&mut encoder);
             }
         }
         if !weights.is_empty() && self.rebanding.binder.is_none() {
