@@ -13,11 +13,25 @@ const KERNELS: &[(&str, &[&str])] = &[
     ("deform_storage", &["layout.wgsl", "cells_storage.wgsl", "sweep_eval.wgsl", "deform.wgsl", "deform_groups.wgsl"]),
     (
         "deform_normals_uniform",
-        &["layout.wgsl", "cells_uniform.wgsl", "sweep_eval.wgsl", "jacobian.wgsl", "deform_normals.wgsl"],
+        &[
+            "layout.wgsl",
+            "cells_uniform.wgsl",
+            "sweep_eval.wgsl",
+            "jacobian.wgsl",
+            "deform_normals.wgsl",
+            "deform_normals_groups.wgsl",
+        ],
     ),
     (
         "deform_normals_storage",
-        &["layout.wgsl", "cells_storage.wgsl", "sweep_eval.wgsl", "jacobian.wgsl", "deform_normals.wgsl"],
+        &[
+            "layout.wgsl",
+            "cells_storage.wgsl",
+            "sweep_eval.wgsl",
+            "jacobian.wgsl",
+            "deform_normals.wgsl",
+            "deform_normals_groups.wgsl",
+        ],
     ),
     (
         "normal_coords_uniform",

@@ -20,13 +20,14 @@
 // params.slot_count entries: CELL_GROUP per group.
 @group(0) @binding(3) var<storage, read_write> groups_order: array<u32>;
 // Written by the scan pass: [0] the groups in use G (copied into the deform dispatches' params,
-// InstanceParams.vertex_count), then for deform dispatch k the workgroups (x, y, 1) of its
-// indirect dispatch, over G * multipliers[k] invocations. A CPU adapter runs every invocation
-// of a workgroup, returned or not: the dispatches cover only the groups in use.
+// InstanceParams.vertex_count), then for deform dispatch k the workgroups (x, y, z) of its
+// indirect dispatch, G * shapes[k].x invocations in each of z = shapes[k].y layers. A CPU
+// adapter runs every invocation of a workgroup, returned or not: the dispatches cover only the
+// groups in use.
 @group(0) @binding(4) var<storage, read_write> dispatch_args: array<u32>;
-// Per deform dispatch: its invocations per group in use (1, or the instanced kernel's instance
-// layers).
-@group(0) @binding(5) var<storage, read> multipliers: array<u32>;
+// Per deform dispatch: its invocations per group in use in one layer (1, or the flat instanced
+// kernel's instance layers) and its workgroup layers (its instances, or 1 when numbered flat).
+@group(0) @binding(5) var<storage, read> shapes: array<vec2<u32>>;
 
 // Lanes of the scan's one workgroup, each summing a run of consecutive buckets.
 const SCAN_LANES: u32 = WORKGROUP_SIZE;
@@ -104,11 +105,11 @@ fn cell_order_scan_main(@builtin(local_invocation_index) lane: u32) {
         let groups = used / CELL_GROUP;
         dispatch_args[0] = groups;
         for (var k = 0u; k < params.dispatch_count; k++) {
-            let workgroups = max((groups * multipliers[k] + WORKGROUP_SIZE - 1u) / WORKGROUP_SIZE, 1u);
+            let workgroups = max((groups * shapes[k].x + WORKGROUP_SIZE - 1u) / WORKGROUP_SIZE, 1u);
             let x = min(workgroups, params.max_workgroups);
             dispatch_args[1u + 3u * k] = x;
             dispatch_args[2u + 3u * k] = (workgroups + x - 1u) / x;
-            dispatch_args[3u + 3u * k] = 1u;
+            dispatch_args[3u + 3u * k] = shapes[k].y;
         }
     }
 }

@@ -32,11 +32,16 @@ fn deform_normals_main(
     if (binding.cell >= BAND_FLAG) {
         return;
     }
-    let cell = cells[(params.first_instance + group.z) * params.cells_per_instance + binding.cell];
+    deform_with_normal_in_cell(i, group.z, binding, cells[(params.first_instance + group.z) * params.cells_per_instance + binding.cell]);
+}
+
+// Vertex i of the dispatch's instance z, bound by `binding` in `cell` (its cell's record): its
+// position and its normal.
+fn deform_with_normal_in_cell(i: u32, z: u32, binding: GpuBinding, cell: CellCoeffs) {
     let record = coordinates[i];
     let frame = point_frame(cell, binding, record.w == NORMAL_BEYOND_END);
     let n = deformed_normal(cell, binding, frame, record);
-    let o = group.z * params.instance_stride + 3u * i;
+    let o = z * params.instance_stride + 3u * i;
     positions[o] = frame.position.x;
     positions[o + 1u] = frame.position.y;
     positions[o + 2u] = frame.position.z;

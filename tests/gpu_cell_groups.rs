@@ -193,3 +193,33 @@ fn auto_groups_on_cpu_adapters_only() {
         assert!(!DeformOrder::Vertices.groups_on(&info));
     }
 }
+
+#[test]
+fn jacobian_normals_over_groups_equal_the_per_vertex_fused_kernel() {
+    let Some(context) = common::gpu() else { return };
+    let tube = Tube { rings: 40, around: 24, length: 4.0, radius: 0.5 };
+    let (mesh, rig) = (tube.mesh(), tube_rig(&tube, 8, 16));
+    let owners = rig.owners(&mesh, "tube").unwrap();
+    let positions = rest_positions(&mesh.positions);
+    let triangles: Vec<u32> = mesh.faces.triangles().flatten().collect();
+    for instances in [1, 3] {
+        let make = |order| {
+            let source = BindingSource::Bind { owners: &owners, bands: &[] };
+            let descriptor = DeformerDescriptor::new(rig.rest(), &positions, source)
+                .with_triangles(&triangles)
+                .with_jacobian_normals()
+                .with_instances(instances)
+                .with_deform_order(order);
+            GpuDeformer::new(context, &descriptor).unwrap()
+        };
+        let (mut grouped, mut by_vertex) = (make(DeformOrder::CellGroups), make(DeformOrder::Vertices));
+        let cells = SweepCoefficients::new(rig.rest()).cells.len() as u32;
+        assert!(assert_groups_match_the_twin("fused", &grouped, cells) > 0);
+        let poses: Vec<Vec<Sweep>> = (0..instances as usize).map(|i| pose(&rig, i, instances as usize)).collect();
+        let name = format!("fused, {instances} instances");
+        let (ours, theirs) = (deformed(context, &mut grouped, &poses), deformed(context, &mut by_vertex, &poses));
+        assert_same_positions(&name, &ours, &theirs);
+        let (ours, theirs) = (grouped.read_normals().unwrap().unwrap(), by_vertex.read_normals().unwrap().unwrap());
+        assert_same_positions(&format!("{name}: normals"), &ours, &theirs);
+    }
+}

@@ -299,10 +299,11 @@ impl GpuDeformer {
         let rest_cells = cells_buffer(device, &coefficients, variant);
         // Several instances of the plain kernel are numbered flat: with one workgroup layer per
         // instance, a small mesh's last workgroup of every instance runs nearly empty.
-        let cell_groups = !jacobian_normals && deform_order.groups_on(&context.info);
+        let cell_groups = deform_order.groups_on(&context.info);
         let kernels = context.kernels();
         let (kernel, numbering) = match (jacobian_normals, cell_groups, instances > 1) {
-            (true, _, _) => (kernels.deform_normals(device, variant), Numbering::Layered),
+            (true, false, _) => (kernels.deform_normals(device, variant), Numbering::Layered),
+            (true, true, _) => (kernels.deform_normals_groups(device, variant), Numbering::Layered),
             (false, false, false) => (kernels.deform(device, variant), Numbering::Layered),
             (false, false, true) => (kernels.deform_instances(device, variant), Numbering::Flat),
             (false, true, flat) => {
@@ -401,11 +402,10 @@ impl GpuDeformer {
                 });
                 let normals = coordinates.as_ref().map(|c| (&c.buffer, &normals[..]));
                 let groups = cell_groups.then(|| {
-                    // The layered kernel over groups runs for one instance only: one layer.
-                    let multipliers: Vec<u32> =
-                        targets.groups.iter().map(|g| numbering.invocations_per_thread(g.len() as u32)).collect();
+                    let shapes: Vec<(u32, u32)> =
+                        targets.groups.iter().map(|g| numbering.dispatch_shape(g.len() as u32)).collect();
                     let sizes = (range.len() as u32, coefficients.cells.len() as u32);
-                    CellGroups::new(context, &bindings_buffer, sizes, &multipliers, &limits)
+                    CellGroups::new(context, &bindings_buffer, sizes, &shapes, &limits)
                 });
                 let chunk = DeformChunk::new(
                     device,

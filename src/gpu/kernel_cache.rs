@@ -20,6 +20,7 @@ pub(crate) struct KernelCache {
     deform_groups: [[Slot; 2]; 2],
     cell_order: OnceLock<Arc<[Kernel; 4]>>,
     deform_normals: [Slot; 2],
+    deform_normals_groups: [Slot; 2],
     normal_coords: [Slot; 2],
     band: [Slot; 2],
     band_pack: Slot,
@@ -75,6 +76,12 @@ impl KernelCache {
             self.compiled.fetch_add(4, Ordering::Relaxed);
             Arc::new(kernels::cell_order(device))
         }))
+    }
+
+    /// `shaders/deform_normals_groups.wgsl` for cell records of `variant`.
+    pub(crate) fn deform_normals_groups(&self, device: &wgpu::Device, variant: DeformVariant) -> Arc<Kernel> {
+        let slot = &self.deform_normals_groups[variant_index(variant)];
+        self.get(slot, || kernels::deform_normals_groups(device, variant))
     }
 
     /// `shaders/deform_normals.wgsl` for cell records of `variant`.

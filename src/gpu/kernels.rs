@@ -160,7 +160,7 @@ pub fn deform_groups(device: &wgpu::Device, variant: DeformVariant, flat: bool) 
 }
 
 /// `shaders/cell_order.wgsl`'s four passes, each with params, bindings (read), cursors, groups
-/// and the deform dispatches' arguments (written), and the dispatches' multipliers (read).
+/// and the deform dispatches' arguments (written), and the dispatches' shapes (read).
 pub fn cell_order(device: &wgpu::Device) -> [Kernel; 4] {
     let slots = [Uniform, Read, ReadWrite, ReadWrite, ReadWrite, Read];
     ["cell_order_count_main", "cell_order_scan_main", "cell_order_scatter_main", "cell_order_fill_main"]
@@ -176,6 +176,17 @@ pub fn deform_normals(device: &wgpu::Device, variant: DeformVariant) -> Kernel {
     };
     let slots = [Uniform, cells, Read, ReadWrite, Read, ReadWrite];
     Kernel::new(device, "sweepffd deform normals", source, "deform_normals_main", &slots)
+}
+
+/// `shaders/deform_normals_groups.wgsl`: [`deform_normals`] over the cell groups of
+/// `cell_groups.rs`, with its bindings and the groups after them.
+pub fn deform_normals_groups(device: &wgpu::Device, variant: DeformVariant) -> Kernel {
+    let (source, cells) = match variant {
+        DeformVariant::Uniform => (shaders::DEFORM_NORMALS_UNIFORM, Uniform),
+        DeformVariant::Storage => (shaders::DEFORM_NORMALS_STORAGE, Read),
+    };
+    let slots = [Uniform, cells, Read, ReadWrite, Read, ReadWrite, Read];
+    Kernel::new(device, "sweepffd deform normals groups", source, "deform_normals_groups_main", &slots)
 }
 
 /// `shaders/normal_coords.wgsl`: params, rest cells (uniform or storage), bindings, rest normals

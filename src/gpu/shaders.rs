@@ -13,8 +13,9 @@ pub const DEFORM_UNIFORM: &str = include_str!(concat!(env!("OUT_DIR"), "/deform_
 /// `shaders/cells_storage.wgsl` and before `shaders/deform_groups.wgsl`, the same entry points.
 pub const DEFORM_STORAGE: &str = include_str!(concat!(env!("OUT_DIR"), "/deform_storage.wgsl"));
 /// Eq. 2 fused with the Jacobian normals, cell records in a uniform buffer:
-/// `shaders/deform_normals.wgsl` after `shaders/cells_uniform.wgsl` and `shaders/jacobian.wgsl`,
-/// entry point `deform_normals_main`.
+/// `shaders/deform_normals.wgsl` after `shaders/cells_uniform.wgsl` and `shaders/jacobian.wgsl`
+/// and before `shaders/deform_normals_groups.wgsl`, entry points `deform_normals_main` and, over
+/// cell groups, `deform_normals_groups_main`.
 pub const DEFORM_NORMALS_UNIFORM: &str = include_str!(concat!(env!("OUT_DIR"), "/deform_normals_uniform.wgsl"));
 /// The same, cell records in a storage buffer.
 pub const DEFORM_NORMALS_STORAGE: &str = include_str!(concat!(env!("OUT_DIR"), "/deform_normals_storage.wgsl"));
@@ -65,7 +66,7 @@ pub const SKINNING: &str = include_str!(concat!(env!("OUT_DIR"), "/skinning.wgsl
 pub const TANGENTS: &str = include_str!(concat!(env!("OUT_DIR"), "/tangents.wgsl"));
 
 /// Every kernel as (name, composed source, entry point).
-pub const ALL: [(&str, &str, &str); 29] = [
+pub const ALL: [(&str, &str, &str); 31] = [
     ("bind", BIND, "bind_main"),
     ("deform_uniform", DEFORM_UNIFORM, "deform_main"),
     ("deform_storage", DEFORM_STORAGE, "deform_main"),
@@ -77,6 +78,8 @@ pub const ALL: [(&str, &str, &str); 29] = [
     ("deform_groups_instances_storage", DEFORM_STORAGE, "deform_groups_instances_main"),
     ("deform_normals_uniform", DEFORM_NORMALS_UNIFORM, "deform_normals_main"),
     ("deform_normals_storage", DEFORM_NORMALS_STORAGE, "deform_normals_main"),
+    ("deform_normals_groups_uniform", DEFORM_NORMALS_UNIFORM, "deform_normals_groups_main"),
+    ("deform_normals_groups_storage", DEFORM_NORMALS_STORAGE, "deform_normals_groups_main"),
     ("normal_coords_uniform", NORMAL_COORDS_UNIFORM, "normal_coords_main"),
     ("normal_coords_storage", NORMAL_COORDS_STORAGE, "normal_coords_main"),
     ("band_uniform", BAND_UNIFORM, "band_main"),

@@ -65,13 +65,13 @@ pub(super) struct CellGroups {
 
 impl CellGroups {
     /// The groups of the `vertices` vertices bound by `bindings` over `cells` cells a pose,
-    /// sorted by [`encode_sort`](Self::encode_sort), for deform dispatches of `multipliers[k]`
-    /// invocations a group each.
+    /// sorted by [`encode_sort`](Self::encode_sort), for deform dispatches k of `shapes[k].0`
+    /// invocations a group in each of `shapes[k].1` workgroup layers.
     pub(super) fn new(
         context: &GpuContext,
         bindings: &wgpu::Buffer,
         (vertices, cells): (u32, u32),
-        multipliers: &[u32],
+        shapes: &[(u32, u32)],
         limits: &ChunkLimits,
     ) -> CellGroups {
         let device = &context.device;
@@ -100,7 +100,7 @@ impl CellGroups {
             slot_count: slots,
             block_size: block,
             max_workgroups: limits.max_workgroups,
-            dispatch_count: multipliers.len() as u32,
+            dispatch_count: shapes.len() as u32,
             ..Default::default()
         };
         let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -110,13 +110,15 @@ impl CellGroups {
         });
         let args = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("sweepffd cell groups in use and dispatches"),
-            size: CellGroups::args_offset(multipliers.len()),
+            size: CellGroups::args_offset(shapes.len()),
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
-        let multipliers = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("sweepffd cell groups' dispatch multipliers"),
-            contents: bytemuck::cast_slice(&multipliers.iter().copied().chain([0]).collect::<Vec<u32>>()),
+        let shapes: Vec<u32> =
+            shapes.iter().flat_map(|&(per_group, layers)| [per_group, layers]).chain([0, 0]).collect();
+        let shapes = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("sweepffd cell groups' dispatch shapes"),
+            contents: bytemuck::cast_slice(&shapes),
             usage: wgpu::BufferUsages::STORAGE,
         });
         let resources = [
@@ -125,7 +127,7 @@ impl CellGroups {
             cursors.as_entire_binding(),
             buffer.as_entire_binding(),
             args.as_entire_binding(),
-            multipliers.as_entire_binding(),
+            shapes.as_entire_binding(),
         ];
         let per_vertex = dispatch_grid(vertices, limits);
         let grids = [per_vertex, (1, 1), per_vertex, dispatch_grid(slots / CELL_GROUP, limits)];

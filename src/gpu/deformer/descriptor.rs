@@ -56,8 +56,8 @@ pub struct DeformerDescriptor<'a> {
     /// bound ones (the default): the same positions, bit for bit, more work. For tests and
     /// benches.
     pub full_dispatch: bool,
-    /// Which vertices one invocation of the deform kernel deforms (without Jacobian normals,
-    /// whose fused kernel always deforms one vertex): the same positions, bit for bit.
+    /// Which vertices one invocation of the deform kernel (or the fused deform + Jacobian normals
+    /// kernel) deforms: the same positions and normals, bit for bit.
     pub deform_order: DeformOrder,
 }
 

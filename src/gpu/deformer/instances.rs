@@ -153,12 +153,12 @@ pub(crate) enum Numbering {
 
 impl Numbering {
     /// Invocations a thread (vertex, or cell group) of a dispatch over `instances` instances
-    /// has, in one workgroup layer: one per instance layer of the flat numbering, one for the
-    /// layered (whose layers are the workgroups' z).
-    pub(crate) fn invocations_per_thread(self, instances: u32) -> u32 {
+    /// has in one workgroup layer, and the layers: one per instance layer of the flat numbering
+    /// in one layer, or one in each of `instances` layers.
+    pub(crate) fn dispatch_shape(self, instances: u32) -> (u32, u32) {
         match self {
-            Numbering::Layered => 1,
-            Numbering::Flat => instances.div_ceil(INSTANCES_PER_INVOCATION),
+            Numbering::Layered => (1, instances),
+            Numbering::Flat => (instances.div_ceil(INSTANCES_PER_INVOCATION), 1),
         }
     }
 }
@@ -228,7 +228,7 @@ impl InstanceDispatch {
                     }
                     // count · instances stays below 2^32: their positions fit one binding.
                     Numbering::Flat => {
-                        let invocations = count * numbering.invocations_per_thread(group.len() as u32);
+                        let invocations = count * numbering.dispatch_shape(group.len() as u32).0;
                         let (x, y) = dispatch_grid(invocations, limits);
                         (x, y, 1)
                     }
