@@ -2,14 +2,17 @@
 // its deformed vertices by (block, cell), where a block is params.block_size consecutive
 // vertices, so that the groups follow the mesh's vertex order from block to block and the deform
 // kernel reads the bindings and writes the positions near where it did a moment before. Made at
-// creation after binding and again when the falloff bands change, in four passes:
-// cell_order_count_main counts the vertices of each bucket (a block's cell),
-// cell_order_scan_main turns the counts (each rounded up to a multiple of CELL_GROUP) into where
-// each bucket's slots start, cell_order_scatter_main writes every vertex into a slot of its
-// bucket, and cell_order_fill_main fills a group's free slots with its first vertex (deformed
-// again, to the same position), so that the deform kernel tests no slot. Vertices in falloff
-// bands (the band kernel moves them) and unbound ones are in no group; the groups past the last
-// bucket's are free (UNOWNED) and the deform dispatches, indirect, stop short of them.
+// creation after binding and again when the falloff bands change, in seven passes:
+// cell_order_clear_main frees every slot, cell_order_count_main counts the vertices of each
+// bucket (a block's cell), cell_order_sums_main, cell_order_scan_main and
+// cell_order_offsets_main turn the counts (each rounded up to a multiple of CELL_GROUP) into
+// where each bucket's slots start (a scan of runs of SCAN_RUN buckets, then of the runs' sums),
+// cell_order_scatter_main writes every vertex into a slot of its bucket, and cell_order_fill_main
+// fills a group's free slots with its first vertex (deformed again, to the same position), so
+// that the deform kernel tests no slot. Vertices in falloff bands (the band kernel moves them)
+// and unbound ones are in no group; the groups past the last bucket's are free (UNOWNED) and the
+// deform dispatches, indirect, stop short of them. No invocation loops more than a few thousand
+// times: llvmpipe ends an invocation's loops after 65,535 iterations in all.
 // Composed after layout.wgsl. Twin: src/cpu/cell_order.rs.
 
 @group(0) @binding(0) var<uniform> params: CellOrderParams;
@@ -28,6 +31,12 @@
 // Per deform dispatch: its invocations per group in use in one layer (1, or the flat instanced
 // kernel's instance layers) and its workgroup layers (its instances, or 1 when numbered flat).
 @group(0) @binding(5) var<storage, read> shapes: array<vec2<u32>>;
+// Per run of SCAN_RUN buckets: the sum of its rounded-up counts (sums pass), then the slot its
+// first bucket starts at (scan pass).
+@group(0) @binding(6) var<storage, read_write> run_starts: array<u32>;
+
+// Buckets a run of the scan.
+const SCAN_RUN: u32 = 64u;
 
 // Lanes of the scan's one workgroup, each summing a run of consecutive buckets.
 const SCAN_LANES: u32 = WORKGROUP_SIZE;
@@ -62,19 +71,54 @@ fn cell_order_count_main(
     }
 }
 
-// One workgroup: lane l takes buckets [l * run, (l + 1) * run), sums their rounded-up counts,
-// the lanes' sums are scanned in workgroup memory, and each lane then walks its buckets again,
-// writing each bucket's first slot into its cursor and UNOWNED into its free slots (the fill
-// pass replaces them); the slots past the last bucket's are free too.
+fn run_count() -> u32 {
+    return (bucket_count() + SCAN_RUN - 1u) / SCAN_RUN;
+}
+
+// One invocation a slot.
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn cell_order_clear_main(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    let slot = invocation_index(group, groups, lane);
+    if (slot < params.slot_count) {
+        groups_order[slot] = UNOWNED;
+    }
+}
+
+// One invocation a run of buckets: its sum.
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn cell_order_sums_main(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    let run = invocation_index(group, groups, lane);
+    if (run >= run_count()) {
+        return;
+    }
+    let end = min((run + 1u) * SCAN_RUN, bucket_count());
+    var total = 0u;
+    for (var b = run * SCAN_RUN; b < end; b++) {
+        total += round_up_to_group(atomicLoad(&cursors[b]));
+    }
+    run_starts[run] = total;
+}
+
+// One workgroup: lane l takes a share of the runs, sums them, the lanes' sums are scanned in
+// workgroup memory, and each lane then writes where each of its runs starts; lane 0 writes the
+// groups in use and the deform dispatches' arguments.
 @compute @workgroup_size(WORKGROUP_SIZE)
 fn cell_order_scan_main(@builtin(local_invocation_index) lane: u32) {
-    let buckets = bucket_count();
-    let run = (buckets + SCAN_LANES - 1u) / SCAN_LANES;
-    let start = min(lane * run, buckets);
-    let end = min(start + run, buckets);
+    let runs = run_count();
+    let share = (runs + SCAN_LANES - 1u) / SCAN_LANES;
+    let start = min(lane * share, runs);
+    let end = min(start + share, runs);
     var total = 0u;
-    for (var b = start; b < end; b++) {
-        total += round_up_to_group(atomicLoad(&cursors[b]));
+    for (var r = start; r < end; r++) {
+        total += run_starts[r];
     }
     run_totals[lane] = total;
     workgroupBarrier();
@@ -89,20 +133,13 @@ fn cell_order_scan_main(@builtin(local_invocation_index) lane: u32) {
         workgroupBarrier();
     }
     var slot = run_totals[lane] - total;
-    for (var b = start; b < end; b++) {
-        let count = atomicLoad(&cursors[b]);
-        atomicStore(&cursors[b], slot);
-        for (var free = slot + count; free < slot + round_up_to_group(count); free++) {
-            groups_order[free] = UNOWNED;
-        }
-        slot += round_up_to_group(count);
-    }
-    let used = run_totals[SCAN_LANES - 1u];
-    for (var free = used + lane; free < params.slot_count; free += SCAN_LANES) {
-        groups_order[free] = UNOWNED;
+    for (var r = start; r < end; r++) {
+        let sum = run_starts[r];
+        run_starts[r] = slot;
+        slot += sum;
     }
     if (lane == 0u) {
-        let groups = used / CELL_GROUP;
+        let groups = run_totals[SCAN_LANES - 1u] / CELL_GROUP;
         dispatch_args[0] = groups;
         for (var k = 0u; k < params.dispatch_count; k++) {
             let workgroups = max((groups * shapes[k].x + WORKGROUP_SIZE - 1u) / WORKGROUP_SIZE, 1u);
@@ -111,6 +148,26 @@ fn cell_order_scan_main(@builtin(local_invocation_index) lane: u32) {
             dispatch_args[2u + 3u * k] = (workgroups + x - 1u) / x;
             dispatch_args[3u + 3u * k] = shapes[k].y;
         }
+    }
+}
+
+// One invocation a run of buckets: each bucket's first slot into its cursor.
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn cell_order_offsets_main(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    let run = invocation_index(group, groups, lane);
+    if (run >= run_count()) {
+        return;
+    }
+    let end = min((run + 1u) * SCAN_RUN, bucket_count());
+    var slot = run_starts[run];
+    for (var b = run * SCAN_RUN; b < end; b++) {
+        let count = atomicLoad(&cursors[b]);
+        atomicStore(&cursors[b], slot);
+        slot += round_up_to_group(count);
     }
 }
 

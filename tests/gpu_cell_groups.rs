@@ -223,3 +223,25 @@ fn jacobian_normals_over_groups_equal_the_per_vertex_fused_kernel() {
         assert_same_positions(&format!("{name}: normals"), &ours, &theirs);
     }
 }
+
+/// A 4.2M-vertex tube: 2.3M buckets. A one-workgroup scan looping over them all (the sort's first
+/// form) stopped part way on lavapipe, whose invocations end their loops after 65,535 iterations
+/// in all, and left the groups past the ones in use unwritten; at 7M vertices it left a third of
+/// the mesh at rest. The runs' scan loops a few hundred times an invocation.
+#[test]
+fn millions_of_buckets_sort_within_the_loop_limits() {
+    let Some(context) = common::gpu() else { return };
+    let tube = Tube::with_vertex_count(4_200_000, 4.0, 0.5);
+    let (mesh, rig) = (tube.mesh(), tube_rig(&tube, 8, 16));
+    let (mut grouped, _) = deformer(context, &mesh, &rig, 1, DeformOrder::CellGroups);
+    let cells = SweepCoefficients::new(rig.rest()).cells.len() as u32;
+    let used = assert_groups_match_the_twin("4.2M tube", &grouped, cells);
+    // Each ring is a block and holds 16 vertices of each of 16 cells, give or take the vertices
+    // on a cell's edge: few groups are partly free.
+    let full = mesh.positions.len() / CELL_GROUP as usize;
+    assert!(used >= full && used * 10 <= full * 11, "{used} groups for {} vertices", mesh.positions.len());
+    let rest = sweepffd::cpu::packed(&mesh.positions);
+    let ours = deformed(context, &mut grouped, &[pose(&rig, 0, 1)]);
+    let unmoved = (0..mesh.positions.len()).filter(|&v| ours[3 * v..3 * v + 3] == rest[3 * v..3 * v + 3]).count();
+    assert!(unmoved < 100, "{unmoved} vertices at rest");
+}

@@ -18,7 +18,7 @@ pub(crate) struct KernelCache {
     deform_instances: [Slot; 2],
     /// Over cell groups, one workgroup layer per instance, then numbered flat.
     deform_groups: [[Slot; 2]; 2],
-    cell_order: OnceLock<Arc<[Kernel; 4]>>,
+    cell_order: OnceLock<Arc<[Kernel; 7]>>,
     deform_normals: [Slot; 2],
     deform_normals_groups: [Slot; 2],
     normal_coords: [Slot; 2],
@@ -70,10 +70,10 @@ impl KernelCache {
         self.get(slot, || kernels::deform_groups(device, variant, flat))
     }
 
-    /// `shaders/cell_order.wgsl`'s count, scan, scatter and fill passes.
-    pub(crate) fn cell_order(&self, device: &wgpu::Device) -> Arc<[Kernel; 4]> {
+    /// `shaders/cell_order.wgsl`'s seven passes.
+    pub(crate) fn cell_order(&self, device: &wgpu::Device) -> Arc<[Kernel; 7]> {
         Arc::clone(self.cell_order.get_or_init(|| {
-            self.compiled.fetch_add(4, Ordering::Relaxed);
+            self.compiled.fetch_add(7, Ordering::Relaxed);
             Arc::new(kernels::cell_order(device))
         }))
     }

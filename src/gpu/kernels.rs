@@ -159,12 +159,21 @@ pub fn deform_groups(device: &wgpu::Device, variant: DeformVariant, flat: bool) 
     Kernel::new(device, "sweepffd deform groups", source, entry, &[Uniform, cells, Read, ReadWrite, Read])
 }
 
-/// `shaders/cell_order.wgsl`'s four passes, each with params, bindings (read), cursors, groups
-/// and the deform dispatches' arguments (written), and the dispatches' shapes (read).
-pub fn cell_order(device: &wgpu::Device) -> [Kernel; 4] {
-    let slots = [Uniform, Read, ReadWrite, ReadWrite, ReadWrite, Read];
-    ["cell_order_count_main", "cell_order_scan_main", "cell_order_scatter_main", "cell_order_fill_main"]
-        .map(|entry| Kernel::new(device, "sweepffd cell order", shaders::CELL_ORDER, entry, &slots))
+/// `shaders/cell_order.wgsl`'s seven passes, in order, each with params, bindings (read),
+/// cursors, groups and the deform dispatches' arguments (written), the dispatches' shapes (read)
+/// and the runs' starts (written).
+pub fn cell_order(device: &wgpu::Device) -> [Kernel; 7] {
+    let slots = [Uniform, Read, ReadWrite, ReadWrite, ReadWrite, Read, ReadWrite];
+    [
+        "cell_order_clear_main",
+        "cell_order_count_main",
+        "cell_order_sums_main",
+        "cell_order_scan_main",
+        "cell_order_offsets_main",
+        "cell_order_scatter_main",
+        "cell_order_fill_main",
+    ]
+    .map(|entry| Kernel::new(device, "sweepffd cell order", shaders::CELL_ORDER, entry, &slots))
 }
 
 /// `shaders/deform_normals.wgsl`: params, cells (uniform or storage), bindings (read),

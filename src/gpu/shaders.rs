@@ -34,9 +34,10 @@ pub const BAND_UNIFORM: &str = include_str!(concat!(env!("OUT_DIR"), "/band_unif
 pub const BAND_STORAGE: &str = include_str!(concat!(env!("OUT_DIR"), "/band_storage.wgsl"));
 /// The band records' second influences from bindings: `shaders/band_pack.wgsl`, `band_pack_main`.
 pub const BAND_PACK: &str = include_str!(concat!(env!("OUT_DIR"), "/band_pack.wgsl"));
-/// The cell groups of a chunk's vertices, a counting sort by cell: `shaders/cell_order.wgsl`,
-/// entry points `cell_order_count_main`, `cell_order_scan_main`, `cell_order_scatter_main` and
-/// `cell_order_fill_main`.
+/// The cell groups of a chunk's vertices, a counting sort by (block, cell):
+/// `shaders/cell_order.wgsl`, entry points `cell_order_clear_main`, `cell_order_count_main`,
+/// `cell_order_sums_main`, `cell_order_scan_main`, `cell_order_offsets_main`,
+/// `cell_order_scatter_main` and `cell_order_fill_main`, run in that order.
 pub const CELL_ORDER: &str = include_str!(concat!(env!("OUT_DIR"), "/cell_order.wgsl"));
 /// Band membership changes when the falloff bands are replaced: `shaders/band_flags.wgsl`,
 /// `band_flags_main`.
@@ -66,7 +67,7 @@ pub const SKINNING: &str = include_str!(concat!(env!("OUT_DIR"), "/skinning.wgsl
 pub const TANGENTS: &str = include_str!(concat!(env!("OUT_DIR"), "/tangents.wgsl"));
 
 /// Every kernel as (name, composed source, entry point).
-pub const ALL: [(&str, &str, &str); 31] = [
+pub const ALL: [(&str, &str, &str); 34] = [
     ("bind", BIND, "bind_main"),
     ("deform_uniform", DEFORM_UNIFORM, "deform_main"),
     ("deform_storage", DEFORM_STORAGE, "deform_main"),
@@ -86,8 +87,11 @@ pub const ALL: [(&str, &str, &str); 31] = [
     ("band_storage", BAND_STORAGE, "band_main"),
     ("band_pack", BAND_PACK, "band_pack_main"),
     ("band_flags", BAND_FLAGS, "band_flags_main"),
+    ("cell_order_clear", CELL_ORDER, "cell_order_clear_main"),
     ("cell_order_count", CELL_ORDER, "cell_order_count_main"),
+    ("cell_order_sums", CELL_ORDER, "cell_order_sums_main"),
     ("cell_order_scan", CELL_ORDER, "cell_order_scan_main"),
+    ("cell_order_offsets", CELL_ORDER, "cell_order_offsets_main"),
     ("cell_order_scatter", CELL_ORDER, "cell_order_scatter_main"),
     ("cell_order_fill", CELL_ORDER, "cell_order_fill_main"),
     ("normals_one_window", NORMALS_ONE_WINDOW, "normals_main"),

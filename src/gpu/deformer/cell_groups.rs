@@ -22,6 +22,9 @@ use super::super::kernels::Kernel;
 use crate::coeffs::{CELL_GROUP, CellOrderParams};
 use crate::cpu::cell_order::{block_size, group_slots};
 
+/// Buckets a run of the sort's scan (`SCAN_RUN` in `shaders/cell_order.wgsl`).
+pub const SCAN_RUN: u32 = 64;
+
 /// Which vertices an invocation of the deform kernel deforms.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum DeformOrder {
@@ -58,7 +61,7 @@ pub(super) struct CellGroups {
     /// `u32`) of each deform dispatch, at [`args_offset`](Self::args_offset).
     pub(super) args: wgpu::Buffer,
     cursors: wgpu::Buffer,
-    kernels: Arc<[Kernel; 4]>,
+    kernels: Arc<[Kernel; 7]>,
     /// The bind group and grid of each pass.
     passes: Vec<(wgpu::BindGroup, (u32, u32))>,
 }
@@ -121,6 +124,14 @@ impl CellGroups {
             contents: bytemuck::cast_slice(&shapes),
             usage: wgpu::BufferUsages::STORAGE,
         });
+        // The scan's runs of buckets (SCAN_RUN in shaders/cell_order.wgsl).
+        let runs = buckets.div_ceil(SCAN_RUN as u64);
+        let run_starts = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("sweepffd cell group runs"),
+            size: runs.max(1) * 4,
+            usage: wgpu::BufferUsages::STORAGE,
+            mapped_at_creation: false,
+        });
         let resources = [
             params.as_entire_binding(),
             bindings.as_entire_binding(),
@@ -128,9 +139,19 @@ impl CellGroups {
             buffer.as_entire_binding(),
             args.as_entire_binding(),
             shapes.as_entire_binding(),
+            run_starts.as_entire_binding(),
         ];
         let per_vertex = dispatch_grid(vertices, limits);
-        let grids = [per_vertex, (1, 1), per_vertex, dispatch_grid(slots / CELL_GROUP, limits)];
+        let per_run = dispatch_grid(runs as u32, limits);
+        let grids = [
+            dispatch_grid(slots, limits),
+            per_vertex,
+            per_run,
+            (1, 1),
+            per_run,
+            per_vertex,
+            dispatch_grid(slots / CELL_GROUP, limits),
+        ];
         let passes = kernels
             .iter()
             .zip(grids)
