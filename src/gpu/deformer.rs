@@ -160,7 +160,7 @@ impl DeformChunk {
         limits: &ChunkLimits,
     ) -> DeformChunk {
         let count = groups.as_ref().map_or(range.len() as u32, |groups| groups.count);
-        let dispatches = InstanceDispatch::plan(
+        let mut dispatches = InstanceDispatch::plan(
             device,
             cells,
             targets,
@@ -180,7 +180,6 @@ impl DeformChunk {
                 kernel.bind_group(device, "sweepffd deform", &resources)
             },
         );
-        let mut dispatches = dispatches;
         if let Some(groups) = &groups {
             for (k, dispatch) in dispatches.iter_mut().enumerate() {
                 dispatch.indirect = Some((groups.args.clone(), CellGroups::args_offset(k)));

@@ -1,16 +1,19 @@
 //! Cell groups: the deform kernel's vertices grouped by the cell they are bound in, so that one
 //! invocation deforms [`CELL_GROUP`] vertices with one read of their cell's record.
 //!
-//! Data flow: bindings (bind kernel) → **counting sort by cell** (`shaders/cell_order.wgsl`, once
-//! at creation, on the GPU, in the creation's encoder) → the groups → the deform kernel over
-//! groups (`shaders/deform_groups.wgsl`) every frame → positions, in the mesh's vertex order.
+//! Data flow: bindings (bind kernel) → **counting sort by (block, cell)**
+//! (`shaders/cell_order.wgsl`, on the GPU in the creation's encoder, and again by `set_bands`)
+//! → the groups and the deform dispatches' indirect arguments → the deform kernel over groups
+//! (`shaders/deform_groups.wgsl`, `shaders/deform_normals_groups.wgsl`) every frame →
+//! positions (and normals), in the mesh's vertex order.
 //!
 //! Why: on a CPU adapter (lavapipe) every lane gathers its 37 floats of cell record one float at
 //! a time, which costs more than the rest of the kernel; in groups the record is gathered once a
-//! group. On a discrete GPU the records sit in the L1 cache however many lanes read them, while
-//! the groups add a 4-byte index a vertex and read the bindings and write the positions in cell
-//! order rather than in vertex order, so [`DeformOrder::Auto`] keeps the per-vertex kernel
-//! there.
+//! group. Sorting within blocks of consecutive vertices keeps the groups near the vertex order,
+//! so the bindings are read and the positions written close to where they were a moment before.
+//! On a discrete GPU the records sit in the L1 cache however many lanes read them, while the
+//! groups add a 4-byte index a vertex and leave the vertex order within each block, so
+//! [`DeformOrder::Auto`] keeps the per-vertex kernel there.
 
 use std::sync::Arc;
 
