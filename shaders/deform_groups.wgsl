@@ -7,7 +7,8 @@
 
 // The chunk's groups: entry CELL_GROUP * g + k is the chunk-relative vertex k of group g (a
 // group's vertices share the cell of its first, none is in a falloff band, and a group of fewer
-// vertices repeats its first), or UNOWNED in every slot of a free group.
+// vertices repeats its first), or UNOWNED in every slot of a free group; the free groups come
+// after the params.vertex_count in use, which are all the kernels read.
 @group(0) @binding(4) var<storage, read> groups_order: array<u32>;
 
 // One invocation per group, workgroup layer z the dispatch's instance z (as deform_main);
@@ -24,9 +25,6 @@ fn deform_groups_main(
         return;
     }
     let first = groups_order[CELL_GROUP * g];
-    if (first == UNOWNED) {
-        return;
-    }
     let z = group.z;
     let cell = cells[(params.first_instance + z) * params.cells_per_instance + bindings[first].cell];
     for (var k = 0u; k < CELL_GROUP; k++) {
@@ -57,10 +55,6 @@ fn deform_groups_instances_main(
     }
     let z0 = w * INSTANCES_PER_INVOCATION;
     if (z0 >= params.instance_count) {
-        return;
-    }
-    let first = groups_order[CELL_GROUP * g];
-    if (first == UNOWNED) {
         return;
     }
     var vertices: array<u32, CELL_GROUP>;

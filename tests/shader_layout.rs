@@ -131,7 +131,7 @@ fn shared_constants_have_the_rust_values() {
         assert_eq!(u32_constant(&module, "CELL_GROUP"), Some(CELL_GROUP), "{name}");
     }
     let order = parse("cell_order", shaders::CELL_ORDER);
-    assert_eq!(u32_constant(&order, "SCAN_RUN"), Some(sweepffd::gpu::CELL_ORDER_SCAN_RUN));
+    assert_eq!(u32_constant(&order, "SCAN_RUN"), Some(sweepffd::coeffs::SCAN_RUN));
     for source in [shaders::NORMALS_ONE_WINDOW, shaders::NORMALS_TWO_WINDOWS] {
         let normals = parse("normals", source);
         assert_eq!(u32_constant(&normals, "FAN_START"), Some(FAN_START));

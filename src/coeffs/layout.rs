@@ -36,6 +36,11 @@ pub const INSTANCES_PER_INVOCATION: u32 = 4;
 /// which share a cell, reading that cell's record once (`src/gpu/deformer/cell_groups.rs`).
 pub const CELL_GROUP: u32 = 4;
 
+/// Buckets a run of the cell groups' scan (`shaders/cell_order.wgsl`): no invocation of the
+/// sort loops more than a few thousand times (llvmpipe ends an invocation's loops after 65,535
+/// iterations in all).
+pub const SCAN_RUN: u32 = 64;
+
 /// Everything a vertex needs to follow its posed sweep, for one cell: knot interval k of a
 /// sweep and angular interval j of its radius function (§3). Rebuilt every frame; 160 bytes.
 ///

@@ -18,8 +18,8 @@ use glam::{DQuat, DVec3};
 
 pub use layout::{
     BAND_FLAG, BandFlag, BandRecord, BindSegment, CELL_GROUP, CellCoeffs, CellOrderParams, DispatchParams, GpuBinding,
-    INSTANCES_PER_INVOCATION, InstanceParams, Joint, KEEPS_REST, SkinInfluence, SweepInfo, UNIFORM_CELL_CAPACITY,
-    UNOWNED, WORKGROUP_SIZE,
+    INSTANCES_PER_INVOCATION, InstanceParams, Joint, KEEPS_REST, SCAN_RUN, SkinInfluence, SweepInfo,
+    UNIFORM_CELL_CAPACITY, UNOWNED, WORKGROUP_SIZE,
 };
 
 use crate::sweep::Sweep;

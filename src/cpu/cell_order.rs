@@ -15,6 +15,11 @@ pub fn block_size(cells: u32) -> u32 {
     cells.next_power_of_two().max(MIN_BLOCK)
 }
 
+/// Buckets (a block's cell each) of `vertices` vertices over `cells` cells, block-major.
+pub fn bucket_count(vertices: u32, cells: u32) -> u64 {
+    vertices.div_ceil(block_size(cells)) as u64 * cells as u64
+}
+
 /// Slots of the groups of `vertices` vertices over `cells` cells: every vertex, and at most
 /// `CELL_GROUP − 1` free slots for each bucket (a block's cell) that has vertices.
 pub fn group_slots(vertices: u32, cells: u32) -> u64 {
@@ -41,7 +46,7 @@ pub fn grouped_cell(binding: &GpuBinding, cells: u32) -> Option<u32> {
 pub fn cell_groups(bindings: &[GpuBinding], cells: u32) -> Vec<u32> {
     let block = block_size(cells) as usize;
     let bucket_of = |i: usize| grouped_cell(&bindings[i], cells).map(|cell| i / block * cells as usize + cell as usize);
-    let mut counts = vec![0u32; bindings.len().div_ceil(block) * cells as usize];
+    let mut counts = vec![0u32; bucket_count(bindings.len() as u32, cells) as usize];
     for i in 0..bindings.len() {
         if let Some(bucket) = bucket_of(i) {
             counts[bucket] += 1;

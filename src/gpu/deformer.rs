@@ -10,7 +10,7 @@ mod set_bands;
 mod uploads;
 
 pub use bounds::BOUNDS_STRIDE;
-pub use cell_groups::{DeformOrder, SCAN_RUN as CELL_ORDER_SCAN_RUN};
+pub use cell_groups::DeformOrder;
 pub use descriptor::{DeformerDescriptor, OutputBuffer};
 pub use instances::INSTANCE_ALIGNMENT;
 

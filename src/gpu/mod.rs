@@ -26,8 +26,8 @@ pub use buffers::{BINDING_STRIDE, POSITION_STRIDE};
 pub use chunks::{ChunkLimits, dispatch_grid, normal_chunks, uniform_chunks};
 pub use context::GpuContext;
 pub use deformer::{
-    BOUNDS_STRIDE, BindingSource, CELL_ORDER_SCAN_RUN, ChunkGroups, DeformOrder, DeformerDescriptor, GpuDeformer,
-    INSTANCE_ALIGNMENT, OutputBuffer,
+    BOUNDS_STRIDE, BindingSource, ChunkGroups, DeformOrder, DeformerDescriptor, GpuDeformer, INSTANCE_ALIGNMENT,
+    OutputBuffer,
 };
 pub use error::GpuError;
 pub use kernels::DeformVariant;

@@ -22,11 +22,9 @@ use wgpu::util::DeviceExt;
 use super::super::GpuContext;
 use super::super::chunks::{ChunkLimits, dispatch_grid};
 use super::super::kernels::Kernel;
+use crate::coeffs::SCAN_RUN;
 use crate::coeffs::{CELL_GROUP, CellOrderParams};
-use crate::cpu::cell_order::{block_size, group_slots};
-
-/// Buckets a run of the sort's scan (`SCAN_RUN` in `shaders/cell_order.wgsl`).
-pub const SCAN_RUN: u32 = 64;
+use crate::cpu::cell_order::{block_size, bucket_count, group_slots};
 
 /// Which vertices an invocation of the deform kernel deforms.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -92,8 +90,7 @@ impl CellGroups {
             mapped_at_creation: false,
         });
         // One counter a bucket (a block's cell): about one a vertex at most.
-        let block = block_size(cells);
-        let buckets = vertices.div_ceil(block) as u64 * cells as u64;
+        let buckets = bucket_count(vertices, cells);
         let cursors = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("sweepffd cell group cursors"),
             size: buckets.max(1) * 4,
@@ -104,7 +101,7 @@ impl CellGroups {
             vertex_count: vertices,
             cell_count: cells,
             slot_count: slots,
-            block_size: block,
+            block_size: block_size(cells),
             max_workgroups: limits.max_workgroups,
             dispatch_count: shapes.len() as u32,
             ..Default::default()
