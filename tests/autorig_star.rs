@@ -1,7 +1,8 @@
 //! `sweepffd::fit::autorig` on a procedural star (a ball with five tubes of known axes, built
 //! in code as one closed mesh): exactly the five tubes are found, each part holds its tube's
-//! tip, and each part's fitted key centers (within 2% of the tube's radius) and first-guess
-//! skeleton (within 3%) lie on the tube's axis.
+//! tip, and each part's fitted key centers and first-guess skeleton lie within 2% of the tube's
+//! radius of the tube's axis (the skeleton's level-set centroids before their centering on
+//! plane sections do not).
 
 #[path = "common/autorig_report.rs"]
 mod autorig_report;
@@ -10,6 +11,7 @@ mod star;
 
 use glam::DVec3;
 use sweepffd::fit::autorig::{AutorigOptions, autorig};
+use sweepffd::fit::axis::Polyline;
 use sweepffd::fit::largest_connected;
 use sweepffd::fit::part::Part;
 use sweepffd::fit::skeleton::skeleton;
@@ -61,6 +63,7 @@ fn the_star_gets_exactly_its_five_tubes_each_on_its_axis() {
     print_parts("star", &mesh, &rigged);
     assert_eq!(rigged.parts.len(), 5, "one part per tube");
     let mut found = [false; 5];
+    let mut worst_level_off: f64 = 0.0;
     for part in &rigged.parts {
         let t = nearest_tube(mesh.positions[part.tip as usize]);
         assert!(!std::mem::replace(&mut found[t], true), "two parts on tube {t}");
@@ -75,23 +78,31 @@ fn the_star_gets_exactly_its_five_tubes_each_on_its_axis() {
         // Every vertex of the part lies on the tube (within 1.5 radii of its axis).
         let stray = part.vertices.iter().filter(|&&v| off_axis(tube, mesh.positions[v as usize]) > 1.5 * TUBE_RADIUS);
         assert_eq!(stray.count(), 0, "{}: vertices off tube {t}", part.name);
-        let polyline = skeleton(&Part::new(&mesh, &part.vertices)).unwrap().axis;
-        let samples = (0..=100).map(|i| polyline.point(polyline.length() * i as f64 / 100.0));
-        let skeleton_off = worst_off_axis(tube, samples);
+        let part_skeleton = skeleton(&Part::new(&mesh, &part.vertices)).unwrap();
+        let samples = |polyline: &Polyline| {
+            (0..=100).map(|i| polyline.point(polyline.length() * i as f64 / 100.0)).collect::<Vec<_>>()
+        };
+        let skeleton_off = worst_off_axis(tube, samples(&part_skeleton.axis).into_iter());
+        let level_off = worst_off_axis(tube, samples(&part_skeleton.level_axis).into_iter());
+        worst_level_off = worst_level_off.max(level_off.1);
         let keys_off = worst_off_axis(tube, part.fit.keys.iter().map(|k| k.center));
         eprintln!(
             "star {} on tube {t}: skeleton within {:.2}% of the tube's radius of its axis on the cylinder \
-             ({:.2}% with the blend and the round end), key centers within {:.2}% ({:.2}%)",
+             ({:.2}% with the blend and the round end; {:.2}% before centering), key centers within \
+             {:.2}% ({:.2}%)",
             part.name,
             100.0 * skeleton_off.1 / TUBE_RADIUS,
             100.0 * skeleton_off.0 / TUBE_RADIUS,
+            100.0 * level_off.1 / TUBE_RADIUS,
             100.0 * keys_off.1 / TUBE_RADIUS,
             100.0 * keys_off.0 / TUBE_RADIUS
         );
-        // The fitted sweep's centers within 2% of a radius; the first guess (level-set
-        // centroids of edge-path distance, whose isolines lean on this grid-made mesh) within 3%.
-        assert!(skeleton_off.1 <= 0.03 * TUBE_RADIUS, "{}: skeleton {skeleton_off:?}", part.name);
+        // The fitted sweep's centers and the first guess within 2% of a radius.
+        assert!(skeleton_off.1 <= 0.02 * TUBE_RADIUS, "{}: skeleton {skeleton_off:?}", part.name);
         assert!(keys_off.1 <= 0.02 * TUBE_RADIUS, "{}: key centers {keys_off:?}", part.name);
         assert!(part.fit.quality.rms_d <= 0.10, "{}: {:?}", part.name, part.fit.quality);
     }
+    // The level-set centroids alone, whose isolines lean from the oblique rims and around the
+    // round ends on this grid-made mesh, miss the same check on some tube.
+    assert!(worst_level_off > 0.02 * TUBE_RADIUS, "before centering: {worst_level_off}");
 }

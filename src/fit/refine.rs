@@ -34,6 +34,10 @@ pub const LEAST_SQUARES_STEP: &str = "radii fitted to the surface by least squar
 /// Vertices per key radius below which the least-squares radii are fitted to the part's edge
 /// midpoints too.
 const SAMPLES_PER_RADIUS: usize = 4;
+/// How much tighter (relative RMS |d|) a coarse part's fit from another start must be than the
+/// fit from the centered skeleton with planes normal to it, to be kept: a margin that rounding
+/// in a rigidly moved copy of the part cannot cross.
+const OTHER_START_MARGIN: f64 = 0.01;
 /// Insertion rounds in a row that may fail to tighten the fit before insertion stops.
 const STALE_ROUNDS: usize = 2;
 
@@ -102,18 +106,43 @@ pub struct Fitted {
     pub measured: Measured,
 }
 
-/// Fits a sweep to `part`, recording each step.
+/// Fits a sweep to `part`, recording each step: from the user's axis, else from the part's
+/// skeleton (a coarse part from its four starts, see the [module docs](super)), else from its
+/// principal axis.
 pub fn run(part: &Part, options: &FitOptions) -> Result<(Fitted, Vec<FitStep>), FitError> {
-    let (axis, start_normal, follows) = match &options.axis {
-        Some(points) => (Polyline::new(points).ok_or(FitError::Axis)?, None, false),
-        None => match skeleton(part) {
-            Some(skeleton) => (skeleton.axis, skeleton.start_normal, true),
-            None => {
-                let (centroid, direction) = principal_axis(&part.positions);
-                (Polyline::new(&[centroid - direction, centroid + direction]).ok_or(FitError::Flat)?, None, false)
-            }
-        },
+    if let Some(points) = &options.axis {
+        return run_from(part, options, Polyline::new(points).ok_or(FitError::Axis)?, None, false);
+    }
+    let Some(skeleton) = skeleton(part) else {
+        let (centroid, direction) = principal_axis(&part.positions);
+        let axis = Polyline::new(&[centroid - direction, centroid + direction]).ok_or(FitError::Flat)?;
+        return run_from(part, options, axis, None, false);
     };
+    let mut best = run_from(part, options, skeleton.axis.clone(), skeleton.start_normal, true)?;
+    if part.positions.len() >= options.keys * options.radii {
+        return Ok(best);
+    }
+    let rms = |run: &(Fitted, Vec<FitStep>)| run.0.measured.quality.rms_d;
+    let others = [(&skeleton.axis, false), (&skeleton.level_axis, true), (&skeleton.level_axis, false)];
+    for (axis, follows) in others {
+        if let Ok(run) = run_from(part, options, axis.clone(), skeleton.start_normal, follows)
+            && rms(&run) < (1.0 - OTHER_START_MARGIN) * rms(&best)
+        {
+            best = run;
+        }
+    }
+    Ok(best)
+}
+
+/// Fits a sweep to `part` from the first guess `axis`; `follows`: the keys' planes stay normal
+/// to it.
+fn run_from(
+    part: &Part,
+    options: &FitOptions,
+    axis: Polyline,
+    start_normal: Option<DVec3>,
+    follows: bool,
+) -> Result<(Fitted, Vec<FitStep>), FitError> {
     let along: Vec<f64> = part.positions.iter().map(|&p| axis.project(p)).collect();
     let (lo, hi) = along.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &s| (lo.min(s), hi.max(s)));
     let length = hi - lo;
@@ -353,11 +382,16 @@ impl Fitter<'_> {
     }
 
     /// The section of the part in the plane through `origin` with frame `rotation`: its
-    /// center, its radii and how the rays met it; `None` when the plane misses the part.
+    /// center, its radii and how the rays met it; `None` when the plane misses the part or
+    /// grazes it in a single segment (whose rays along the segment meet its ends or not as
+    /// rounding falls, so a rigidly moved part would get another fit).
     fn section(&self, origin: DVec3, rotation: DQuat) -> Option<Cut> {
         let plane = Plane { origin, x: rotation * DVec3::X, y: rotation * DVec3::Y, normal: rotation * DVec3::Z };
         let contours = cut(self.part, &plane);
         let chosen = around(&contours, DVec2::ZERO)?;
+        if chosen.iter().map(|c| c.points.len()).sum::<usize>() < 3 {
+            return None;
+        }
         let middle = star_center(&chosen, center(&chosen));
         let sampled = sample(&chosen, middle, self.options.radii)?;
         let report = SectionReport {

@@ -19,6 +19,16 @@
 //!    smoothed by [`SMOOTHING`] passes of the (¼, ½, ¼) filter with fixed ends; the last
 //!    segment is turned to continue the two before it (a blunt tip's last band may lie to
 //!    one side).
+//! 4. **Centering.** Each inner point moves to the area centroid of the part's section by
+//!    the plane through it normal to the polyline there, where that section is closed, winds
+//!    around the point and its centroid lies within [`RECENTER_REACH`] of the section's
+//!    equivalent radius (√(area/π)) of the point. The level sets of edge-path distance lean
+//!    where the rim is cut obliquely and where they wrap around a round tip, and smoothing
+//!    carries that lean a few points along; a plane normal to the skeleton does not lean (on
+//!    the star of five capsules the skeleton came from 2.1% to 1.3% of a tube's radius off
+//!    its axis). A section open through the rim, or one whose centroid would jump (a plane
+//!    across a bend or a foot), leaves its point where it is. The points before centering are
+//!    kept ([`Skeleton::level_axis`]) as a second first guess for coarse parts.
 //!
 //! Degenerate cases: edge paths along the inside of a bend are shorter than along its
 //! outside, so level sets lean (the skeleton of a tube bent by 90° at 8 radii stays within
@@ -30,18 +40,22 @@
 //! Everything is computed from edge lengths, positions and the mesh's connectivity, with no
 //! world axis: the skeleton of a rigidly moved part is the moved skeleton.
 
-use glam::{DMat3, DVec3};
+use glam::{DMat3, DVec2, DVec3};
 
 use super::axis::Polyline;
 use super::disjoint_sets::DisjointSets;
 use super::geodesic::EdgeGraph;
 use super::part::Part;
+use super::section::{Plane, around, center, cut};
 
 /// Level sets cut along the part.
 pub const LEVELS: usize = 24;
 /// Rim edges within this multiple of the longest rim piece's radius (its farthest vertex from
 /// its centroid) of that centroid belong to the same start loop.
 pub const JOIN_REACH: f64 = 1.5;
+/// The farthest a skeleton point moves to its section's centroid, as a fraction of the
+/// section's equivalent radius.
+pub const RECENTER_REACH: f64 = 0.1;
 /// Smoothing passes over the skeleton polyline.
 pub const SMOOTHING: usize = 3;
 
@@ -50,6 +64,9 @@ pub const SMOOTHING: usize = 3;
 pub struct Skeleton {
     /// From the start loop's centroid to the tip.
     pub axis: Polyline,
+    /// The same before its points were centered on their sections: the smoothed level-set
+    /// centroids.
+    pub level_axis: Polyline,
     /// The unit normal of the start loop's best-fit plane, pointing into the part (along the
     /// skeleton); `None` when the skeleton starts at a tip.
     pub start_normal: Option<DVec3>,
@@ -82,6 +99,10 @@ pub fn skeleton(part: &Part) -> Option<Skeleton> {
     points.extend(level_centroids(part, &distance, g_max).into_iter().flatten());
     points.push(tip_centroid(part, &distance, g_max));
     smooth(&mut points);
+    let mut level_points = points.clone();
+    straighten_tip(&mut level_points);
+    let level_axis = Polyline::new(&level_points)?;
+    center_on_sections(part, &mut points);
     straighten_tip(&mut points);
     let axis = Polyline::new(&points)?;
     let start_normal = start.as_ref().and_then(|edges| {
@@ -89,7 +110,7 @@ pub fn skeleton(part: &Part) -> Option<Skeleton> {
         let inward = axis.tangent(0.0);
         Some(if normal.dot(inward) < 0.0 { -normal } else { normal })
     });
-    Some(Skeleton { axis, start_normal })
+    Some(Skeleton { axis, level_axis, start_normal })
 }
 
 /// The edges of the part's start loop: the longest connected piece of its rim, else of its
@@ -257,6 +278,26 @@ fn straighten_tip(points: &mut [DVec3]) {
     let reach = points[n - 1].distance(points[n - 2]);
     if let Some(direction) = (points[n - 2] - points[n - 4]).try_normalize() {
         points[n - 1] = points[n - 2] + direction * reach;
+    }
+}
+
+/// Moves each inner point to the area centroid of the part's section by the plane through it
+/// normal to the polyline there, where that section is closed and encloses the point.
+fn center_on_sections(part: &Part, points: &mut [DVec3]) {
+    let before = points.to_vec();
+    for i in 1..points.len().saturating_sub(1) {
+        let Some(normal) = (before[i + 1] - before[i - 1]).try_normalize() else { continue };
+        let x = normal.any_orthonormal_vector();
+        let plane = Plane { origin: before[i], x, y: normal.cross(x), normal };
+        let contours = cut(part, &plane);
+        let Some(chosen) = around(&contours, DVec2::ZERO) else { continue };
+        if chosen.iter().all(|c| c.closed) && chosen.iter().any(|c| c.encloses(DVec2::ZERO)) {
+            let area: f64 = chosen.iter().map(|c| c.signed_area().abs()).sum();
+            let q = center(&chosen);
+            if q.length() <= RECENTER_REACH * (area / std::f64::consts::PI).sqrt() {
+                points[i] = plane.from_plane(q);
+            }
+        }
     }
 }
 
