@@ -14,8 +14,10 @@
 //!    (fewer vertices than the first keys have radii, such as spot's legs of 46–83 vertices)
 //!    is fitted from four starts: the skeleton and its points before centering, each with the
 //!    keys' planes held normal to it or following the fit's own sweep, keeping the tightest
-//!    (each start costs milliseconds there, and the fit of a part so coarse swings by several
-//!    percent of its radius with small changes of its first guess). Key 0's plane
+//!    by the worse of its RMS |d| at the vertices and at the triangles' centroids (each start
+//!    costs milliseconds there, and the fit of a part so coarse swings by several percent of
+//!    its radius with small changes of its first guess; scored at its vertices alone, the
+//!    choice would favour radii that wave between them). Key 0's plane
 //!    is the plane of that loop; θ = 0 comes from the part's shape
 //!    ([`frames::reference_direction`]), so the fit of a rigidly moved part is the moved fit.
 //! 2. **Rough sweep** (Fig. 3a): circles along the axis enclosing every vertex, recorded as

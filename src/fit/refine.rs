@@ -122,13 +122,20 @@ pub fn run(part: &Part, options: &FitOptions) -> Result<(Fitted, Vec<FitStep>), 
     if part.positions.len() >= options.keys * options.radii {
         return Ok(best);
     }
-    let rms = |run: &(Fitted, Vec<FitStep>)| run.0.measured.quality.rms_d;
+    // Scored at the vertices and at the triangles' centroids, the worse of the two: radii
+    // fitted through a coarse part's vertices may bulge between them.
+    let centroids = part.triangle_centroids();
+    let score = |run: &(Fitted, Vec<FitStep>)| {
+        let between = measure(&run.0.sweep, &centroids).quality.rms_d;
+        run.0.measured.quality.rms_d.max(between)
+    };
+    let mut best_score = score(&best);
     let others = [(&skeleton.axis, false), (&skeleton.level_axis, true), (&skeleton.level_axis, false)];
     for (axis, follows) in others {
-        if let Ok(run) = run_from(part, options, axis.clone(), skeleton.start_normal, follows)
-            && rms(&run) < (1.0 - OTHER_START_MARGIN) * rms(&best)
-        {
-            best = run;
+        let Ok(run) = run_from(part, options, axis.clone(), skeleton.start_normal, follows) else { continue };
+        let run_score = score(&run);
+        if run_score < (1.0 - OTHER_START_MARGIN) * best_score {
+            (best, best_score) = (run, run_score);
         }
     }
     Ok(best)
