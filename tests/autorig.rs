@@ -168,6 +168,7 @@ fn the_command_writes_the_rig_and_reports_each_part() {
         .unwrap();
     let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(report["parts"].as_array().map(Vec::len), Some(0));
+    assert_eq!(report["left_out"].as_array().map(Vec::len), Some(0));
 
     // The empty rig is usable: deform writes the mesh as it is, render draws it, both with a
     // notice; pose, which has no sweep to edit, refuses it with a clear error.
@@ -258,6 +259,44 @@ fn part_at<'a>(mesh: &Mesh, rigged: &'a Autorig, name: &str, tip: u32) -> &'a Ri
 fn centroid_rms(mesh: &Mesh, part: &RiggedPart, keys: &[Key]) -> f64 {
     let centroids = Part::new(mesh, &part.vertices).triangle_centroids();
     measure(&Sweep::try_new(keys, None).unwrap(), &centroids).quality.rms_d
+}
+
+/// A mesh whose protrusions are all left out (spot's coarse control cage: its two ears are a
+/// few quads, no tube) gets an empty rig whose notice says so after naming each part left
+/// out, not that it found none; `--json` lists them.
+#[test]
+fn a_mesh_whose_every_protrusion_is_left_out_says_so() {
+    let Some(path) = common::shared_mesh("spot_control_mesh.obj") else { return };
+    let dir = tempfile::tempdir().unwrap();
+    fs::copy(&path, dir.path().join("cage.obj")).unwrap();
+    let out =
+        common::sweepffd(dir.path()).args(["autorig", "--mesh", "cage.obj", "--out", "rig.json"]).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let lines: Vec<&str> = stderr.lines().collect();
+    let left_out = lines.iter().filter(|l| l.contains("cage.obj: left out a part of")).count();
+    assert!(left_out >= 1, "{stderr}");
+    assert_eq!(lines.len(), left_out + 1, "{stderr}");
+    let last = format!("notice: cage.obj: left out every protrusion found ({left_out}); wrote an empty rig");
+    assert_eq!(lines.last().copied(), Some(last.as_str()), "the summary comes last: {stderr}");
+    assert!(!stderr.contains("found no protrusion"), "{stderr}");
+    let written: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(dir.path().join("rig.json")).unwrap()).unwrap();
+    assert_eq!(written["sweeps"].as_array().map(Vec::len), Some(0));
+
+    let out = common::sweepffd(dir.path())
+        .args(["autorig", "--mesh", "cage.obj", "--out", "rig.json", "--json"])
+        .output()
+        .unwrap();
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(report["parts"].as_array().map(Vec::len), Some(0));
+    let listed = report["left_out"].as_array().unwrap();
+    assert_eq!(listed.len(), left_out);
+    for part in listed {
+        let rms = part["sections_rms_d"].as_f64().unwrap();
+        assert!(rms > sweepffd::fit::autorig::MAX_RMS, "{part}");
+        assert!(part["vertices"].as_u64().unwrap() >= 4 && part["tip"].is_u64(), "{part}");
+    }
 }
 
 /// Spot's four legs, each holding its hoof's lowest vertex (its head is towards −z, its front

@@ -38,7 +38,17 @@ pub struct Args {
 struct Report {
     mesh: String,
     parts: Vec<PartReport>,
+    /// The parts found whose sections are no tube's, left out of the rig.
+    left_out: Vec<LeftOut>,
     seconds: f64,
+}
+
+#[derive(Serialize)]
+struct LeftOut {
+    vertices: usize,
+    tip: u32,
+    /// RMS |d| over the mean radius with the radii sampled from its sections.
+    sections_rms_d: f64,
 }
 
 #[derive(Serialize)]
@@ -87,14 +97,13 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
         })
         .collect();
     if args.json {
-        println!("{}", serde_json::to_string(&Report { mesh: file.to_string(), parts, seconds })?);
+        let left_out = rigged
+            .rejected
+            .iter()
+            .map(|r| LeftOut { vertices: r.vertices, tip: r.tip, sections_rms_d: r.rms_d })
+            .collect();
+        println!("{}", serde_json::to_string(&Report { mesh: file.to_string(), parts, left_out, seconds })?);
         return Ok(());
-    }
-    if parts.is_empty() {
-        eprintln!(
-            "notice: {file}: found no protrusion longer than --min-length {}; wrote an empty rig",
-            args.min_length
-        );
     }
     for r in &rigged.rejected {
         eprintln!(
@@ -103,6 +112,16 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
             r.tip,
             100.0 * r.rms_d
         );
+    }
+    match (parts.is_empty(), rigged.rejected.len()) {
+        (true, 0) => eprintln!(
+            "notice: {file}: found no protrusion longer than --min-length {}; wrote an empty rig",
+            args.min_length
+        ),
+        (true, left_out) => {
+            eprintln!("notice: {file}: left out every protrusion found ({left_out}); wrote an empty rig")
+        }
+        _ => {}
     }
     for p in &parts {
         println!(

@@ -228,8 +228,14 @@ impl App {
     fn try_auto_rig(&mut self) -> Result<String, ViewError> {
         let rigged = autorig(&self.model.mesh, &AutorigOptions::default())
             .map_err(|e| ViewError::Input(format!("auto-rig: {e}")))?;
-        if rigged.parts.is_empty() {
-            return Ok("auto-rig found no protrusion; the rig is unchanged".to_string());
+        match (rigged.parts.is_empty(), rigged.rejected.len()) {
+            (true, 0) => return Ok("auto-rig found no protrusion; the rig is unchanged".to_string()),
+            (true, left_out) => {
+                return Ok(format!(
+                    "auto-rig left out every protrusion it found ({left_out}: their sections are no tube's); the rig is unchanged"
+                ));
+            }
+            _ => {}
         }
         self.model.set_rig(rigged.document(), None)?;
         if let Some(running) = &mut self.running {
