@@ -139,7 +139,7 @@ pub const MAX_RMS: f64 = 0.35;
 /// `mesh` with the vertices at bit-identical positions joined in its faces (the vertices stay,
 /// those joined away left without faces); `None` when no two are.
 fn welded(mesh: &Mesh) -> Option<Mesh> {
-    let weld = super::protrusions::weld(&mesh.positions);
+    let weld = crate::mesh::weld::weld(&mesh.positions);
     if weld.iter().enumerate().all(|(v, &w)| w as usize == v) {
         return None;
     }

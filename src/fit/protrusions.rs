@@ -36,6 +36,7 @@ use glam::DVec3;
 use super::geodesic::EdgeGraph;
 use super::limb::aligned_limb;
 use crate::mesh::Mesh;
+use crate::mesh::weld::weld;
 
 /// A protrusion: a tip and the vertices of its branch.
 #[derive(Clone, Debug, PartialEq)]
@@ -117,19 +118,6 @@ pub fn protrusions(mesh: &Mesh, min_length: f64, max_parts: usize) -> Vec<Protru
     }
     found.retain(|p| p.vertices.len() >= 4);
     found
-}
-
-/// For each vertex, the first vertex at the same position (bit for bit).
-pub(crate) fn weld(positions: &[DVec3]) -> Vec<u32> {
-    let mut first: HashMap<[u64; 3], u32> = HashMap::new();
-    positions
-        .iter()
-        .enumerate()
-        .map(|(v, p)| {
-            let key = p.to_array().map(|c| if c == 0.0 { 0 } else { c.to_bits() });
-            *first.entry(key).or_insert(v as u32)
-        })
-        .collect()
 }
 
 /// The vertices reachable from `start` through vertices that `keep` accepts, increasing.
@@ -241,15 +229,4 @@ fn merge_tree(graph: &EdgeGraph, component: &[u32], g: &[f64]) -> (Vec<Branch>, 
         }
     }
     (branches, order[0])
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn welding_joins_bit_identical_positions_only() {
-        let p = [DVec3::ZERO, DVec3::X, DVec3::new(-0.0, 0.0, 0.0), DVec3::X + DVec3::splat(1e-12)];
-        assert_eq!(weld(&p), [0, 1, 0, 3]);
-    }
 }

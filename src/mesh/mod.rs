@@ -46,6 +46,7 @@ mod source;
 mod subdivide;
 mod triangles;
 mod volume;
+pub mod weld;
 
 use glam::DVec3;
 

@@ -46,6 +46,23 @@ impl Corners {
         Corners { offsets, others }
     }
 
+    /// Whether vertex `v`'s triangles leave an edge of it unmatched, so that `v` lies on an
+    /// open boundary of the mesh, such as an unwelded seam. Around an inner vertex of a
+    /// consistently wound surface the triangles (v, b, c) chain, each c the next one's b, so
+    /// the b's and the c's are the same vertices; around a boundary vertex the chain is open
+    /// and its first b and last c differ, and so do the sums (and the XORs) of the b's and of
+    /// the c's. Not selected or out of range: false.
+    pub(super) fn on_open_boundary(&self, v: usize) -> bool {
+        let (mut sums, mut xors) = ([0u64; 2], [0u32; 2]);
+        for pair in self.of(v) {
+            for side in 0..2 {
+                sums[side] += u64::from(pair[side]);
+                xors[side] ^= pair[side];
+            }
+        }
+        sums[0] != sums[1] || xors[0] != xors[1]
+    }
+
     /// The triangles around vertex `v`, each as its two other corners; empty for a vertex
     /// that was not selected or is out of range.
     pub(super) fn of(&self, v: usize) -> &[[u32; 2]] {

@@ -6,7 +6,9 @@
 //!
 //! The part of sweep s is the set of vertices it owns; its falloff W_s ≥ 0 (mesh units) is the
 //! width of the band inside the part where the deformation fades out. The mesh is taken as the
-//! fan triangulation of its faces ([`Faces::triangles`]); its edges are the triangles' edges.
+//! fan triangulation of its faces ([`Faces::triangles`]); its edges are the triangles' edges,
+//! with the vertices at one position (bit for bit) owned by one banded sweep joined, so that
+//! the two copies of a vertex along an unwelded patch seam get one weight and move together.
 //!
 //! 1. **Boundary.** A vertex of the part is on its boundary when it shares an edge with a
 //!    vertex the sweep does not own. It faces what lies across: the rest position
@@ -32,10 +34,13 @@ mod boundary;
 mod corners;
 mod geodesic;
 
+use std::collections::HashMap;
+
 use glam::DVec3;
 
 use crate::bind::UNOWNED;
 use crate::mesh::Faces;
+use crate::mesh::weld::weld_by;
 use corners::Corners;
 use geodesic::Reached;
 
@@ -96,9 +101,32 @@ fn band_distances(faces: &Faces, positions: &[DVec3], owners: &[u32], widths: &[
     if !active.contains(&true) {
         return Vec::new();
     }
-    let corners = Corners::new(faces, &active);
+    let mut corners = Corners::new(faces, &active);
+    // The copies of a vertex along an unwelded seam, owned by one banded sweep, march as one
+    // vertex (the first of them) and share its distance: marched apart, each would see only
+    // its own side's edges and the two would get different weights and part when deformed.
+    // Such copies lie on an open boundary of the mesh, so only those vertices are compared.
+    let twins = weld_by(positions, |v| (active[v] && corners.on_open_boundary(v)).then_some(owners[v]));
+    let joined = twins.iter().enumerate().any(|(v, &first)| first as usize != v);
+    if joined {
+        let indices = faces.indices.iter().map(|&v| twins.get(v as usize).copied().unwrap_or(v)).collect();
+        corners = Corners::new(&Faces { offsets: faces.offsets.clone(), indices }, &active);
+    }
     let sources = boundary::sources(&corners, owners, &active);
     let mut reached = geodesic::march(&corners, positions, owners, widths, &sources);
+    if joined {
+        let mut copies: HashMap<u32, Vec<u32>> = HashMap::new();
+        for (v, &first) in twins.iter().enumerate() {
+            if first as usize != v {
+                copies.entry(first).or_default().push(v as u32);
+            }
+        }
+        let twins_reached: Vec<Reached> = reached
+            .iter()
+            .flat_map(|r| copies.get(&r.vertex).into_iter().flatten().map(|&vertex| Reached { vertex, ..*r }))
+            .collect();
+        reached.extend(twins_reached);
+    }
     reached.sort_unstable_by_key(|reached| reached.vertex);
     reached
 }

@@ -423,3 +423,62 @@ fn triangle_update_is_exact_for_a_plane_wave_from_inside_the_angle() {
     // Values too far apart for one wave over the triangle.
     assert_eq!(triangle_update(c, a, 0.0, b, 10.0), None);
 }
+
+/// The weight of every vertex (1 for those in no band).
+fn weights_of(bands: &[BandWeight], count: usize) -> Vec<f64> {
+    let mut weights = vec![1.0; count];
+    for band in bands {
+        weights[band.vertex as usize] = band.weight;
+    }
+    weights
+}
+
+/// A 12 × 9 grid owned by sweep 0 except the cells left of i = 3 below row 4, cut along row 4
+/// into two patches that do not share its vertices (an unwelded seam: the upper patch uses
+/// copies, appended after the grid); `offset` moves the copies off their twins.
+fn seamed_grid(offset: f64) -> (Faces, Vec<DVec3>, Vec<u32>, Vec<u32>) {
+    let (nx, ny, seam) = (12, 9, 4);
+    let (_, mut positions) = grid(nx, ny, 1.0, |_, _| true);
+    let owners_grid = grid_owners(nx, ny, |i, j| if i < 3 && j < seam { UNOWNED } else { 0 });
+    let twin_of: Vec<u32> = (0..nx).map(|i| at(nx, i, seam)).collect();
+    let copy = |v: u32| -> u32 { twin_of.iter().position(|&t| t == v).map_or(v, |i| nx * ny + i as u32) };
+    let copies: Vec<DVec3> = twin_of.iter().map(|&t| positions[t as usize] + DVec3::X * offset).collect();
+    positions.extend(copies);
+    let mut owners = owners_grid;
+    let copy_owners: Vec<u32> = twin_of.iter().map(|&t| owners[t as usize]).collect();
+    owners.extend(copy_owners);
+    let mut faces = Faces::new();
+    for j in 0..ny - 1 {
+        for i in 0..nx - 1 {
+            let c = |i: u32, jj: u32| if j >= seam { copy(at(nx, i, jj)) } else { at(nx, i, jj) };
+            faces.push(&[c(i, j), c(i + 1, j), c(i, j + 1)]);
+            faces.push(&[c(i + 1, j), c(i + 1, j + 1), c(i, j + 1)]);
+        }
+    }
+    (faces, positions, owners, twin_of)
+}
+
+#[test]
+fn the_copies_along_an_unwelded_seam_get_one_weight() {
+    let width = [4.0];
+    let (faces, positions, owners, twins) = seamed_grid(0.0);
+    let (welded_faces, welded_positions) = grid(12, 9, 1.0, |_, _| true);
+    let welded = weights_of(
+        &band_weights(&welded_faces, &welded_positions, &owners[..welded_positions.len()], &width),
+        welded_positions.len(),
+    );
+    let seamed = weights_of(&band_weights(&faces, &positions, &owners, &width), positions.len());
+    // Each vertex's weight is the welded mesh's, the copies' their twins'.
+    assert_eq!(seamed[..welded.len()], welded[..]);
+    for (i, &twin) in twins.iter().enumerate() {
+        assert_eq!(seamed[welded.len() + i], welded[twin as usize], "copy of vertex {twin}");
+    }
+    assert!(twins.iter().any(|&t| welded[t as usize] < 0.9), "the seam crosses the band");
+    // Marched apart (the copies a hair off their twins, so not joined), the upper patch has no
+    // boundary of its own and its copies keep weight 1 where their twins fade.
+    let (faces, positions, owners, twins) = seamed_grid(1e-9);
+    let apart = weights_of(&band_weights(&faces, &positions, &owners, &width), positions.len());
+    let parted =
+        twins.iter().enumerate().map(|(i, &t)| (apart[t as usize] - apart[welded.len() + i]).abs()).fold(0.0, f64::max);
+    assert!(parted > 0.1, "copies marched apart differ by {parted}");
+}
