@@ -17,10 +17,22 @@ cp "$work/bunny/ears-bent.png" docs/bunny-ears.png
 cp "$work/armadillo_leg/step0.png" docs/armadillo-rough.png
 cp "$work/armadillo_leg/step4.png" docs/armadillo-fitted.png 2>/dev/null || cp "$work/armadillo_leg/step3.png" docs/armadillo-fitted.png
 cp "$work/chair/chair.png" docs/chair.png
+# Each shared mesh rigged by autorig, its sweeps drawn.
+mkdir -p docs/autorig
+for spec in spot_triangulated.obj:spot:110,10 bunny_closed.obj:bunny:20,15 chair.off:chair:30,20 \
+  teapot_newell.obj:teapot-newell:30,20 teapot_mcguire/teapot.obj:teapot-mcguire:30,20 dino.off:dino:150,-30; do
+  IFS=: read -r mesh name view <<< "$spec"
+  ./target/release/sweepffd autorig --mesh "../shared/meshes/$mesh" --out "$work/$name-rig.json" --quiet > /dev/null
+  ./target/release/sweepffd render --mesh "../shared/meshes/$mesh" --rig "$work/$name-rig.json" --show-sweeps \
+    --size 640x480 --view "$view" --out "docs/autorig/$name.png" --quiet
+done
+./target/release/sweepffd autorig --mesh ../shared/meshes/armadillo_50k.obj --out "$work/armadillo-rig.json" --quiet > /dev/null
+./target/release/sweepffd render --mesh ../shared/meshes/armadillo_50k.obj --rig "$work/armadillo-rig.json" \
+  --show-sweeps --size 1200x900 --out docs/autorig-armadillo.png --quiet
 # The viewer, scripted in a virtual display (Debian's xvfb): the bunny's ear dragged (§4).
 cp docs/viewer-session.json "$work/bunny/"
 xvfb-run -a -s "-screen 0 1600x1000x24" ./target/release/sweepffd view \
   --mesh ../shared/meshes/bunny_stanford_zipper.obj --rig "$work/bunny/ears-rig.json" \
   --script "$work/bunny/viewer-session.json" --size 1280x800 > /dev/null
 cp "$work/bunny/viewer.png" docs/viewer.png
-ls -l docs/*.png
+ls -l docs/*.png docs/autorig/*.png
