@@ -5,7 +5,7 @@
 mod common;
 
 use glam::DVec3;
-use sweepffd::bind::MeshBindings;
+use sweepffd::bind::{MeshBindings, UNOWNED};
 use sweepffd::cpu;
 use sweepffd::deform::deform_vertices;
 use sweepffd::fit::attached::reversed;
@@ -219,4 +219,41 @@ fn gpu_twin_and_reference_agree_with_falloff_on_real_meshes() {
     let rig = common::teapot_rig(&mesh);
     let sweeps = rig.sweeps().iter().map(|s| RigSweep { falloff: 0.3, ..s.clone() }).collect();
     gpu_matches_reference("teapot", &mesh, &Rig::new(sweeps).unwrap());
+}
+
+/// A part whose selection ends along an unwelded patch seam: the Newell teapot's `body` group
+/// (its rim and bottom, other patches, unowned), fitted with the default falloff and bent by
+/// 45° at its middle key. Every vertex at one rest position stays with its copies: those on
+/// the seams inside the body (one owner) and those on its seams with the rim and the bottom
+/// (the body's copy fading to rest there, as the unowned copy stays).
+#[test]
+fn the_teapots_body_bends_without_opening_its_patch_seams() {
+    let Some(path) = common::shared_mesh("teapot_newell_parts.obj") else { return };
+    let mesh = Mesh::load(&path).unwrap();
+    let body = mesh.group_vertices("body").unwrap();
+    let rig = fitted_rig(&mesh, &[("body", body)], None, KeyZero::Attached);
+    let owners = rig.owners(&mesh, "teapot").unwrap();
+    let bindings = rig.bind_mesh(&mesh, &owners, &|_| {});
+    let posed = rig.pose(&turned_keys(&rig, true, 45.0)).unwrap();
+    let mut out = vec![DVec3::ZERO; mesh.positions.len()];
+    deform_vertices(rig.rest(), &posed, &bindings, &mesh.positions, &mut out);
+    let twins = sweepffd::mesh::weld::weld(&mesh.positions);
+    let (mut inside, mut across) = (0, 0);
+    for (v, &first) in twins.iter().enumerate() {
+        let first = first as usize;
+        if first == v {
+            continue;
+        }
+        match (owners[v] == owners[first], owners[v] == UNOWNED) {
+            (true, false) => inside += 1,
+            (false, _) => across += 1,
+            (true, true) => {}
+        }
+        assert_eq!(out[v], out[first], "seam vertices {first} and {v} parted");
+    }
+    let moved = out.iter().zip(&mesh.positions).map(|(a, b)| a.distance(*b)).fold(0.0, f64::max);
+    eprintln!(
+        "teapot body: moved up to {moved:.3}; {inside} seam copies inside the body, {across} across its edge kept together"
+    );
+    assert!(moved > 0.1 && inside > 0 && across > 0, "moved {moved}, {inside} inside, {across} across");
 }

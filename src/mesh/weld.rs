@@ -4,8 +4,43 @@
 //! march across them so that both copies get one weight ([`crate::bind::falloff`]).
 
 use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
 
 use glam::DVec3;
+
+/// A multiply-rotate hasher for position keys (the Fx hash of rustc): positions are not
+/// adversarial keys, and a seam search hashes every vertex of a mesh.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct PositionHasher(u64);
+
+impl Hasher for PositionHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        for chunk in bytes.chunks(8) {
+            let mut word = [0u8; 8];
+            word[..chunk.len()].copy_from_slice(chunk);
+            self.write_u64(u64::from_le_bytes(word));
+        }
+    }
+
+    fn write_u64(&mut self, word: u64) {
+        self.0 = (self.0.rotate_left(5) ^ word).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+
+    fn write_u32(&mut self, word: u32) {
+        self.write_u64(u64::from(word));
+    }
+
+    fn write_usize(&mut self, word: usize) {
+        self.write_u64(word as u64);
+    }
+
+    fn finish(&self) -> u64 {
+        self.0
+    }
+}
+
+/// A hash map keyed by positions ([`position_key`]) and what goes with them.
+pub type PositionMap<K, V> = HashMap<K, V, BuildHasherDefault<PositionHasher>>;
 
 /// The bits of `p`, with −0.0 taken as 0.0: equal keys are equal positions.
 pub fn position_key(p: DVec3) -> [u64; 3] {
@@ -20,7 +55,7 @@ pub fn weld(positions: &[DVec3]) -> Vec<u32> {
 /// For each vertex, the first vertex at the same position with the same `class` (`None`: the
 /// vertex is joined to none, itself).
 pub fn weld_by<K: Eq + std::hash::Hash>(positions: &[DVec3], class: impl Fn(usize) -> Option<K>) -> Vec<u32> {
-    let mut first: HashMap<([u64; 3], K), u32> = HashMap::new();
+    let mut first: PositionMap<([u64; 3], K), u32> = PositionMap::default();
     positions
         .iter()
         .enumerate()

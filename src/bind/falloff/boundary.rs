@@ -1,6 +1,8 @@
 //! The boundary of each part, where its falloff band starts (g = 0), and what lies beyond
 //! each boundary vertex.
 
+use std::collections::HashMap;
+
 use super::corners::Corners;
 use crate::bind::UNOWNED;
 
@@ -17,8 +19,15 @@ pub(super) struct Source {
 /// The boundary vertices of the parts of the `active` vertices, increasing: a vertex owned by
 /// sweep s is on its part's boundary when it shares an edge of a triangle (of `corners`) with
 /// a vertex not owned by s. Its label is [`boundary_label`] of the owners of those
-/// neighbours, each neighbour counted once however many triangles share the edge.
-pub(super) fn sources(corners: &Corners, owners: &[u32], active: &[bool]) -> Vec<Source> {
+/// neighbours, each neighbour counted once however many triangles share the edge, and of
+/// `seam_owners[v]`: the other owners of its copies along an unwelded seam, which face it as
+/// if an edge joined them.
+pub(super) fn sources(
+    corners: &Corners,
+    owners: &[u32],
+    active: &[bool],
+    seam_owners: &HashMap<u32, Vec<u32>>,
+) -> Vec<Source> {
     let mut sources = Vec::new();
     let mut across: Vec<u32> = Vec::new();
     for (v, _) in active.iter().enumerate().filter(|&(_, &active)| active) {
@@ -27,13 +36,14 @@ pub(super) fn sources(corners: &Corners, owners: &[u32], active: &[bool]) -> Vec
         for &pair in corners.of(v) {
             across.extend(pair.into_iter().filter(|&u| owners[u as usize] != owner));
         }
-        if across.is_empty() {
-            continue;
-        }
         across.sort_unstable();
         across.dedup();
         for u in &mut across {
             *u = owners[*u as usize];
+        }
+        across.extend(seam_owners.get(&(v as u32)).into_iter().flatten());
+        if across.is_empty() {
+            continue;
         }
         across.sort_unstable();
         sources.push(Source { vertex: v as u32, label: boundary_label(&across) });

@@ -7,8 +7,9 @@
 //! The part of sweep s is the set of vertices it owns; its falloff W_s ≥ 0 (mesh units) is the
 //! width of the band inside the part where the deformation fades out. The mesh is taken as the
 //! fan triangulation of its faces ([`Faces::triangles`]); its edges are the triangles' edges,
-//! with the vertices at one position (bit for bit) owned by one banded sweep joined, so that
-//! the two copies of a vertex along an unwelded patch seam get one weight and move together.
+//! and the copies of a vertex along an unwelded seam (one position, bit for bit, no edge
+//! between them) are one vertex where one sweep owns them and face each other across the
+//! part's boundary where two owners meet there (see `seams`), so that they move together.
 //!
 //! 1. **Boundary.** A vertex of the part is on its boundary when it shares an edge with a
 //!    vertex the sweep does not own. It faces what lies across: the rest position
@@ -33,6 +34,7 @@
 mod boundary;
 mod corners;
 mod geodesic;
+mod seams;
 
 use std::collections::HashMap;
 
@@ -40,7 +42,6 @@ use glam::DVec3;
 
 use crate::bind::UNOWNED;
 use crate::mesh::Faces;
-use crate::mesh::weld::weld_by;
 use corners::Corners;
 use geodesic::Reached;
 
@@ -102,30 +103,26 @@ fn band_distances(faces: &Faces, positions: &[DVec3], owners: &[u32], widths: &[
         return Vec::new();
     }
     let mut corners = Corners::new(faces, &active);
-    // The copies of a vertex along an unwelded seam, owned by one banded sweep, march as one
-    // vertex (the first of them) and share its distance: marched apart, each would see only
-    // its own side's edges and the two would get different weights and part when deformed.
-    // Such copies lie on an open boundary of the mesh, so only those vertices are compared.
-    let twins = weld_by(positions, |v| (active[v] && corners.on_open_boundary(v)).then_some(owners[v]));
-    let joined = twins.iter().enumerate().any(|(v, &first)| first as usize != v);
-    if joined {
-        let indices = faces.indices.iter().map(|&v| twins.get(v as usize).copied().unwrap_or(v)).collect();
+    let seams = seams::seams(&corners, positions, owners, &active).unwrap_or_default();
+    if seams.joins() {
+        let first = |v: u32| seams.first.get(v as usize).copied().unwrap_or(v);
+        let indices = faces.indices.iter().map(|&v| first(v)).collect();
         corners = Corners::new(&Faces { offsets: faces.offsets.clone(), indices }, &active);
     }
-    let sources = boundary::sources(&corners, owners, &active);
+    let sources = boundary::sources(&corners, owners, &active, &seams.across);
     let mut reached = geodesic::march(&corners, positions, owners, widths, &sources);
-    if joined {
+    if seams.joins() {
         let mut copies: HashMap<u32, Vec<u32>> = HashMap::new();
-        for (v, &first) in twins.iter().enumerate() {
+        for (v, &first) in seams.first.iter().enumerate() {
             if first as usize != v {
                 copies.entry(first).or_default().push(v as u32);
             }
         }
-        let twins_reached: Vec<Reached> = reached
+        let of_copies: Vec<Reached> = reached
             .iter()
             .flat_map(|r| copies.get(&r.vertex).into_iter().flatten().map(|&vertex| Reached { vertex, ..*r }))
             .collect();
-        reached.extend(twins_reached);
+        reached.extend(of_copies);
     }
     reached.sort_unstable_by_key(|reached| reached.vertex);
     reached

@@ -1,5 +1,5 @@
 use std::cmp::Reverse;
-use std::collections::BinaryHeap;
+use std::collections::{BinaryHeap, HashMap};
 use std::f64::consts::SQRT_2;
 
 use glam::{DQuat, DVec3};
@@ -336,7 +336,7 @@ fn boundary_label_prefers_rest_then_majority_then_lower_index() {
     let mut owners = vec![0, 2, 1, 0, 2, 0, 0, 0, 0, 0];
     let active: Vec<bool> = owners.iter().map(|&o| o == 0).collect();
     let label_of_centre = |owners: &[u32]| {
-        let found = sources(&Corners::new(&faces, &active), owners, &active);
+        let found = sources(&Corners::new(&faces, &active), owners, &active, &HashMap::new());
         found.iter().find(|s| s.vertex == 0).map(|s| s.label)
     };
     assert_eq!(label_of_centre(&owners), Some(2));
@@ -433,19 +433,23 @@ fn weights_of(bands: &[BandWeight], count: usize) -> Vec<f64> {
     weights
 }
 
-/// A 12 × 9 grid owned by sweep 0 except the cells left of i = 3 below row 4, cut along row 4
-/// into two patches that do not share its vertices (an unwelded seam: the upper patch uses
-/// copies, appended after the grid); `offset` moves the copies off their twins.
-fn seamed_grid(offset: f64) -> (Faces, Vec<DVec3>, Vec<u32>, Vec<u32>) {
+/// A 12 × 9 grid whose vertex (i, j) `owner(i, j)` owns, cut along row 4 into two patches
+/// that do not share its vertices (an unwelded seam: the upper patch uses copies, appended
+/// after the grid, owned by `copy_owner(i)`); `offset` moves the copies off their twins.
+fn seamed_grid(
+    offset: f64,
+    owner: impl Fn(u32, u32) -> u32,
+    copy_owner: impl Fn(u32) -> u32,
+) -> (Faces, Vec<DVec3>, Vec<u32>, Vec<u32>) {
     let (nx, ny, seam) = (12, 9, 4);
     let (_, mut positions) = grid(nx, ny, 1.0, |_, _| true);
-    let owners_grid = grid_owners(nx, ny, |i, j| if i < 3 && j < seam { UNOWNED } else { 0 });
+    let owners_grid = grid_owners(nx, ny, owner);
     let twin_of: Vec<u32> = (0..nx).map(|i| at(nx, i, seam)).collect();
     let copy = |v: u32| -> u32 { twin_of.iter().position(|&t| t == v).map_or(v, |i| nx * ny + i as u32) };
     let copies: Vec<DVec3> = twin_of.iter().map(|&t| positions[t as usize] + DVec3::X * offset).collect();
     positions.extend(copies);
     let mut owners = owners_grid;
-    let copy_owners: Vec<u32> = twin_of.iter().map(|&t| owners[t as usize]).collect();
+    let copy_owners: Vec<u32> = (0..nx).map(copy_owner).collect();
     owners.extend(copy_owners);
     let mut faces = Faces::new();
     for j in 0..ny - 1 {
@@ -461,7 +465,9 @@ fn seamed_grid(offset: f64) -> (Faces, Vec<DVec3>, Vec<u32>, Vec<u32>) {
 #[test]
 fn the_copies_along_an_unwelded_seam_get_one_weight() {
     let width = [4.0];
-    let (faces, positions, owners, twins) = seamed_grid(0.0);
+    let owner = |i: u32, j: u32| if i < 3 && j < 4 { UNOWNED } else { 0 };
+    let copy_owner = |i: u32| owner(i, 4);
+    let (faces, positions, owners, twins) = seamed_grid(0.0, owner, copy_owner);
     let (welded_faces, welded_positions) = grid(12, 9, 1.0, |_, _| true);
     let welded = weights_of(
         &band_weights(&welded_faces, &welded_positions, &owners[..welded_positions.len()], &width),
@@ -476,9 +482,29 @@ fn the_copies_along_an_unwelded_seam_get_one_weight() {
     assert!(twins.iter().any(|&t| welded[t as usize] < 0.9), "the seam crosses the band");
     // Marched apart (the copies a hair off their twins, so not joined), the upper patch has no
     // boundary of its own and its copies keep weight 1 where their twins fade.
-    let (faces, positions, owners, twins) = seamed_grid(1e-9);
+    let (faces, positions, owners, twins) = seamed_grid(1e-9, owner, copy_owner);
     let apart = weights_of(&band_weights(&faces, &positions, &owners, &width), positions.len());
     let parted =
         twins.iter().enumerate().map(|(i, &t)| (apart[t as usize] - apart[welded.len() + i]).abs()).fold(0.0, f64::max);
     assert!(parted > 0.1, "copies marched apart differ by {parted}");
+}
+
+/// A part whose selection ends along an unwelded seam (its copies on the other side unowned)
+/// fades to the rest position there, as the welded grid with the same part does.
+#[test]
+fn a_part_ending_along_an_unwelded_seam_fades_there() {
+    let width = [3.0];
+    let owner = |_: u32, j: u32| if j <= 4 { 0 } else { UNOWNED };
+    let (faces, positions, owners, twins) = seamed_grid(0.0, owner, |_| UNOWNED);
+    let (welded_faces, welded_positions) = grid(12, 9, 1.0, |_, _| true);
+    let count = welded_positions.len();
+    let welded = weights_of(&band_weights(&welded_faces, &welded_positions, &owners[..count], &width), count);
+    let seamed = weights_of(&band_weights(&faces, &positions, &owners, &width), positions.len());
+    assert_eq!(seamed[..count], welded[..]);
+    assert!(twins.iter().all(|&t| welded[t as usize] == 0.0), "the seam is the part's boundary");
+    // Marched apart, the part has no boundary at all and keeps weight 1 at the seam, where
+    // its unowned twins stay put.
+    let (faces, positions, owners, twins) = seamed_grid(1e-9, owner, |_| UNOWNED);
+    let apart = weights_of(&band_weights(&faces, &positions, &owners, &width), positions.len());
+    assert!(twins.iter().all(|&t| apart[t as usize] == 1.0));
 }
