@@ -148,25 +148,26 @@ fn the_chair_gets_its_four_legs() {
     assert!(legs.iter().all(|p| p.fit.quality.rms_d <= 0.10), "the legs fit within 10%");
 }
 
+/// Runs `sweepffd autorig` on `mesh` in `dir`, writing `rig.json`: the sweeps it wrote (it
+/// must succeed) and its stderr, then the report of the same run with `--json`.
+fn autorig_command(dir: &std::path::Path, mesh: &str) -> (usize, String, serde_json::Value) {
+    let out = common::sweepffd(dir).args(["autorig", "--mesh", mesh, "--out", "rig.json"]).output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(out.status.success(), "{stderr}");
+    let written: serde_json::Value = serde_json::from_str(&fs::read_to_string(dir.join("rig.json")).unwrap()).unwrap();
+    let sweeps = written["sweeps"].as_array().map_or(usize::MAX, Vec::len);
+    let out = common::sweepffd(dir).args(["autorig", "--mesh", mesh, "--out", "rig.json", "--json"]).output().unwrap();
+    (sweeps, stderr, serde_json::from_slice(&out.stdout).unwrap())
+}
+
 #[test]
 fn the_command_writes_the_rig_and_reports_each_part() {
     let dir = tempfile::tempdir().unwrap();
     let ball = sphere(24, 48);
     ball.save(&dir.path().join("ball.obj"), &ball.positions).unwrap();
-    let out =
-        common::sweepffd(dir.path()).args(["autorig", "--mesh", "ball.obj", "--out", "rig.json"]).output().unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let stderr = String::from_utf8_lossy(&out.stderr);
+    let (sweeps, stderr, report) = autorig_command(dir.path(), "ball.obj");
     assert!(stderr.contains("ball.obj: found no protrusion"), "{stderr}");
-    let written: serde_json::Value =
-        serde_json::from_str(&fs::read_to_string(dir.path().join("rig.json")).unwrap()).unwrap();
-    assert_eq!(written["sweeps"].as_array().map(Vec::len), Some(0));
-
-    let out = common::sweepffd(dir.path())
-        .args(["autorig", "--mesh", "ball.obj", "--out", "rig.json", "--json"])
-        .output()
-        .unwrap();
-    let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(sweeps, 0);
     assert_eq!(report["parts"].as_array().map(Vec::len), Some(0));
     assert_eq!(report["left_out"].as_array().map(Vec::len), Some(0));
 
@@ -269,10 +270,7 @@ fn a_mesh_whose_every_protrusion_is_left_out_says_so() {
     let Some(path) = common::shared_mesh("spot_control_mesh.obj") else { return };
     let dir = tempfile::tempdir().unwrap();
     fs::copy(&path, dir.path().join("cage.obj")).unwrap();
-    let out =
-        common::sweepffd(dir.path()).args(["autorig", "--mesh", "cage.obj", "--out", "rig.json"]).output().unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let stderr = String::from_utf8_lossy(&out.stderr);
+    let (sweeps, stderr, report) = autorig_command(dir.path(), "cage.obj");
     let lines: Vec<&str> = stderr.lines().collect();
     let left_out = lines.iter().filter(|l| l.contains("cage.obj: left out a part of")).count();
     assert!(left_out >= 1, "{stderr}");
@@ -280,15 +278,7 @@ fn a_mesh_whose_every_protrusion_is_left_out_says_so() {
     let last = format!("notice: cage.obj: left out every protrusion found ({left_out}); wrote an empty rig");
     assert_eq!(lines.last().copied(), Some(last.as_str()), "the summary comes last: {stderr}");
     assert!(!stderr.contains("found no protrusion"), "{stderr}");
-    let written: serde_json::Value =
-        serde_json::from_str(&fs::read_to_string(dir.path().join("rig.json")).unwrap()).unwrap();
-    assert_eq!(written["sweeps"].as_array().map(Vec::len), Some(0));
-
-    let out = common::sweepffd(dir.path())
-        .args(["autorig", "--mesh", "cage.obj", "--out", "rig.json", "--json"])
-        .output()
-        .unwrap();
-    let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(sweeps, 0);
     assert_eq!(report["parts"].as_array().map(Vec::len), Some(0));
     let listed = report["left_out"].as_array().unwrap();
     assert_eq!(listed.len(), left_out);

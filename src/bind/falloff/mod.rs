@@ -104,14 +104,15 @@ fn band_distances(faces: &Faces, positions: &[DVec3], owners: &[u32], widths: &[
     }
     let mut corners = Corners::new(faces, &active);
     let seams = seams::seams(&corners, positions, owners, &active).unwrap_or_default();
-    if seams.joins() {
+    let joins = seams.joins();
+    if joins {
         let first = |v: u32| seams.first.get(v as usize).copied().unwrap_or(v);
         let indices = faces.indices.iter().map(|&v| first(v)).collect();
         corners = Corners::new(&Faces { offsets: faces.offsets.clone(), indices }, &active);
     }
     let sources = boundary::sources(&corners, owners, &active, &seams.across);
     let mut reached = geodesic::march(&corners, positions, owners, widths, &sources);
-    if seams.joins() {
+    if joins {
         let mut copies: HashMap<u32, Vec<u32>> = HashMap::new();
         for (v, &first) in seams.first.iter().enumerate() {
             if first as usize != v {

@@ -40,23 +40,16 @@ impl Seams {
 /// The seams among the `active` (banded) vertices; `None` where no banded vertex on an open
 /// boundary shares its position with another vertex.
 pub(super) fn seams(corners: &Corners, positions: &[DVec3], owners: &[u32], active: &[bool]) -> Option<Seams> {
-    let open: Vec<usize> = (0..active.len()).filter(|&v| active[v] && corners.on_open_boundary(v)).collect();
-    if open.is_empty() {
+    let open: Vec<bool> = (0..active.len()).map(|v| active[v] && corners.on_open_boundary(v)).collect();
+    if !open.contains(&true) {
         return None;
     }
     let mut at: PositionMap<[u64; 3], Vec<u32>> = PositionMap::default();
-    for &v in &open {
+    for v in (0..open.len()).filter(|&v| open[v]) {
         at.entry(position_key(positions[v])).or_default().push(v as u32);
     }
-    let is_open = {
-        let mut is_open = vec![false; active.len()];
-        for &v in &open {
-            is_open[v] = true;
-        }
-        is_open
-    };
     for (v, &p) in positions.iter().enumerate() {
-        if !is_open[v]
+        if !open[v]
             && let Some(copies) = at.get_mut(&position_key(p))
         {
             copies.push(v as u32);
