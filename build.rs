@@ -1,8 +1,6 @@
 //! Composes each WGSL kernel from the files in `shaders/` and validates it with naga, so a
 //! kernel that does not parse or validate is a build error with naga's diagnostic. The composed
-//! sources land in `$OUT_DIR/<kernel>.wgsl`, which `src/gpu/shaders.rs` includes. The render
-//! shaders in `shaders/render/` are single files, validated the same way and copied to
-//! `$OUT_DIR/render_<name>.wgsl`, which `src/render/pipeline.rs` includes.
+//! sources land in `$OUT_DIR/<kernel>.wgsl`, which `src/gpu/shaders.rs` includes.
 
 use std::path::Path;
 
@@ -62,9 +60,6 @@ const KERNELS: &[(&str, &[&str])] = &[
     ("tangents", &["layout.wgsl", "tangents.wgsl"]),
 ];
 
-/// The render shaders in `shaders/render/`, each one self-contained file.
-const RENDER_SHADERS: &[&str] = &["shade"];
-
 fn main() {
     println!("cargo::rerun-if-changed=shaders");
     let out_dir = std::env::var("OUT_DIR").expect("cargo sets OUT_DIR");
@@ -79,13 +74,6 @@ fn main() {
         }
         validate(kernel, &source);
         let target = Path::new(&out_dir).join(format!("{kernel}.wgsl"));
-        std::fs::write(&target, &source).unwrap_or_else(|e| panic!("cannot write {}: {e}", target.display()));
-    }
-    for name in RENDER_SHADERS {
-        let path = Path::new("shaders").join("render").join(format!("{name}.wgsl"));
-        let source = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
-        validate(&format!("render/{name}"), &source);
-        let target = Path::new(&out_dir).join(format!("render_{name}.wgsl"));
         std::fs::write(&target, &source).unwrap_or_else(|e| panic!("cannot write {}: {e}", target.display()));
     }
 }

@@ -4,7 +4,7 @@
 set -euo pipefail
 work=target/docs-pictures
 rm -rf "$work" && mkdir -p "$work"
-cargo build --release --examples --bin sweepffd
+cargo build --release -p sweepffd-cli --examples --bin sweepffd
 ./target/release/sweepffd demo --out "$work/demo" --quiet
 ./target/release/sweepffd render --mesh "$work/demo/rest.obj" --rig "$work/demo/rig.json" \
   --pose "$work/demo/pose.json" --compare --show-sweeps --size 480x360 --view 90,15 --out docs/demo.png

@@ -56,10 +56,11 @@
 //! - [`synthetic`]: procedural meshes, rigs and poses.
 //! - [`limits`]: the largest inputs accepted, checked before allocating.
 //! - [`parallel`]: the CPU paths on every core (feature `parallel`) or on the calling thread.
-//! - `render` (feature `render`): headless pictures of meshes and their control sweeps (PNG).
-//! - `bench` (feature `cli`): the throughput measurements of `sweepffd bench`.
-//! - `view` (feature `viewer`, on by default): the interactive viewer, a winit window drawing
-//!   the GPU deformer's buffers, with direct manipulation (§4–5), undo and scripted sessions.
+//! - `bench` (feature `bench`): the throughput measurements of `sweepffd bench` and the
+//!   criterion benches.
+//!
+//! The command line, the interactive viewer and the PNG renderer are the workspace member
+//! `sweepffd-cli` (`cli/`), so that this crate's default build pulls no app crates.
 //!
 //! On the CPU, with files (features `formats` and `parallel`):
 //!
@@ -83,7 +84,7 @@
 //! # fn main() {}
 //! ```
 
-#[cfg(feature = "cli")]
+#[cfg(feature = "bench")]
 pub mod bench;
 pub mod bind;
 pub mod coeffs;
@@ -97,13 +98,9 @@ pub mod limits;
 pub mod mesh;
 pub mod normals;
 pub mod parallel;
-#[cfg(feature = "render")]
-pub mod render;
 pub mod rig;
 pub mod sweep;
 pub mod synthetic;
-#[cfg(feature = "viewer")]
-pub mod view;
 
 // What an embedder's frame loop names, and the two crates whose versions it must match.
 pub use coeffs::UNOWNED;

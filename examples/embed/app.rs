@@ -158,7 +158,7 @@ impl App {
         device.poll(wgpu::PollType::wait_indefinitely())?;
         let pixels = staging.slice(..).get_mapped_range()?.to_vec();
         let picture = image::RgbaImage::from_raw(self.size, self.size, pixels).ok_or("a picture of the wrong size")?;
-        sweepffd::render::save_png(&picture, path)?;
+        picture.save_with_format(path, image::ImageFormat::Png)?;
         Ok(())
     }
 }

@@ -3,7 +3,7 @@
 
 use std::time::{Duration, Instant};
 
-use sweepffd::view::script::{Player, load};
+use sweepffd_cli::view::script::{Player, load};
 
 use super::{Outcome, without_dir};
 

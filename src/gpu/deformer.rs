@@ -795,13 +795,13 @@ impl GpuDeformer {
     }
 
     /// Each deform dispatch's vertex range and binding buffer (for the bench).
-    #[cfg(feature = "cli")]
+    #[cfg(feature = "bench")]
     pub(crate) fn binding_chunks(&self) -> impl Iterator<Item = (&Range<u32>, &wgpu::Buffer)> {
         self.chunks.iter().map(|chunk| (&chunk.range, &chunk.bindings))
     }
 
     /// The rest rig's cell records, as the bind kernel reads them (for the bench).
-    #[cfg(feature = "cli")]
+    #[cfg(feature = "bench")]
     pub(crate) fn rest_cells(&self) -> &wgpu::Buffer {
         &self.rest_cells
     }

@@ -21,7 +21,7 @@ impl Rig {
 
     /// Fails, naming the sweep, if a falloff is wider than `mesh` (its bounding box diagonal):
     /// a band that wide would cover every part and is a units mistake.
-    pub(crate) fn check_falloffs_fit(&self, mesh: &Mesh, mesh_name: &str) -> Result<(), RigError> {
+    pub fn check_falloffs_fit(&self, mesh: &Mesh, mesh_name: &str) -> Result<(), RigError> {
         let diagonal = mesh.diagonal();
         match self.sweeps.iter().find(|sweep| sweep.falloff > diagonal) {
             Some(sweep) => Err(RigError::new(

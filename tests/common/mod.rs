@@ -4,9 +4,12 @@
 
 use std::path::PathBuf;
 
-/// The folder of shared test meshes, `../shared/meshes` relative to the crate root.
+/// The folder of shared test meshes, `../shared/meshes` relative to the workspace root (the
+/// folder holding `Cargo.lock`, above the command line's package).
 pub fn shared_meshes_dir() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/meshes")
+    let package = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = package.ancestors().find(|dir| dir.join("Cargo.lock").is_file()).unwrap_or(package);
+    root.join("../shared/meshes")
 }
 
 /// The path of a shared test mesh, or `None` (with a notice on stderr) when `../shared` is
@@ -155,21 +158,13 @@ pub fn worst_f32(a: &[f32], b: &[f32]) -> (f32, u32, usize) {
     worst
 }
 
-/// The `sweepffd` binary, run in `dir` with `XDG_RUNTIME_DIR` pointing at `dir` (a private
-/// temporary folder): on a machine with no desktop session Mesa's Vulkan drivers otherwise
-/// print warnings about it on stderr, which the tests compare.
-pub fn sweepffd(dir: &std::path::Path) -> std::process::Command {
-    let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_sweepffd"));
-    command.current_dir(dir).env("XDG_RUNTIME_DIR", dir);
-    command
-}
-
 pub mod app_buffer;
 pub mod autorig_report;
 pub mod bends;
 pub mod falloff_tubes;
 pub mod isas;
 pub mod normal_angles;
+pub mod star;
 mod teapot;
 mod twin;
 

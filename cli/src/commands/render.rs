@@ -1,0 +1,193 @@
+//! `sweepffd render`: a PNG of a mesh, rest or posed, optionally with its control sweeps, or
+//! rest and pose side by side.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use glam::DVec3;
+
+use super::CliResult;
+use super::bind::{is_empty_rig, load_inputs};
+use crate::render::{CLAY, Renderer, Scene, SweepStyle, ViewAngles, add_sweeps, save_png, union_bounds};
+use sweepffd::deform::deform_vertices;
+use sweepffd::mesh::Mesh;
+use sweepffd::sweep::Sweep;
+
+/// The arguments of `sweepffd render`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// The mesh (.obj or .ply).
+    #[arg(long)]
+    pub mesh: PathBuf,
+    /// The rest rig (JSON); needed by --pose and --show-sweeps.
+    #[arg(long)]
+    pub rig: Option<PathBuf>,
+    /// Draw the mesh deformed by this pose of the rig (bound and deformed on the CPU).
+    #[arg(long)]
+    pub pose: Option<PathBuf>,
+    /// Draw the control sweeps as translucent surfaces with a dark ring at each key.
+    #[arg(long)]
+    pub show_sweeps: bool,
+    /// Picture size WIDTHxHEIGHT in pixels (each panel's with --compare).
+    #[arg(long, default_value = "800x600", value_parser = parse_size)]
+    pub size: (u32, u32),
+    /// Camera AZIMUTH,ELEVATION in degrees: azimuth around +Y from +Z towards +X, elevation
+    /// above the XZ plane (Y is up).
+    #[arg(long, default_value = "30,20", value_parser = parse_view, allow_hyphen_values = true)]
+    pub view: crate::render::ViewAngles,
+    /// Draw rest (left) and pose (right) side by side, one camera, picture width 2×WIDTH.
+    #[arg(long)]
+    pub compare: bool,
+    /// Where to write the picture (.png).
+    #[arg(long)]
+    pub out: PathBuf,
+}
+
+/// Parses `--size WxH` (both at least 1).
+pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
+    let invalid = || format!("expected WIDTHxHEIGHT in pixels, such as 640x480, not {text:?}");
+    let (w, h) = text.split_once(['x', 'X']).ok_or_else(invalid)?;
+    let (w, h): (u32, u32) = (w.trim().parse().map_err(|_| invalid())?, h.trim().parse().map_err(|_| invalid())?);
+    if w == 0 || h == 0 {
+        return Err(format!("the picture size {w}x{h} has a zero side"));
+    }
+    Ok((w, h))
+}
+
+/// Parses `--view AZIMUTH,ELEVATION` in degrees.
+pub fn parse_view(text: &str) -> Result<ViewAngles, String> {
+    let invalid = || format!("expected AZIMUTH,ELEVATION in degrees, such as 30,20, not {text:?}");
+    let (a, e) = text.split_once(',').ok_or_else(invalid)?;
+    let (a, e): (f32, f32) = (a.trim().parse().map_err(|_| invalid())?, e.trim().parse().map_err(|_| invalid())?);
+    ViewAngles::try_new(a, e).map_err(|e| e.to_string())
+}
+
+/// The option combinations the contract refuses, checked before anything is read.
+fn check_options(args: &Args) -> CliResult {
+    if args.pose.is_some() && args.rig.is_none() {
+        return Err("--pose needs --rig (the rest rig the pose belongs to)".into());
+    }
+    if args.show_sweeps && args.rig.is_none() {
+        return Err("--show-sweeps needs --rig".into());
+    }
+    if args.compare && args.pose.is_none() {
+        return Err("--compare needs --pose (it draws rest and pose side by side)".into());
+    }
+    if !args.out.extension().is_some_and(|e| e.eq_ignore_ascii_case("png")) {
+        return Err(format!("{}: the picture is written as PNG; name it .png", args.out.display()).into());
+    }
+    Ok(())
+}
+
+pub fn run(args: &Args, quiet: bool) -> CliResult {
+    check_options(args)?;
+    let scenes = build_scenes(args)?;
+    let renderer = Renderer::new()?;
+    let start = Instant::now();
+    let (width, height) = args.size;
+    let picture = renderer.render_panels(&scenes, args.view, width, height)?;
+    let seconds = start.elapsed().as_secs_f64();
+    save_png(&picture, &args.out)?;
+    if !quiet {
+        println!(
+            "rendered {}x{} on {} in {seconds:.3} s -> {}",
+            picture.width(),
+            picture.height(),
+            renderer.context().info.name,
+            args.out.display()
+        );
+    }
+    Ok(())
+}
+
+/// The panels to draw: the mesh alone; rest or pose with the rig; rest and pose to compare.
+fn build_scenes(args: &Args) -> Result<Vec<Scene>, Box<dyn std::error::Error>> {
+    let Some(rig_path) = &args.rig else {
+        let mesh = Mesh::load(&args.mesh)?;
+        return Ok(vec![mesh_scene(&mesh, &mesh.positions)]);
+    };
+    let inputs = match load_inputs(&args.mesh, rig_path) {
+        Err(error) if is_empty_rig(&*error) => {
+            // A rig of no sweeps moves nothing and has no sweeps to show: the mesh alone.
+            eprintln!("notice: {error}; drawing the mesh as it is");
+            let mesh = Mesh::load(&args.mesh)?;
+            return Ok(vec![mesh_scene(&mesh, &mesh.positions)]);
+        }
+        loaded => loaded?,
+    };
+    let mesh = &inputs.mesh;
+    let rest = inputs.rig.rest();
+    let Some(pose_path) = &args.pose else {
+        let mut scenes = vec![mesh_scene(mesh, &mesh.positions)];
+        add_sweeps_if(args.show_sweeps, &mut scenes, &[rest]);
+        return Ok(scenes);
+    };
+    let posed = inputs.rig.load_pose(pose_path)?;
+    let bindings = inputs.rig.bind_mesh(mesh, &inputs.owners, &|_| {});
+    let mut deformed = vec![DVec3::ZERO; mesh.positions.len()];
+    deform_vertices(rest, &posed, &bindings, &mesh.positions, &mut deformed);
+    if let Some(i) = deformed.iter().position(|p| !p.is_finite()) {
+        return Err(format!("{}: vertex index {i} deforms to a non-finite position", pose_path.display()).into());
+    }
+    let posed_scene = mesh_scene(mesh, &deformed);
+    let mut scenes =
+        if args.compare { vec![mesh_scene(mesh, &mesh.positions), posed_scene] } else { vec![posed_scene] };
+    let sweeps: Vec<&[Sweep]> = if args.compare { vec![rest, &posed] } else { vec![&posed] };
+    add_sweeps_if(args.show_sweeps, &mut scenes, &sweeps);
+    Ok(scenes)
+}
+
+/// The mesh at `positions` in clay.
+fn mesh_scene(mesh: &Mesh, positions: &[DVec3]) -> Scene {
+    let mut scene = Scene::new();
+    scene.add_mesh(mesh, positions, CLAY);
+    scene
+}
+
+/// Adds `sweeps[i]` to `scenes[i]` when `show`, sized by the diagonal of all meshes together.
+fn add_sweeps_if(show: bool, scenes: &mut [Scene], sweeps: &[&[Sweep]]) {
+    if !show {
+        return;
+    }
+    let diagonal = union_bounds(scenes).map_or(1.0, |(lo, hi)| f64::from((hi - lo).length()));
+    let style = SweepStyle::for_diagonal(diagonal);
+    for (scene, sweeps) in scenes.iter_mut().zip(sweeps) {
+        add_sweeps(scene, sweeps, &style);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sizes_parse_and_zero_is_refused() {
+        assert_eq!(parse_size("320x240"), Ok((320, 240)));
+        assert_eq!(parse_size("64X32"), Ok((64, 32)));
+        assert!(parse_size("0x10").is_err());
+        assert!(parse_size("320").is_err());
+        assert!(parse_size("ax3").is_err());
+    }
+
+    #[test]
+    fn views_parse_and_steep_elevation_is_refused() {
+        assert_eq!(parse_view("90,-20"), Ok(ViewAngles { azimuth: 90.0, elevation: -20.0 }));
+        assert!(parse_view("0,95").is_err());
+        assert!(parse_view("30").is_err());
+    }
+
+    #[test]
+    fn out_must_be_png() {
+        let args = Args {
+            mesh: "m.obj".into(),
+            rig: None,
+            pose: None,
+            show_sweeps: false,
+            size: (1, 1),
+            view: ViewAngles::default(),
+            compare: false,
+            out: "x.jpg".into(),
+        };
+        assert!(check_options(&args).is_err());
+    }
+}

@@ -1,0 +1,14 @@
+//! The `sweepffd` commands end to end: bind, deform, pose, fit, autorig, volume, render, the viewer and the picture examples.
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod autorig;
+mod cli;
+mod edit_time;
+mod examples;
+mod falloff_cli;
+mod fit_cli;
+mod pose_cli;
+mod render;
+mod viewer;
