@@ -7,12 +7,8 @@
 
 use std::f64::consts::{FRAC_PI_2, TAU};
 
-use sweepffd::bind::{MeshBindings, bind_vertices};
-use sweepffd::deform::deform_vertices;
 use sweepffd::glam::{DQuat, DVec3};
-use sweepffd::gpu::DeformerDescriptor;
-use sweepffd::rig::VertexSelection;
-use sweepffd::{BindingSource, GpuContext, GpuDeformer, Key, Rig, RigSweep, wgpu};
+use sweepffd::{BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, Key, Rig, RigSweep, VertexSelection, wgpu};
 
 const INSTANCES: u32 = 5;
 const FRAMES: u32 = 30;
@@ -52,19 +48,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let rest_keys: Vec<Key> = (0..5)
         .map(|k| Key { center: DVec3::new(0.0, 0.5 * k as f64, 0.0), rotation: upright, radii: vec![0.3; 8] })
         .collect();
-    let sweep = RigSweep {
-        name: "tube".into(),
-        vertices: Some(VertexSelection::All),
-        keys: rest_keys.clone(),
-        knots: None,
-        parent: None,
-        falloff: 0.0,
-    };
+    let sweep = RigSweep::new("tube", rest_keys.clone()).owning(VertexSelection::All);
     let rig = Rig::new(vec![sweep])?;
-    let owners = rig.owners_of(positions.len(), &[], "tube")?;
+    let owners = rig.vertex_owners(positions.len())?;
 
     // 4. One deformer with INSTANCES instances: bound once on the GPU, one dispatch a frame.
-    let bindings = BindingSource::Bind { owners: &owners, bands: &[] };
+    let bindings = BindingSource::bind(&owners);
     let descriptor = DeformerDescriptor::new(rig.rest(), &positions, bindings)
         .with_triangles(&triangles)
         .with_instances(INSTANCES)
@@ -99,10 +88,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     // 7. Every instance against the f64 reference path (bind and Eq. 2 in f64 on the CPU).
     let rest: Vec<DVec3> = positions.iter().map(|&p| DVec3::from_array(p.map(f64::from))).collect();
-    let reference = MeshBindings { vertices: bind_vertices(rig.rest(), &owners, &rest, &|_| {}), bands: Vec::new() };
-    let (mut worst, mut expected) = (0.0f64, vec![DVec3::ZERO; rest.len()]);
+    let mut worst = 0.0f64;
     for (i, pose) in poses.iter().enumerate() {
-        deform_vertices(rig.rest(), pose.sweeps(), &reference, &rest, &mut expected);
+        let expected = rig.deform_reference(&owners, &rest, pose.sweeps());
         let gpu = deformer.read_instance_positions(i as u32)?;
         for (v, e) in expected.iter().enumerate() {
             let p = DVec3::new(gpu[3 * v] as f64, gpu[3 * v + 1] as f64, gpu[3 * v + 2] as f64);

@@ -4,36 +4,11 @@
 //! Deformable parts of a mesh are approximated by control sweep surfaces built from key
 //! cross-sections; every vertex is bound to a sweep by parameters (θ, t, d, h) and follows the
 //! sweep through Eq. 2 when the sweep is edited. An application hands over its wgpu device,
-//! builds a [`GpuDeformer`] once, and each frame poses its rigs and records the deformation into
-//! its own command encoder, then draws our buffers (`examples/embed.rs` is this, complete):
-//!
-//! ```no_run
-//! use sweepffd::gpu::DeformerDescriptor;
-//! use sweepffd::{BindingSource, GpuContext, GpuDeformer, Key, Rig, wgpu};
-//!
-//! # fn frame_loop(device: wgpu::Device, queue: wgpu::Queue, info: wgpu::AdapterInfo, rig: &Rig,
-//! #     positions: &[[f32; 3]], triangles: &[u32], keys: &[Vec<Key>])
-//! #     -> Result<(), Box<dyn std::error::Error>> {
-//! // Once: the app's device (requested with GpuDeformer::required_limits()), one bound mesh
-//! // with four instances, and storage for each instance's posed sweeps.
-//! let context = GpuContext::from_device(device.clone(), queue.clone(), info);
-//! let owners = rig.owners_of(positions.len(), &[], "mesh")?;
-//! let bindings = BindingSource::Bind { owners: &owners, bands: &[] };
-//! let descriptor =
-//!     DeformerDescriptor::new(rig.rest(), positions, bindings).with_triangles(triangles).with_instances(4);
-//! let mut deformer = GpuDeformer::new(&context, &descriptor)?;
-//! let mut poses: Vec<_> = (0..4).map(|_| rig.pose_buffer()).collect();
-//! // Each frame: nothing allocated in sweepffd's code.
-//! for (i, pose) in poses.iter_mut().enumerate() {
-//!     rig.pose_into(keys, pose)?;
-//!     deformer.set_pose(i as u32, pose.sweeps())?;
-//! }
-//! let mut encoder = device.create_command_encoder(&Default::default());
-//! deformer.encode(&mut encoder); // upload the poses, deform, normals
-//! // ... the app's render pass draws deformer.positions() and deformer.normals() ...
-//! queue.submit([encoder.finish()]);
-//! # Ok(()) }
-//! ```
+//! builds a [`GpuDeformer`] once from a [`DeformerDescriptor`] (a [`Rig`] of [`RigSweep`]s through
+//! [`Key`] cross-sections, f32 positions, a [`BindingSource`]), and each frame poses its rigs and
+//! records the deformation into its own command encoder, then draws our buffers.
+//! `examples/embed.rs` is that frame loop, complete and compile-checked, with every instance
+//! checked against the f64 reference ([`Rig::deform_reference`]).
 //!
 //! The data flows through the modules in order:
 //!
@@ -105,8 +80,8 @@ pub mod synthetic;
 // What an embedder's frame loop names, and the two crates whose versions it must match.
 pub use coeffs::UNOWNED;
 pub use glam;
-pub use gpu::{BindingSource, GpuContext, GpuDeformer, GpuError};
+pub use gpu::{BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, GpuError};
 pub use mesh::{Faces, Mesh};
-pub use rig::{Rig, RigError, RigSweep};
+pub use rig::{Rig, RigError, RigSweep, VertexSelection};
 pub use sweep::{Key, Sweep};
 pub use wgpu;

@@ -12,6 +12,7 @@
 
 pub mod blend;
 pub mod jacobian;
+mod reference;
 #[cfg(test)]
 mod tests;
 

@@ -58,6 +58,14 @@ pub enum BindingSource<'a> {
     Precomputed { bindings: &'a [GpuBinding], bands: &'a [BandRecord] },
 }
 
+impl<'a> BindingSource<'a> {
+    /// Bind on the GPU without falloff: `owners[i]` is the sweep owning vertex i, or
+    /// [`UNOWNED`](crate::coeffs::UNOWNED) ([`Rig::vertex_owners`](crate::Rig::vertex_owners)).
+    pub fn bind(owners: &'a [u32]) -> BindingSource<'a> {
+        BindingSource::Bind { owners, bands: &[] }
+    }
+}
+
 /// Deforms one mesh on the GPU by poses of one rig (Eq. 2), as one or many instances.
 ///
 /// Construction uploads the rest positions (once) and binds every owned vertex on the GPU; the
@@ -74,29 +82,7 @@ pub enum BindingSource<'a> {
 /// Meshes whose buffers exceed the device's storage binding size or workgroup count are split
 /// into chunks transparently; the position buffer is one buffer and must fit `max_buffer_size`.
 ///
-/// ```no_run
-/// # fn frame_loop(context: &sweepffd::gpu::GpuContext, rig: &sweepffd::rig::Rig,
-/// #     mesh: &sweepffd::mesh::Mesh, poses: &[Vec<Vec<sweepffd::sweep::Key>>])
-/// #     -> Result<(), Box<dyn std::error::Error>> {
-/// use sweepffd::gpu::{BindingSource, DeformerDescriptor, GpuDeformer};
-///
-/// let owners = rig.owners(mesh, "mesh")?;
-/// let bands = rig.band_weights(mesh, &owners); // empty without falloff
-/// let bindings = BindingSource::Bind { owners: &owners, bands: &bands };
-/// let rest = sweepffd::gpu::rest_positions(&mesh.positions);
-/// let triangles: Vec<u32> = mesh.faces.triangles().flatten().collect();
-/// let descriptor = DeformerDescriptor::new(rig.rest(), &rest, bindings).with_triangles(&triangles);
-/// let mut deformer = GpuDeformer::new(context, &descriptor)?;
-/// for keys in poses {
-///     let posed = rig.pose(keys)?; // f64 sweeps on the CPU: a few keys, not millions of vertices
-///     deformer.set_pose(0, &posed)?; // a few KB of coefficients, uploaded by encode
-///     let mut encoder = context.device.create_command_encoder(&Default::default());
-///     deformer.encode(&mut encoder); // upload, deform + normals dispatches
-///     // ... record the render pass that draws deformer.positions() and deformer.normals() ...
-///     context.queue.submit([encoder.finish()]);
-/// }
-/// # Ok(()) }
-/// ```
+/// `examples/embed.rs` is the frame loop, complete.
 #[derive(Debug)]
 pub struct GpuDeformer {
     context: GpuContext,

@@ -46,6 +46,34 @@ pub struct RigSweep {
     pub falloff: f64,
 }
 
+impl RigSweep {
+    /// A root sweep named `name` through the rest `keys`, owning no vertices, with chord-length
+    /// knots and a hard boundary; the `owning`, `with_*` methods set the rest.
+    pub fn new(name: impl Into<String>, keys: Vec<Key>) -> RigSweep {
+        RigSweep { name: name.into(), vertices: None, keys, knots: None, parent: None, falloff: 0.0 }
+    }
+
+    /// The same sweep owning `vertices`.
+    pub fn owning(self, vertices: VertexSelection) -> RigSweep {
+        RigSweep { vertices: Some(vertices), ..self }
+    }
+
+    /// The same sweep with explicit knots t_i (one per key, increasing).
+    pub fn with_knots(self, knots: Vec<f64>) -> RigSweep {
+        RigSweep { knots: Some(knots), ..self }
+    }
+
+    /// The same sweep as a child of `parent` in the hierarchy (§5).
+    pub fn with_parent(self, parent: ParentLink) -> RigSweep {
+        RigSweep { parent: Some(parent), ..self }
+    }
+
+    /// The same sweep with a falloff band of width `falloff` (mesh units along the surface).
+    pub fn with_falloff(self, falloff: f64) -> RigSweep {
+        RigSweep { falloff, ..self }
+    }
+}
+
 /// A validated rest rig: its sweeps and their rest sweep surfaces.
 #[derive(Clone, Debug)]
 pub struct Rig {

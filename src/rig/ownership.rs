@@ -24,6 +24,14 @@ impl Rig {
         self.owners_of(mesh.positions.len(), &groups, mesh_name)
     }
 
+    /// The owning sweep of each of `vertex_count` vertices of a mesh held as plain arrays,
+    /// without named groups (an index into [`Rig::sweeps`], or [`UNOWNED`]): sweeps select
+    /// [`VertexSelection::All`] or [`VertexSelection::Indices`]. Errors call the mesh "built in
+    /// code": a group named, an index out of range, a vertex claimed by two sweeps.
+    pub fn vertex_owners(&self, vertex_count: usize) -> Result<Vec<u32>, RigError> {
+        self.owners_of(vertex_count, &[], "built in code")
+    }
+
     /// The owning sweep of each of `vertex_count` vertices (an index into [`Rig::sweeps`], or
     /// [`UNOWNED`]), a sweep's [`VertexSelection::Groups`] looked up by name in `groups` (the
     /// first of a name counts; indices in any order, repeats allowed). `mesh_name` names the

@@ -85,14 +85,7 @@ pub fn tube_rig(tube: &Tube, keys: usize, samples: usize) -> Rig {
             Key::circle(DVec3::new(0.0, 0.0, z), DQuat::IDENTITY, tube.radius, samples)
         })
         .collect();
-    let sweep = RigSweep {
-        name: "tube".to_string(),
-        vertices: Some(VertexSelection::All),
-        keys,
-        knots: None,
-        parent: None,
-        falloff: 0.0,
-    };
+    let sweep = RigSweep::new("tube", keys).owning(VertexSelection::All);
     Rig::new(vec![sweep]).expect("a straight rig with distinct keys is valid")
 }
 
