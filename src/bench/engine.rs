@@ -26,16 +26,14 @@ pub(super) struct EngineComparisons {
 /// bent, twisted and tapered.
 fn posed_deformer(context: &GpuContext, tube: &Tube, rig: &Rig, instances: u32) -> Result<GpuDeformer, GpuError> {
     let mesh = tube.mesh();
-    let owners = rig.owners(&mesh, "tube").map_err(|e| GpuError::Input(e.to_string()))?;
+    let owners = rig.owners(&mesh, "tube")?;
     let positions = rest_positions(&mesh.positions);
     let triangles: Vec<u32> = mesh.faces.triangles().flatten().collect();
     let source = BindingSource::Bind { owners: &owners, bands: &[] };
     let descriptor =
         DeformerDescriptor::new(rig.rest(), &positions, source).with_triangles(&triangles).with_instances(instances);
     let mut deformer = GpuDeformer::new(context, &descriptor)?;
-    let posed: Vec<Sweep> = rig
-        .pose(&BendTwistTaper { bend: 1.2, twist: 1.7, taper: 0.6 }.keys(rig))
-        .map_err(|e| GpuError::Input(e.to_string()))?;
+    let posed: Vec<Sweep> = rig.pose(&BendTwistTaper { bend: 1.2, twist: 1.7, taper: 0.6 }.keys(rig))?;
     for i in 0..instances {
         deformer.set_pose(i, &posed)?;
     }

@@ -32,7 +32,7 @@ pub fn host_frame_seconds(
     let mut encoder =
         context.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd frame") });
     let start = Instant::now();
-    rig.pose_into(keys, posed).map_err(|e| GpuError::Input(e.to_string()))?;
+    rig.pose_into(keys, posed)?;
     deformer.set_pose(0, posed)?;
     deformer.encode(&mut encoder);
     let seconds = start.elapsed().as_secs_f64();
@@ -117,7 +117,7 @@ impl FrameBench {
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd frame") });
         let start = Instant::now();
-        let posed = self.scene.rig.pose(&self.scene.keys).map_err(|e| GpuError::Input(e.to_string()))?;
+        let posed = self.scene.rig.pose(&self.scene.keys)?;
         self.deformer.set_pose(0, &posed)?;
         self.deformer.encode(&mut encoder);
         let seconds = start.elapsed().as_secs_f64();

@@ -223,7 +223,7 @@ impl GpuBench {
     /// readback).
     pub fn time_frame(&mut self) -> Result<f64, GpuError> {
         let start = Instant::now();
-        let posed = self.scene.rig.pose(&self.scene.keys).map_err(|e| GpuError::Input(e.to_string()))?;
+        let posed = self.scene.rig.pose(&self.scene.keys)?;
         self.deformer.set_pose(0, &posed)?;
         let device = &self.context.device;
         let mut encoder =

@@ -13,23 +13,24 @@ use crate::synthetic::Tube;
 /// at) and the two cap centers.
 pub const MIN_BENCH_VERTICES: usize = 3 * 256 + 2;
 
-/// A bench size or run count that cannot be honoured.
+/// A bench size or run count that cannot be honoured; each message starts with the field at
+/// fault (`vertices`, `runs`).
 #[derive(Clone, Debug, Error, PartialEq, Eq)]
 pub enum BenchSizeError {
     /// Fewer vertices than the smallest tube.
     #[error(
-        "--vertices {0} is below the smallest synthetic tube, {MIN_BENCH_VERTICES} vertices (3 rings of 256 and \
+        "vertices {0} is below the smallest synthetic tube, {MIN_BENCH_VERTICES} vertices (3 rings of 256 and \
          2 cap centers)"
     )]
     TooFewVertices(usize),
     /// More vertices than [`MAX_BENCH_VERTICES`].
-    #[error("--vertices {0} is over the limit of {MAX_BENCH_VERTICES} vertices")]
+    #[error("vertices {0} is over the limit of {MAX_BENCH_VERTICES} vertices")]
     TooManyVertices(usize),
     /// No timed run.
-    #[error("--runs must be at least 1, found 0")]
+    #[error("runs must be at least 1, found 0")]
     NoRuns,
     /// More runs than [`MAX_BENCH_RUNS`].
-    #[error("--runs {0} is over the limit of {MAX_BENCH_RUNS} runs")]
+    #[error("runs {0} is over the limit of {MAX_BENCH_RUNS} runs")]
     TooManyRuns(usize),
 }
 
@@ -86,11 +87,11 @@ mod tests {
         assert_eq!(tube_vertex_count(769), Err(BenchSizeError::TooFewVertices(769)));
         assert_eq!(
             tube_vertex_count(514).unwrap_err().to_string(),
-            "--vertices 514 is below the smallest synthetic tube, 770 vertices (3 rings of 256 and 2 cap centers)"
+            "vertices 514 is below the smallest synthetic tube, 770 vertices (3 rings of 256 and 2 cap centers)"
         );
         assert_eq!(
             tube_vertex_count(MAX_BENCH_VERTICES + 1).unwrap_err().to_string(),
-            "--vertices 33554433 is over the limit of 33554432 vertices"
+            "vertices 33554433 is over the limit of 33554432 vertices"
         );
     }
 
@@ -98,7 +99,7 @@ mod tests {
     fn run_counts_from_one_to_the_limit() {
         assert_eq!(check_runs(1), Ok(()));
         assert_eq!(check_runs(MAX_BENCH_RUNS), Ok(()));
-        assert_eq!(check_runs(0).unwrap_err().to_string(), "--runs must be at least 1, found 0");
-        assert_eq!(check_runs(10_001).unwrap_err().to_string(), "--runs 10001 is over the limit of 10000 runs");
+        assert_eq!(check_runs(0).unwrap_err().to_string(), "runs must be at least 1, found 0");
+        assert_eq!(check_runs(10_001).unwrap_err().to_string(), "runs 10001 is over the limit of 10000 runs");
     }
 }

@@ -10,7 +10,7 @@
 use std::time::Instant;
 
 use super::protrusions::protrusions;
-use super::{Fit, FitError, FitOptions, fit};
+use super::{Fit, FitError, FitOptions, OptionError, fit};
 use crate::mesh::Mesh;
 use crate::rig::{FORMAT, RigDocument, VERSION, VertexSelection};
 
@@ -79,10 +79,7 @@ impl Autorig {
 /// leaving the mesh as it is.
 pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitError> {
     if !(options.min_length.is_finite() && options.min_length > 0.0) {
-        return Err(FitError::Options(format!(
-            "--min-length must be a positive fraction of the mesh's size, found {}",
-            options.min_length
-        )));
+        return Err(FitError::Options(OptionError::MinLength(options.min_length)));
     }
     let started = Instant::now();
     let (lo, hi) = mesh

@@ -2,6 +2,7 @@
 
 use thiserror::Error;
 
+use crate::limits::{MAX_KEYS_PER_SWEEP, MAX_RADII_PER_KEY};
 use crate::sweep::SweepError;
 
 /// A fit that could not be made; the caller adds the mesh and the part's name.
@@ -9,7 +10,7 @@ use crate::sweep::SweepError;
 pub enum FitError {
     /// The options themselves are unusable.
     #[error("{0}")]
-    Options(String),
+    Options(#[from] OptionError),
     /// A selected vertex is not in the mesh.
     #[error("vertex {index} is out of range: the mesh has {count} vertices")]
     VertexOutOfRange { index: u32, count: usize },
@@ -26,9 +27,48 @@ pub enum FitError {
     #[error("the part has no extent along its axis")]
     Flat,
     /// No key plane cuts the part.
-    #[error("no key plane cuts the part; give an --axis that runs through it")]
+    #[error("no key plane cuts the part; give an axis that runs through it")]
     NoSection,
     /// The fitted keys do not make a sweep.
     #[error("the fitted keys do not make a sweep: {0}")]
     Sweep(#[from] SweepError),
+}
+
+/// An option of [`FitOptions`](super::FitOptions) or
+/// [`AutorigOptions`](super::autorig::AutorigOptions) that cannot be honoured: the field at
+/// fault (as [`OptionError::field`] names it) and its value.
+#[derive(Debug, Error, Clone, Copy, PartialEq)]
+pub enum OptionError {
+    #[error("keys must be at least 2, found {0}")]
+    TooFewKeys(usize),
+    #[error("radii must be at least 3, found {0}")]
+    TooFewRadii(usize),
+    #[error("radii {0} is over the limit of {MAX_RADII_PER_KEY} radii per key")]
+    TooManyRadii(usize),
+    #[error("keys {0} is over the limit of {MAX_KEYS_PER_SWEEP} keys per sweep")]
+    TooManyKeys(usize),
+    #[error("max_keys {0} is over the limit of {MAX_KEYS_PER_SWEEP} keys per sweep")]
+    TooManyMaxKeys(usize),
+    #[error("max_keys ({max_keys}) must be at least keys ({keys})")]
+    MaxKeysBelowKeys { max_keys: usize, keys: usize },
+    #[error("tolerance must be a positive number, found {0}")]
+    Tolerance(f64),
+    #[error("falloff must be a finite width of at least 0 (mesh units), found {0}")]
+    Falloff(f64),
+    #[error("min_length must be a positive fraction of the mesh's size, found {0}")]
+    MinLength(f64),
+}
+
+impl OptionError {
+    /// The field of the options at fault (the first named, where two are compared).
+    pub fn field(&self) -> &'static str {
+        match self {
+            OptionError::TooFewKeys(_) | OptionError::TooManyKeys(_) => "keys",
+            OptionError::TooFewRadii(_) | OptionError::TooManyRadii(_) => "radii",
+            OptionError::TooManyMaxKeys(_) | OptionError::MaxKeysBelowKeys { .. } => "max_keys",
+            OptionError::Tolerance(_) => "tolerance",
+            OptionError::Falloff(_) => "falloff",
+            OptionError::MinLength(_) => "min_length",
+        }
+    }
 }

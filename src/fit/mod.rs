@@ -91,7 +91,7 @@ pub mod star;
 
 use glam::DVec3;
 
-pub use error::FitError;
+pub use error::{FitError, OptionError};
 pub use falloff::DEFAULT_FALLOFF_FRACTION;
 pub use part::Part;
 pub use quality::FitQuality;
@@ -132,31 +132,30 @@ impl Default for FitOptions {
 
 impl FitOptions {
     fn check(&self) -> Result<(), FitError> {
-        let fail = |message: String| Err(FitError::Options(message));
+        let fail = |error: OptionError| Err(FitError::Options(error));
         if self.keys < 2 {
-            return fail(format!("--keys must be at least 2, found {}", self.keys));
+            return fail(OptionError::TooFewKeys(self.keys));
         }
         if self.radii < 3 {
-            return fail(format!("--radii must be at least 3, found {}", self.radii));
+            return fail(OptionError::TooFewRadii(self.radii));
         }
         if self.radii > MAX_RADII_PER_KEY {
-            return fail(format!("--radii {} is over the limit of {MAX_RADII_PER_KEY} radii per key", self.radii));
+            return fail(OptionError::TooManyRadii(self.radii));
         }
         if self.keys > MAX_KEYS_PER_SWEEP {
-            return fail(format!("--keys {} is over the limit of {MAX_KEYS_PER_SWEEP} keys per sweep", self.keys));
+            return fail(OptionError::TooManyKeys(self.keys));
         }
         if self.max_keys > MAX_KEYS_PER_SWEEP {
-            let max_keys = self.max_keys;
-            return fail(format!("--max-keys {max_keys} is over the limit of {MAX_KEYS_PER_SWEEP} keys per sweep"));
+            return fail(OptionError::TooManyMaxKeys(self.max_keys));
         }
         if self.max_keys < self.keys {
-            return fail(format!("--max-keys ({}) must be at least --keys ({})", self.max_keys, self.keys));
+            return fail(OptionError::MaxKeysBelowKeys { max_keys: self.max_keys, keys: self.keys });
         }
         if !(self.tolerance > 0.0 && self.tolerance.is_finite()) {
-            return fail(format!("--tolerance must be a positive number, found {}", self.tolerance));
+            return fail(OptionError::Tolerance(self.tolerance));
         }
         if let Some(falloff) = self.falloff.filter(|w| !(w.is_finite() && *w >= 0.0)) {
-            return fail(format!("--falloff must be a finite width of at least 0 (mesh units), found {falloff}"));
+            return fail(OptionError::Falloff(falloff));
         }
         Ok(())
     }

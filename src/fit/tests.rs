@@ -134,23 +134,27 @@ fn bad_options_and_parts_are_refused() {
     let keys: Vec<Key> = (0..3).map(|i| Key::circle(DVec3::Z * i as f64, DQuat::IDENTITY, 1.0, 8)).collect();
     let mesh = surface_mesh(&Sweep::try_new(&keys, None).unwrap(), 16, 8);
     let all: Vec<u32> = (0..mesh.positions.len() as u32).collect();
-    let with = |o: FitOptions| fit(&mesh, &all, &o).unwrap_err().to_string();
-    assert_eq!(with(FitOptions { keys: 1, ..FitOptions::default() }), "--keys must be at least 2, found 1");
-    assert_eq!(with(FitOptions { radii: 2, ..FitOptions::default() }), "--radii must be at least 3, found 2");
-    assert_eq!(with(FitOptions { max_keys: 3, ..FitOptions::default() }), "--max-keys (3) must be at least --keys (6)");
-    assert_eq!(
-        with(FitOptions { radii: 10_000_000, ..FitOptions::default() }),
-        "--radii 10000000 is over the limit of 4096 radii per key"
-    );
-    assert_eq!(
-        with(FitOptions { keys: 2000, max_keys: 2000, ..FitOptions::default() }),
-        "--keys 2000 is over the limit of 1024 keys per sweep"
-    );
-    assert_eq!(
-        with(FitOptions { max_keys: usize::MAX, ..FitOptions::default() }),
-        "--max-keys 18446744073709551615 is over the limit of 1024 keys per sweep"
-    );
-    assert_eq!(with(FitOptions { axis: Some(vec![DVec3::ONE]), ..FitOptions::default() }), FitError::Axis.to_string());
+    let with = |o: FitOptions| fit(&mesh, &all, &o).unwrap_err();
+    let option = |o: FitOptions| match with(o) {
+        FitError::Options(error) => error,
+        other => panic!("not an option error: {other}"),
+    };
+    assert_eq!(option(FitOptions { keys: 1, ..FitOptions::default() }), OptionError::TooFewKeys(1));
+    assert_eq!(option(FitOptions { radii: 2, ..FitOptions::default() }), OptionError::TooFewRadii(2));
+    let below = option(FitOptions { max_keys: 3, ..FitOptions::default() });
+    assert_eq!(below, OptionError::MaxKeysBelowKeys { max_keys: 3, keys: 6 });
+    assert_eq!((below.field(), below.to_string().as_str()), ("max_keys", "max_keys (3) must be at least keys (6)"));
+    let radii = option(FitOptions { radii: 10_000_000, ..FitOptions::default() });
+    assert_eq!(radii.to_string(), "radii 10000000 is over the limit of 4096 radii per key");
+    let keys = option(FitOptions { keys: 2000, max_keys: 2000, ..FitOptions::default() });
+    assert_eq!(keys, OptionError::TooManyKeys(2000));
+    let max_keys = option(FitOptions { max_keys: usize::MAX, ..FitOptions::default() });
+    assert_eq!(max_keys.to_string(), "max_keys 18446744073709551615 is over the limit of 1024 keys per sweep");
+    // The library names fields, never the command line's flags.
+    for error in [below, radii, keys, max_keys] {
+        assert!(!error.to_string().contains("--"), "{error}");
+    }
+    assert_eq!(with(FitOptions { axis: Some(vec![DVec3::ONE]), ..FitOptions::default() }), FitError::Axis);
     let error = fit(&mesh, &[0, 1, 2], &FitOptions::default()).unwrap_err();
     assert_eq!(error, FitError::TooFewVertices(3));
     let error = fit(&mesh, &[0, 1, 2, 500], &FitOptions::default()).unwrap_err();
@@ -277,7 +281,7 @@ fn the_falloff_is_the_users_or_a_fraction_of_the_parts_length() {
     for bad in [-0.5, f64::NAN, f64::INFINITY] {
         assert_eq!(
             with(bad).unwrap_err().to_string(),
-            format!("--falloff must be a finite width of at least 0 (mesh units), found {bad}")
+            format!("falloff must be a finite width of at least 0 (mesh units), found {bad}")
         );
     }
 }

@@ -24,6 +24,7 @@ use self::instances::{InstanceDispatch, Numbering, PosedCells, PositionTargets};
 use self::normal_coords::NormalCoordinates;
 use self::set_bands::{BandMember, Rebanding};
 use self::uploads::PoseUploads;
+use super::InputError;
 use super::bands::{BandPlan, BandSource, BandStage};
 use super::binder::Binder;
 use super::buffers::{
@@ -218,10 +219,11 @@ impl GpuDeformer {
         let device = &context.device;
         let device_limits = device.limits();
         if device_limits.max_storage_buffers_per_shader_stage < STORAGE_BUFFERS_NEEDED {
-            return Err(GpuError::Input(format!(
-                "the device allows {} storage buffers per shader stage; binding needs {STORAGE_BUFFERS_NEEDED}",
-                device_limits.max_storage_buffers_per_shader_stage
-            )));
+            return Err(InputError::TooFewStorageBuffers {
+                allowed: device_limits.max_storage_buffers_per_shader_stage,
+                needed: STORAGE_BUFFERS_NEEDED,
+            }
+            .into());
         }
         let limits = ChunkLimits::of(&device_limits);
         let vertex_count = positions.len() as u32;
@@ -240,18 +242,19 @@ impl GpuDeformer {
         check_fits("the position buffer", targets.bytes(), limits.max_buffer)?;
         if let Some(output) = output {
             if output.offset % limits.offset_alignment != 0 {
-                return Err(GpuError::Input(format!(
-                    "the output offset {} is not a multiple of the device's storage offset alignment {}",
-                    output.offset, limits.offset_alignment
-                )));
+                return Err(InputError::OutputOffsetMisaligned {
+                    offset: output.offset,
+                    alignment: limits.offset_alignment,
+                }
+                .into());
             }
             if let Some(buffer) = output.buffers().find(|b| output.offset + targets.bytes() > b.size()) {
-                return Err(GpuError::Input(format!(
-                    "the output buffer holds {} bytes; the positions need {} from offset {}",
-                    buffer.size(),
-                    targets.bytes(),
-                    output.offset
-                )));
+                return Err(InputError::OutputTooSmall {
+                    size: buffer.size(),
+                    needed: targets.bytes(),
+                    offset: output.offset,
+                }
+                .into());
             }
         }
 
@@ -554,10 +557,7 @@ impl GpuDeformer {
     /// exist.
     pub fn set_pose(&mut self, instance: u32, posed: &[Sweep]) -> Result<(), GpuError> {
         if instance >= self.targets.instances {
-            return Err(GpuError::Input(format!(
-                "instance {instance} of a deformer of {} instances",
-                self.targets.instances
-            )));
+            return Err(InputError::InstanceOutOfRange { instance, instances: self.targets.instances }.into());
         }
         self.coefficients.update(posed)?;
         let n = self.coefficients.cells.len();
@@ -687,7 +687,7 @@ impl GpuDeformer {
     pub fn read_instance_tangents(&self, instance: u32) -> Result<Option<Vec<[f32; 4]>>, GpuError> {
         let Some(buffer) = self.tangents() else { return Ok(None) };
         if instance >= self.targets.instances {
-            return Err(GpuError::Input(format!("instance {instance} of {}", self.targets.instances)));
+            return Err(InputError::InstanceOutOfRange { instance, instances: self.targets.instances }.into());
         }
         let first = self.targets.instance_offset(instance) / POSITION_STRIDE * TANGENT_STRIDE;
         let bytes = read_bytes(&self.context, buffer, first, self.vertex_count as u64 * TANGENT_STRIDE)?;
@@ -711,7 +711,7 @@ impl GpuDeformer {
 
     fn read_instance(&self, buffer: &wgpu::Buffer, instance: u32) -> Result<Vec<f32>, GpuError> {
         if instance >= self.targets.instances {
-            return Err(GpuError::Input(format!("instance {instance} of {}", self.targets.instances)));
+            return Err(InputError::InstanceOutOfRange { instance, instances: self.targets.instances }.into());
         }
         let size = self.vertex_count as u64 * POSITION_STRIDE;
         // The normals are laid out as the deformer's own positions, from byte 0.
@@ -812,8 +812,7 @@ pub(super) fn check_weights(
     bound: impl Fn(usize) -> bool,
 ) -> Result<(), GpuError> {
     let band = |b: &BandWeight| (b.vertex, b.weight, b.neighbour);
-    check_bands(weights, band, sweeps, bound)
-        .map_err(|()| GpuError::Input("the falloff bands are not sorted, owned and in range".into()))
+    check_bands(weights, band, sweeps, bound).map_err(|()| InputError::BandsOutOfOrder.into())
 }
 
 /// Whether `bands`, each seen as (vertex, weight, second influence), are sorted by vertex, each

@@ -2,7 +2,9 @@
 
 use thiserror::Error;
 
+use super::InputError;
 use crate::coeffs::StructureMismatch;
+use crate::rig::RigError;
 
 /// An error of the GPU engine. wgpu validation errors are caught with error scopes and
 /// returned here, never as panics.
@@ -19,7 +21,9 @@ pub enum GpuError {
     #[error("{what} needs {needed} bytes in one buffer, more than this device allows ({limit} bytes)")]
     TooLarge { what: &'static str, needed: u64, limit: u64 },
     #[error("invalid input for the GPU deformer: {0}")]
-    Input(String),
+    Input(#[from] InputError),
+    #[error("invalid input for the GPU deformer: {0}")]
+    Rig(#[from] RigError),
     #[error("wgpu reported a validation error: {0}")]
     Validation(String),
     #[error("the GPU ran out of memory: {0}")]

@@ -14,6 +14,7 @@ mod chunks;
 mod context;
 pub(crate) mod deformer;
 mod error;
+mod input_error;
 mod kernel_cache;
 pub mod kernels;
 mod normals_pass;
@@ -30,6 +31,7 @@ pub use deformer::{
     OutputBuffer,
 };
 pub use error::GpuError;
+pub use input_error::InputError;
 pub use kernels::DeformVariant;
 pub use readback::{read_bytes, read_staging, wait};
 pub use tangents_pass::TANGENT_STRIDE;

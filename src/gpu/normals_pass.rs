@@ -15,6 +15,7 @@ use wgpu::util::DeviceExt;
 
 use std::sync::Arc;
 
+use super::InputError;
 use super::buffers::{POSITION_STRIDE, check_fits, params_buffer, window};
 use super::chunks::{ChunkLimits, dispatch_grid};
 use super::kernels::Kernel;
@@ -144,7 +145,7 @@ impl NormalsStage {
         let device = &context.device;
         let total = (instances.max(1) as u64 - 1) * stride as u64 + vertex_count as u64;
         if total > FAN_INDEX as u64 {
-            return Err(GpuError::Input(format!("{total} vertices in all instances are more than the normals index")));
+            return Err(InputError::TooManyNormalVertices { vertices: total }.into());
         }
         let total = total as u32;
         let adjacency = NormalAdjacency::new(faces, vertex_count as usize);
@@ -204,9 +205,7 @@ impl NormalsPlan<'_> {
     fn dispatches(&self, device: &wgpu::Device, vertices: &[u32]) -> Result<(Vec<Dispatch>, u64), GpuError> {
         let n = self.stride;
         let row = |g: u32| self.adjacency.fans_of((g % n) as usize).len() as u64;
-        let chunks = list_chunks(vertices, POSITION_STRIDE, row, self.limits).ok_or_else(|| {
-            GpuError::Input("a vertex has more incident triangles than one storage binding holds".into())
-        })?;
+        let chunks = list_chunks(vertices, POSITION_STRIDE, row, self.limits).ok_or(InputError::TriangleFanTooLarge)?;
         let mut list_bytes = 0u64;
         let dispatches = chunks
             .iter()

@@ -11,6 +11,7 @@ use wgpu::util::DeviceExt;
 
 use std::sync::Arc;
 
+use super::InputError;
 use super::buffers::{POSITION_STRIDE, check_fits, params_buffer, window};
 use super::chunks::{ChunkLimits, dispatch_grid};
 use super::kernels::Kernel;
@@ -64,10 +65,10 @@ impl TangentStage {
         limits: &ChunkLimits,
     ) -> Result<TangentStage, GpuError> {
         if rest_tangents.len() != vertex_count as usize {
-            return Err(GpuError::Input(format!("{} rest tangents for {vertex_count} vertices", rest_tangents.len())));
+            return Err(InputError::TangentCount { tangents: rest_tangents.len(), vertices: vertex_count }.into());
         }
         if let Some(i) = rest_tangents.iter().position(|t| !t.iter().all(|c| c.is_finite())) {
-            return Err(GpuError::Input(format!("rest tangent {i} is not finite")));
+            return Err(InputError::TangentNotFinite { index: i }.into());
         }
         let device = &context.device;
         let total = (instances.max(1) as u64 - 1) * stride as u64 + vertex_count as u64;
@@ -136,8 +137,7 @@ impl TangentStage {
 impl TangentPlan<'_> {
     /// The dispatches computing the tangents of `vertices` (ascending, over all instances).
     fn dispatches(&self, device: &wgpu::Device, vertices: &[u32]) -> Result<Vec<Dispatch>, GpuError> {
-        let chunks = list_chunks(vertices, TANGENT_STRIDE, |_| 0, self.limits)
-            .ok_or_else(|| GpuError::Input("a vertex's tangent does not fit one storage binding".into()))?;
+        let chunks = list_chunks(vertices, TANGENT_STRIDE, |_| 0, self.limits).ok_or(InputError::TangentTooLarge)?;
         let dispatches = chunks
             .iter()
             .map(|chunk| {

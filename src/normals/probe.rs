@@ -25,8 +25,8 @@ use crate::bind::{SweepBinder, VertexBinding};
 use crate::deform::deform_vertex;
 use crate::deform::jacobian::{deformed_normal, normal_coordinates};
 use crate::parallel::prelude::*;
+use crate::rig::BendTwistTaper;
 use crate::sweep::{Key, Sweep};
-use crate::synthetic::BendTwistTaper;
 
 /// The probe pose: each sweep bent by about 30°, twisted by about 30° and tapered to 0.8 along
 /// its knots (§4, Fig. 7), a moderate animator's pose.

@@ -7,6 +7,7 @@
 //! and radius counts); posed sweeps reuse the rest knots, so a vertex bound between keys i and
 //! i+1 stays between them.
 
+mod bend_twist_taper;
 mod binding;
 #[cfg(feature = "json")]
 pub mod bindings_file;
@@ -20,6 +21,7 @@ mod pose_into;
 
 use std::path::{Path, PathBuf};
 
+pub use bend_twist_taper::BendTwistTaper;
 pub use document::{FORMAT, KeyDocument, LinkKind, ParentLink, RigDocument, SweepDocument, VERSION, VertexSelection};
 pub use error::{RigError, RigErrorKind};
 pub use links::{KeyBinding, Link};

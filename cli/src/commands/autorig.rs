@@ -8,15 +8,16 @@ use std::time::Instant;
 use serde::Serialize;
 
 use super::CliResult;
+use super::args::MeshArg;
+use super::flags::fit_error;
 use sweepffd::fit::autorig::{AutorigOptions, autorig};
 use sweepffd::mesh::{Mesh, write_atomically};
 
 /// The arguments of `sweepffd autorig`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// The mesh (.obj, .ply, .off, .gltf or .glb).
-    #[arg(long)]
-    pub mesh: PathBuf,
+    #[command(flatten)]
+    pub mesh: MeshArg,
     /// Where to write the rig.
     #[arg(long)]
     pub out: PathBuf,
@@ -66,8 +67,8 @@ struct PartReport {
 
 pub fn run(args: &Args, quiet: bool) -> CliResult {
     let started = Instant::now();
-    let mesh = Mesh::load(&args.mesh)?;
-    let file = args.mesh.display();
+    let mesh = Mesh::load(&args.mesh.mesh)?;
+    let file = args.mesh.mesh.display();
     if mesh.positions.is_empty() || mesh.faces.triangles().next().is_none() {
         return Err(format!("{file}: the mesh has no faces; nothing to rig").into());
     }
@@ -75,7 +76,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
         return Err(format!("{file}: vertex {v} has a non-finite coordinate; nothing was written").into());
     }
     let options = AutorigOptions { min_length: args.min_length, max_parts: args.max_parts, falloff: args.falloff };
-    let rigged = autorig(&mesh, &options).map_err(|e| format!("{file}: {e}; nothing was written"))?;
+    let rigged = autorig(&mesh, &options).map_err(|e| format!("{file}: {}; nothing was written", fit_error(&e)))?;
     let document = rigged.document();
     let text = document.try_to_json(&args.out)?;
     write_atomically(&args.out, |out| out.write_all(text.as_bytes()))

@@ -35,7 +35,8 @@ pub struct Args {
 }
 
 pub fn run(args: &Args, quiet: bool) -> CliResult {
-    check_runs(args.runs)?;
+    // The engine names the field; the command line, the flag that sets it.
+    check_runs(args.runs).map_err(|e| format!("--{e}"))?;
     let scene = match (&args.mesh, &args.rig) {
         (Some(mesh_path), Some(rig_path)) => {
             let mesh = Mesh::load(mesh_path)?;
@@ -43,7 +44,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
             BenchScene::new(mesh, rig, &mesh_path.display().to_string())?
         }
         (None, None) => {
-            let vertices = tube_vertex_count(args.vertices)?;
+            let vertices = tube_vertex_count(args.vertices).map_err(|e| format!("--{e}"))?;
             if vertices != args.vertices && !quiet {
                 eprintln!(
                     "note: measuring {vertices} vertices, the largest synthetic tube with at most --vertices {} \

@@ -4,6 +4,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use super::CliResult;
+use super::args::{MeshArg, RigArg};
 use super::backend::{Backend, Device, resolve};
 use super::progress::vertex_bar;
 use sweepffd::bind::MeshBindings;
@@ -18,12 +19,10 @@ use sweepffd::rig::{Rig, RigError, RigErrorKind};
 /// The arguments of `sweepffd bind`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// The mesh (.obj, .ply, .off, .gltf or .glb).
-    #[arg(long)]
-    pub mesh: PathBuf,
-    /// The rest rig (JSON).
-    #[arg(long)]
-    pub rig: PathBuf,
+    #[command(flatten)]
+    pub mesh: MeshArg,
+    #[command(flatten)]
+    pub rig: RigArg,
     /// Where to write the bindings file.
     #[arg(long)]
     pub out: PathBuf,
@@ -91,7 +90,7 @@ pub fn bind_with_progress(inputs: &Inputs, quiet: bool) -> MeshBindings {
 
 pub fn run(args: &Args, quiet: bool) -> CliResult {
     let out = &args.out;
-    let inputs = load_inputs(&args.mesh, &args.rig)?;
+    let inputs = load_inputs(&args.mesh.mesh, &args.rig.rig)?;
     let context = resolve(args.backend, quiet)?;
     let start = Instant::now();
     let bindings = match &context {

@@ -6,6 +6,7 @@ use std::time::Instant;
 use glam::{DVec3, Vec3};
 
 use super::CliResult;
+use super::args::{MeshArg, PoseArg, RigArg};
 use super::backend::{Backend, Device, resolve};
 use super::bind::{Inputs, bind_with_progress, is_empty_rig, load_inputs};
 use sweepffd::bind::falloff::BandWeight;
@@ -15,21 +16,18 @@ use sweepffd::cpu_fast::FastMesh;
 use sweepffd::deform::deform_vertices;
 use sweepffd::gpu::{BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, GpuError};
 use sweepffd::mesh::{Format, Mesh};
-use sweepffd::rig::bindings_file::BindingsFile;
+use sweepffd::rig::bindings_file::{BindingsFile, BindingsFileError, MadeFor};
 use sweepffd::sweep::Sweep;
 
 /// The arguments of `sweepffd deform`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// The mesh (.obj, .ply, .off, .gltf or .glb).
-    #[arg(long)]
-    pub mesh: PathBuf,
-    /// The rest rig (JSON).
-    #[arg(long)]
-    pub rig: PathBuf,
-    /// The pose: a rig file with the same sweeps and key counts.
-    #[arg(long)]
-    pub pose: PathBuf,
+    #[command(flatten)]
+    pub mesh: MeshArg,
+    #[command(flatten)]
+    pub rig: RigArg,
+    #[command(flatten)]
+    pub pose: PoseArg,
     /// Where to write the deformed mesh (.obj, .ply, .off, .gltf or .glb).
     #[arg(long)]
     pub out: PathBuf,
@@ -45,21 +43,27 @@ pub struct Args {
 pub fn run(args: &Args, quiet: bool) -> CliResult {
     // Refuse an unsupported output before any work is done.
     Format::of(&args.out)?;
-    let inputs = match load_inputs(&args.mesh, &args.rig) {
+    let inputs = match load_inputs(&args.mesh.mesh, &args.rig.rig) {
         Err(error) if is_empty_rig(&*error) => {
             // A rig of no sweeps moves nothing: the mesh is written as it is.
-            let mesh = Mesh::load(&args.mesh)?;
+            let mesh = Mesh::load(&args.mesh.mesh)?;
             mesh.save(&args.out, &mesh.positions)?;
             eprintln!("notice: {error}; wrote the mesh unchanged to {}", args.out.display());
             return Ok(());
         }
         loaded => loaded?,
     };
-    let posed = inputs.rig.load_pose(&args.pose)?;
+    let posed = inputs.rig.load_pose(&args.pose.pose)?;
     let saved = match &args.bindings {
         Some(path) => {
             let file = BindingsFile::load(path)?;
-            file.check_matches(&inputs.rig, &inputs.mesh.positions, path)?;
+            file.check_matches(&inputs.rig, &inputs.mesh.positions, path).map_err(|e| match e {
+                // The engine says what the file was made for; the command line says what to do.
+                BindingsFileError::Mismatch { made_for: MadeFor::AnotherRig | MadeFor::AnotherMesh, .. } => {
+                    format!("{e} (run `sweepffd bind` again)")
+                }
+                e => e.to_string(),
+            })?;
             Some(file.bindings)
         }
         None => None,
@@ -81,7 +85,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
         let sweep = &inputs.rig.sweeps()[owners[i] as usize].name;
         return Err(format!(
             "{}: vertex index {i} (sweep {sweep:?}) deforms to a non-finite position; nothing was written",
-            args.pose.display()
+            args.pose.pose.display()
         )
         .into());
     }

@@ -7,6 +7,8 @@ use std::time::Instant;
 use glam::DVec3;
 
 use super::CliResult;
+use super::args::MeshArg;
+use super::flags::fit_error;
 use sweepffd::fit::{DEFAULT_FALLOFF_FRACTION, Fit, FitOptions, fit};
 use sweepffd::mesh::{Mesh, write_atomically};
 use sweepffd::rig::{FORMAT, LinkKind, ParentLink, Rig, RigDocument, VERSION, VertexSelection};
@@ -32,9 +34,8 @@ impl From<LinkKindArg> for LinkKind {
 /// The arguments of `sweepffd fit`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// The mesh (.obj or .ply).
-    #[arg(long)]
-    pub mesh: PathBuf,
+    #[command(flatten)]
+    pub mesh: MeshArg,
     /// A face group of the mesh that makes up the part; repeat for several.
     #[arg(long = "group")]
     pub groups: Vec<String>,
@@ -85,7 +86,7 @@ impl Args {
 }
 
 pub fn run(args: &Args, quiet: bool) -> CliResult {
-    let mesh = Mesh::load(&args.mesh)?;
+    let mesh = Mesh::load(&args.mesh.mesh)?;
     let (selection, vertices) = select(&mesh, args)?;
     let name = args.name.clone().unwrap_or_else(|| default_name(args));
     let mut options = args.options();
@@ -93,8 +94,10 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
         options.axis = Some(parse_axis(axis)?);
     }
     let started = Instant::now();
-    let fitted = fit(&mesh, &vertices, &options)
-        .map_err(|e| format!("{}: fitting sweep {name:?}: {e}; nothing was written", args.mesh.display()))?;
+    let fitted = fit(&mesh, &vertices, &options).map_err(|e| {
+        let e = fit_error(&e);
+        format!("{}: fitting sweep {name:?}: {e}; nothing was written", args.mesh.mesh.display())
+    })?;
     let elapsed = started.elapsed().as_secs_f64();
 
     let mut document = match &args.append_to {
@@ -109,7 +112,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     document.sweeps.push(fitted.sweep_document(name.clone(), selection, parent));
     // The written rig must load and own the mesh's vertices without conflict.
     let rig = Rig::from_document(&document, args.append_to.clone())?;
-    rig.owners(&mesh, &args.mesh.display().to_string())?;
+    rig.owners(&mesh, &args.mesh.mesh.display().to_string())?;
     let text = document.try_to_json(&args.out)?;
     write_atomically(&args.out, |out| out.write_all(text.as_bytes()))
         .map_err(|e| format!("cannot write {}: {e}", args.out.display()))?;
@@ -132,7 +135,7 @@ fn select(mesh: &Mesh, args: &Args) -> Result<(VertexSelection, Vec<u32>), Box<d
                 return Err(format!(
                     "{}: vertex {bad} is out of range: {} has {count} vertices",
                     path.display(),
-                    args.mesh.display()
+                    args.mesh.mesh.display()
                 )
                 .into());
             }
@@ -144,7 +147,9 @@ fn select(mesh: &Mesh, args: &Args) -> Result<(VertexSelection, Vec<u32>), Box<d
                 let Some(members) = mesh.group_vertices(group) else {
                     let available = mesh.groups.iter().map(|g| g.name.as_str()).collect::<Vec<_>>().join(", ");
                     let available = if available.is_empty() { "none".to_string() } else { available };
-                    return Err(format!("{}: no group {group:?} (groups: {available})", args.mesh.display()).into());
+                    return Err(
+                        format!("{}: no group {group:?} (groups: {available})", args.mesh.mesh.display()).into()
+                    );
                 };
                 vertices.extend(members);
             }

@@ -3,6 +3,7 @@
 //! arguments themselves (an unknown flag, a value that does not parse) with exit status 2.
 //! SIGINT and SIGTERM end the process with status 130 and 143 ([`signals`]).
 
+mod args;
 mod autorig;
 mod backend;
 mod bench;
@@ -10,6 +11,7 @@ mod bind;
 mod deform;
 mod demo;
 mod fit;
+mod flags;
 mod info;
 mod pose;
 mod progress;

@@ -5,6 +5,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use super::CliResult;
+use super::args::RigArg;
 use super::volume_rule::VolumeArg;
 use sweepffd::edit::{BoundMesh, Posing, parse_edits};
 use sweepffd::mesh::{Mesh, write_atomically};
@@ -13,9 +14,8 @@ use sweepffd::rig::Rig;
 /// The arguments of `sweepffd pose`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// The rest rig (JSON).
-    #[arg(long)]
-    pub rig: PathBuf,
+    #[command(flatten)]
+    pub rig: RigArg,
     /// The edits (JSON array), applied in order.
     #[arg(long)]
     pub edits: PathBuf,
@@ -31,7 +31,7 @@ pub struct Args {
 }
 
 pub fn run(args: &Args, quiet: bool) -> CliResult {
-    let rig = Rig::load(&args.rig)?;
+    let rig = Rig::load(&args.rig.rig)?;
     let text = sweepffd::limits::read_input_text(&args.edits)
         .map_err(|e| format!("cannot read {}: {e}", args.edits.display()))?;
     let edits = parse_edits(&text).map_err(|e| format!("{}: not a valid edits file: {e}", args.edits.display()))?;

@@ -7,6 +7,7 @@ use std::time::Instant;
 use glam::DVec3;
 
 use super::CliResult;
+use super::args::MeshArg;
 use super::bind::{is_empty_rig, load_inputs};
 use crate::render::{CLAY, Renderer, Scene, SweepStyle, ViewAngles, add_sweeps, save_png, union_bounds};
 use sweepffd::deform::deform_vertices;
@@ -16,9 +17,8 @@ use sweepffd::sweep::Sweep;
 /// The arguments of `sweepffd render`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// The mesh (.obj or .ply).
-    #[arg(long)]
-    pub mesh: PathBuf,
+    #[command(flatten)]
+    pub mesh: MeshArg,
     /// The rest rig (JSON); needed by --pose and --show-sweeps.
     #[arg(long)]
     pub rig: Option<PathBuf>,
@@ -103,14 +103,14 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
 /// The panels to draw: the mesh alone; rest or pose with the rig; rest and pose to compare.
 fn build_scenes(args: &Args) -> Result<Vec<Scene>, Box<dyn std::error::Error>> {
     let Some(rig_path) = &args.rig else {
-        let mesh = Mesh::load(&args.mesh)?;
+        let mesh = Mesh::load(&args.mesh.mesh)?;
         return Ok(vec![mesh_scene(&mesh, &mesh.positions)]);
     };
-    let inputs = match load_inputs(&args.mesh, rig_path) {
+    let inputs = match load_inputs(&args.mesh.mesh, rig_path) {
         Err(error) if is_empty_rig(&*error) => {
             // A rig of no sweeps moves nothing and has no sweeps to show: the mesh alone.
             eprintln!("notice: {error}; drawing the mesh as it is");
-            let mesh = Mesh::load(&args.mesh)?;
+            let mesh = Mesh::load(&args.mesh.mesh)?;
             return Ok(vec![mesh_scene(&mesh, &mesh.positions)]);
         }
         loaded => loaded?,
@@ -179,7 +179,7 @@ mod tests {
     #[test]
     fn out_must_be_png() {
         let args = Args {
-            mesh: "m.obj".into(),
+            mesh: MeshArg { mesh: "m.obj".into() },
             rig: None,
             pose: None,
             show_sweeps: false,

@@ -5,6 +5,7 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use super::CliResult;
+use super::args::MeshArg;
 use super::render;
 use super::volume_rule::VolumeArg;
 use crate::view::{Subdivide, ViewOptions, run};
@@ -13,9 +14,8 @@ use sweepffd::mesh::write_atomically;
 /// The arguments of `sweepffd view`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// The mesh (.obj, .ply, .off, .gltf or .glb).
-    #[arg(long)]
-    pub mesh: PathBuf,
+    #[command(flatten)]
+    pub mesh: MeshArg,
     /// The rest rig (JSON); without it, fit sweeps to parts picked in the window.
     #[arg(long)]
     pub rig: Option<PathBuf>,
@@ -55,7 +55,7 @@ impl Args {
             (None, None) => Subdivide::No,
         };
         ViewOptions {
-            mesh: self.mesh.clone(),
+            mesh: self.mesh.mesh.clone(),
             rig: self.rig.clone(),
             pose: self.pose.clone(),
             subdivide,

@@ -5,14 +5,14 @@ use std::path::PathBuf;
 use serde::Serialize;
 
 use super::CliResult;
+use super::args::RigArg;
 use sweepffd::rig::Rig;
 
 /// The arguments of `sweepffd volume`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// The rig (JSON).
-    #[arg(long)]
-    pub rig: PathBuf,
+    #[command(flatten)]
+    pub rig: RigArg,
     /// Measure this pose of the rig instead of its rest keys.
     #[arg(long)]
     pub pose: Option<PathBuf>,
@@ -31,7 +31,7 @@ struct SweepVolume<'a> {
 }
 
 pub fn run(args: &Args) -> CliResult {
-    let rig = Rig::load(&args.rig)?;
+    let rig = Rig::load(&args.rig.rig)?;
     let sweeps = match &args.pose {
         Some(pose) => rig.load_pose(pose)?,
         None => rig.rest().to_vec(),
@@ -43,14 +43,14 @@ pub fn run(args: &Args) -> CliResult {
         .map(|(sweep, surface)| SweepVolume { name: &sweep.name, volume: surface.volume() })
         .collect();
     if let Some(bad) = volumes.iter().find(|v| !v.volume.is_finite()) {
-        let file = args.pose.as_ref().unwrap_or(&args.rig).display();
+        let file = args.pose.as_ref().unwrap_or(&args.rig.rig).display();
         return Err(format!("{file}: sweep {:?}: the volume (Eq. 1) is not a finite number", bad.name).into());
     }
     let total: f64 = volumes.iter().map(|v| v.volume).sum();
     if !total.is_finite() {
         return Err(format!(
             "{}: the total volume is not a finite number",
-            args.pose.as_ref().unwrap_or(&args.rig).display()
+            args.pose.as_ref().unwrap_or(&args.rig.rig).display()
         )
         .into());
     }

@@ -10,10 +10,10 @@ use std::fs;
 
 use glam::{DQuat, DVec3};
 use sweepffd::fit::autorig::{Autorig, AutorigOptions, RiggedPart, autorig};
-use sweepffd::fit::largest_connected;
 use sweepffd::fit::least_squares::fitted_radii;
 use sweepffd::fit::part::Part;
 use sweepffd::fit::quality::measure;
+use sweepffd::fit::{FitError, OptionError, largest_connected};
 use sweepffd::mesh::{Faces, Mesh};
 use sweepffd::sweep::{Key, Sweep};
 
@@ -55,8 +55,20 @@ fn a_sphere_has_no_protrusions() {
 #[test]
 fn bad_options_are_refused() {
     let options = AutorigOptions { min_length: 0.0, ..AutorigOptions::default() };
-    let error = autorig(&sphere(8, 16), &options).unwrap_err().to_string();
-    assert_eq!(error, "--min-length must be a positive fraction of the mesh's size, found 0");
+    let error = autorig(&sphere(8, 16), &options).unwrap_err();
+    assert_eq!(error, FitError::Options(OptionError::MinLength(0.0)));
+    assert_eq!(error.to_string(), "min_length must be a positive fraction of the mesh's size, found 0");
+    // The command line names the flag.
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = dir.path().join("sphere.obj");
+    sphere(8, 16).save(&mesh, &sphere(8, 16).positions).unwrap();
+    let out = common::sweepffd(dir.path())
+        .args(["autorig", "--mesh", "sphere.obj", "--min-length", "0", "--out", "rig.json"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(stderr.contains("--min-length must be a positive fraction of the mesh's size, found 0"), "{stderr}");
 }
 
 /// The bunny's ears, as the fit tests select them: the front ear (bending towards −z) and

@@ -2,7 +2,7 @@
 //! engine's own types (f32 rest positions, a `u32` triangle list), and the checks made on it
 //! before anything reaches the GPU.
 
-use super::super::GpuError;
+use super::super::{GpuError, InputError};
 use super::BindingSource;
 use super::cell_groups::DeformOrder;
 use crate::coeffs::{BAND_FLAG, BandRecord, UNOWNED};
@@ -192,52 +192,43 @@ impl<'a> DeformerDescriptor<'a> {
     pub(super) fn check(&self) -> Result<(), GpuError> {
         check_input(self.rest, self.positions, &self.bindings)?;
         if self.instances == 0 || self.pose_uploads == 0 {
-            return Err(GpuError::Input(format!(
-                "{} instances and {} pose uploads: each needs at least one",
-                self.instances, self.pose_uploads
-            )));
+            return Err(InputError::NoInstances { instances: self.instances, pose_uploads: self.pose_uploads }.into());
         }
         if self.jacobian_normals && self.triangles.is_none() {
-            return Err(GpuError::Input("Jacobian normals need triangles: they start from the rest normals".into()));
+            return Err(InputError::JacobianNormalsWithoutTriangles.into());
         }
         if self.rest_tangents.is_some() && self.triangles.is_none() {
-            return Err(GpuError::Input("rest tangents need triangles: tangents turn with the normals".into()));
+            return Err(InputError::TangentsWithoutTriangles.into());
         }
         if let Some(output) = self.output {
             match output.previous {
                 None if self.previous_positions => {
-                    return Err(GpuError::Input(
-                        "previous positions with the application's output need two buffers (with_outputs)".into(),
-                    ));
+                    return Err(InputError::PreviousPositionsNeedTwoOutputs.into());
                 }
                 Some(previous) if previous == output.buffer => {
-                    return Err(GpuError::Input(
-                        "the two output buffers of previous positions are one buffer; they must differ".into(),
-                    ));
+                    return Err(InputError::PreviousOutputIsTheOutput.into());
                 }
                 _ => {}
             }
             let needed = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
             for buffer in output.buffers() {
                 if !buffer.usage().contains(needed) {
-                    return Err(GpuError::Input(format!(
-                        "the output buffer has usage {:?}; the deformer needs STORAGE | COPY_DST",
-                        buffer.usage()
-                    )));
+                    return Err(InputError::OutputUsage { usage: buffer.usage() }.into());
                 }
             }
         }
         if let Some(triangles) = self.triangles {
             if triangles.len() % 3 != 0 {
-                return Err(GpuError::Input(format!("{} triangle indices is not a multiple of 3", triangles.len())));
+                return Err(InputError::TriangleIndexCount { indices: triangles.len() }.into());
             }
             let n = self.positions.len();
             if let Some(i) = triangles.iter().position(|&v| v as usize >= n) {
-                return Err(GpuError::Input(format!(
-                    "triangle {} refers to vertex {}, but the mesh has {n}",
-                    i / 3,
-                    triangles[i]
-                )));
+                return Err(InputError::TriangleVertexOutOfRange {
+                    triangle: i / 3,
+                    vertex: triangles[i],
+                    vertices: n,
+                }
+                .into());
             }
         }
         Ok(())
@@ -252,44 +243,36 @@ pub(super) fn triangle_faces(triangles: &[u32]) -> Faces {
 
 fn check_input(rest: &[Sweep], positions: &[[f32; 3]], bindings: &BindingSource) -> Result<(), GpuError> {
     if positions.is_empty() {
-        return Err(GpuError::Input("the mesh has no vertices".into()));
+        return Err(InputError::NoVertices.into());
     }
     if positions.len() >= UNOWNED as usize {
-        return Err(GpuError::Input(format!("{} vertices are more than the GPU path indexes", positions.len())));
+        return Err(InputError::TooManyVertices { vertices: positions.len() }.into());
     }
     if let Some(i) = positions.iter().position(|p| !p.iter().all(|c| c.is_finite())) {
-        return Err(GpuError::Input(format!("vertex {i} has a non-finite position")));
+        return Err(InputError::PositionNotFinite { vertex: i }.into());
     }
     match bindings {
         BindingSource::Bind { owners, bands } => {
             if owners.len() != positions.len() {
-                return Err(GpuError::Input(format!("{} owners for {} vertices", owners.len(), positions.len())));
+                return Err(InputError::OwnerCount { owners: owners.len(), vertices: positions.len() }.into());
             }
             if let Some(i) = owners.iter().position(|&o| o != UNOWNED && o as usize >= rest.len()) {
-                return Err(GpuError::Input(format!(
-                    "vertex {i} is owned by sweep {}, but the rig has {}",
-                    owners[i],
-                    rest.len()
-                )));
+                return Err(InputError::OwnerOutOfRange { vertex: i, sweep: owners[i], sweeps: rest.len() }.into());
             }
             super::check_weights(bands, rest.len(), |v| owners.get(v).is_some_and(|&o| o != UNOWNED))?;
         }
         BindingSource::Precomputed { bindings, bands } => {
             if bindings.len() != positions.len() {
-                return Err(GpuError::Input(format!("{} bindings for {} vertices", bindings.len(), positions.len())));
+                return Err(InputError::BindingCount { bindings: bindings.len(), vertices: positions.len() }.into());
             }
             let cells: usize = rest.iter().map(|s| s.segments().len() * s.radius_samples()).sum();
             if let Some(i) = bindings.iter().position(|b| b.cell != UNOWNED && (b.cell & !BAND_FLAG) as usize >= cells)
             {
-                return Err(GpuError::Input(format!(
-                    "binding {i} refers to radius cell {} of {cells}",
-                    bindings[i].cell
-                )));
+                return Err(InputError::BindingCellOutOfRange { binding: i, cell: bindings[i].cell, cells }.into());
             }
             let band = |b: &BandRecord| (b.vertex, b.weight as f64, b.cell);
             let bound = |v: usize| bindings.get(v).is_some_and(|b| b.cell != UNOWNED);
-            super::check_bands(bands, band, cells, bound)
-                .map_err(|()| GpuError::Input("the band records are not sorted, bound and in range".into()))?;
+            super::check_bands(bands, band, cells, bound).map_err(|()| InputError::BandRecordsOutOfOrder)?;
         }
     }
     Ok(())

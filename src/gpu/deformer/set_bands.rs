@@ -7,13 +7,13 @@
 
 use std::ops::Range;
 
-use super::super::GpuError;
 use super::super::bands::{BandPlan, BandSource, BandStage};
 use super::super::binder::Binder;
 use super::super::buffers::params_buffer;
 use super::super::chunks::dispatch_grid;
 use super::super::kernels::Kernel;
 use super::super::readback::wait;
+use super::super::{GpuError, InputError};
 use super::{DeformChunk, GpuDeformer, check_weights};
 use crate::bind::falloff::BandWeight;
 use crate::coeffs::{BAND_FLAG, BandFlag, BandRecord, DispatchParams, KEEPS_REST, UNOWNED};
@@ -139,20 +139,14 @@ impl GpuDeformer {
     /// `rest` of another length; wgpu errors are returned.
     pub fn set_bands(&mut self, rest: &[[f32; 3]], weights: &[BandWeight]) -> Result<(), GpuError> {
         if rest.len() != self.vertex_count as usize {
-            return Err(GpuError::Input(format!(
-                "{} rest positions for a deformer of {} vertices",
-                rest.len(),
-                self.vertex_count
-            )));
+            return Err(InputError::RestPositionCount { positions: rest.len(), vertices: self.vertex_count }.into());
         }
         if self.jacobian_normals {
-            return Err(GpuError::Input(
-                "new falloff bands on a deformer with Jacobian normals: build a new deformer with them".into(),
-            ));
+            return Err(InputError::BandsWithJacobianNormals.into());
         }
         check_weights(weights, self.coefficients.sweeps.len(), |v| self.rebanding.is_bound(v))?;
         if let Some(w) = weights.iter().find(|w| !rest[w.vertex as usize].iter().all(|c| c.is_finite())) {
-            return Err(GpuError::Input(format!("vertex {} has a non-finite position", w.vertex)));
+            return Err(InputError::PositionNotFinite { vertex: w.vertex as usize }.into());
         }
         let device = self.context.device.clone();
         let out_of_memory = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);

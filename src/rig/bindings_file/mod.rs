@@ -59,11 +59,22 @@ pub enum BindingsFileError {
     Write { path: PathBuf, source: std::io::Error },
     #[error("{}: not a sweepffd bindings file ({reason})", path.display())]
     Malformed { path: PathBuf, reason: String },
-    #[error("{}: the bindings were made for {what}", path.display())]
-    Mismatch { path: PathBuf, what: String },
+    #[error("{}: the bindings were made for {made_for}", path.display())]
+    Mismatch { path: PathBuf, made_for: MadeFor },
     /// A record of a well-formed file holds a value no binding can have.
     #[error("{}: {reason}", path.display())]
     OutOfRange { path: PathBuf, reason: String },
+}
+
+/// What a bindings file was made for, where that is not the rig and mesh at hand.
+#[derive(Clone, Copy, Debug, Error, PartialEq, Eq)]
+pub enum MadeFor {
+    #[error("{file} vertices, the mesh has {mesh}")]
+    VertexCount { file: usize, mesh: usize },
+    #[error("another rig")]
+    AnotherRig,
+    #[error("another mesh with the same vertex count")]
+    AnotherMesh,
 }
 
 /// FNV-1a 64 of the rest rig's canonical JSON.
@@ -202,17 +213,15 @@ impl BindingsFile {
 
     /// Checks that the bindings were made for `rig` and `positions`; `path` is named in errors.
     pub fn check_matches(&self, rig: &Rig, positions: &[DVec3], path: &Path) -> Result<(), BindingsFileError> {
-        let mismatch =
-            |what: &str| Err(BindingsFileError::Mismatch { path: path.to_path_buf(), what: what.to_string() });
+        let mismatch = |made_for| Err(BindingsFileError::Mismatch { path: path.to_path_buf(), made_for });
         if self.bindings.vertices.len() != positions.len() {
-            let count = self.bindings.vertices.len();
-            return mismatch(&format!("{count} vertices, the mesh has {}", positions.len()));
+            return mismatch(MadeFor::VertexCount { file: self.bindings.vertices.len(), mesh: positions.len() });
         }
         if self.sweep_count as usize != rig.sweeps().len() || self.rig_fingerprint != rig_fingerprint(rig) {
-            return mismatch("another rig (run `sweepffd bind` again)");
+            return mismatch(MadeFor::AnotherRig);
         }
         if self.mesh_fingerprint != mesh_fingerprint(positions) {
-            return mismatch("another mesh with the same vertex count (run `sweepffd bind` again)");
+            return mismatch(MadeFor::AnotherMesh);
         }
         self.check_offsets(check::offset_bound(rig.rest(), positions))
             .map_err(|reason| BindingsFileError::OutOfRange { path: path.to_path_buf(), reason })

@@ -1,9 +1,10 @@
-//! Bending, twisting and tapering a sweep by editing its keys (§4, Fig. 7): the demo's pose and
-//! the tests' standard deformation.
+//! Bending, twisting and tapering a sweep by editing its keys (§4, Fig. 7): the demo's pose, the
+//! tests' standard deformation and the pose the engine probes the Jacobian normals' reach with
+//! ([`crate::normals::jacobian_reach`]).
 
 use glam::{DQuat, DVec3};
 
-use crate::rig::Rig;
+use super::Rig;
 use crate::sweep::Key;
 
 /// A pose of a whole rig that bends, twists and tapers every sweep along its knots.
