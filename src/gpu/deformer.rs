@@ -6,6 +6,7 @@ mod cell_groups;
 mod descriptor;
 pub(crate) mod instances;
 mod normal_coords;
+mod plan;
 mod set_bands;
 mod uploads;
 
@@ -19,19 +20,18 @@ use std::sync::Arc;
 
 use self::bounds::BoundsStage;
 use self::cell_groups::CellGroups;
-use self::descriptor::triangle_faces;
 use self::instances::{InstanceDispatch, Numbering, PosedCells, PositionTargets};
 use self::normal_coords::NormalCoordinates;
+use self::plan::DeformerPlan;
 use self::set_bands::{BandMember, Rebanding};
 use self::uploads::PoseUploads;
 use super::InputError;
 use super::bands::{BandPlan, BandSource, BandStage};
 use super::binder::Binder;
 use super::buffers::{
-    BINDING_STRIDE, POSITION_STRIDE, binding_buffer_with, cells_buffer, check_fits, empty_binding_buffer,
-    upload_positions,
+    BINDING_STRIDE, POSITION_STRIDE, binding_buffer_with, cells_buffer, empty_binding_buffer, upload_positions,
 };
-use super::chunks::{ChunkLimits, bound_chunks, uniform_chunks};
+use super::chunks::ChunkLimits;
 use super::kernels::{DeformVariant, Kernel};
 use super::normals_pass::NormalsStage;
 use super::readback::{read_bytes, wait};
@@ -39,7 +39,6 @@ use super::tangents_pass::{TANGENT_STRIDE, TangentStage};
 use super::{GpuContext, GpuError};
 use crate::bind::falloff::BandWeight;
 use crate::coeffs::{BAND_FLAG, BandRecord, CELL_GROUP, CellCoeffs, GpuBinding, SweepCoefficients, UNOWNED};
-use crate::normals::{NormalAdjacency, jacobian_normal_vertices};
 use crate::sweep::Sweep;
 
 /// Storage buffers the bind kernel uses in one stage, the most of any kernel.
@@ -116,6 +115,19 @@ pub struct GpuDeformer {
     current: usize,
 }
 
+/// What the deform dispatches of a chunk run and write.
+#[derive(Clone, Copy)]
+struct ChunkDispatch<'a> {
+    kernel: &'a Kernel,
+    numbering: Numbering,
+    cells: &'a PosedCells,
+    targets: &'a PositionTargets,
+    /// With Jacobian normals, the chunk's normal coordinates and the normals buffer of each
+    /// position buffer, which the fused kernel writes too.
+    normals: Option<(&'a wgpu::Buffer, &'a [NormalsStage])>,
+    limits: &'a ChunkLimits,
+}
+
 /// A deform chunk's first vertex and its cell groups ([`GpuDeformer::read_cell_groups`]).
 pub type ChunkGroups = (u32, Vec<u32>);
 
@@ -131,21 +143,16 @@ struct DeformChunk {
 
 impl DeformChunk {
     /// The deform dispatches of the vertices in `range`, whose bindings are in `bindings`, for
-    /// every instance and position buffer.
-    /// With Jacobian normals, `normals` holds the chunk's normal coordinates and the normals
-    /// buffer of each position buffer, which the fused kernel writes too; over cell groups,
-    /// `groups` holds the chunk's groups, one invocation each.
-    #[expect(clippy::too_many_arguments, reason = "the chunk's inputs, each used once")]
+    /// every instance and position buffer of `dispatch`; over cell groups, `groups` holds the
+    /// chunk's groups, one invocation each.
     fn new(
         device: &wgpu::Device,
-        (kernel, numbering): (&Kernel, Numbering),
+        dispatch: &ChunkDispatch,
         range: Range<u32>,
         bindings: wgpu::Buffer,
-        cells: &PosedCells,
-        targets: &PositionTargets,
-        (normals, groups): (Option<(&wgpu::Buffer, &[NormalsStage])>, Option<CellGroups>),
-        limits: &ChunkLimits,
+        groups: Option<CellGroups>,
     ) -> DeformChunk {
+        let ChunkDispatch { kernel, numbering, cells, targets, normals, limits } = *dispatch;
         let count = groups.as_ref().map_or(range.len() as u32, |groups| groups.count);
         let mut dispatches = InstanceDispatch::plan(
             device,
@@ -199,260 +206,13 @@ impl GpuDeformer {
     /// binding, then awaits only wgpu's error scopes, never the GPU. The deformer can be encoded
     /// at once; its first frame runs after the binding on the queue.
     pub async fn new_async(context: &GpuContext, descriptor: &DeformerDescriptor<'_>) -> Result<GpuDeformer, GpuError> {
-        descriptor.check()?;
-        let DeformerDescriptor {
-            rest,
-            positions,
-            bindings,
-            triangles,
-            instances,
-            pose_uploads,
-            previous_positions,
-            bounds,
-            rest_tangents,
-            jacobian_normals,
-            output,
-            full_dispatch,
-            deform_order,
-        } = *descriptor;
-        let faces = triangles.map(triangle_faces);
+        let plan = DeformerPlan::new(descriptor, &context.device.limits(), context.info.device_type)?;
         let device = &context.device;
-        let device_limits = device.limits();
-        if device_limits.max_storage_buffers_per_shader_stage < STORAGE_BUFFERS_NEEDED {
-            return Err(InputError::TooFewStorageBuffers {
-                allowed: device_limits.max_storage_buffers_per_shader_stage,
-                needed: STORAGE_BUFFERS_NEEDED,
-            }
-            .into());
-        }
-        let limits = ChunkLimits::of(&device_limits);
-        let vertex_count = positions.len() as u32;
-        let bound: Vec<bool> = match bindings {
-            BindingSource::Bind { owners, .. } => owners.iter().map(|&o| o != UNOWNED).collect(),
-            BindingSource::Precomputed { bindings, .. } => bindings.iter().map(|b| b.cell != UNOWNED).collect(),
-        };
-        // Only the ranges holding bound vertices are bound and deformed; the others keep the
-        // rest positions written below, untouched from then on.
-        let ranges = match full_dispatch {
-            true => uniform_chunks(vertex_count, BINDING_STRIDE, &limits),
-            false => bound_chunks(&bound, BINDING_STRIDE, &limits),
-        };
-        let max_chunk = ranges.iter().map(|r| r.len() as u32).max().unwrap_or(0);
-        let mut targets = PositionTargets::plan(vertex_count, instances, max_chunk, &limits);
-        check_fits("the position buffer", targets.bytes(), limits.max_buffer)?;
-        if let Some(output) = output {
-            if output.offset % limits.offset_alignment != 0 {
-                return Err(InputError::OutputOffsetMisaligned {
-                    offset: output.offset,
-                    alignment: limits.offset_alignment,
-                }
-                .into());
-            }
-            if let Some(buffer) = output.buffers().find(|b| output.offset + targets.bytes() > b.size()) {
-                return Err(InputError::OutputTooSmall {
-                    size: buffer.size(),
-                    needed: targets.bytes(),
-                    offset: output.offset,
-                }
-                .into());
-            }
-        }
-
         let out_of_memory = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
         let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let coefficients = SweepCoefficients::new(rest);
-        let image = targets.rest_image(positions);
-        // The bind kernel reads the rest positions from instance 0 of the first buffer, or from
-        // an upload of their own when the application supplies the output.
-        let rest_buffer = match output {
-            Some(output) => {
-                targets.buffers = output.buffers().cloned().collect();
-                for buffer in &targets.buffers {
-                    context.queue.write_buffer(buffer, output.offset, bytemuck::cast_slice(&image));
-                }
-                targets.offset = output.offset;
-                upload_positions(device, positions)
-            }
-            None => {
-                targets.buffers =
-                    (0..if previous_positions { 2 } else { 1 }).map(|_| upload_positions(device, &image)).collect();
-                targets.buffers[0].clone()
-            }
-        };
-        drop(image);
-        let total_cells = coefficients.cells.len() * instances as usize;
-        let variant = DeformVariant::for_cells(total_cells, &device_limits);
-        let cells = PosedCells::new(device, &coefficients.cells, instances, variant);
-        let uploads = PoseUploads::new(device, cells.used_bytes, pose_uploads);
-        let rest_cells = cells_buffer(device, &coefficients, variant);
-        // Several instances of the plain kernel are numbered flat: with one workgroup layer per
-        // instance, a small mesh's last workgroup of every instance runs nearly empty.
-        let cell_groups = deform_order.groups_on(&context.info);
-        let kernels = context.kernels();
-        let (kernel, numbering) = match (jacobian_normals, cell_groups, instances > 1) {
-            (true, false, _) => (kernels.deform_normals(device, variant), Numbering::Layered),
-            (true, true, _) => (kernels.deform_normals_groups(device, variant), Numbering::Layered),
-            (false, false, false) => (kernels.deform(device, variant), Numbering::Layered),
-            (false, false, true) => (kernels.deform_instances(device, variant), Numbering::Flat),
-            (false, true, flat) => {
-                let numbering = if flat { Numbering::Flat } else { Numbering::Layered };
-                (kernels.deform_groups(device, variant, flat), numbering)
-            }
-        };
         let mut encoder =
             device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd bind") });
-        let binder = match bindings {
-            BindingSource::Bind { .. } => Some(Binder::new(context, rest, &coefficients, &rest_cells)),
-            BindingSource::Precomputed { .. } => None,
-        };
-        let band_vertices: Vec<u32> = match bindings {
-            BindingSource::Bind { bands, .. } => bands.iter().map(|b| b.vertex).collect(),
-            BindingSource::Precomputed { bands, .. } => bands.iter().map(|b| b.vertex).collect(),
-        };
-        // With Jacobian normals the deform kernel writes the normals of the vertices whose
-        // one-ring one sweep moves whole (crate::normals::jacobian_reach) and whose Jacobian
-        // predicts their facets (crate::normals::jacobian_normal_vertices); the normals pass
-        // computes the others, after it.
-        let by_deform: Option<Vec<bool>> = match (jacobian_normals, triangles, &faces) {
-            (true, Some(triangles), Some(faces)) => {
-                let mut influence: Vec<u32> = match bindings {
-                    BindingSource::Bind { owners, .. } => owners.to_vec(),
-                    BindingSource::Precomputed { bindings, .. } => {
-                        bindings.iter().map(|b| coefficients.sweep_of_cell(b.cell)).collect()
-                    }
-                };
-                for &v in &band_vertices {
-                    influence[v as usize] = UNOWNED;
-                }
-                let adjacency = NormalAdjacency::new(faces, vertex_count as usize);
-                Some(jacobian_normal_vertices(rest, positions, &adjacency, triangles, &influence))
-            }
-            _ => None,
-        };
-        // One normals (and tangents) stage per position buffer, each recording its rest pass now;
-        // per frame only the vertices whose one-ring can move are recomputed.
-        let mut normals = Vec::new();
-        let mut tangents = Vec::new();
-        if let Some(faces) = &faces {
-            for buffer in &targets.buffers {
-                let sizes = (vertex_count, targets.stride);
-                let positions = (buffer, targets.offset);
-                let moves = (&bound[..], by_deform.as_deref());
-                let stage =
-                    NormalsStage::new(context, &mut encoder, faces, positions, sizes, instances, moves, &limits)?;
-                if let Some(rest_tangents) = rest_tangents {
-                    let stage =
-                        TangentStage::new(context, &mut encoder, rest_tangents, &stage, sizes, instances, &limits)?;
-                    tangents.push(stage);
-                }
-                normals.push(stage);
-            }
-        }
-        let chunks: Vec<(DeformChunk, Option<NormalCoordinates>)> = ranges
-            .into_iter()
-            .map(|range| {
-                let (start, end) = (range.start as usize, range.end as usize);
-                let first_band = band_vertices.partition_point(|&v| (v as usize) < start);
-                let last_band = band_vertices.partition_point(|&v| (v as usize) < end);
-                let in_band = &band_vertices[first_band..last_band];
-                let bindings_buffer = match bindings {
-                    BindingSource::Bind { owners, .. } => {
-                        let buffer = empty_binding_buffer(device, range.len());
-                        let mut owners = owners[start..end].to_vec();
-                        for &v in in_band {
-                            owners[v as usize - start] |= BAND_FLAG;
-                        }
-                        let binder = binder.as_ref().expect("made for BindingSource::Bind");
-                        // Instance 0 of the first position buffer holds the rest positions.
-                        binder.encode(&mut encoder, &range, &owners, &rest_buffer, &buffer, &limits, None);
-                        buffer
-                    }
-                    BindingSource::Precomputed { bindings: all, .. } => {
-                        let mut chunk = all[start..end].to_vec();
-                        for &v in in_band {
-                            chunk[v as usize - start].cell |= BAND_FLAG;
-                        }
-                        binding_buffer_with(device, &chunk)
-                    }
-                };
-                let coordinates = jacobian_normals.then(|| {
-                    let rest_normals = &normals.first().expect("Jacobian normals need triangles").buffer;
-                    let coordinates = NormalCoordinates::new(device, range.len() as u32);
-                    coordinates.encode(
-                        context,
-                        &mut encoder,
-                        variant,
-                        (&rest_cells, &bindings_buffer, rest_normals),
-                        &range,
-                        &limits,
-                    );
-                    coordinates
-                });
-                let normals = coordinates.as_ref().map(|c| (&c.buffer, &normals[..]));
-                let groups = cell_groups.then(|| {
-                    let shapes: Vec<(u32, u32)> =
-                        targets.groups.iter().map(|g| numbering.dispatch_shape(g.len() as u32)).collect();
-                    let sizes = (range.len() as u32, coefficients.cells.len() as u32);
-                    CellGroups::new(context, &bindings_buffer, sizes, &shapes, &limits)
-                });
-                let chunk = DeformChunk::new(
-                    device,
-                    (&kernel, numbering),
-                    range,
-                    bindings_buffer,
-                    &cells,
-                    &targets,
-                    (normals, groups),
-                    &limits,
-                );
-                chunk.encode_sort(&mut encoder);
-                (chunk, coordinates)
-            })
-            .collect();
-        let (chunks, coordinates): (Vec<DeformChunk>, Vec<Option<NormalCoordinates>>) = chunks.into_iter().unzip();
-        let coordinates_bytes = coordinates.iter().flatten().map(|c| c.buffer.size()).sum();
-        let bands = (!band_vertices.is_empty()).then(|| {
-            let source = match bindings {
-                BindingSource::Bind { bands, .. } => BandSource::Bind { weights: bands, positions },
-                BindingSource::Precomputed { bands, .. } => BandSource::Records(bands),
-            };
-            let plan = BandPlan { cells: &cells, targets: &targets, limits: &limits };
-            let windows: Vec<(Range<u32>, &wgpu::Buffer)> =
-                chunks.iter().map(|chunk| (chunk.range.clone(), &chunk.bindings)).collect();
-            let mut stage = BandStage::new(context, variant, &rest_cells);
-            stage.set_records(context, plan, &windows, source, binder.as_ref(), &mut encoder);
-            stage
-        });
-        let members: Vec<BandMember> = match bindings {
-            BindingSource::Bind { bands, .. } => bands.iter().map(BandMember::of_weight).collect(),
-            BindingSource::Precomputed { bands, .. } => bands.iter().map(BandMember::of_record).collect(),
-        };
-        let rebanding = Rebanding::new(rest, binder, members, &bound);
-        let ranges: Vec<Range<u32>> = chunks.iter().map(|chunk| chunk.range.clone()).collect();
-        let bounds = bounds.then(|| BoundsStage::new(context, &targets, &ranges, positions, &limits));
-        let poses = (0..instances).flat_map(|_| coefficients.cells.iter().copied()).collect();
-        let deformer = GpuDeformer {
-            context: context.clone(),
-            limits,
-            kernel,
-            vertex_count,
-            targets,
-            cells,
-            poses,
-            uploads,
-            coefficients,
-            variant,
-            rest_cells,
-            chunks,
-            bands,
-            rebanding,
-            normals,
-            tangents,
-            bounds,
-            coordinates_bytes,
-            jacobian_normals,
-            current: 0,
-        };
+        let deformer = GpuDeformer::build(context, descriptor, plan, &mut encoder)?;
         context.queue.submit([encoder.finish()]);
         // Both scopes are popped on this thread before either is awaited: wgpu's error scopes
         // belong to the thread that pushed them.
@@ -462,6 +222,76 @@ impl GpuDeformer {
             return Err(error.into());
         }
         Ok(deformer)
+    }
+
+    /// Builds the stages `plan` calls for, recording their passes (binding, the rest normals,
+    /// the normal coordinates, the cell-group sorts, the bands) into `encoder`.
+    fn build(
+        context: &GpuContext,
+        descriptor: &DeformerDescriptor,
+        plan: DeformerPlan,
+        encoder: &mut wgpu::CommandEncoder,
+    ) -> Result<GpuDeformer, GpuError> {
+        let device = &context.device;
+        let mut plan = plan;
+        let rest_buffer = make_position_buffers(context, descriptor, &mut plan.targets);
+        let (coefficients, variant) = (&plan.coefficients, plan.variant);
+        let cells = PosedCells::new(device, &coefficients.cells, descriptor.instances, variant);
+        let uploads = PoseUploads::new(device, cells.used_bytes, descriptor.pose_uploads);
+        let rest_cells = cells_buffer(device, coefficients, variant);
+        let kernel = plan.kernel.kernel(context.kernels(), device, variant);
+        let binder = match descriptor.bindings {
+            BindingSource::Bind { .. } => Some(Binder::new(context, descriptor.rest, coefficients, &rest_cells)),
+            BindingSource::Precomputed { .. } => None,
+        };
+        let (normals, tangents) = surface_stages(context, descriptor, &plan, encoder)?;
+        let inputs = ChunkInputs {
+            context,
+            descriptor,
+            plan: &plan,
+            kernel: &kernel,
+            binder: binder.as_ref(),
+            rest_buffer: &rest_buffer,
+            rest_cells: &rest_cells,
+            cells: &cells,
+            normals: &normals,
+        };
+        let (chunks, coordinates): (Vec<DeformChunk>, Vec<Option<NormalCoordinates>>) =
+            plan.ranges.iter().map(|range| inputs.build(range.clone(), encoder)).unzip();
+        let coordinates_bytes = coordinates.iter().flatten().map(|c| c.buffer.size()).sum();
+        let bands = band_stage(context, descriptor, &plan, (&cells, &rest_cells), (&chunks, binder.as_ref()), encoder);
+        let members: Vec<BandMember> = match descriptor.bindings {
+            BindingSource::Bind { bands, .. } => bands.iter().map(BandMember::of_weight).collect(),
+            BindingSource::Precomputed { bands, .. } => bands.iter().map(BandMember::of_record).collect(),
+        };
+        let rebanding = Rebanding::new(descriptor.rest, binder, members, &plan.bound);
+        let ranges: Vec<Range<u32>> = chunks.iter().map(|chunk| chunk.range.clone()).collect();
+        let bounds = descriptor
+            .bounds
+            .then(|| BoundsStage::new(context, &plan.targets, &ranges, descriptor.positions, &plan.limits));
+        let poses = (0..descriptor.instances).flat_map(|_| plan.coefficients.cells.iter().copied()).collect();
+        Ok(GpuDeformer {
+            context: context.clone(),
+            limits: plan.limits,
+            kernel,
+            vertex_count: plan.vertex_count,
+            targets: plan.targets,
+            cells,
+            poses,
+            uploads,
+            coefficients: plan.coefficients,
+            variant: plan.variant,
+            rest_cells,
+            chunks,
+            bands,
+            rebanding,
+            normals,
+            tangents,
+            bounds,
+            coordinates_bytes,
+            jacobian_normals: descriptor.jacobian_normals,
+            current: 0,
+        })
     }
 
     /// Number of vertices.
@@ -830,4 +660,156 @@ pub(super) fn check_bands<B>(
         bound(vertex as usize) && (0.0..1.0).contains(&weight) && (second == UNOWNED || (second as usize) < seconds)
     };
     if ordered && bands.iter().all(valid) { Ok(()) } else { Err(()) }
+}
+
+/// Makes the position buffers `targets` plans (or takes the application's output) and writes
+/// the rest positions into every instance of each; returns the buffer the bind kernel reads the
+/// rest positions from: instance 0 of the first buffer, or an upload of their own when the
+/// application supplies the output.
+fn make_position_buffers(
+    context: &GpuContext,
+    descriptor: &DeformerDescriptor,
+    targets: &mut PositionTargets,
+) -> wgpu::Buffer {
+    let (device, positions) = (&context.device, descriptor.positions);
+    let image = targets.rest_image(positions);
+    match descriptor.output {
+        Some(output) => {
+            targets.buffers = output.buffers().cloned().collect();
+            for buffer in &targets.buffers {
+                context.queue.write_buffer(buffer, output.offset, bytemuck::cast_slice(&image));
+            }
+            targets.offset = output.offset;
+            upload_positions(device, positions)
+        }
+        None => {
+            let count = if descriptor.previous_positions { 2 } else { 1 };
+            targets.buffers = (0..count).map(|_| upload_positions(device, &image)).collect();
+            targets.buffers[0].clone()
+        }
+    }
+}
+
+/// One normals (and tangents) stage per position buffer, each recording its rest pass now; per
+/// frame only the vertices whose one-ring can move are recomputed. None without triangles.
+fn surface_stages(
+    context: &GpuContext,
+    descriptor: &DeformerDescriptor,
+    plan: &DeformerPlan,
+    encoder: &mut wgpu::CommandEncoder,
+) -> Result<(Vec<NormalsStage>, Vec<TangentStage>), GpuError> {
+    let (mut normals, mut tangents) = (Vec::new(), Vec::new());
+    let Some(faces) = &plan.faces else { return Ok((normals, tangents)) };
+    let (targets, instances, limits) = (&plan.targets, descriptor.instances, &plan.limits);
+    for buffer in &targets.buffers {
+        let sizes = (plan.vertex_count, targets.stride);
+        let positions = (buffer, targets.offset);
+        let moves = (&plan.bound[..], plan.by_deform.as_deref());
+        let stage = NormalsStage::new(context, encoder, faces, positions, sizes, instances, moves, limits)?;
+        if let Some(rest_tangents) = descriptor.rest_tangents {
+            tangents.push(TangentStage::new(context, encoder, rest_tangents, &stage, sizes, instances, limits)?);
+        }
+        normals.push(stage);
+    }
+    Ok((normals, tangents))
+}
+
+/// The falloff bands' stage, its records set (none without band vertices).
+fn band_stage(
+    context: &GpuContext,
+    descriptor: &DeformerDescriptor,
+    plan: &DeformerPlan,
+    (cells, rest_cells): (&PosedCells, &wgpu::Buffer),
+    (chunks, binder): (&[DeformChunk], Option<&Binder>),
+    encoder: &mut wgpu::CommandEncoder,
+) -> Option<BandStage> {
+    if plan.band_vertices.is_empty() {
+        return None;
+    }
+    let source = match descriptor.bindings {
+        BindingSource::Bind { bands, .. } => BandSource::Bind { weights: bands, positions: descriptor.positions },
+        BindingSource::Precomputed { bands, .. } => BandSource::Records(bands),
+    };
+    let band_plan = BandPlan { cells, targets: &plan.targets, limits: &plan.limits };
+    let windows: Vec<(Range<u32>, &wgpu::Buffer)> =
+        chunks.iter().map(|chunk| (chunk.range.clone(), &chunk.bindings)).collect();
+    let mut stage = BandStage::new(context, plan.variant, rest_cells);
+    stage.set_records(context, band_plan, &windows, source, binder, encoder);
+    Some(stage)
+}
+
+/// What every deform chunk of a deformer is built from.
+struct ChunkInputs<'a> {
+    context: &'a GpuContext,
+    descriptor: &'a DeformerDescriptor<'a>,
+    plan: &'a DeformerPlan,
+    kernel: &'a Kernel,
+    /// The bind kernel's resources, for [`BindingSource::Bind`].
+    binder: Option<&'a Binder>,
+    /// The rest positions the bind kernel reads.
+    rest_buffer: &'a wgpu::Buffer,
+    rest_cells: &'a wgpu::Buffer,
+    cells: &'a PosedCells,
+    normals: &'a [NormalsStage],
+}
+
+impl ChunkInputs<'_> {
+    /// The chunk of the vertices `range`: its bindings (bound on the GPU or uploaded), its
+    /// normal coordinates (Jacobian normals), its cell groups and its deform dispatches.
+    fn build(&self, range: Range<u32>, encoder: &mut wgpu::CommandEncoder) -> (DeformChunk, Option<NormalCoordinates>) {
+        let (context, plan) = (self.context, self.plan);
+        let bindings = self.bindings(&range, encoder);
+        let coordinates = self.descriptor.jacobian_normals.then(|| {
+            let rest_normals = &self.normals.first().expect("Jacobian normals need triangles").buffer;
+            let coordinates = NormalCoordinates::new(&context.device, range.len() as u32);
+            let buffers = (self.rest_cells, &bindings, rest_normals);
+            coordinates.encode(context, encoder, plan.variant, buffers, &range, &plan.limits);
+            coordinates
+        });
+        let numbering = plan.kernel.numbering;
+        let groups = plan.kernel.cell_groups.then(|| {
+            let shapes: Vec<(u32, u32)> =
+                plan.targets.groups.iter().map(|g| numbering.dispatch_shape(g.len() as u32)).collect();
+            let sizes = (range.len() as u32, plan.coefficients.cells.len() as u32);
+            CellGroups::new(context, &bindings, sizes, &shapes, &plan.limits)
+        });
+        let dispatch = ChunkDispatch {
+            kernel: self.kernel,
+            numbering,
+            cells: self.cells,
+            targets: &plan.targets,
+            normals: coordinates.as_ref().map(|c| (&c.buffer, self.normals)),
+            limits: &plan.limits,
+        };
+        let chunk = DeformChunk::new(&context.device, &dispatch, range, bindings, groups);
+        chunk.encode_sort(encoder);
+        (chunk, coordinates)
+    }
+
+    /// The chunk's bindings, band vertices flagged: bound on the GPU from the owners, or the
+    /// precomputed ones uploaded.
+    fn bindings(&self, range: &Range<u32>, encoder: &mut wgpu::CommandEncoder) -> wgpu::Buffer {
+        let (start, end) = (range.start as usize, range.end as usize);
+        let in_band = self.plan.bands_in(range);
+        match self.descriptor.bindings {
+            BindingSource::Bind { owners, .. } => {
+                let buffer = empty_binding_buffer(&self.context.device, range.len());
+                let mut owners = owners[start..end].to_vec();
+                for &v in in_band {
+                    owners[v as usize - start] |= BAND_FLAG;
+                }
+                let binder = self.binder.expect("made for BindingSource::Bind");
+                // Instance 0 of the first position buffer holds the rest positions.
+                binder.encode(encoder, range, &owners, self.rest_buffer, &buffer, &self.plan.limits, None);
+                buffer
+            }
+            BindingSource::Precomputed { bindings: all, .. } => {
+                let mut chunk = all[start..end].to_vec();
+                for &v in in_band {
+                    chunk[v as usize - start].cell |= BAND_FLAG;
+                }
+                binding_buffer_with(&self.context.device, &chunk)
+            }
+        }
+    }
 }

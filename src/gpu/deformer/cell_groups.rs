@@ -43,8 +43,13 @@ pub enum DeformOrder {
 impl DeformOrder {
     /// Whether the deform kernel runs over cell groups on the adapter `info` describes.
     pub fn groups_on(self, info: &wgpu::AdapterInfo) -> bool {
+        self.groups_on_type(info.device_type)
+    }
+
+    /// Whether the deform kernel runs over cell groups on an adapter of `device_type`.
+    pub(crate) fn groups_on_type(self, device_type: wgpu::DeviceType) -> bool {
         match self {
-            DeformOrder::Auto => info.device_type == wgpu::DeviceType::Cpu,
+            DeformOrder::Auto => device_type == wgpu::DeviceType::Cpu,
             DeformOrder::Vertices => false,
             DeformOrder::CellGroups => true,
         }

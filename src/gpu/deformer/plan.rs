@@ -1,0 +1,244 @@
+//! [`DeformerPlan`]: everything a [`GpuDeformer`](super::GpuDeformer) decides from its
+//! descriptor and the device before any GPU work, once: which vertices are bound and which are
+//! banded, the deform chunks, the position buffers' layout, the Jacobian normals' reach and the
+//! kernel. Pure: it needs the device's limits and adapter description, not the device.
+
+use std::ops::Range;
+
+use super::super::chunks::{ChunkLimits, bound_chunks, uniform_chunks};
+use super::super::kernel_cache::KernelCache;
+use super::super::kernels::{DeformVariant, Kernel};
+use super::super::{GpuError, InputError};
+use super::descriptor::triangle_faces;
+use super::instances::{Numbering, PositionTargets};
+use super::{BindingSource, DeformerDescriptor, STORAGE_BUFFERS_NEEDED};
+use crate::coeffs::{SweepCoefficients, UNOWNED};
+use crate::gpu::buffers::{BINDING_STRIDE, check_fits};
+use crate::mesh::Faces;
+use crate::normals::{NormalAdjacency, jacobian_normal_vertices};
+
+use std::sync::Arc;
+
+/// The deform kernel a deformer runs, and how its invocations are numbered.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct KernelChoice {
+    /// The fused deform + Jacobian normals kernel rather than the plain one.
+    pub jacobian_normals: bool,
+    /// One invocation a cell group of vertices rather than one a vertex.
+    pub cell_groups: bool,
+    pub numbering: Numbering,
+}
+
+impl KernelChoice {
+    /// The kernel for `jacobian_normals`, `cell_groups` and `instances`. Several instances of
+    /// the plain kernel are numbered flat: with one workgroup layer per instance, a small mesh's
+    /// last workgroup of every instance runs nearly empty.
+    pub fn new(jacobian_normals: bool, cell_groups: bool, instances: u32) -> KernelChoice {
+        let flat = !jacobian_normals && instances > 1;
+        let numbering = if flat { Numbering::Flat } else { Numbering::Layered };
+        KernelChoice { jacobian_normals, cell_groups, numbering }
+    }
+
+    /// The compiled kernel, from the context's cache.
+    pub fn kernel(&self, kernels: &KernelCache, device: &wgpu::Device, variant: DeformVariant) -> Arc<Kernel> {
+        let flat = self.numbering == Numbering::Flat;
+        match (self.jacobian_normals, self.cell_groups) {
+            (true, false) => kernels.deform_normals(device, variant),
+            (true, true) => kernels.deform_normals_groups(device, variant),
+            (false, false) if flat => kernels.deform_instances(device, variant),
+            (false, false) => kernels.deform(device, variant),
+            (false, true) => kernels.deform_groups(device, variant, flat),
+        }
+    }
+}
+
+/// What a deformer is built from, decided once.
+#[derive(Debug)]
+pub(super) struct DeformerPlan {
+    pub limits: ChunkLimits,
+    pub vertex_count: u32,
+    /// Whether each vertex is bound to a sweep.
+    pub bound: Vec<bool>,
+    /// The vertices of each deform chunk: only ranges holding bound vertices are bound and
+    /// deformed (all, with `full_dispatch`); the others keep their rest positions.
+    pub ranges: Vec<Range<u32>>,
+    /// The position buffers' layout (their buffers are made by the build).
+    pub targets: PositionTargets,
+    /// The rest rig as cell records.
+    pub coefficients: SweepCoefficients,
+    /// Where the deform kernel reads the cell records from.
+    pub variant: DeformVariant,
+    pub kernel: KernelChoice,
+    /// The vertices in a falloff band, increasing.
+    pub band_vertices: Vec<u32>,
+    /// The triangles as faces, if there are triangles.
+    pub faces: Option<Faces>,
+    /// With Jacobian normals, the vertices whose normals the deform kernel writes: their
+    /// one-ring is moved whole by one sweep ([`crate::normals::jacobian_reach`]) and their
+    /// Jacobian predicts their facets ([`jacobian_normal_vertices`]); the normals pass computes
+    /// the others, after it.
+    pub by_deform: Option<Vec<bool>>,
+}
+
+impl DeformerPlan {
+    /// The plan of `descriptor` on a device with `device_limits`, of `device_type` (which
+    /// chooses the deform order); input errors are found here, before the GPU.
+    pub fn new(
+        descriptor: &DeformerDescriptor,
+        device_limits: &wgpu::Limits,
+        device_type: wgpu::DeviceType,
+    ) -> Result<DeformerPlan, GpuError> {
+        descriptor.check()?;
+        if device_limits.max_storage_buffers_per_shader_stage < STORAGE_BUFFERS_NEEDED {
+            let allowed = device_limits.max_storage_buffers_per_shader_stage;
+            return Err(InputError::TooFewStorageBuffers { allowed, needed: STORAGE_BUFFERS_NEEDED }.into());
+        }
+        let limits = ChunkLimits::of(device_limits);
+        let vertex_count = descriptor.positions.len() as u32;
+        let bound: Vec<bool> = match descriptor.bindings {
+            BindingSource::Bind { owners, .. } => owners.iter().map(|&o| o != UNOWNED).collect(),
+            BindingSource::Precomputed { bindings, .. } => bindings.iter().map(|b| b.cell != UNOWNED).collect(),
+        };
+        let ranges = match descriptor.full_dispatch {
+            true => uniform_chunks(vertex_count, BINDING_STRIDE, &limits),
+            false => bound_chunks(&bound, BINDING_STRIDE, &limits),
+        };
+        let max_chunk = ranges.iter().map(|r| r.len() as u32).max().unwrap_or(0);
+        let targets = PositionTargets::plan(vertex_count, descriptor.instances, max_chunk, &limits);
+        check_fits("the position buffer", targets.bytes(), limits.max_buffer)?;
+        check_output(descriptor, &targets, &limits)?;
+        let coefficients = SweepCoefficients::new(descriptor.rest);
+        let total_cells = coefficients.cells.len() * descriptor.instances as usize;
+        let variant = DeformVariant::for_cells(total_cells, device_limits);
+        let cell_groups = descriptor.deform_order.groups_on_type(device_type);
+        let kernel = KernelChoice::new(descriptor.jacobian_normals, cell_groups, descriptor.instances);
+        let band_vertices: Vec<u32> = match descriptor.bindings {
+            BindingSource::Bind { bands, .. } => bands.iter().map(|b| b.vertex).collect(),
+            BindingSource::Precomputed { bands, .. } => bands.iter().map(|b| b.vertex).collect(),
+        };
+        let faces = descriptor.triangles.map(triangle_faces);
+        let by_deform = jacobian_reach(descriptor, faces.as_ref(), &coefficients, &band_vertices);
+        let plan = DeformerPlan {
+            limits,
+            vertex_count,
+            bound,
+            ranges,
+            targets,
+            coefficients,
+            variant,
+            kernel,
+            band_vertices,
+            faces,
+            by_deform,
+        };
+        Ok(plan)
+    }
+
+    /// The band vertices among the vertices `range`.
+    pub fn bands_in(&self, range: &Range<u32>) -> &[u32] {
+        let first = self.band_vertices.partition_point(|&v| v < range.start);
+        let last = self.band_vertices.partition_point(|&v| v < range.end);
+        &self.band_vertices[first..last]
+    }
+}
+
+/// Fails if the application's output buffer is misaligned or too small for `targets`.
+fn check_output(
+    descriptor: &DeformerDescriptor,
+    targets: &PositionTargets,
+    limits: &ChunkLimits,
+) -> Result<(), GpuError> {
+    let Some(output) = descriptor.output else { return Ok(()) };
+    if output.offset % limits.offset_alignment != 0 {
+        return Err(
+            InputError::OutputOffsetMisaligned { offset: output.offset, alignment: limits.offset_alignment }.into()
+        );
+    }
+    if let Some(buffer) = output.buffers().find(|b| output.offset + targets.bytes() > b.size()) {
+        let (size, needed, offset) = (buffer.size(), targets.bytes(), output.offset);
+        return Err(InputError::OutputTooSmall { size, needed, offset }.into());
+    }
+    Ok(())
+}
+
+/// With Jacobian normals (and triangles), whether the deform kernel writes each vertex's
+/// normal: band vertices, blending two influences, never.
+fn jacobian_reach(
+    descriptor: &DeformerDescriptor,
+    faces: Option<&Faces>,
+    coefficients: &SweepCoefficients,
+    band_vertices: &[u32],
+) -> Option<Vec<bool>> {
+    let (true, Some(triangles), Some(faces)) = (descriptor.jacobian_normals, descriptor.triangles, faces) else {
+        return None;
+    };
+    let mut influence: Vec<u32> = match descriptor.bindings {
+        BindingSource::Bind { owners, .. } => owners.to_vec(),
+        BindingSource::Precomputed { bindings, .. } => {
+            bindings.iter().map(|b| coefficients.sweep_of_cell(b.cell)).collect()
+        }
+    };
+    for &v in band_vertices {
+        influence[v as usize] = UNOWNED;
+    }
+    let adjacency = NormalAdjacency::new(faces, descriptor.positions.len());
+    Some(jacobian_normal_vertices(descriptor.rest, descriptor.positions, &adjacency, triangles, &influence))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::gpu::{DeformOrder, rest_positions};
+    use crate::rig::Rig;
+    use crate::synthetic::{Tube, attached_tube_rig, straight_sweep};
+
+    #[test]
+    fn the_plan_binds_only_the_chunks_holding_bound_vertices_and_picks_the_kernel_by_adapter() {
+        // A long tube whose sweep owns its top sixth only: the chunks skip the rest.
+        let tube = Tube { rings: 600, around: 16, length: 12.0, radius: 0.3 };
+        let owned: Vec<u32> = (8000..tube.vertex_count() as u32).collect();
+        let rig = Rig::new(vec![straight_sweep(&tube, owned, (10.0, 12.0), 4, 16, 0.0)]).unwrap();
+        let positions = rest_positions(&tube.mesh().positions);
+        let owners = rig.vertex_owners(positions.len()).unwrap();
+        let descriptor = DeformerDescriptor::new(rig.rest(), &positions, BindingSource::bind(&owners));
+        let limits = crate::gpu::GpuDeformer::required_limits();
+        let plan = DeformerPlan::new(&descriptor, &limits, wgpu::DeviceType::DiscreteGpu).unwrap();
+        assert_eq!(plan.vertex_count as usize, positions.len());
+        assert_eq!(plan.bound.iter().filter(|&&b| b).count(), positions.len() - 8000);
+        let covered = |v: u32| plan.ranges.iter().any(|r| r.contains(&v));
+        assert!((8000..plan.vertex_count).all(covered), "{:?}", plan.ranges);
+        let dispatched: u32 = plan.ranges.iter().map(|r| r.len() as u32).sum();
+        assert!(dispatched < plan.vertex_count - 2000, "{dispatched} of {} vertices dispatched", plan.vertex_count);
+        assert_eq!(plan.kernel, KernelChoice::new(false, false, 1));
+        assert!(plan.by_deform.is_none() && plan.faces.is_none() && plan.band_vertices.is_empty());
+        let cpu = DeformerPlan::new(&descriptor, &limits, wgpu::DeviceType::Cpu).unwrap();
+        assert!(cpu.kernel.cell_groups, "CPU adapters deform over cell groups");
+        let vertices = descriptor.with_deform_order(DeformOrder::Vertices);
+        assert!(!DeformerPlan::new(&vertices, &limits, wgpu::DeviceType::Cpu).unwrap().kernel.cell_groups);
+    }
+
+    #[test]
+    fn instances_are_numbered_flat_unless_the_kernel_writes_normals() {
+        assert_eq!(KernelChoice::new(false, false, 4).numbering, Numbering::Flat);
+        assert_eq!(KernelChoice::new(false, true, 4).numbering, Numbering::Flat);
+        assert_eq!(KernelChoice::new(true, false, 4).numbering, Numbering::Layered);
+        assert_eq!(KernelChoice::new(false, false, 1).numbering, Numbering::Layered);
+    }
+
+    #[test]
+    fn input_faults_are_found_before_the_gpu() {
+        let tube = Tube { rings: 4, around: 8, length: 1.0, radius: 0.3 };
+        let rig = attached_tube_rig(&tube, 3, 8, 0.0);
+        let positions = rest_positions(&tube.mesh().positions);
+        let owners = vec![7; positions.len()];
+        let descriptor = DeformerDescriptor::new(rig.rest(), &positions, BindingSource::bind(&owners));
+        let limits = crate::gpu::GpuDeformer::required_limits();
+        let error = DeformerPlan::new(&descriptor, &limits, wgpu::DeviceType::Cpu).unwrap_err();
+        assert!(matches!(error, GpuError::Input(InputError::OwnerOutOfRange { vertex: 0, sweep: 7, sweeps: 1 })));
+        let owners = vec![0; positions.len()];
+        let descriptor = DeformerDescriptor::new(rig.rest(), &positions, BindingSource::bind(&owners));
+        let few = wgpu::Limits { max_storage_buffers_per_shader_stage: 4, ..limits };
+        let error = DeformerPlan::new(&descriptor, &few, wgpu::DeviceType::Cpu).unwrap_err();
+        assert!(matches!(error, GpuError::Input(InputError::TooFewStorageBuffers { allowed: 4, needed: 6 })));
+    }
+}
