@@ -1,5 +1,5 @@
 // Buffer layouts shared by every kernel.
-// Twin: src/coeffs/layout.rs (sizes and member offsets are checked against it by a test).
+// Twin: src/layout.rs (sizes and member offsets are checked against it by a test).
 
 const WORKGROUP_SIZE: u32 = 128u;
 const UNOWNED: u32 = 0xffffffffu;

@@ -10,29 +10,32 @@
 //! `examples/embed.rs` is that frame loop, complete and compile-checked, with every instance
 //! checked against the f64 reference ([`Rig::deform_reference`]).
 //!
-//! The data flows through the modules in order:
+//! The data flows rig → sweep coefficients → bind → deform → normals → output. The modules,
+//! each importing only those listed before it:
 //!
-//! rig → sweep → sweep coefficients → bind → deform → normals → output
-//!
-//! - [`rig`]: rigs built in code or read from files (feature `json`), which sweep owns which
-//!   vertex, posing, the bindings file.
-//! - [`sweep`]: the f64 sweep surface model, C(t), R(t), r(θ, t), and its volume (Eq. 1).
-//! - [`fit`]: control sweeps fitted to mesh parts (§3).
-//! - [`edit`]: posing by edits: key moves, point drags, hierarchies, volume rules (§4–5).
-//! - [`bind`]: binding parameters of each vertex by root-finding (§3).
-//! - [`deform`]: vertex positions of a posed rig through Eq. 2, f64 reference.
-//! - [`normals`]: vertex normals and tangents, f64 reference.
-//! - [`gpu`]: the engine: binding, Eq. 2, normals, tangents and bounds in WGSL compute.
-//! - [`mesh`]: meshes in code, and mesh files in and out (feature `formats`).
-//! - [`coeffs`]: sweeps as compact f32 coefficient arrays, the GPU buffer layouts.
-//! - [`cpu`]: f32 twins of the WGSL kernels in `shaders/`.
-//! - [`cpu_fast`]: the fast CPU path, those kernels vectorized across vertices (AVX2 + FMA
-//!   where the CPU has them) on every core.
-//! - [`synthetic`]: procedural meshes, rigs and poses.
+//! - [`layout`]: the GPU buffer layouts shared with the WGSL, and [`UNOWNED`].
 //! - [`limits`]: the largest inputs accepted, checked before allocating.
-//! - [`parallel`]: the CPU paths on every core (feature `parallel`) or on the calling thread.
+//! - [`sweep`]: the f64 sweep surface model, C(t), R(t), r(θ, t), and its volume (Eq. 1).
+//! - [`mesh`]: meshes in code, and mesh files in and out (feature `formats`).
+//! - [`coeffs`]: sweeps as compact f32 coefficient arrays (the sweep coefficients).
+//! - [`bind`]: binding parameters of each vertex by root-finding (§3).
+//! - [`rig`]: rigs built in code or read from files (feature `json`), which sweep owns which
+//!   vertex, the hierarchy (§5), posing.
+//! - [`deform`]: vertex positions of a posed rig through Eq. 2, f64 reference.
+//! - `bindings_file` (feature `json`): bindings saved for a rig and mesh.
+//! - [`fit`]: control sweeps fitted to mesh parts (§3), and autorig.
+//! - [`synthetic`]: procedural meshes and rigs.
+//! - [`edit`]: posing by edits: key moves, point drags, hierarchies, volume rules (§4–5).
+//! - [`normals`]: vertex normals and tangents, f64 reference.
+//! - [`cpu_fast`]: the fast CPU path, the kernels vectorized across vertices (AVX2 + FMA where
+//!   the CPU has them) on every core.
+//! - [`gpu`]: the engine: binding, Eq. 2, normals, tangents and bounds in WGSL compute.
 //! - `bench` (feature `bench`): the throughput measurements of `sweepffd bench` and the
 //!   criterion benches.
+//!
+//! The f32 twins of the WGSL kernels (`cpu`), the kernels themselves and the spline and fitting
+//! machinery are internals, public only with the feature `internals` (for the benches and the
+//! equivalence tests).
 //!
 //! The command line, the interactive viewer and the PNG renderer are the workspace member
 //! `sweepffd-cli` (`cli/`), so that this crate's default build pulls no app crates.
@@ -59,20 +62,41 @@
 //! # fn main() {}
 //! ```
 
+/// Declares modules that are the engine's internals: the CPU twins of the kernels, the kernels
+/// and shaders themselves, the spline and fitting machinery. They are public with the feature
+/// `internals`, which the benches and the equivalence tests use (no stable API), and
+/// crate-private otherwise, so that an embedder's documentation shows what it builds on.
+macro_rules! internal_mod {
+    ($($(#[$attr:meta])* $name:ident;)*) => {$(
+        #[cfg(feature = "internals")]
+        $(#[$attr])*
+        pub mod $name;
+        #[cfg(not(feature = "internals"))]
+        #[allow(dead_code, unused_imports, reason = "some of its items serve only the benches and tests (feature internals)")]
+        $(#[$attr])*
+        pub(crate) mod $name;
+    )*};
+}
+
 #[cfg(feature = "bench")]
 pub mod bench;
 pub mod bind;
+#[cfg(feature = "json")]
+pub mod bindings_file;
 pub mod coeffs;
-pub mod cpu;
+internal_mod! {
+    cpu;
+    parallel;
+}
 pub mod cpu_fast;
 pub mod deform;
 pub mod edit;
 pub mod fit;
 pub mod gpu;
+pub mod layout;
 pub mod limits;
 pub mod mesh;
 pub mod normals;
-pub mod parallel;
 pub mod rig;
 pub mod sweep;
 pub mod synthetic;

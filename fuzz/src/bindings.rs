@@ -3,8 +3,8 @@
 
 use std::path::Path;
 
+use sweepffd::bindings_file::BindingsFile;
 use sweepffd::deform::deform_vertices;
-use sweepffd::rig::bindings_file::BindingsFile;
 
 use super::Outcome;
 use super::rig::{POSE_FILE, check_deformed};

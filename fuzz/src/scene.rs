@@ -6,8 +6,8 @@ use std::sync::OnceLock;
 
 use glam::{DQuat, DVec3};
 use sweepffd::bind::MeshBindings;
+use sweepffd::bindings_file::BindingsFile;
 use sweepffd::mesh::Mesh;
-use sweepffd::rig::bindings_file::BindingsFile;
 use sweepffd::rig::{LinkKind, ParentLink, Rig, RigSweep};
 use sweepffd::sweep::{Key, Sweep};
 use sweepffd::synthetic::{BendTwistTaper, Tube, tube_rig};

@@ -1,17 +1,19 @@
 //! Vertex binding (§3): the parameters (θ, t, d, h) that tie a vertex to its sweep, on the f64
-//! reference path. The f32 twin of the GPU kernel is [`crate::cpu::bind`].
+//! reference path. The f32 twin of the GPU kernel is `crate::cpu::bind`.
 //!
 //! Data flow: rig → sweep → sweep coefficients → **bind** → deform → normals → output.
 //!
 //! For a vertex v, t is the root of f(t) = ⟨v − C(t), N(t)⟩ on [0, 1] nearest to v (smallest
-//! |v − C(t)|); every root is found ([`quintic`]). A vertex with no root lies beyond an end of
+//! |v − C(t)|); every root is found (`quintic`). A vertex with no root lies beyond an end of
 //! the sweep and takes the nearer end, t ∈ {0, 1}. Then, with v̂ = R(t)ᵀ·(v − C(t)):
 //! θ = atan2(v̂_y, v̂_x) ∈ [0, 2π), d = |(v̂_x, v̂_y)| − r(θ, t) and h = v̂_z. For a root h is zero
 //! up to round-off; beyond an end it is the axial offset, so caps follow their sweep.
 
 pub mod band;
 pub mod falloff;
-pub mod quintic;
+internal_mod! {
+    quintic;
+}
 
 use std::f64::consts::TAU;
 
@@ -25,7 +27,7 @@ pub use band::{BandBinding, MeshBindings};
 
 /// Marks a vertex that no sweep owns; it stays where it is. One name for the f64 path, the
 /// GPU buffers and the owner lists.
-pub use crate::coeffs::UNOWNED;
+pub use crate::layout::UNOWNED;
 
 /// The binding parameters of one vertex to one sweep (Eq. 2 extended by h).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

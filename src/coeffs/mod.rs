@@ -9,14 +9,11 @@
 //! additionally needs the rest rig's [`BindSegment`]s and [`SweepInfo`]s. Indices are global
 //! across the rig: sweep i's intervals and cells follow those of sweeps 0..i.
 
-mod convert;
-pub mod layout;
-
 use std::f64::consts::PI;
 
 use glam::{DQuat, DVec3};
 
-pub use layout::{
+pub use crate::layout::{
     BAND_FLAG, BandFlag, BandRecord, BindSegment, CELL_GROUP, CellCoeffs, CellOrderParams, DispatchParams, GpuBinding,
     INSTANCES_PER_INVOCATION, InstanceParams, Joint, KEEPS_REST, SCAN_RUN, SkinInfluence, SweepInfo,
     UNIFORM_CELL_CAPACITY, UNOWNED, WORKGROUP_SIZE,

@@ -22,6 +22,7 @@ pub mod bounds;
 pub mod cell_order;
 pub mod copy;
 pub mod deform;
+mod gpu_bindings;
 pub mod jacobian;
 pub mod normals;
 pub mod skinning;

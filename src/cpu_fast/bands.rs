@@ -43,7 +43,7 @@ pub fn band_records(inputs: &BindInputs, weights: &[BandWeight], positions: &[f3
 const BAND_CHUNK: usize = 2048;
 
 /// Overwrites the band vertices of `positions` that move (all but those at weight 0 against the
-/// rest position) with their blended positions: [`crate::cpu::band::band`], in parallel when the
+/// rest position) with their blended positions: `crate::cpu::band::band`, in parallel when the
 /// records are sorted by vertex, one per vertex (as the deformer keeps them), without allocating.
 pub fn deform_bands(
     cells: &[CellCoeffs],

@@ -1,4 +1,4 @@
-//! The fast bind: §3's binding of every owned vertex in f32 ([`crate::cpu::bind`]), its root
+//! The fast bind: §3's binding of every owned vertex in f32 (`crate::cpu::bind`), its root
 //! finding eight vertices to a register where the CPU has AVX2, parallel over chunks of vertices
 //! and written straight into the caller's slice, with no allocation.
 

@@ -1,7 +1,7 @@
 //! The fast deform: Eq. 2 (+h) for every bound vertex, in f32, vectorized across vertices and
 //! parallel over chunks of them, written straight into the output; then the falloff bands by
-//! the band kernel's twin. Its results are the f32 twin's ([`crate::cpu::deform`],
-//! [`crate::cpu::band`]) to rounding: fused multiply-adds and Horner's rule in s round
+//! the band kernel's twin. Its results are the f32 twin's (`crate::cpu::deform`,
+//! `crate::cpu::band`) to rounding: fused multiply-adds and Horner's rule in s round
 //! differently (tests bound the worst vertex).
 
 use crate::parallel::prelude::*;

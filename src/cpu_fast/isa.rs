@@ -5,7 +5,7 @@
 pub enum Isa {
     /// x86-64 AVX2 with FMA: eight vertices per register, fused multiply-adds.
     Avx2Fma,
-    /// One vertex at a time, the f32 twins' own arithmetic ([`crate::cpu`]); every target.
+    /// One vertex at a time, the f32 twins' own arithmetic (`crate::cpu`); every target.
     Scalar,
 }
 

@@ -92,7 +92,7 @@ impl FastMesh {
     /// same pass. The normals of unbound and band vertices are left alone: recompute those (and
     /// those outside [`crate::normals::jacobian_normal_vertices`]: vertices whose one-ring
     /// another sweep moves, or too coarse for the deformation) from the deformed triangles
-    /// ([`crate::cpu::normals::normals_of`]), as the GPU deformer's normals pass does. Fails,
+    /// (`crate::cpu::normals::normals_of`), as the GPU deformer's normals pass does. Fails,
     /// changing nothing, if `posed` lacks the rest rig's structure.
     ///
     /// # Panics

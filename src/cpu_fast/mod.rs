@@ -1,4 +1,4 @@
-//! The fast CPU path: the f32 kernels of [`crate::cpu`] (the twins of the WGSL shaders)
+//! The fast CPU path: the f32 kernels of `crate::cpu` (the twins of the WGSL shaders)
 //! vectorized across vertices and run on every core, for machines without a GPU.
 //!
 //! Data flow: rig → sweep → sweep coefficients → **bind → deform → (Jacobian) normals** → output.
@@ -30,5 +30,7 @@ mod isa;
 mod lanes8;
 pub mod mesh;
 
+/// Positions as the fast path takes them: f32, tightly packed xyz.
+pub use crate::cpu::packed;
 pub use isa::Isa;
 pub use mesh::FastMesh;

@@ -1,6 +1,6 @@
 //! The falloff blend on the f64 reference path: a vertex in a band follows its own sweep part of
 //! the way, its frame blended with its second influence's. The f32 twin of the GPU kernel is
-//! [`crate::cpu::band`].
+//! `crate::cpu::band`.
 //!
 //! Each influence i moves the vertex by a frame: a center c_i, a turn Q_i (the posed frame's
 //! orientation times the rest frame's inverse) and an offset o_i from the center, in rest

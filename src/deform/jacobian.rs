@@ -1,7 +1,7 @@
 //! Normals through the deformation, on the f64 reference path: the Jacobian of Eq. 2 (extended
 //! by h) maps a rest normal to the deformed one per vertex, the way skinning turns normals,
 //! with no gather over the vertex's triangles. The f32 twins of the GPU kernels are
-//! [`crate::cpu::jacobian`].
+//! `crate::cpu::jacobian`.
 //!
 //! A bound vertex is x = P₀(θ, t, d) on the rest sweep and moves to P(θ, t, d) on the posed one,
 //! so the deformation F = P ∘ P₀⁻¹ has the Jacobian J = DP · DP₀⁻¹, DP the 3 × 3 matrix of the

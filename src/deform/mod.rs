@@ -1,6 +1,6 @@
 //! Deformation (Eq. 2, extended by h) on the f64 reference path: every bound vertex follows its
 //! posed sweep, and a vertex in a falloff band follows it part of the way ([`blend`]). The f32
-//! twins of the GPU kernels are [`crate::cpu::deform`] and [`crate::cpu::band`].
+//! twins of the GPU kernels are `crate::cpu::deform` and `crate::cpu::band`.
 //!
 //! Data flow: rig → sweep → sweep coefficients → bind → **deform** → normals → output.
 //!

@@ -1,4 +1,4 @@
-//! Rigging a whole mesh in one call: its protrusions ([`super::protrusions`]) each get one
+//! Rigging a whole mesh in one call: its protrusions (`super::protrusions`) each get one
 //! fitted sweep ([`super::fit`]), key 0 at the part's attachment (its rim), with the fit's
 //! falloff; the rest of the mesh (the body) stays unowned. The fits run on the mesh with its
 //! bit-identical vertices joined (a patch mesh's unwelded seams), so a part's sections close;

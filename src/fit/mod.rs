@@ -2,15 +2,15 @@
 //! hand, in one call.
 //!
 //! Data flow: mesh part → **fit** → rig → sweep → … (the fitted keys go into a rig file).
-//! [`autorig`] finds the parts themselves (a mesh's protrusions, [`protrusions`]) and fits
+//! [`autorig`] finds the parts themselves (a mesh's protrusions, `protrusions`) and fits
 //! one sweep to each.
 //!
 //! [`fit`] follows the paper's steps:
-//! 1. **Axis.** The user's polyline, or else the part's skeleton ([`skeleton`]): the
+//! 1. **Axis.** The user's polyline, or else the part's skeleton (`skeleton`): the
 //!    centroids of its level sets of geodesic distance from the loop where it is attached
 //!    (its rim), from its attached end to its tip, so that the first guess already follows a
 //!    curved or L-shaped part however it was cut or placed (the principal axis of the
-//!    vertices, [`axis::principal_axis`], only where no skeleton can be found). A coarse part
+//!    vertices, `axis::principal_axis`, only where no skeleton can be found). A coarse part
 //!    (fewer vertices than the first keys have radii, such as spot's legs of 46–83 vertices)
 //!    is fitted from four starts: the skeleton and its points before centering, each with the
 //!    keys' planes held normal to it or following the fit's own sweep, keeping the tightest
@@ -19,21 +19,21 @@
 //!    its radius with small changes of its first guess; scored at its vertices alone, the
 //!    choice would favour radii that wave between them). Key 0's plane
 //!    is the plane of that loop; θ = 0 comes from the part's shape
-//!    ([`frames::reference_direction`]), so the fit of a rigidly moved part is the moved fit.
+//!    (`frames::reference_direction`), so the fit of a rigidly moved part is the moved fit.
 //! 2. **Rough sweep** (Fig. 3a): circles along the axis enclosing every vertex, recorded as
 //!    the first [`FitStep`].
 //! 3. **Key sections** (Fig. 3b, c): `keys` planes along the axis, normal to it, cut the
-//!    part's faces ([`section::cut`]). Each key's section is the smallest closed contour around
+//!    part's faces (`section::cut`). Each key's section is the smallest closed contour around
 //!    the key's center (or the nearest contour) plus the contours as near as that one reaches
 //!    and the closed contours separated from those by gaps no wider than that reach (a foot's
-//!    toes, a hand's fingers: one section around them all, [`section::around`]); a ray of such
+//!    toes, a hand's fingers: one section around them all, `section::around`); a ray of such
 //!    a section that passes through a gap takes interpolated radii and leaves the section
 //!    complete; its center is their area centroid, or where rays from that cross the boundary
-//!    more than once the point inside from which they see most of it ([`star`]), and M radii
-//!    are sampled from that center to the crossing of each ray ([`radii::sample`]). A ray that
+//!    more than once the point inside from which they see most of it (`star`), and M radii
+//!    are sampled from that center to the crossing of each ray (`radii::sample`). A ray that
 //!    still crosses the boundary more than once (a section that is not star-shaped around any
 //!    center the search finds) is counted in [`SectionReport::several_crossings`] and takes
-//!    the mean distance of the boundary around it ([`hidden`]); a ray that meets nothing takes the value
+//!    the mean distance of the boundary around it (`hidden`); a ray that meets nothing takes the value
 //!    interpolated between its neighbours ([`SectionReport::missed`]). A plane that would
 //!    leave the part through its rim (an oblique cut) is tilted towards the rim's plane or
 //!    moved away from it until its section is complete; only where no such plane is found
@@ -48,7 +48,7 @@
 //!    exceeds `tolerance` × the mean radius a key is inserted at the interval's middle, and
 //!    all keys are re-centered again, until no interval is loose, the fit stops improving,
 //!    or `max_keys` is reached.
-//! 7. **Least-squares radii** ([`least_squares`]): with the centers and frames fixed, each
+//! 7. **Least-squares radii** (`least_squares`): with the centers and frames fixed, each
 //!    vertex's binding (θ, t) and its distance from the axis are fixed, and d is linear in the
 //!    key radii, so the radii that minimise Σ d² are found by linear least squares (with a
 //!    ridge towards the sampled radii, for the radii no vertex sees) and kept where they
@@ -57,7 +57,7 @@
 //!    only where it does not loosen the fit at its triangles' centroids, which it was not
 //!    fitted to: otherwise the radii of a coarse part pass through its vertices and bulge
 //!    between them.
-//! 8. **Key 0 at the attached end** ([`attached`]): the part's rim, where it meets the rest of
+//! 8. **Key 0 at the attached end** (`attached`): the part's rim, where it meets the rest of
 //!    the mesh, is measured towards each end of the sweep by its edges' parameter t; when the
 //!    rim nearer the last key is strictly longer, the sweep is traversed from its other end
 //!    (the same surface, so the fit is unchanged), so that key 0 sits where the part is
@@ -68,26 +68,29 @@
 //! 9. **Falloff** ([`falloff`]): the width W of the band over which the sweep's deformation
 //!    fades at the part's boundary, the user's or a fraction of the part's length.
 
-pub mod attached;
 pub mod autorig;
-pub mod axis;
 mod disjoint_sets;
 mod error;
 pub mod falloff;
-pub mod frames;
-pub mod geodesic;
-pub mod hidden;
-pub mod least_squares;
-pub mod limb;
 pub mod part;
-pub mod protrusions;
 pub mod quality;
-pub mod radii;
 mod refine;
-pub mod section;
-pub mod select;
-pub mod skeleton;
-pub mod star;
+
+internal_mod! {
+    attached;
+    axis;
+    frames;
+    geodesic;
+    hidden;
+    least_squares;
+    limb;
+    protrusions;
+    radii;
+    section;
+    select;
+    skeleton;
+    star;
+}
 
 use glam::DVec3;
 
@@ -107,7 +110,7 @@ use crate::sweep::Key;
 pub struct FitOptions {
     /// The first guess at the axis, a polyline from the first end of the part to the other;
     /// key 0 sits at its first point's end, whatever the part's rim. `None`: the part's
-    /// skeleton ([`skeleton`]), from the end where the part is attached to its tip.
+    /// skeleton (`skeleton`), from the end where the part is attached to its tip.
     pub axis: Option<Vec<DVec3>>,
     /// Keys placed along the axis before any insertion (at least 2, at most
     /// [`MAX_KEYS_PER_SWEEP`]).
@@ -211,7 +214,7 @@ pub struct Fit {
     pub steps: Vec<FitStep>,
     /// The length of the part's rim (where it is attached to the rest of the mesh,
     /// [`Part::rim`]) nearer key 0 and nearer the last key, mesh units
-    /// ([`attached::rim_lengths`]).
+    /// (`attached::rim_lengths`).
     pub rim: [f64; 2],
     /// The falloff width W, mesh units (0: a hard boundary).
     pub falloff: f64,
@@ -219,7 +222,7 @@ pub struct Fit {
 
 impl Fit {
     /// The fit with the radii sampled from the key sections, before they were fitted to the
-    /// vertices by least squares ([`least_squares`]): how nearly the part is a tube whose
+    /// vertices by least squares (`least_squares`): how nearly the part is a tube whose
     /// sections the keys describe. [`Fit::quality`] where least squares did not tighten it.
     pub fn sections_quality(&self) -> FitQuality {
         match &self.steps[..] {

@@ -80,7 +80,7 @@ fn inner_neighbours(complete: &[usize], i: usize, last: usize) -> Vec<usize> {
 /// section's boundary, its outermost crossing; elsewhere the neighbour's radius.
 fn partial_radii(cut: &Cut, center: DVec3, neighbour: &[f64]) -> Vec<f64> {
     let contours: Vec<&Contour> = cut.contours.iter().collect();
-    let q = cut.plane.to_plane(center);
+    let q = cut.plane.coordinates_of(center);
     let m = neighbour.len();
     (0..m).map(|j| ray_crossings(&contours, q, TAU * j as f64 / m as f64).1.unwrap_or(neighbour[j])).collect()
 }
@@ -409,7 +409,7 @@ impl Fitter<'_> {
             borrowed: false,
         };
         let contours = chosen.into_iter().cloned().collect();
-        Some(Cut { center: plane.from_plane(middle), radii: sampled.radii, report, plane, contours })
+        Some(Cut { center: plane.point_at(middle), radii: sampled.radii, report, plane, contours })
     }
 
     /// Further re-centering passes, keeping the tightest fit (smallest RMS |d|) seen.

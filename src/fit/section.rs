@@ -22,13 +22,13 @@ pub struct Plane {
 
 impl Plane {
     /// The in-plane coordinates of `p` (which should lie in the plane).
-    pub fn to_plane(&self, p: DVec3) -> DVec2 {
+    pub fn coordinates_of(&self, p: DVec3) -> DVec2 {
         let d = p - self.origin;
         DVec2::new(d.dot(self.x), d.dot(self.y))
     }
 
     /// The point with in-plane coordinates `q`.
-    pub fn from_plane(&self, q: DVec2) -> DVec3 {
+    pub fn point_at(&self, q: DVec2) -> DVec3 {
         self.origin + self.x * q.x + self.y * q.y
     }
 }
@@ -106,7 +106,7 @@ pub fn cut(part: &Part, plane: &Plane) -> Vec<Contour> {
         *nodes.entry(key).or_insert_with(|| {
             let (ha, hb) = (heights[key.0 as usize], heights[key.1 as usize]);
             let (pa, pb) = (part.positions[key.0 as usize], part.positions[key.1 as usize]);
-            points.push(plane.to_plane(pa + (pb - pa) * (ha / (ha - hb))));
+            points.push(plane.coordinates_of(pa + (pb - pa) * (ha / (ha - hb))));
             points.len() - 1
         })
     };

@@ -295,7 +295,7 @@ fn center_on_sections(part: &Part, points: &mut [DVec3]) {
             let area: f64 = chosen.iter().map(|c| c.signed_area().abs()).sum();
             let q = center(&chosen);
             if q.length() <= RECENTER_REACH * (area / std::f64::consts::PI).sqrt() {
-                points[i] = plane.from_plane(q);
+                points[i] = plane.point_at(q);
             }
         }
     }

@@ -582,7 +582,7 @@ impl GpuDeformer {
     /// Copies the cell groups back to the CPU (blocking), those of each deform chunk with its
     /// first vertex (`None` if the deform kernel runs over single vertices): [`CELL_GROUP`]
     /// chunk-relative vertices a group, [`UNOWNED`] in free slots, as
-    /// [`crate::cpu::cell_order::cell_groups`] makes them up to the order of each cell's
+    /// `crate::cpu::cell_order::cell_groups` makes them up to the order of each cell's
     /// vertices.
     ///
     /// [`CELL_GROUP`]: crate::coeffs::CELL_GROUP

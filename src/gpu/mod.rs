@@ -4,7 +4,7 @@
 //! Data flow: rig → sweep → sweep coefficients → **bind → deform → normals → tangents** (on the GPU) →
 //! output buffers.
 //!
-//! The kernels in `shaders/` have CPU twins in [`crate::cpu`]; tests prove the GPU agrees with
+//! The kernels in `shaders/` have CPU twins in `crate::cpu`; tests prove the GPU agrees with
 //! them (and with the f64 reference) on lavapipe.
 
 mod bands;
@@ -16,11 +16,14 @@ pub(crate) mod deformer;
 mod error;
 mod input_error;
 mod kernel_cache;
-pub mod kernels;
 mod normals_pass;
 mod readback;
-pub mod shaders;
 mod tangents_pass;
+
+internal_mod! {
+    kernels;
+    shaders;
+}
 
 pub use bands::BAND_STRIDE;
 pub use buffers::{BINDING_STRIDE, POSITION_STRIDE};

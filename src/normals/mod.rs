@@ -6,7 +6,7 @@
 //!
 //! The adjacency is built once per mesh; every vertex then gathers its own sum, so no atomics
 //! (and no float atomics) are needed on the GPU. The f32 twin of the GPU kernel is
-//! [`crate::cpu::normals`].
+//! `crate::cpu::normals`.
 //!
 //! Only vertices with a moving vertex in their one-ring need new normals per pose
 //! ([`dirty_vertices`]); [`tangents`] turns rest tangents with the normals.

@@ -2,7 +2,7 @@
 //! of its vertex's normal.
 //!
 //! Data flow: rig → sweep → sweep coefficients → bind → deform → **normals → tangents** →
-//! output. The f32 twin of the GPU kernel is [`crate::cpu::tangents`]; this module is the
+//! output. The f32 twin of the GPU kernel is `crate::cpu::tangents`; this module is the
 //! reference both are tested against.
 //!
 //! For a vertex with rest normal n₀, deformed normal n and rest tangent t₀ = (x, y, z, w) (as

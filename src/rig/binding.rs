@@ -10,7 +10,7 @@ impl Rig {
     /// Binds every vertex of `mesh` that `owners` (from [`Rig::owners`]) gives a sweep, and
     /// computes the falloff bands along the mesh's surface ([`MeshBindings::bind`]).
     pub fn bind_mesh(&self, mesh: &Mesh, owners: &[u32], progress: &(dyn Fn(usize) + Sync)) -> MeshBindings {
-        MeshBindings::bind(&self.rest, &self.falloffs(), owners, &mesh.positions, &mesh.faces, progress)
+        MeshBindings::bind(self.rest(), &self.falloffs(), owners, &mesh.positions, &mesh.faces, progress)
     }
 
     /// The falloff weights of `mesh`'s band vertices ([`band_weights`]), for the GPU deformer;
@@ -23,9 +23,9 @@ impl Rig {
     /// a band that wide would cover every part and is a units mistake.
     pub fn check_falloffs_fit(&self, mesh: &Mesh, mesh_name: &str) -> Result<(), RigError> {
         let diagonal = mesh.diagonal();
-        match self.sweeps.iter().find(|sweep| sweep.falloff > diagonal) {
+        match self.sweeps().iter().find(|sweep| sweep.falloff > diagonal) {
             Some(sweep) => Err(RigError::new(
-                self.file.clone(),
+                self.file().map(Into::into),
                 RigErrorKind::FalloffTooLarge {
                     sweep: sweep.name.clone(),
                     falloff: sweep.falloff,

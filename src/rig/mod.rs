@@ -10,8 +10,6 @@
 mod bend_twist_taper;
 mod binding;
 #[cfg(feature = "json")]
-pub mod bindings_file;
-#[cfg(feature = "json")]
 pub(crate) mod bounded;
 mod document;
 mod error;

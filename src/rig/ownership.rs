@@ -5,7 +5,7 @@
 //! face groups, plus the check that no falloff is wider than the mesh.
 
 use super::{Rig, RigError, RigErrorKind, RigSweep, VertexSelection};
-use crate::bind::UNOWNED;
+use crate::layout::UNOWNED;
 use crate::mesh::Mesh;
 
 impl Rig {

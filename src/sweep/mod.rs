@@ -8,21 +8,24 @@
 //! S(θ, t) = C(t) + R(t)·(r(θ, t)·cos θ, r(θ, t)·sin θ, 0)
 //! ```
 //!
-//! with C the natural cubic spline through the centers ([`curve`]), R the normalized linear
-//! interpolation of the key quaternions ([`orientation`]) and r the tensor-product spline of the
-//! radii ([`radius`]). Its volume is Eq. 1 ([`Sweep::volume`]).
+//! with C the natural cubic spline through the centers (`curve`), R the normalized linear
+//! interpolation of the key quaternions (`orientation`) and r the tensor-product spline of the
+//! radii (`radius`). Its volume is Eq. 1 ([`Sweep::volume`]).
 
-pub mod cubic;
-pub mod curve;
 mod error;
 mod key;
-pub mod knots;
-pub mod natural_spline;
-pub mod orientation;
-pub mod periodic_spline;
-pub mod plane_quintic;
-pub mod quadrature;
-pub mod radius;
+
+internal_mod! {
+    cubic;
+    curve;
+    knots;
+    natural_spline;
+    orientation;
+    periodic_spline;
+    plane_quintic;
+    quadrature;
+    radius;
+}
 mod rebuild;
 mod reshape;
 mod volume;
@@ -73,7 +76,7 @@ pub struct Sweep {
 
 impl Sweep {
     /// Builds the sweep through `keys` at `knots`, or at the chord-length knots of the key
-    /// centers when `knots` is `None` (see [`knots`]).
+    /// centers when `knots` is `None` (see `knots`).
     ///
     /// Fails, naming the key, on fewer than 2 keys, fewer than 3 radii or a radius count that
     /// differs from key 0's, a non-finite number, a coordinate or radius beyond

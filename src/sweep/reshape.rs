@@ -61,7 +61,7 @@ impl Sweep {
         Ok(())
     }
 
-    /// This sweep with every radius scaled by `factor`: r(θ, t) by `factor` ([`RadiusField::scaled`](super::radius::RadiusField::scaled),
+    /// This sweep with every radius scaled by `factor`: r(θ, t) by `factor` (`RadiusField::scaled`,
     /// equal up to rounding to the sweep built from the scaled radii), C(t) and R(t) kept.
     pub fn with_radii_scaled(&self, factor: f64) -> Sweep {
         Sweep {
@@ -72,7 +72,7 @@ impl Sweep {
     }
 
     /// This sweep after the radii of key `key` changed by `delta` (ρ_key,j += delta\[j\]),
-    /// C(t) and R(t) kept: see [`RadiusField::add_to_key`](super::radius::RadiusField::add_to_key),
+    /// C(t) and R(t) kept: see `RadiusField::add_to_key`,
     /// whose changed knot intervals it returns. The caller guarantees `delta` has M entries and
     /// leaves the radii valid.
     pub fn add_to_key_radii(&mut self, key: usize, delta: &[f64]) -> std::ops::Range<usize> {

@@ -18,7 +18,7 @@ impl Sweep {
     ///
     /// The accuracy is relative to ∫ A(t)·|C′(t)| dt, the volume the sweep would have with its
     /// normals along its travel, so a volume that cancels to near zero costs no more than any
-    /// other: at most [`super::quadrature::MAX_DEPTH`] bisections per knot interval.
+    /// other: at most `super::quadrature::MAX_DEPTH` bisections per knot interval.
     pub fn volume(&self) -> f64 {
         self.volume_with_areas(&self.area_polynomials())
     }

@@ -1,6 +1,6 @@
 //! The WGSL kernels without a device: each parses and validates with naga, its workgroup size
 //! is the Rust constant, and every buffer struct it shares with Rust has the same size and
-//! member offsets as the `#[repr(C)]` struct in `src/coeffs/layout.rs`.
+//! member offsets as the `#[repr(C)]` struct in `src/layout.rs`.
 
 use std::mem::{offset_of, size_of};
 

@@ -9,11 +9,11 @@ use super::backend::{Backend, Device, resolve};
 use super::progress::vertex_bar;
 use sweepffd::bind::MeshBindings;
 use sweepffd::bind::band::bind_bands;
+use sweepffd::bindings_file::BindingsFile;
 use sweepffd::coeffs::SweepCoefficients;
 use sweepffd::cpu_fast::FastMesh;
 use sweepffd::gpu::{BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, GpuError};
 use sweepffd::mesh::Mesh;
-use sweepffd::rig::bindings_file::BindingsFile;
 use sweepffd::rig::{Rig, RigError, RigErrorKind};
 
 /// The arguments of `sweepffd bind`.
@@ -72,7 +72,7 @@ pub fn bind_on_gpu(context: &GpuContext, inputs: &Inputs) -> Result<MeshBindings
 pub fn bind_on_cpu(inputs: &Inputs) -> MeshBindings {
     let rest = inputs.rig.rest();
     let weights = inputs.rig.band_weights(&inputs.mesh, &inputs.owners);
-    let positions = sweepffd::cpu::packed(&inputs.mesh.positions);
+    let positions = sweepffd::cpu_fast::packed(&inputs.mesh.positions);
     let fast = FastMesh::bind(rest, &inputs.owners, &weights, &positions);
     let vertices = fast.bindings.iter().map(|b| fast.rest.reference_binding(rest, b)).collect();
     MeshBindings { vertices, bands: bind_bands(rest, &inputs.mesh.positions, &weights) }

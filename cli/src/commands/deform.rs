@@ -11,12 +11,12 @@ use super::backend::{Backend, Device, resolve};
 use super::bind::{Inputs, bind_with_progress, is_empty_rig, load_inputs};
 use sweepffd::bind::falloff::BandWeight;
 use sweepffd::bind::{MeshBindings, UNOWNED};
+use sweepffd::bindings_file::{BindingsFile, BindingsFileError, MadeFor};
 use sweepffd::coeffs::SweepCoefficients;
 use sweepffd::cpu_fast::FastMesh;
 use sweepffd::deform::deform_vertices;
 use sweepffd::gpu::{BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, GpuError};
 use sweepffd::mesh::{Format, Mesh};
-use sweepffd::rig::bindings_file::{BindingsFile, BindingsFileError, MadeFor};
 use sweepffd::sweep::Sweep;
 
 /// The arguments of `sweepffd deform`.
@@ -132,7 +132,7 @@ fn deform_on_gpu(
 /// Returns the positions and owners.
 fn deform_on_cpu(inputs: &Inputs, posed: &[Sweep], saved: Option<&MeshBindings>) -> (Vec<DVec3>, Vec<u32>) {
     let rest = inputs.rig.rest();
-    let mut positions = sweepffd::cpu::packed(&inputs.mesh.positions);
+    let mut positions = sweepffd::cpu_fast::packed(&inputs.mesh.positions);
     let (mut fast, weights) = match saved {
         Some(saved) => {
             let (bindings, bands) = SweepCoefficients::new(rest).gpu_mesh_bindings(rest, saved);

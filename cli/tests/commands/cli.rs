@@ -12,9 +12,9 @@ use std::process::Output;
 
 use glam::DVec3;
 use sweepffd::bind::bind_vertices;
+use sweepffd::bindings_file::BindingsFile;
 use sweepffd::mesh::Mesh;
 use sweepffd::rig::Rig;
-use sweepffd::rig::bindings_file::BindingsFile;
 use sweepffd::synthetic::{BendTwistTaper, Tube, tube_rig};
 
 /// Runs the command line in `dir`.

@@ -12,9 +12,9 @@ use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
 use sweepffd::bind::{Binding, MeshBindings, VertexBinding};
+use sweepffd::bindings_file::{BindingsFile, check};
 use sweepffd::mesh::Mesh;
 use sweepffd::rig::Rig;
-use sweepffd::rig::bindings_file::{BindingsFile, check};
 use sweepffd::synthetic::{Tube, attached_tube_rig, split_tube_rig, tube_rig};
 use tempfile::TempDir;
 

@@ -72,7 +72,7 @@ impl CellCoeffs {
     }
 
     /// The `curve[1].w` of knot interval `k` of `segments`: 1 on the first, plus 2 on the last
-    /// (binding beyond an end happens there, [`crate::cpu::jacobian::is_beyond_end`]).
+    /// (binding beyond an end happens there, `crate::cpu::jacobian::is_beyond_end`).
     pub fn ends(k: usize, segments: usize) -> f32 {
         (u32::from(k == 0) + 2 * u32::from(k + 1 == segments)) as f32
     }

@@ -1,8 +1,9 @@
 //! Converting bindings between the reference form of [`crate::bind`] (f64, per sweep: θ, t,
-//! d, h) and the GPU form of [`crate::coeffs::layout`] (f32, per radius cell: s, φ, d, h), for
+//! d, h) and the GPU form of [`crate::layout`] (f32, per radius cell: s, φ, d, h), for
 //! a rig's rest sweeps. Every conversion between the two lives here.
 //!
-//! Data flow: rig → sweep → **sweep coefficients** → bind → deform → normals → output.
+//! Data flow: rig → sweep → sweep coefficients → **bind** (f64) → its f32 form for the kernels
+//! and their twins → deform → normals → output.
 //!
 //! One vocabulary, two precisions:
 //!
@@ -19,10 +20,10 @@
 
 use std::f64::consts::TAU;
 
-use super::{BAND_FLAG, BandRecord, GpuBinding, SweepCoefficients, UNOWNED};
+use super::band_pack::band_pack_vertex;
+use crate::coeffs::{BAND_FLAG, BandRecord, GpuBinding, SweepCoefficients, UNOWNED};
 use crate::bind::falloff::BandWeight;
 use crate::bind::{BandBinding, Binding, MeshBindings, VertexBinding};
-use crate::cpu::band_pack::band_pack_vertex;
 use crate::sweep::Sweep;
 use crate::sweep::radius::angular_cell;
 
