@@ -71,79 +71,11 @@ impl CpuBench {
         let scene = &self.scene;
         let n = scene.vertex_count();
         let isa = Isa::detect();
-        let mut out = vec![DVec3::ZERO; n];
-        let mut out_f32 = vec![0.0f32; 3 * n];
-        let mut bindings = vec![GpuBinding::default(); n];
-        let inputs = self.bound.inputs();
-        let bind = median_seconds(WARMUP, runs, || {
-            cpu_fast::bind::bind(&inputs, &self.bound.flagged_owners, &self.bound.rest_f32, &mut bindings);
-        });
+        let bind = self.fast_bind_seconds(runs);
         let reference_bind = median_seconds(WARMUP, runs, || {
             scene.rig.bind_mesh(&scene.mesh, &scene.owners, &|_| {});
         });
-        let (joints, influences) = (skinning_joints(), skinning_influences(n));
-        let time = |work: &mut dyn FnMut()| {
-            let start = Instant::now();
-            work();
-            start.elapsed().as_secs_f64()
-        };
-        let mut posed = SweepCoefficients::new(scene.rig.rest());
-        posed.update(&scene.posed).expect("the bench pose fits its rig");
-        let falloff_posed: Vec<SweepCoefficients> = scene
-            .with_falloff
-            .iter()
-            .map(|(_, variant)| {
-                let mut posed = SweepCoefficients::new(variant.rig.rest());
-                posed.update(&variant.posed).expect("the bench pose fits its rig");
-                posed
-            })
-            .collect();
-        let mut pose = scene.rig.pose_buffer();
-        let mut frame_cells = posed.clone();
-        let mut rounds = Vec::with_capacity(runs);
-        let mut reference = Vec::with_capacity(runs);
-        for round in 0..WARMUP + runs {
-            let reference_deform = time(&mut || {
-                deform_vertices(scene.rig.rest(), &scene.posed, &self.bound.reference, &scene.mesh.positions, &mut out)
-            });
-            let times = Round {
-                instances: (0.0, 1.0),
-                partial: (0.0, 1.0),
-                fused: 0.0,
-                wide_copy: 1.0,
-                deform: time(&mut || cpu_fast::deform::deform(&posed.cells, &self.bound.bindings, &mut out_f32)),
-                falloff: self
-                    .falloff
-                    .iter()
-                    .zip(&falloff_posed)
-                    .map(|(bound, posed)| {
-                        let mut positions = bound.rest_f32.clone();
-                        let (cells, rest) = (&posed.cells, &bound.rest.cells);
-                        time(&mut || {
-                            cpu_fast::deform::deform_with_bands(
-                                cells,
-                                rest,
-                                &bound.bindings,
-                                &bound.bands,
-                                &mut positions,
-                            )
-                        })
-                    })
-                    .collect(),
-                copy: time(&mut || cpu::copy::copy(&self.bound.bindings, &mut out_f32)),
-                lbs: time(&mut || cpu::skinning::skinning(&joints, &self.bound.rest_f32, &influences, &mut out_f32)),
-                frame: time(&mut || {
-                    scene.rig.pose_into(&scene.keys, &mut pose).expect("the bench pose fits its rig");
-                    frame_cells.update(pose.sweeps()).expect("the bench pose fits its rig");
-                    cpu_fast::deform::deform(&frame_cells.cells, &self.bound.bindings, &mut out_f32);
-                }),
-                normals: 0.0,
-            };
-            if round >= WARMUP {
-                reference.push((reference_deform, reference_deform / times.deform));
-                rounds.push(times);
-            }
-        }
+        let (rounds, reference) = self.timed_rounds(runs);
         let column = |f: fn(&Round) -> f64| median(&mut rounds.iter().map(f).collect::<Vec<_>>());
         let (deform, copy, lbs, frame) =
             (column(|r| r.deform), column(|r| r.copy), column(|r| r.lbs), column(|r| r.frame));
@@ -174,21 +106,103 @@ impl CpuBench {
             fused_over_copy: None,
             fused_over_separate: None,
             normals_angle_p99_deg: None,
-            falloff: scene
-                .with_falloff
-                .iter()
-                .zip(&self.falloff)
-                .enumerate()
-                .map(|(i, ((kind, _), bound))| FalloffReport {
-                    kind: *kind,
-                    band_fraction: bound.bands.len() as f64 / n_f,
-                    deform_verts_per_s: n_f / median(&mut rounds.iter().map(|r| r.falloff[i]).collect::<Vec<_>>()),
-                    over_plain: median(&mut rounds.iter().map(|r| r.falloff[i] / r.deform).collect::<Vec<_>>()),
-                    device_bytes_per_vertex: None,
-                })
-                .collect(),
+            falloff: self.falloff_reports(&rounds),
             runs,
             timestamps: false,
         }
     }
+
+    /// The median seconds of the fast path's binding of every vertex.
+    fn fast_bind_seconds(&self, runs: usize) -> f64 {
+        let mut bindings = vec![GpuBinding::default(); self.scene.vertex_count()];
+        let inputs = self.bound.inputs();
+        median_seconds(WARMUP, runs, || {
+            cpu_fast::bind::bind(&inputs, &self.bound.flagged_owners, &self.bound.rest_f32, &mut bindings);
+        })
+    }
+
+    /// `runs` rounds after warm-up, each timing the fast deform, its falloff variants, the copy
+    /// and skinning baselines and a whole frame; and the reference deform of each round with
+    /// its ratio to the round's fast deform.
+    fn timed_rounds(&self, runs: usize) -> (Vec<Round>, Vec<(f64, f64)>) {
+        let scene = &self.scene;
+        let n = scene.vertex_count();
+        let mut out = vec![DVec3::ZERO; n];
+        let mut out_f32 = vec![0.0f32; 3 * n];
+        let (joints, influences) = (skinning_joints(), skinning_influences(n));
+        let posed = posed_cells(&scene.rig, &scene.posed);
+        let falloff_posed: Vec<SweepCoefficients> =
+            scene.with_falloff.iter().map(|(_, variant)| posed_cells(&variant.rig, &variant.posed)).collect();
+        let mut pose = scene.rig.pose_buffer();
+        let mut frame_cells = posed.clone();
+        let mut rounds = Vec::with_capacity(runs);
+        let mut reference = Vec::with_capacity(runs);
+        for round in 0..WARMUP + runs {
+            let reference_deform = time(&mut || {
+                deform_vertices(scene.rig.rest(), &scene.posed, &self.bound.reference, &scene.mesh.positions, &mut out)
+            });
+            let times = Round {
+                instances: (0.0, 1.0),
+                partial: (0.0, 1.0),
+                fused: 0.0,
+                wide_copy: 1.0,
+                deform: time(&mut || cpu_fast::deform::deform(&posed.cells, &self.bound.bindings, &mut out_f32)),
+                falloff: self
+                    .falloff
+                    .iter()
+                    .zip(&falloff_posed)
+                    .map(|(bound, posed)| time_bands(bound, posed))
+                    .collect(),
+                copy: time(&mut || cpu::copy::copy(&self.bound.bindings, &mut out_f32)),
+                lbs: time(&mut || cpu::skinning::skinning(&joints, &self.bound.rest_f32, &influences, &mut out_f32)),
+                frame: time(&mut || {
+                    scene.rig.pose_into(&scene.keys, &mut pose).expect("the bench pose fits its rig");
+                    frame_cells.update(pose.sweeps()).expect("the bench pose fits its rig");
+                    cpu_fast::deform::deform(&frame_cells.cells, &self.bound.bindings, &mut out_f32);
+                }),
+                normals: 0.0,
+            };
+            if round >= WARMUP {
+                reference.push((reference_deform, reference_deform / times.deform));
+                rounds.push(times);
+            }
+        }
+        (rounds, reference)
+    }
+
+    /// Each falloff variant's figures from the timed `rounds`.
+    fn falloff_reports(&self, rounds: &[Round]) -> Vec<FalloffReport> {
+        let n_f = self.scene.vertex_count() as f64;
+        let column = |f: &dyn Fn(&Round) -> f64| median(&mut rounds.iter().map(f).collect::<Vec<_>>());
+        (self.scene.with_falloff.iter().zip(&self.falloff).enumerate())
+            .map(|(i, ((kind, _), bound))| FalloffReport {
+                kind: *kind,
+                band_fraction: bound.bands.len() as f64 / n_f,
+                deform_verts_per_s: n_f / column(&|r| r.falloff[i]),
+                over_plain: column(&|r| r.falloff[i] / r.deform),
+                device_bytes_per_vertex: None,
+            })
+            .collect()
+    }
+}
+
+/// The seconds `work` takes, once.
+fn time(work: &mut dyn FnMut()) -> f64 {
+    let start = Instant::now();
+    work();
+    start.elapsed().as_secs_f64()
+}
+
+/// The cell records of `rig` posed by `posed`.
+fn posed_cells(rig: &crate::rig::Rig, posed: &[crate::sweep::Sweep]) -> SweepCoefficients {
+    let mut cells = SweepCoefficients::new(rig.rest());
+    cells.update(posed).expect("the bench pose fits its rig");
+    cells
+}
+
+/// The seconds of one fast deform of `bound`'s falloff scene, bands included, posed by `posed`.
+fn time_bands(bound: &Bound, posed: &SweepCoefficients) -> f64 {
+    let mut positions = bound.rest_f32.clone();
+    let (cells, rest) = (&posed.cells, &bound.rest.cells);
+    time(&mut || cpu_fast::deform::deform_with_bands(cells, rest, &bound.bindings, &bound.bands, &mut positions))
 }

@@ -61,16 +61,7 @@ impl GpuBench {
         for band in &bands {
             flagged_owners[band.vertex as usize] |= BAND_FLAG;
         }
-        let mut falloff = Vec::with_capacity(scene.with_falloff.len());
-        for (kind, variant) in &scene.with_falloff {
-            let bands = variant.rig.band_weights(&variant.mesh, &variant.owners);
-            let source = BindingSource::Bind { owners: &variant.owners, bands: &bands };
-            let positions = crate::gpu::rest_positions(&variant.mesh.positions);
-            let mut deformer =
-                GpuDeformer::new(context, &DeformerDescriptor::new(variant.rig.rest(), &positions, source))?;
-            deformer.set_pose(0, &variant.posed)?;
-            falloff.push((*kind, deformer));
-        }
+        let falloff = falloff_deformers(context, &scene)?;
         let binder = Binder::new(context, rest, &SweepCoefficients::new(rest), deformer.rest_cells());
         let n = deformer.vertex_count();
         let scratch = device.create_buffer(&wgpu::BufferDescriptor {
@@ -79,61 +70,8 @@ impl GpuBench {
             usage: wgpu::BufferUsages::STORAGE,
             mapped_at_creation: false,
         });
-        let limits = *deformer.limits();
-
-        let copy_kernel = kernels::copy(device);
-        let copy_dispatches = deformer
-            .binding_chunks()
-            .map(|(range, bindings)| {
-                let params = chunk_params(device, range);
-                let group = copy_kernel.bind_group(
-                    device,
-                    "sweepffd copy baseline",
-                    &[
-                        params.as_entire_binding(),
-                        bindings.as_entire_binding(),
-                        window(&scratch, range, POSITION_STRIDE),
-                    ],
-                );
-                (group, dispatch_grid(range.len() as u32, &limits))
-            })
-            .collect();
-
-        let skinning_kernel = kernels::skinning(device);
-        let storage = |label, bytes: &[u8]| {
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents: bytes,
-                usage: wgpu::BufferUsages::STORAGE,
-            })
-        };
-        let joints = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("sweepffd bench joints"),
-            contents: bytemuck::cast_slice(&skinning_joints()),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
-        let rest_f32 = crate::cpu::packed(&scene.mesh.positions);
-        let rest_buffer = storage("sweepffd bench rest", bytemuck::cast_slice(&rest_f32));
-        let influences = storage("sweepffd bench influences", bytemuck::cast_slice(&skinning_influences(n as usize)));
-        let skinning_dispatches = uniform_chunks(n, POSITION_STRIDE, &limits)
-            .iter()
-            .map(|range| {
-                let params = chunk_params(device, range);
-                let group = skinning_kernel.bind_group(
-                    device,
-                    "sweepffd skinning baseline",
-                    &[
-                        params.as_entire_binding(),
-                        joints.as_entire_binding(),
-                        window(&rest_buffer, range, POSITION_STRIDE),
-                        window(&influences, range, 8),
-                        window(&scratch, range, POSITION_STRIDE),
-                    ],
-                );
-                (group, dispatch_grid(range.len() as u32, &limits))
-            })
-            .collect();
-
+        let copy = copy_baseline(device, &deformer, &scratch);
+        let skinning = skinning_baseline(device, &scene, deformer.limits(), &scratch);
         Ok(GpuBench {
             context: context.clone(),
             scene,
@@ -141,8 +79,8 @@ impl GpuBench {
             flagged_owners,
             falloff,
             binder,
-            copy: (copy_kernel, copy_dispatches),
-            skinning: (skinning_kernel, skinning_dispatches),
+            copy,
+            skinning,
             timer: GpuTimer::new(context),
             engine: EngineComparisons::new(context, n as usize)?,
             fused,
@@ -366,4 +304,84 @@ pub(super) fn encode(encoder: &mut wgpu::CommandEncoder, (kernel, dispatches): &
         pass.set_bind_group(0, group, &[]);
         pass.dispatch_workgroups(grid.0, grid.1, 1);
     }
+}
+
+/// The falloff comparisons' deformers, each posed once.
+fn falloff_deformers(context: &GpuContext, scene: &BenchScene) -> Result<Vec<(FalloffKind, GpuDeformer)>, GpuError> {
+    let mut falloff = Vec::with_capacity(scene.with_falloff.len());
+    for (kind, variant) in &scene.with_falloff {
+        let bands = variant.rig.band_weights(&variant.mesh, &variant.owners);
+        let source = BindingSource::Bind { owners: &variant.owners, bands: &bands };
+        let positions = crate::gpu::rest_positions(&variant.mesh.positions);
+        let mut deformer = GpuDeformer::new(context, &DeformerDescriptor::new(variant.rig.rest(), &positions, source))?;
+        deformer.set_pose(0, &variant.posed)?;
+        falloff.push((*kind, deformer));
+    }
+    Ok(falloff)
+}
+
+/// The copy baseline over the deformer's chunks: each bound vertex's binding read, its
+/// position written into `scratch`, as the deform kernel reads and writes.
+fn copy_baseline(device: &wgpu::Device, deformer: &GpuDeformer, scratch: &wgpu::Buffer) -> Dispatches {
+    let limits = *deformer.limits();
+    let kernel = kernels::copy(device);
+    let dispatches = deformer
+        .binding_chunks()
+        .map(|(range, bindings)| {
+            let params = chunk_params(device, range);
+            let group = kernel.bind_group(
+                device,
+                "sweepffd copy baseline",
+                &[params.as_entire_binding(), bindings.as_entire_binding(), window(scratch, range, POSITION_STRIDE)],
+            );
+            (group, dispatch_grid(range.len() as u32, &limits))
+        })
+        .collect();
+    (kernel, dispatches)
+}
+
+/// The four-bone linear blend skinning baseline over every vertex of `scene`, writing into
+/// `scratch`.
+fn skinning_baseline(
+    device: &wgpu::Device,
+    scene: &BenchScene,
+    limits: &crate::gpu::ChunkLimits,
+    scratch: &wgpu::Buffer,
+) -> Dispatches {
+    let n = scene.vertex_count() as u32;
+    let kernel = kernels::skinning(device);
+    let storage = |label, bytes: &[u8]| {
+        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents: bytes,
+            usage: wgpu::BufferUsages::STORAGE,
+        })
+    };
+    let joints = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("sweepffd bench joints"),
+        contents: bytemuck::cast_slice(&skinning_joints()),
+        usage: wgpu::BufferUsages::UNIFORM,
+    });
+    let rest_f32 = crate::cpu::packed(&scene.mesh.positions);
+    let rest_buffer = storage("sweepffd bench rest", bytemuck::cast_slice(&rest_f32));
+    let influences = storage("sweepffd bench influences", bytemuck::cast_slice(&skinning_influences(n as usize)));
+    let dispatches = uniform_chunks(n, POSITION_STRIDE, limits)
+        .iter()
+        .map(|range| {
+            let params = chunk_params(device, range);
+            let group = kernel.bind_group(
+                device,
+                "sweepffd skinning baseline",
+                &[
+                    params.as_entire_binding(),
+                    joints.as_entire_binding(),
+                    window(&rest_buffer, range, POSITION_STRIDE),
+                    window(&influences, range, 8),
+                    window(scratch, range, POSITION_STRIDE),
+                ],
+            );
+            (group, dispatch_grid(range.len() as u32, limits))
+        })
+        .collect();
+    (kernel, dispatches)
 }

@@ -100,7 +100,10 @@ impl Volumes {
 /// Applies `rule` after sweep `edited` changed, given the volumes `before` the edit, saving in
 /// `journal` the radii it changes. Returns the rescales still to apply to the keys' radii
 /// ([`Pending::apply`]), once the pose is checked.
-#[allow(clippy::too_many_arguments)]
+#[expect(
+    clippy::too_many_arguments,
+    reason = "the rule, the rig and its keys, the edit, and the state the rule keeps (volumes, mesh, shapes, journal)"
+)]
 pub(super) fn apply_rule(
     rule: VolumeRule,
     rig: &Rig,

@@ -135,32 +135,43 @@ impl BandStage {
                 );
             }
             let count = (next - start) as u32;
-            let (kernel, rest_cells) = (&self.kernel, &self.rest_cells);
-            let dispatches = InstanceDispatch::plan(
-                device,
-                plan.cells,
-                plan.targets,
-                range,
-                count,
-                Numbering::Layered,
-                plan.limits,
-                |params, cells, _, _, out| {
-                    kernel.bind_group(
-                        device,
-                        "sweepffd band",
-                        &[
-                            params.as_entire_binding(),
-                            cells,
-                            bindings.as_entire_binding(),
-                            out,
-                            rest_cells.as_entire_binding(),
-                            buffer.as_entire_binding(),
-                        ],
-                    )
-                },
-            );
+            let dispatches = self.dispatches(device, &plan, (range, count), bindings, &buffer);
             self.chunks.push(BandChunk { first_vertex: range.start, count, records: buffer, dispatches });
         }
+    }
+
+    /// The band dispatches of the `count` band vertices of the deform chunk `range`, whose
+    /// bindings are `bindings` and band records `records`, for every instance and position buffer.
+    fn dispatches(
+        &self,
+        device: &wgpu::Device,
+        plan: &BandPlan,
+        (range, count): (&Range<u32>, u32),
+        bindings: &wgpu::Buffer,
+        records: &wgpu::Buffer,
+    ) -> Vec<InstanceDispatch> {
+        let (kernel, rest_cells) = (&self.kernel, &self.rest_cells);
+        let (cells, targets, limits) = (plan.cells, plan.targets, plan.limits);
+        InstanceDispatch::plan(
+            device,
+            cells,
+            targets,
+            range,
+            count,
+            Numbering::Layered,
+            limits,
+            |params, cells, _, _, out| {
+                let resources = [
+                    params.as_entire_binding(),
+                    cells,
+                    bindings.as_entire_binding(),
+                    out,
+                    rest_cells.as_entire_binding(),
+                    records.as_entire_binding(),
+                ];
+                kernel.bind_group(device, "sweepffd band", &resources)
+            },
+        )
     }
 
     /// Records the band dispatches writing position buffer `parity` into a compute pass, after

@@ -256,7 +256,7 @@ impl Drawing {
     /// Records the scene's render pass: clear, mesh, selected part, rings, then the
     /// translucent surfaces, in the `viewport` (width, height from the top left); multisampled
     /// into `colour`/`depth`, resolved into `target`.
-    #[allow(clippy::too_many_arguments)]
+    #[expect(clippy::too_many_arguments, reason = "the frame's targets and the two things drawn, each used once")]
     pub fn encode(
         &self,
         context: &GpuContext,

@@ -88,20 +88,11 @@ impl CellGroups {
         // At most CELL_GROUP slots a vertex, 16 bytes to the binding's 20: the chunk's
         // bindings fit one storage binding, so do its groups.
         let slots = group_slots(vertices, cells) as u32;
-        let buffer = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("sweepffd cell groups"),
-            size: slots.max(CELL_GROUP) as u64 * 4,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
+        let storage = wgpu::BufferUsages::STORAGE;
+        let buffer = empty(device, "sweepffd cell groups", slots.max(CELL_GROUP) as u64 * 4, storage | COPY_SRC);
         // One counter a bucket (a block's cell): about one a vertex at most.
         let buckets = bucket_count(vertices, cells);
-        let cursors = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("sweepffd cell group cursors"),
-            size: buckets.max(1) * 4,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let cursors = empty(device, "sweepffd cell group cursors", buckets.max(1) * 4, storage | COPY_DST);
         let params = CellOrderParams {
             vertex_count: vertices,
             cell_count: cells,
@@ -116,12 +107,9 @@ impl CellGroups {
             contents: bytemuck::bytes_of(&params),
             usage: wgpu::BufferUsages::UNIFORM,
         });
-        let args = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("sweepffd cell groups in use and dispatches"),
-            size: CellGroups::args_offset(shapes.len()),
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
+        let args_size = CellGroups::args_offset(shapes.len());
+        let indirect = storage | wgpu::BufferUsages::INDIRECT | COPY_SRC;
+        let args = empty(device, "sweepffd cell groups in use and dispatches", args_size, indirect);
         let shapes: Vec<u32> =
             shapes.iter().flat_map(|&(per_group, layers)| [per_group, layers]).chain([0, 0]).collect();
         let shapes = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -131,12 +119,7 @@ impl CellGroups {
         });
         // The scan's runs of buckets (SCAN_RUN in shaders/cell_order.wgsl).
         let runs = buckets.div_ceil(SCAN_RUN as u64);
-        let run_starts = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("sweepffd cell group runs"),
-            size: runs.max(1) * 4,
-            usage: wgpu::BufferUsages::STORAGE,
-            mapped_at_creation: false,
-        });
+        let run_starts = empty(device, "sweepffd cell group runs", runs.max(1) * 4, storage);
         let resources = [
             params.as_entire_binding(),
             bindings.as_entire_binding(),
@@ -146,20 +129,9 @@ impl CellGroups {
             shapes.as_entire_binding(),
             run_starts.as_entire_binding(),
         ];
-        let per_vertex = dispatch_grid(vertices, limits);
-        let per_run = dispatch_grid(runs as u32, limits);
-        let grids = [
-            dispatch_grid(slots, limits),
-            per_vertex,
-            per_run,
-            (1, 1),
-            per_run,
-            per_vertex,
-            dispatch_grid(slots / CELL_GROUP, limits),
-        ];
         let passes = kernels
             .iter()
-            .zip(grids)
+            .zip(pass_grids(vertices, slots, runs as u32, limits))
             .map(|(kernel, grid)| (kernel.bind_group(device, "sweepffd cell order", &resources), grid))
             .collect();
         CellGroups { buffer, count: slots / CELL_GROUP, args, cursors, kernels, passes }
@@ -202,4 +174,22 @@ impl CellGroups {
     pub(super) fn device_bytes(&self) -> u64 {
         self.buffer.size() + self.cursors.size() + self.args.size()
     }
+}
+
+const COPY_SRC: wgpu::BufferUsages = wgpu::BufferUsages::COPY_SRC;
+const COPY_DST: wgpu::BufferUsages = wgpu::BufferUsages::COPY_DST;
+
+/// An unmapped buffer of `size` bytes.
+fn empty(device: &wgpu::Device, label: &str, size: u64, usage: wgpu::BufferUsages) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor { label: Some(label), size, usage, mapped_at_creation: false })
+}
+
+/// The grid of each pass of the sort, in the order of its kernels (`cell_order_*_main` in
+/// `shaders/cell_order.wgsl`): clear every slot, count, the runs' sums, the scan over the runs
+/// (one workgroup), the offsets, the scatter, and the fill of the groups.
+fn pass_grids(vertices: u32, slots: u32, runs: u32, limits: &ChunkLimits) -> [(u32, u32); 7] {
+    let per_vertex = dispatch_grid(vertices, limits);
+    let per_run = dispatch_grid(runs, limits);
+    let per_slot = dispatch_grid(slots, limits);
+    [per_slot, per_vertex, per_run, (1, 1), per_run, per_vertex, dispatch_grid(slots / CELL_GROUP, limits)]
 }
