@@ -78,6 +78,21 @@ macro_rules! internal_mod {
     )*};
 }
 
+/// Declares methods that are the engine's internals: public with the feature `internals` (the
+/// benches and tests inspect a deformer's dispatches and GPU-side records with them),
+/// crate-private otherwise.
+macro_rules! internal_fn {
+    ($(#[$attr:meta])* fn $name:ident $($rest:tt)*) => {
+        #[cfg(feature = "internals")]
+        $(#[$attr])*
+        pub fn $name $($rest)*
+        #[cfg(not(feature = "internals"))]
+        #[allow(dead_code, reason = "the benches and tests use it, with the feature internals")]
+        $(#[$attr])*
+        pub(crate) fn $name $($rest)*
+    };
+}
+
 #[cfg(feature = "bench")]
 pub mod bench;
 pub mod bind;

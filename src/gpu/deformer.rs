@@ -128,7 +128,8 @@ struct ChunkDispatch<'a> {
     limits: &'a ChunkLimits,
 }
 
-/// A deform chunk's first vertex and its cell groups ([`GpuDeformer::read_cell_groups`]).
+/// A deform chunk's first vertex and its cell groups (`GpuDeformer::read_cell_groups`, feature
+/// `internals`).
 pub type ChunkGroups = (u32, Vec<u32>);
 
 /// The deform dispatches of one chunk of vertices (one per instance group).
@@ -356,23 +357,29 @@ impl GpuDeformer {
         self.normals.get(self.current).map(|n| &n.buffer)
     }
 
-    /// Number of vertices the deform dispatches cover (per instance): the ranges holding bound
-    /// vertices, or every vertex with [`full_dispatch`](DeformerDescriptor::full_dispatch).
-    pub fn dispatched_vertex_count(&self) -> u32 {
-        self.chunks.iter().map(|chunk| chunk.range.len() as u32).sum()
+    internal_fn! {
+        /// Number of vertices the deform dispatches cover (per instance): the ranges holding bound
+        /// vertices, or every vertex with [`full_dispatch`](DeformerDescriptor::full_dispatch).
+        fn dispatched_vertex_count(&self) -> u32 {
+            self.chunks.iter().map(|chunk| chunk.range.len() as u32).sum()
+        }
     }
 
-    /// Number of deform dispatches (1 unless the mesh exceeds a device limit or the bound
-    /// vertices lie in several ranges; 0 if none is bound).
-    pub fn chunk_count(&self) -> usize {
-        self.chunks.iter().map(|chunk| chunk.dispatches.len()).sum()
+    internal_fn! {
+        /// Number of deform dispatches (1 unless the mesh exceeds a device limit or the bound
+        /// vertices lie in several ranges; 0 if none is bound).
+        fn chunk_count(&self) -> usize {
+            self.chunks.iter().map(|chunk| chunk.dispatches.len()).sum()
+        }
     }
 
-    /// Number of normals (and, with tangents, tangent) dispatches a frame records: over the
-    /// vertices whose one-ring can move only.
-    pub fn normals_dispatch_count(&self) -> usize {
-        let tangents = self.tangents.get(self.current).map_or(0, TangentStage::dispatch_count);
-        self.normals.get(self.current).map_or(0, |n| n.dispatches.len()) + tangents
+    internal_fn! {
+        /// Number of normals (and, with tangents, tangent) dispatches a frame records: over the
+        /// vertices whose one-ring can move only.
+        fn normals_dispatch_count(&self) -> usize {
+            let tangents = self.tangents.get(self.current).map_or(0, TangentStage::dispatch_count);
+            self.normals.get(self.current).map_or(0, |n| n.dispatches.len()) + tangents
+        }
     }
 
     /// Number of staging buffers the pose uploads have made so far: as many as encodes were
@@ -430,52 +437,56 @@ impl GpuDeformer {
         Ok(Some(bytemuck::pod_collect_to_vec(&bytes)))
     }
 
-    /// Records the deform pass alone (as [`encode`](GpuDeformer::encode) does: the upload of
-    /// the poses, the deform kernel, then the band kernel for the vertices in falloff
-    /// bands), optionally writing timestamps around it.
-    pub fn encode_deform_pass(
-        &mut self,
-        encoder: &mut wgpu::CommandEncoder,
-        timestamps: Option<wgpu::ComputePassTimestampWrites>,
-    ) {
-        let bytes = bytemuck::cast_slice(&self.poses);
-        self.uploads.encode(&self.context.device, &self.context.queue, encoder, bytes, &self.cells.buffer);
-        let parity = (self.current + 1) % self.targets.buffers.len();
-        self.current = parity;
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("sweepffd deform"),
-            timestamp_writes: timestamps,
-        });
-        pass.set_pipeline(&self.kernel.pipeline);
-        for chunk in &self.chunks {
-            for dispatch in &chunk.dispatches {
-                dispatch.encode(&mut pass, parity);
+    internal_fn! {
+        /// Records the deform pass alone (as [`encode`](GpuDeformer::encode) does: the upload of
+        /// the poses, the deform kernel, then the band kernel for the vertices in falloff
+        /// bands), optionally writing timestamps around it.
+        fn encode_deform_pass(
+            &mut self,
+            encoder: &mut wgpu::CommandEncoder,
+            timestamps: Option<wgpu::ComputePassTimestampWrites>,
+        ) {
+            let bytes = bytemuck::cast_slice(&self.poses);
+            self.uploads.encode(&self.context.device, &self.context.queue, encoder, bytes, &self.cells.buffer);
+            let parity = (self.current + 1) % self.targets.buffers.len();
+            self.current = parity;
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("sweepffd deform"),
+                timestamp_writes: timestamps,
+            });
+            pass.set_pipeline(&self.kernel.pipeline);
+            for chunk in &self.chunks {
+                for dispatch in &chunk.dispatches {
+                    dispatch.encode(&mut pass, parity);
+                }
             }
-        }
-        if let Some(bands) = &self.bands {
-            bands.encode(&mut pass, parity);
+            if let Some(bands) = &self.bands {
+                bands.encode(&mut pass, parity);
+            }
         }
     }
 
-    /// Records the normals pass alone (nothing without triangles) over the latest positions,
-    /// optionally with timestamps.
-    pub fn encode_normals_pass(
-        &self,
-        encoder: &mut wgpu::CommandEncoder,
-        timestamps: Option<wgpu::ComputePassTimestampWrites>,
-    ) {
-        let Some(normals) = self.normals.get(self.current) else { return };
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("sweepffd normals"),
-            timestamp_writes: timestamps,
-        });
-        pass.set_pipeline(&normals.kernel.pipeline);
-        for (group, grid) in &normals.dispatches {
-            pass.set_bind_group(0, group, &[]);
-            pass.dispatch_workgroups(grid.0, grid.1, 1);
-        }
-        if let Some(tangents) = self.tangents.get(self.current) {
-            tangents.encode(&mut pass);
+    internal_fn! {
+        /// Records the normals pass alone (nothing without triangles) over the latest positions,
+        /// optionally with timestamps.
+        fn encode_normals_pass(
+            &self,
+            encoder: &mut wgpu::CommandEncoder,
+            timestamps: Option<wgpu::ComputePassTimestampWrites>,
+        ) {
+            let Some(normals) = self.normals.get(self.current) else { return };
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("sweepffd normals"),
+                timestamp_writes: timestamps,
+            });
+            pass.set_pipeline(&normals.kernel.pipeline);
+            for (group, grid) in &normals.dispatches {
+                pass.set_bind_group(0, group, &[]);
+                pass.dispatch_workgroups(grid.0, grid.1, 1);
+            }
+            if let Some(tangents) = self.tangents.get(self.current) {
+                tangents.encode(&mut pass);
+            }
         }
     }
 
@@ -552,10 +563,12 @@ impl GpuDeformer {
         Ok(bytemuck::pod_collect_to_vec(&bytes))
     }
 
-    /// Copies the band records back to the CPU (blocking), vertices global; empty without
-    /// falloff bands.
-    pub fn read_band_records(&self) -> Result<Vec<BandRecord>, GpuError> {
-        self.bands.as_ref().map_or(Ok(Vec::new()), |bands| bands.read_records(&self.context))
+    internal_fn! {
+        /// Copies the band records back to the CPU (blocking), vertices global; empty without
+        /// falloff bands.
+        fn read_band_records(&self) -> Result<Vec<BandRecord>, GpuError> {
+            self.bands.as_ref().map_or(Ok(Vec::new()), |bands| bands.read_records(&self.context))
+        }
     }
 
     /// Number of vertices in falloff bands (moved by the band kernel).
@@ -579,21 +592,23 @@ impl GpuDeformer {
         bindings + positions + normals + tangents + bands + self.coordinates_bytes + groups
     }
 
-    /// Copies the cell groups back to the CPU (blocking), those of each deform chunk with its
-    /// first vertex (`None` if the deform kernel runs over single vertices): [`CELL_GROUP`]
-    /// chunk-relative vertices a group, [`UNOWNED`] in free slots, as
-    /// `crate::cpu::cell_order::cell_groups` makes them up to the order of each cell's
-    /// vertices.
-    ///
-    /// [`CELL_GROUP`]: crate::coeffs::CELL_GROUP
-    pub fn read_cell_groups(&self) -> Result<Option<Vec<ChunkGroups>>, GpuError> {
-        let mut all = Vec::with_capacity(self.chunks.len());
-        for chunk in &self.chunks {
-            let Some(groups) = &chunk.groups else { return Ok(None) };
-            let bytes = read_bytes(&self.context, &groups.buffer, 0, groups.count as u64 * 4 * CELL_GROUP as u64)?;
-            all.push((chunk.range.start, bytemuck::pod_collect_to_vec::<u8, u32>(&bytes)));
+    internal_fn! {
+        /// Copies the cell groups back to the CPU (blocking), those of each deform chunk with its
+        /// first vertex (`None` if the deform kernel runs over single vertices): [`CELL_GROUP`]
+        /// chunk-relative vertices a group, [`UNOWNED`] in free slots, as
+        /// `crate::cpu::cell_order::cell_groups` makes them up to the order of each cell's
+        /// vertices.
+        ///
+        /// [`CELL_GROUP`]: crate::coeffs::CELL_GROUP
+        fn read_cell_groups(&self) -> Result<Option<Vec<ChunkGroups>>, GpuError> {
+            let mut all = Vec::with_capacity(self.chunks.len());
+            for chunk in &self.chunks {
+                let Some(groups) = &chunk.groups else { return Ok(None) };
+                let bytes = read_bytes(&self.context, &groups.buffer, 0, groups.count as u64 * 4 * CELL_GROUP as u64)?;
+                all.push((chunk.range.start, bytemuck::pod_collect_to_vec::<u8, u32>(&bytes)));
+            }
+            Ok(Some(all))
         }
-        Ok(Some(all))
     }
 
     /// Copies the bindings back to the CPU (blocking), one per vertex; band vertices carry
