@@ -2,9 +2,9 @@
 //! outcome (its text is what the command line would print after `error: `), a panic or an abort
 //! is a finding.
 //!
-//! The fuzz targets in `fuzz_targets/` call these; the main crate's `tests/fuzz_regressions.rs`
-//! includes this file as a module and replays the committed regression corpus through
-//! [`run`], on stable Rust, without depending on this crate.
+//! The fuzz targets in `fuzz_targets/` call these; the command line's test
+//! `cli/tests/hostile/fuzz_regressions.rs` includes this file as a module and replays the
+//! committed regression corpus through [`run`], on stable Rust, without depending on this crate.
 
 pub mod bindings;
 pub mod edits;
