@@ -3,7 +3,7 @@
 //! one owning all of it.
 
 use super::GpuTimer;
-use super::gpu::time;
+use super::passes::time;
 use crate::gpu::{BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, GpuError, rest_positions};
 use crate::rig::Rig;
 use crate::sweep::Sweep;

@@ -4,7 +4,7 @@
 //! the bench's scene.
 
 use super::GpuTimer;
-use super::gpu::{Dispatches, chunk_params, encode, time};
+use super::passes::{Dispatches, chunk_params, encode, time};
 use crate::coeffs::{BAND_FLAG, UNOWNED};
 use crate::gpu::buffers::window;
 use crate::gpu::{DeformerDescriptor, GpuContext, GpuDeformer, GpuError, dispatch_grid, kernels};

@@ -7,11 +7,12 @@ use wgpu::util::DeviceExt;
 
 use super::engine::EngineComparisons;
 use super::fused::FusedComparison;
+use super::passes::{Dispatches, chunk_params, encode, time};
 use super::skinning::{skinning_influences, skinning_joints};
 use super::{BenchReport, BenchScene, FalloffKind, FalloffReport, GpuTimer, Round, best_of, median, median_of};
-use crate::coeffs::{BAND_FLAG, DispatchParams, SweepCoefficients};
+use crate::coeffs::{BAND_FLAG, SweepCoefficients};
 use crate::gpu::binder::Binder;
-use crate::gpu::buffers::{params_buffer, window};
+use crate::gpu::buffers::window;
 use crate::gpu::{
     BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, GpuError, POSITION_STRIDE, dispatch_grid, kernels,
     uniform_chunks, wait,
@@ -22,9 +23,6 @@ const WARMUP: usize = 3;
 /// Each round keeps the best of this many back-to-back timings of a kernel, so that a burst of
 /// load from elsewhere on a shared machine does not land in one kernel's figure only.
 const BEST_OF: usize = 3;
-
-/// A pipeline's dispatches, one per chunk.
-pub(super) type Dispatches = (kernels::Kernel, Vec<(wgpu::BindGroup, (u32, u32))>);
 
 /// Every kernel of the bench, set up on one device for one scene.
 pub struct GpuBench {
@@ -263,46 +261,6 @@ impl GpuBench {
     /// without timestamp queries).
     fn time(&self, record: impl FnOnce(&mut wgpu::CommandEncoder, Option<&GpuTimer>)) -> Result<f64, GpuError> {
         time(&self.context, self.timer.as_ref(), record)
-    }
-}
-
-/// Records with `record`, submits, waits, and returns the timestamped seconds (wall-clock
-/// without timestamp queries).
-pub(super) fn time(
-    context: &GpuContext,
-    timer: Option<&GpuTimer>,
-    record: impl FnOnce(&mut wgpu::CommandEncoder, Option<&GpuTimer>),
-) -> Result<f64, GpuError> {
-    let device = &context.device;
-    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd bench") });
-    let start = Instant::now();
-    record(&mut encoder, timer);
-    if let Some(timer) = timer {
-        timer.resolve(&mut encoder);
-    }
-    context.queue.submit([encoder.finish()]);
-    wait(context)?;
-    let wall = start.elapsed().as_secs_f64();
-    match timer {
-        Some(timer) => timer.seconds(context),
-        None => Ok(wall),
-    }
-}
-
-pub(super) fn chunk_params(device: &wgpu::Device, range: &Range<u32>) -> wgpu::Buffer {
-    params_buffer(device, DispatchParams { vertex_count: range.len() as u32, ..Default::default() })
-}
-
-/// Records one pass over all of a pipeline's dispatches.
-pub(super) fn encode(encoder: &mut wgpu::CommandEncoder, (kernel, dispatches): &Dispatches, timer: Option<&GpuTimer>) {
-    let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-        label: Some("sweepffd bench"),
-        timestamp_writes: timer.and_then(|t| t.writes(true, true)),
-    });
-    pass.set_pipeline(&kernel.pipeline);
-    for (group, grid) in dispatches {
-        pass.set_bind_group(0, group, &[]);
-        pass.dispatch_workgroups(grid.0, grid.1, 1);
     }
 }
 

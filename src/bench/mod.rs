@@ -11,6 +11,7 @@ mod engine;
 mod frame;
 mod fused;
 mod gpu;
+mod passes;
 mod scene;
 mod size;
 mod skinning;

@@ -12,9 +12,7 @@ use crate::cpu::deform::deform_vertex;
 
 pub use super::deform_normals::{deform_with_normals, deform_with_normals_with};
 
-/// Vertices per parallel task: big enough that scheduling is noise, small enough for two
-/// threads to share the work evenly at 100k vertices.
-pub const CHUNK: usize = 16 * 1024;
+pub use super::CHUNK;
 
 /// Overwrites the bound vertices of `positions` (tightly packed xyz, one triple per binding)
 /// with their positions on the posed sweeps of `cells`; leaves unbound and band vertices

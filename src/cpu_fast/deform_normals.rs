@@ -9,8 +9,8 @@ use glam::Vec4;
 
 use crate::parallel::prelude::*;
 
+use super::CHUNK;
 use super::Isa;
-use super::deform::CHUNK;
 use crate::coeffs::{BAND_FLAG, CellCoeffs, GpuBinding};
 use crate::cpu::deform::deform_vertex_with_normal;
 

@@ -32,5 +32,9 @@ pub mod mesh;
 
 /// Positions as the fast path takes them: f32, tightly packed xyz.
 pub use crate::cpu::packed;
+
+/// Vertices per parallel task: big enough that scheduling is noise, small enough for two
+/// threads to share the work evenly at 100k vertices.
+pub const CHUNK: usize = 16 * 1024;
 pub use isa::Isa;
 pub use mesh::FastMesh;

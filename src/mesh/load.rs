@@ -26,7 +26,7 @@ impl Mesh {
     /// in the folder of `path`.
     pub fn parse(path: &Path, bytes: Vec<u8>) -> Result<Mesh, MeshError> {
         match Format::of(path)? {
-            Format::Obj => obj::read::read(path, bytes),
+            Format::Obj => obj::read(path, bytes),
             Format::Ply => ply::read::read(path, bytes),
             Format::Off => off::read::read(path, bytes),
             Format::Gltf | Format::Glb => gltf::read::read(path, &bytes),

@@ -1,4 +1,5 @@
-//! The CPU paths and editing: the fast f32 path against the reference, binding, round trips and properties, hierarchies, edit controls and posing into buffers.
+//! The CPU paths and editing: the fast f32 path against the reference, binding, round trips and
+//! properties, hierarchies, edit controls and posing into buffers.
 
 #[path = "../common/mod.rs"]
 mod common;

@@ -1,4 +1,5 @@
-//! Fitting and autorig: sweeps fitted to parts (§3), skeletons, sections, autorig on stars and real meshes, falloff bands.
+//! Fitting and autorig: sweeps fitted to parts (§3), skeletons, sections, autorig on stars and real
+//! meshes, falloff bands.
 
 #[path = "../common/mod.rs"]
 mod common;

@@ -1,4 +1,5 @@
-//! Mesh files in and out: OBJ, PLY, OFF and glTF read and written faithfully, and whole scenes through them.
+//! Mesh files in and out: OBJ, PLY, OFF and glTF read and written faithfully, and whole scenes
+//! through them.
 
 #[path = "../common/mod.rs"]
 mod common;

@@ -1,4 +1,5 @@
-//! The GPU engine: WGSL kernels against their f32 twins and the f64 reference, instances, normals, tangents, bounds, the naga layout checks, the zero-allocation frame and the embed example.
+//! The GPU engine: WGSL kernels against their f32 twins and the f64 reference, instances, normals,
+//! tangents, bounds, the naga layout checks, the zero-allocation frame and the embed example.
 
 #[path = "../common/mod.rs"]
 mod common;

@@ -1,4 +1,5 @@
-//! The `sweepffd` commands end to end: bind, deform, pose, fit, autorig, volume, render, the viewer and the picture examples.
+//! The `sweepffd` commands end to end: bind, deform, pose, fit, autorig, volume, render, the viewer
+//! and the picture examples.
 
 #[path = "../common/mod.rs"]
 mod common;

@@ -1,4 +1,5 @@
-//! Hostile and broken input through the command line and the readers: clear errors, no panics, bounded memory, and the fuzz regression corpus.
+//! Hostile and broken input through the command line and the readers: clear errors, no panics,
+//! bounded memory, and the fuzz regression corpus.
 
 #[path = "../common/mod.rs"]
 mod common;

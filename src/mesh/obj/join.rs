@@ -7,19 +7,10 @@ use std::collections::HashMap;
 use glam::DVec3;
 
 use super::as_read::{AsRead, Run};
-use super::read::Part;
+use super::part::{GroupChange, Part};
 use crate::mesh::source::Source;
 use crate::mesh::{FaceGroup, Faces, Limited, Mesh};
 use crate::parallel::prelude::*;
-
-/// A `g` or `o` statement, kept by a part for the join to replay.
-#[derive(Debug)]
-pub(crate) enum GroupChange {
-    /// `g a b …`: these names become the current groups (none for a bare `g`).
-    Groups(Vec<String>),
-    /// `o name`: the current object (none for a bare `o`).
-    Object(Option<String>),
-}
 
 /// Whether `parts`, each read without fault, join into a mesh without one: some vertex, the
 /// vertex, face and triangle counts within their limits, every negative index reaching a

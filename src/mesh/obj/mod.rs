@@ -16,15 +16,20 @@
 mod as_read;
 mod float;
 mod join;
+mod part;
 mod pieces;
 mod plain;
 pub(crate) mod read;
 pub(crate) mod scan;
 pub(crate) mod write;
 
+use std::path::Path;
+use std::sync::Arc;
+
 use as_read::AsRead;
 
-use super::{FaceGroup, Mesh};
+use super::source::Source;
+use super::{FaceGroup, Mesh, MeshError};
 
 /// An OBJ file as read, for the faithful writer: its bytes and what they gave ([`AsRead`]:
 /// the positions, the faces and where each vertex's `v` statement starts, the byte offset of
@@ -46,4 +51,14 @@ impl ObjFile {
             && mesh.groups == self.groups
             && self.read.has_faces(&mesh.faces)
     }
+}
+
+/// Reads the OBJ file `bytes` (read from `path`, which errors name).
+pub(crate) fn read(path: &Path, bytes: Vec<u8>) -> Result<Mesh, MeshError> {
+    let (mesh, read) = match pieces::read_in_pieces(&bytes) {
+        Some(read) => read,
+        None => read::read_whole(path, &bytes)?,
+    };
+    let file = ObjFile { bytes, read, groups: mesh.groups.clone() };
+    Ok(Mesh { source: Source::Obj(Arc::new(file)), ..mesh })
 }

@@ -13,7 +13,8 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use super::as_read::AsRead;
 use super::join::{join, joinable};
-use super::read::{Part, read_part};
+use super::part::Part;
+use super::read::read_part;
 use crate::mesh::{Limited, Mesh};
 use crate::parallel::prelude::*;
 

@@ -14,27 +14,15 @@
 //! first fault in file order: errors name the same line as reading line by line would.
 
 use std::path::Path;
-use std::sync::Arc;
 
 use glam::DVec3;
 
-use super::ObjFile;
 use super::as_read::AsRead;
-use super::join::{GroupChange, join};
+use super::join::join;
+use super::part::{GroupChange, Part};
 use super::plain;
 use super::scan::{self, Keyword, Scanner, VertexIssue};
-use crate::mesh::source::Source;
 use crate::mesh::{Faces, Limited, Mesh, MeshError, ObjLineError};
-
-/// Reads the OBJ file `bytes` (read from `path`, which errors name).
-pub(crate) fn read(path: &Path, bytes: Vec<u8>) -> Result<Mesh, MeshError> {
-    let (mesh, read) = match super::pieces::read_in_pieces(&bytes) {
-        Some(read) => read,
-        None => read_whole(path, &bytes)?,
-    };
-    let file = ObjFile { bytes, read, groups: mesh.groups.clone() };
-    Ok(Mesh { source: Source::Obj(Arc::new(file)), ..mesh })
-}
 
 /// Reads `bytes` as one part, on the calling thread: the mesh and the file's data as read,
 /// or the first fault in file order.
@@ -63,27 +51,6 @@ fn finite_numbers(text: &[u8], what: &'static str) -> Result<(), ObjLineError> {
         }
     }
     Ok(())
-}
-
-/// What a run of whole logical lines of an OBJ file gives, read on its own.
-#[derive(Debug, Default)]
-pub(crate) struct Part {
-    /// The positions of its `v` statements.
-    pub positions: Vec<DVec3>,
-    /// The byte offset in the file of each of those statements' logical line.
-    pub lines: Vec<usize>,
-    /// Its faces. A negative index of a part that does not start the file is held in
-    /// `relative` and is 0 here until joined.
-    pub faces: Faces,
-    /// For a part that does not start the file, each negative face index: its place in
-    /// `faces.indices` and the index resolved against this part's vertices only (vertices
-    /// read before it in the part plus the index; below 0 when it reaches an earlier part).
-    pub relative: Vec<(usize, i64)>,
-    /// Its `g` and `o` statements in order, each with the number of its faces before it.
-    pub events: Vec<(usize, GroupChange)>,
-    /// The largest positive face index met (as written) and its line: checked once the
-    /// vertex count is known.
-    pub largest: Option<(i64, usize)>,
 }
 
 /// Reads the logical lines of `bytes`, which lie at byte `offset` of the file; `starts_file`
@@ -270,7 +237,7 @@ mod tests {
     use super::*;
 
     fn load(text: &[u8]) -> Result<Mesh, MeshError> {
-        read(Path::new("mesh.obj"), text.to_vec())
+        crate::mesh::obj::read(Path::new("mesh.obj"), text.to_vec())
     }
 
     fn error(text: &[u8]) -> String {

@@ -282,7 +282,8 @@ mod tests {
     use crate::mesh::Mesh;
     use crate::mesh::obj::as_read::AsRead;
     use crate::mesh::obj::pieces::read_pieces;
-    use crate::mesh::obj::read::{read, read_whole};
+    use crate::mesh::obj::read;
+    use crate::mesh::obj::read::read_whole;
 
     const MIXED: &[u8] = b"# exported\r\nmtllib m.mtl\r\no thing\r\n  v 0 0 0 1.0\r\nv 1.0 0.0 0.0 # right\r\nv 0 \\\r\n 1 0\r\nv 0 0 1 0.5 0.25 0.125\nvt 0 0\r\nvn 0 0 1\r\ng a b\r\nusemtl red\r\nf 1/1/1 2/1/1 3/1/1\r\nf 1//1 \\\n 3//1 4//1\r\n\r\n# end";
 

@@ -20,7 +20,7 @@ use glam::DVec3;
 use ply_rs_bw::parser::{Parser, Reader};
 use ply_rs_bw::ply::{DefaultElement, ElementDef, Encoding, Header, PropertyType, ScalarType};
 
-use super::read::index_list;
+use super::index_list::index_list;
 use crate::mesh::Faces;
 
 /// A PLY file read by this reader, for the faithful writer.

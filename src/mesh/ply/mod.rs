@@ -13,6 +13,7 @@
 mod direct;
 mod error;
 mod header;
+mod index_list;
 mod patch;
 pub(crate) mod read;
 pub(crate) mod write;

@@ -7,12 +7,10 @@ use ply_rs_bw::parser::Parser;
 use ply_rs_bw::ply::{DefaultElement, ElementDef, Ply, Property, PropertyType, ScalarType};
 
 use super::direct::{self, PlyBytes};
+use super::index_list::index_list;
 use super::{PlyFile, header};
 use crate::mesh::source::{Original, Source};
 use crate::mesh::{Faces, Mesh, MeshDataError, MeshError};
-
-/// The names of the face index list, in order of preference.
-const INDEX_LISTS: [&str; 2] = ["vertex_indices", "vertex_index"];
 
 /// Reads the PLY file `bytes` (read from `path`, which errors name): straight from the bytes
 /// ([`direct`]) when that reader accepts the file, else through `ply-rs-bw`, which names the
@@ -98,18 +96,6 @@ fn positions(path: &Path, ply: &Ply<DefaultElement>) -> Result<Vec<DVec3>, MeshE
         positions.push(p);
     }
     Ok(positions)
-}
-
-/// The place among the face element's properties of its vertex index list: the first of
-/// [`INDEX_LISTS`] that is a list of integers.
-pub(crate) fn index_list(face: &ElementDef) -> Option<usize> {
-    INDEX_LISTS.into_iter().find_map(|name| {
-        let (place, _, def) = face.properties.get_full(name)?;
-        match &def.data_type {
-            PropertyType::List(_, t) if !matches!(t, ScalarType::Float | ScalarType::Double) => Some(place),
-            _ => None,
-        }
-    })
 }
 
 fn faces(path: &Path, ply: &Ply<DefaultElement>, count: usize) -> Result<Faces, MeshError> {
