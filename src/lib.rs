@@ -19,14 +19,16 @@
 //! - [`mesh`]: meshes in code, and mesh files in and out (feature `formats`).
 //! - [`coeffs`]: sweeps as compact f32 coefficient arrays (the sweep coefficients).
 //! - [`bind`]: binding parameters of each vertex by root-finding (§3).
+//! - [`normals`]: vertex normals and tangents, and which vertices a deformation can reach,
+//!   f64 reference.
 //! - [`rig`]: rigs built in code or read from files (feature `json`), which sweep owns which
 //!   vertex, the hierarchy (§5), posing.
-//! - [`deform`]: vertex positions of a posed rig through Eq. 2, f64 reference.
+//! - [`deform`]: vertex positions of a posed rig through Eq. 2, and their Jacobian normals, f64
+//!   reference.
 //! - `bindings_file` (feature `json`): bindings saved for a rig and mesh.
 //! - [`fit`]: control sweeps fitted to mesh parts (§3), and autorig.
 //! - [`synthetic`]: procedural meshes and rigs.
 //! - [`edit`]: posing by edits: key moves, point drags, hierarchies, volume rules (§4–5).
-//! - [`normals`]: vertex normals and tangents, f64 reference.
 //! - [`cpu_fast`]: the fast CPU path, the kernels vectorized across vertices (AVX2 + FMA where
 //!   the CPU has them) on every core.
 //! - [`gpu`]: the engine: binding, Eq. 2, normals, tangents and bounds in WGSL compute.

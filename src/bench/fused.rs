@@ -20,7 +20,7 @@ pub(super) struct FusedComparison {
     wide_copy: Dispatches,
     /// The 99th percentile of the angle between the fused deformer's normals and the triangle
     /// normals of the same positions, over the Jacobian reach (the vertices the kernel writes,
-    /// and those [`crate::normals::jacobian_normal_vertices`] leaves to the normals pass),
+    /// and those [`crate::deform::jacobian_normal_vertices`] leaves to the normals pass),
     /// degrees.
     pub(super) angle_p99_deg: f64,
 }

@@ -90,7 +90,7 @@ impl FastMesh {
     /// falloff bands written into `normals` (tightly packed xyz): each rest normal carried
     /// through the parameter Jacobian of Eq. 2 (cof(DP)·m, [`crate::deform::jacobian`]), in the
     /// same pass. The normals of unbound and band vertices are left alone: recompute those (and
-    /// those outside [`crate::normals::jacobian_normal_vertices`]: vertices whose one-ring
+    /// those outside [`crate::deform::jacobian_normal_vertices`]: vertices whose one-ring
     /// another sweep moves, or too coarse for the deformation) from the deformed triangles
     /// (`crate::cpu::normals::normals_of`), as the GPU deformer's normals pass does. Fails,
     /// changing nothing, if `posed` lacks the rest rig's structure.

@@ -12,6 +12,7 @@
 
 pub mod blend;
 pub mod jacobian;
+mod probe;
 mod reference;
 #[cfg(test)]
 mod tests;
@@ -20,7 +21,9 @@ use crate::parallel::prelude::*;
 use glam::DVec3;
 
 use crate::bind::{BandBinding, Binding, MeshBindings, UNOWNED, VertexBinding};
+
 use crate::sweep::Sweep;
+pub use probe::{PROBE, PROBE_TOLERANCE_DEG, jacobian_normal_vertices};
 
 /// The position of a vertex bound by `binding` on the (posed) `sweep`, Eq. 2.
 pub fn deform_vertex(sweep: &Sweep, binding: &VertexBinding) -> DVec3 {

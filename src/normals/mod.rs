@@ -17,12 +17,10 @@ use glam::DVec3;
 use crate::mesh::Faces;
 
 mod dirty;
-mod probe;
 mod reach;
 pub mod tangents;
 
 pub use dirty::{dirty_vertices, instanced};
-pub use probe::{PROBE, PROBE_TOLERANCE_DEG, jacobian_normal_vertices};
 pub use reach::jacobian_reach;
 
 /// Marks the first neighbour of a fan in [`NormalAdjacency::fans`].

@@ -3,9 +3,9 @@
 //! of the deformed facets' normals; across a hard boundary between two sweeps (or a sweep and
 //! the unmoved rest) and in falloff bands the facets bend by two maps at once, and the normals
 //! of the deformed triangles are the right ones. Within the reach,
-//! [`super::jacobian_normal_vertices`] leaves out the rings too coarse for the deformation.
+//! [`crate::deform::jacobian_normal_vertices`] leaves out the rings too coarse for the deformation.
 
-use crate::coeffs::UNOWNED;
+use crate::layout::UNOWNED;
 
 /// For each vertex, whether its `influence` (the sweep moving it whole, or [`UNOWNED`] for a
 /// vertex that no sweep moves alone: unbound, or in a falloff band) is a sweep shared by every

@@ -15,10 +15,11 @@ use sweepffd::coeffs::{BAND_FLAG, GpuBinding, SweepCoefficients, UNOWNED};
 use sweepffd::cpu;
 use sweepffd::deform::deform_vertex;
 use sweepffd::deform::jacobian::{deformed_normal, is_beyond_end, normal_coordinates};
+use sweepffd::deform::jacobian_normal_vertices;
 use sweepffd::fit::{FitOptions, fit, largest_connected};
 use sweepffd::gpu::{BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, rest_positions};
 use sweepffd::mesh::Mesh;
-use sweepffd::normals::{NormalAdjacency, jacobian_normal_vertices, jacobian_reach, vertex_normals};
+use sweepffd::normals::{NormalAdjacency, jacobian_reach, vertex_normals};
 use sweepffd::rig::{Rig, RigSweep, VertexSelection};
 use sweepffd::synthetic::{BendTwistTaper, Tube, tube_rig};
 

@@ -146,7 +146,7 @@ impl<'a> DeformerDescriptor<'a> {
     /// itself: each such vertex's binding is read once and its position and normal written
     /// once, with no gather over its triangles. It covers the vertices whose whole one-ring one
     /// sweep moves ([`crate::normals::jacobian_reach`]) and whose Jacobian normals match their
-    /// facets under a probe pose ([`crate::normals::jacobian_normal_vertices`], checked once
+    /// facets under a probe pose ([`crate::deform::jacobian_normal_vertices`], checked once
     /// here, binding the mesh on the CPU in f64); the others (falloff bands, hard seams between
     /// sweeps, unbound vertices beside moving ones, rings too coarse for the deformation) keep
     /// the triangle normals. Needs triangles; the falloff bands are then fixed

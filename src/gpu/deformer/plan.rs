@@ -13,9 +13,10 @@ use super::descriptor::triangle_faces;
 use super::instances::{Numbering, PositionTargets};
 use super::{BindingSource, DeformerDescriptor, STORAGE_BUFFERS_NEEDED};
 use crate::coeffs::{SweepCoefficients, UNOWNED};
+use crate::deform::jacobian_normal_vertices;
 use crate::gpu::buffers::{BINDING_STRIDE, check_fits};
 use crate::mesh::Faces;
-use crate::normals::{NormalAdjacency, jacobian_normal_vertices};
+use crate::normals::NormalAdjacency;
 
 use std::sync::Arc;
 

@@ -14,16 +14,16 @@
 //! rest sweep ([`PROBE`]), and a vertex whose Jacobian normal misses its probed facets' normal
 //! by more than [`PROBE_TOLERANCE_DEG`] leaves the reach, for every pose.
 //!
-//! Data flow: rig → sweep → bind → **this check, once** → deform → normals.
+//! Data flow: rig → sweep → bind → deform, with **this check, once** at bind time → normals.
 
 use std::f64::consts::TAU;
 
 use glam::{DVec3, Vec3};
 
-use super::{NormalAdjacency, fan_normal, jacobian_reach};
+use super::deform_vertex;
+use super::jacobian::{deformed_normal, normal_coordinates};
 use crate::bind::{SweepBinder, VertexBinding};
-use crate::deform::deform_vertex;
-use crate::deform::jacobian::{deformed_normal, normal_coordinates};
+use crate::normals::{NormalAdjacency, fan_normal, jacobian_reach};
 use crate::parallel::prelude::*;
 use crate::rig::BendTwistTaper;
 use crate::sweep::{Key, Sweep};
@@ -133,7 +133,7 @@ mod tests {
         let bindings: Vec<VertexBinding> = rest.iter().map(|&p| binder.bind(p)).collect();
         let probed: Vec<DVec3> = bindings.iter().map(|b| deform_vertex(&probe, b)).collect();
         let (rest_normals, facets) =
-            (super::super::vertex_normals(&rest, &adjacency), super::super::vertex_normals(&probed, &adjacency));
+            (crate::normals::vertex_normals(&rest, &adjacency), crate::normals::vertex_normals(&probed, &adjacency));
         let mut left = 0;
         for i in 0..positions.len() {
             let coordinates = normal_coordinates(sweep, &bindings[i], rest_normals[i]);
