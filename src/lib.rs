@@ -119,7 +119,7 @@ pub mod sweep;
 pub mod synthetic;
 
 // What an embedder's frame loop names, and the two crates whose versions it must match.
-pub use coeffs::UNOWNED;
+pub use layout::UNOWNED;
 pub use glam;
 pub use gpu::{BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, GpuError};
 pub use mesh::{Faces, Mesh};

@@ -1,9 +1,10 @@
 //! [`DeformerPlan`]: everything a [`GpuDeformer`](super::GpuDeformer) decides from its
 //! descriptor and the device before any GPU work, once: which vertices are bound and which are
 //! banded, the deform chunks, the position buffers' layout, the Jacobian normals' reach and the
-//! kernel. Pure: it needs the device's limits and adapter description, not the device.
+//! kernel. Pure: it needs the device's limits and type, not the device.
 
 use std::ops::Range;
+use std::sync::Arc;
 
 use super::super::chunks::{ChunkLimits, bound_chunks, uniform_chunks};
 use super::super::kernel_cache::KernelCache;
@@ -17,8 +18,6 @@ use crate::deform::jacobian_normal_vertices;
 use crate::gpu::buffers::{BINDING_STRIDE, check_fits};
 use crate::mesh::Faces;
 use crate::normals::NormalAdjacency;
-
-use std::sync::Arc;
 
 /// The deform kernel a deformer runs, and how its invocations are numbered.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
