@@ -119,9 +119,9 @@ pub mod sweep;
 pub mod synthetic;
 
 // What an embedder's frame loop names, and the two crates whose versions it must match.
-pub use layout::UNOWNED;
 pub use glam;
 pub use gpu::{BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, GpuError};
+pub use layout::UNOWNED;
 pub use mesh::{Faces, Mesh};
 pub use rig::{Rig, RigError, RigSweep, VertexSelection};
 pub use sweep::{Key, Sweep};
