@@ -230,11 +230,10 @@ impl GpuDeformer {
     fn build(
         context: &GpuContext,
         descriptor: &DeformerDescriptor,
-        plan: DeformerPlan,
+        mut plan: DeformerPlan,
         encoder: &mut wgpu::CommandEncoder,
     ) -> Result<GpuDeformer, GpuError> {
         let device = &context.device;
-        let mut plan = plan;
         let rest_buffer = make_position_buffers(context, descriptor, &mut plan.targets);
         let (coefficients, variant) = (&plan.coefficients, plan.variant);
         let cells = PosedCells::new(device, &coefficients.cells, descriptor.instances, variant);
@@ -266,10 +265,10 @@ impl GpuDeformer {
             BindingSource::Precomputed { bands, .. } => bands.iter().map(BandMember::of_record).collect(),
         };
         let rebanding = Rebanding::new(descriptor.rest, binder, members, &plan.bound);
-        let ranges: Vec<Range<u32>> = chunks.iter().map(|chunk| chunk.range.clone()).collect();
+        // The chunks cover the plan's ranges, one each.
         let bounds = descriptor
             .bounds
-            .then(|| BoundsStage::new(context, &plan.targets, &ranges, descriptor.positions, &plan.limits));
+            .then(|| BoundsStage::new(context, &plan.targets, &plan.ranges, descriptor.positions, &plan.limits));
         let poses = (0..descriptor.instances).flat_map(|_| plan.coefficients.cells.iter().copied()).collect();
         Ok(GpuDeformer {
             context: context.clone(),
