@@ -7,16 +7,18 @@
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use glam::DVec3;
-use sweepffd::mesh::{Mesh, write_atomically};
+use sweepffd::atomic_file::write_atomically;
+use sweepffd::formats::LoadedMesh;
+use sweepffd::mesh::Mesh;
 use sweepffd::synthetic::Tube;
 
 const VERTICES: usize = 200_000;
 
 fn io(c: &mut Criterion) {
     let dir = tempfile::tempdir().unwrap();
-    let tube = Tube::with_vertex_count(VERTICES, 2.0, 0.1).mesh();
+    let tube = LoadedMesh::from(Tube::with_vertex_count(VERTICES, 2.0, 0.1).mesh());
     // Irrational-looking coordinates, as a deformed or subdivided mesh has: about 17 digits each.
-    let positions: Vec<DVec3> = tube.positions.iter().map(|&p| p * (1.0 + 1e-7 * std::f64::consts::PI)).collect();
+    let positions: Vec<DVec3> = tube.mesh.positions.iter().map(|&p| p * (1.0 + 1e-7 * std::f64::consts::PI)).collect();
     let moved: Vec<DVec3> = positions.iter().map(|&p| p * 1.001 + DVec3::splat(1e-4)).collect();
     for name in ["tube.obj", "tube.ply"] {
         let mut group = c.benchmark_group(format!("io {name}"));
@@ -31,7 +33,7 @@ fn io(c: &mut Criterion) {
         group.bench_with_input(BenchmarkId::new("Mesh::load", id), &path, |b, path| {
             b.iter(|| Mesh::load(path).unwrap())
         });
-        let mesh = Mesh::load(&path).unwrap();
+        let mesh = LoadedMesh::load(&path).unwrap();
         let out = dir.path().join(format!("out_{name}"));
         let zeros = vec![0u8; bytes];
         group.bench_with_input(BenchmarkId::new("write as many bytes (floor)", id), &out, |b, out| {

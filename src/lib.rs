@@ -15,8 +15,11 @@
 //!
 //! - [`layout`]: the GPU buffer layouts shared with the WGSL, and [`UNOWNED`].
 //! - [`limits`]: the largest inputs accepted, checked before allocating.
+//! - [`atomic_file`]: files written whole or not at all.
 //! - [`sweep`]: the f64 sweep surface model, C(t), R(t), r(θ, t), and its volume (Eq. 1).
-//! - [`mesh`]: meshes in code, and mesh files in and out (feature `formats`).
+//! - [`mesh`]: meshes in code: positions, faces, groups, and their measures.
+//! - `formats` (feature `formats`): mesh files in and out, OBJ, PLY, OFF and glTF, written back
+//!   faithfully.
 //! - [`coeffs`]: sweeps as compact f32 coefficient arrays (the sweep coefficients).
 //! - [`bind`]: binding parameters of each vertex by root-finding (§3).
 //! - [`normals`]: vertex normals and tangents, and which vertices a deformation can reach,
@@ -48,16 +51,17 @@
 //! # #[cfg(feature = "formats")]
 //! # fn main() -> Result<(), Box<dyn std::error::Error>> {
 //! use sweepffd::glam::DVec3;
-//! use sweepffd::{deform::deform_vertices, mesh::Mesh, rig::Rig};
+//! use sweepffd::{deform::deform_vertices, formats::LoadedMesh, rig::Rig};
 //!
-//! let mesh = Mesh::load("bunny.obj".as_ref())?;
+//! let file = LoadedMesh::load("bunny.obj".as_ref())?;
+//! let mesh = &file.mesh;
 //! let rig = Rig::load("bunny-rig.json".as_ref())?;
 //! let owners = rig.owners(&mesh, "bunny.obj")?;
 //! let bindings = rig.bind_mesh(&mesh, &owners, &|_| {}); // with the falloff bands, if any
 //! let posed = rig.load_pose("bunny-pose.json".as_ref())?;
 //! let mut deformed = vec![DVec3::ZERO; mesh.positions.len()];
 //! deform_vertices(rig.rest(), &posed, &bindings, &mesh.positions, &mut deformed);
-//! mesh.save("bunny-posed.obj".as_ref(), &deformed)?;
+//! file.save("bunny-posed.obj".as_ref(), &deformed)?;
 //! # Ok(())
 //! # }
 //! # #[cfg(not(feature = "formats"))]
@@ -105,10 +109,13 @@ internal_mod! {
     cpu;
     parallel;
 }
+pub mod atomic_file;
 pub mod cpu_fast;
 pub mod deform;
 pub mod edit;
 pub mod fit;
+#[cfg(feature = "formats")]
+pub mod formats;
 pub mod gpu;
 pub mod layout;
 pub mod limits;

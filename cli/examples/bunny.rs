@@ -9,7 +9,7 @@ mod common;
 use glam::{DQuat, DVec3};
 use sweepffd::edit::{DragMode, Edit, KeyMode, Posing};
 use sweepffd::fit::{FitOptions, fit, largest_connected};
-use sweepffd::mesh::Mesh;
+use sweepffd::formats::LoadedMesh;
 use sweepffd::rig::{Rig, RigSweep, VertexSelection};
 
 /// Which vertices make up a part, by position.
@@ -21,15 +21,16 @@ fn main() {
         return;
     };
     let out = common::Output::new("bunny");
-    let mesh = Mesh::load(&path).unwrap_or_else(|e| panic!("{e}"));
+    let scan = LoadedMesh::load(&path).unwrap_or_else(|e| panic!("{e}"));
+    let mesh = &scan.mesh;
     let parts: [(&str, PartTest); 2] = [
         ("front_ear", |p| p.z < -0.012 && p.x < -0.055 && p.y > 0.13),
         ("back_ear", |p| p.x > -0.055 && p.x < 0.0 && p.y > 0.148 && p.z < 0.01),
     ];
     let mut sweeps = Vec::new();
     for (name, inside) in parts {
-        let vertices = largest_connected(&mesh, inside);
-        let fitted = fit(&mesh, &vertices, &FitOptions::default()).unwrap_or_else(|e| panic!("{e}"));
+        let vertices = largest_connected(mesh, inside);
+        let fitted = fit(mesh, &vertices, &FitOptions::default()).unwrap_or_else(|e| panic!("{e}"));
         let q = fitted.quality;
         println!(
             "fitted {name}: {} vertices, {} keys, |d| / mean radius max {:.1}%, RMS {:.2}%, falloff {:.4}",
@@ -52,7 +53,7 @@ fn main() {
     let rig = Rig::new(sweeps).unwrap_or_else(|e| panic!("{e}"));
     let rest_keys: Vec<_> = rig.sweeps().iter().map(|s| s.keys.clone()).collect();
     out.rig("ears-rig.json", &rig, &rest_keys);
-    out.picture("ears-fitted.png", &mesh, &[(&mesh.positions, rig.rest())], (60.0, 35.0));
+    out.picture("ears-fitted.png", mesh, &[(&mesh.positions, rig.rest())], (60.0, 35.0));
 
     // Fig. 6: bend both ears forward from their middle key and twist the back one.
     let mut posing = Posing::new(&rig);
@@ -81,14 +82,14 @@ fn main() {
     };
     posing.apply(&twist).unwrap_or_else(|e| panic!("{e}"));
     let posed = posing.sweeps().unwrap_or_else(|e| panic!("{e}"));
-    let bent = common::deform(&rig, &mesh, &posed);
+    let bent = common::deform(&rig, mesh, &posed);
     println!(
         "bent and twisted the ears: largest vertex move {:.4}, largest edge stretch {:.2} (the ears stay attached)",
         common::largest_move(&mesh.positions, &bent),
-        common::largest_edge_stretch(&mesh, &bent)
+        common::largest_edge_stretch(mesh, &bent)
     );
-    out.mesh("ears-bent.obj", &mesh, &bent);
-    out.picture("ears-bent.png", &mesh, &[(&mesh.positions, rig.rest()), (&bent, &posed)], (60.0, 35.0));
+    out.mesh("ears-bent.obj", &scan, &bent);
+    out.picture("ears-bent.png", mesh, &[(&mesh.positions, rig.rest()), (&bent, &posed)], (60.0, 35.0));
 
     // Fig. 14: drag the front ear's tip point (θ = 0, t = 0.95) to the same target, once by
     // translating keys only and once by rotating the key below it only. The target is where
@@ -123,11 +124,11 @@ fn main() {
                 let posed = posing.sweeps().unwrap_or_else(|e| panic!("{e}"));
                 let reached = posed[front].surface_point(0.0, 0.95).distance(target);
                 println!("dragged the front ear's tip ({mode:?}): {rounds} rounds, {reached:.2e} from the target");
-                let moved = common::deform(&rig, &mesh, &posed);
-                out.mesh(&format!("{file}.obj"), &mesh, &moved);
+                let moved = common::deform(&rig, mesh, &posed);
+                out.mesh(&format!("{file}.obj"), &scan, &moved);
                 out.picture(
                     &format!("{file}.png"),
-                    &mesh,
+                    mesh,
                     &[(&mesh.positions, rig.rest()), (&moved, &posed)],
                     (60.0, 35.0),
                 );

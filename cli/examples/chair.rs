@@ -11,6 +11,7 @@ use std::f64::consts::PI;
 use glam::{DQuat, DVec3};
 use sweepffd::edit::{Edit, KeyMode, Posing};
 use sweepffd::fit::{FitOptions, fit, largest_connected};
+use sweepffd::formats::LoadedMesh;
 use sweepffd::mesh::{Faces, Mesh};
 use sweepffd::rig::{LinkKind, ParentLink, Rig, RigSweep, VertexSelection};
 use sweepffd::sweep::Key;
@@ -18,13 +19,14 @@ use sweepffd::synthetic::Tube;
 
 fn main() {
     let out = common::Output::new("chair");
-    let mesh = match common::shared_mesh("chair.off") {
-        Some(path) => Mesh::load(&path).unwrap_or_else(|e| panic!("{e}")),
+    let file = match common::shared_mesh("chair.off") {
+        Some(path) => LoadedMesh::load(&path).unwrap_or_else(|e| panic!("{e}")),
         None => {
             println!("using a procedural chair instead");
-            procedural_chair()
+            LoadedMesh::from(procedural_chair())
         }
     };
+    let mesh = &file.mesh;
     let (lo, hi) = mesh.bounds();
     let size = hi - lo;
     // The legs: the four largest connected pieces of the chair's lower third, in order
@@ -34,7 +36,7 @@ fn main() {
     let mut taken = std::collections::HashSet::new();
     let mut pieces: Vec<Vec<u32>> = Vec::new();
     for _ in 0..4 {
-        let piece = largest_connected(&mesh, |p| low(p) && !taken.contains(&bits(p)));
+        let piece = largest_connected(mesh, |p| low(p) && !taken.contains(&bits(p)));
         taken.extend(piece.iter().map(|&v| bits(mesh.positions[v as usize])));
         pieces.push(piece);
     }
@@ -50,7 +52,7 @@ fn main() {
         .zip(pieces)
         .map(|((name, top_first), vertices)| (name, vertices, top_first))
     {
-        let fitted = fit(&mesh, &vertices, &FitOptions::default()).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let fitted = fit(mesh, &vertices, &FitOptions::default()).unwrap_or_else(|e| panic!("{name}: {e}"));
         println!(
             "fitted {name}: {} vertices, {} keys, RMS |d| {:.2}% of the mean radius",
             vertices.len(),
@@ -110,10 +112,10 @@ fn main() {
         println!("  {} moved by {:.4}", sweep.name, moved.length());
     }
     let posed = posing.sweeps().unwrap_or_else(|e| panic!("{e}"));
-    let deformed = common::deform(&rig, &mesh, &posed);
-    out.mesh("chair-moved.obj", &mesh, &deformed);
+    let deformed = common::deform(&rig, mesh, &posed);
+    out.mesh("chair-moved.obj", &file, &deformed);
     out.rig("chair-pose.json", &rig, posing.keys());
-    out.picture("chair.png", &mesh, &[(&mesh.positions, rig.rest()), (&deformed, &posed)], (30.0, 15.0));
+    out.picture("chair.png", mesh, &[(&mesh.positions, rig.rest()), (&deformed, &posed)], (30.0, 15.0));
 }
 
 /// The keys from the bottom up, or from the top down when `top_first`; a reversed key is

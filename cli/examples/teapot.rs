@@ -11,7 +11,7 @@ mod rigs;
 
 use glam::{DQuat, DVec3};
 use sweepffd::edit::{DragMode, Edit, KeyMode, Posing, VolumeRule};
-use sweepffd::mesh::Mesh;
+use sweepffd::formats::LoadedMesh;
 use sweepffd::rig::Rig;
 
 const VIEW: (f32, f32) = (20.0, 20.0);
@@ -22,10 +22,11 @@ fn main() {
         return;
     };
     let out = common::Output::new("teapot");
-    let mesh = Mesh::load(&path).unwrap_or_else(|e| panic!("{e}"));
-    let rig = rigs::teapot_rig(&mesh);
+    let file = LoadedMesh::load(&path).unwrap_or_else(|e| panic!("{e}"));
+    let mesh = &file.mesh;
+    let rig = rigs::teapot_rig(mesh);
     out.rig("teapot-rig.json", &rig, &rig.sweeps().iter().map(|s| s.keys.clone()).collect::<Vec<_>>());
-    out.picture("rest.png", &mesh, &[(&mesh.positions, rig.rest())], VIEW);
+    out.picture("rest.png", mesh, &[(&mesh.positions, rig.rest())], VIEW);
 
     // Fig. 1b: bend and widen the body; the spout and handle ride along.
     let body_edit = [
@@ -38,9 +39,9 @@ fn main() {
             mode: KeyMode::Local,
         },
     ];
-    let with_hierarchy = pose(&out, &rig, &mesh, "body-edit", &body_edit, true, VolumeRule::None);
+    let with_hierarchy = pose(&out, &rig, &file, "body-edit", &body_edit, true, VolumeRule::None);
     // Fig. 12: the same edit with the hierarchy off tears the spout and handle off the body.
-    let without = pose(&out, &rig, &mesh, "body-edit-no-hierarchy", &body_edit, false, VolumeRule::None);
+    let without = pose(&out, &rig, &file, "body-edit-no-hierarchy", &body_edit, false, VolumeRule::None);
     println!(
         "  the hierarchy keeps the parts together: detached by {:.3} without it",
         common::largest_move(&with_hierarchy, &without)
@@ -58,19 +59,19 @@ fn main() {
         mode: DragMode::Both,
         keys: 2,
     }];
-    pose(&out, &rig, &mesh, "handle-edit", &drag, true, VolumeRule::None);
+    pose(&out, &rig, &file, "handle-edit", &drag, true, VolumeRule::None);
 
     // Fig. 13: squeeze the body under each volume rule.
     let squeeze: Vec<Edit> =
         (3..4).map(|key| Edit::ScaleRadii { sweep: "body".into(), key, factor: 0.95, theta_range: None }).collect();
     for rule in [VolumeRule::None, VolumeRule::Total, VolumeRule::Ratio] {
         let name = format!("squeeze-{}", format!("{rule:?}").to_lowercase());
-        pose(&out, &rig, &mesh, &name, &squeeze, true, rule);
+        pose(&out, &rig, &file, &name, &squeeze, true, rule);
     }
 
     // Fig. 15: a local radius edit, a bump over a range of θ on one body key.
     let bump = [Edit::ScaleRadii { sweep: "body".into(), key: 3, factor: 1.4, theta_range: Some([0.5, 2.0]) }];
-    pose(&out, &rig, &mesh, "local-radius-edit", &bump, true, VolumeRule::None);
+    pose(&out, &rig, &file, "local-radius-edit", &bump, true, VolumeRule::None);
 }
 
 /// Applies `edits` with the hierarchy on or off and the volume rule `rule`, prints the sweeps'
@@ -78,12 +79,13 @@ fn main() {
 fn pose(
     out: &common::Output,
     rig: &Rig,
-    mesh: &Mesh,
+    file: &LoadedMesh,
     name: &str,
     edits: &[Edit],
     hierarchy: bool,
     rule: VolumeRule,
 ) -> Vec<DVec3> {
+    let mesh = &file.mesh;
     let mut posing = Posing::new(rig);
     posing.hierarchy = hierarchy;
     posing.volume = rule;
@@ -103,7 +105,7 @@ fn pose(
         volumes.join(", ")
     );
     let deformed = common::deform(rig, mesh, &posed);
-    out.mesh(&format!("{name}.obj"), mesh, &deformed);
+    out.mesh(&format!("{name}.obj"), file, &deformed);
     out.rig(&format!("{name}-pose.json"), rig, posing.keys());
     out.picture(&format!("{name}.png"), mesh, &[(&mesh.positions, rig.rest()), (&deformed, &posed)], VIEW);
     deformed

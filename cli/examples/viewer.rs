@@ -13,6 +13,7 @@
 use std::path::PathBuf;
 
 use sweepffd::edit::VolumeRule;
+use sweepffd::formats::LoadedMesh;
 use sweepffd::synthetic::{Tube, tube_rig};
 use sweepffd_cli::view::{Subdivide, ViewOptions, run};
 
@@ -26,8 +27,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             std::fs::create_dir_all(&folder)?;
             let tube = Tube { rings: 60, around: 48, length: 4.0, radius: 0.5 };
             let (mesh_path, rig_path) = (folder.join("tube.obj"), folder.join("tube-rig.json"));
-            let mesh = tube.mesh();
-            mesh.save(&mesh_path, &mesh.positions)?;
+            let mesh = LoadedMesh::from(tube.mesh());
+            mesh.save(&mesh_path, &mesh.mesh.positions)?;
             std::fs::write(&rig_path, tube_rig(&tube, 5, 16).to_document().to_json())?;
             (mesh_path, Some(rig_path))
         }

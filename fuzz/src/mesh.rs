@@ -5,7 +5,7 @@
 
 use std::path::{Path, PathBuf};
 
-use sweepffd::mesh::Mesh;
+use sweepffd::formats::LoadedMesh;
 
 use super::Outcome;
 
@@ -18,8 +18,8 @@ pub fn mesh_path(name: &str) -> PathBuf {
 }
 
 /// Parses `data` as the mesh file `name` (format by its extension).
-pub fn parse(name: &str, data: &[u8]) -> Result<Mesh, String> {
-    Mesh::parse(&mesh_path(name), data.to_vec()).map_err(|e| e.to_string())
+pub fn parse(name: &str, data: &[u8]) -> Result<LoadedMesh, String> {
+    LoadedMesh::parse(&mesh_path(name), data.to_vec()).map_err(|e| e.to_string())
 }
 
 /// An OBJ file.

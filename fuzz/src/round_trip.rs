@@ -31,7 +31,7 @@ pub fn moved(p: DVec3) -> DVec3 {
 pub fn write_round_trip(data: &[u8]) -> Outcome {
     let Some((&pick, file)) = data.split_first() else { return Ok(()) };
     let mesh = parse(&format!("mesh.{}", EXTENSIONS[usize::from(pick) % EXTENSIONS.len()]), file)?;
-    let positions: Vec<DVec3> = mesh.positions.iter().map(|&p| moved(p)).collect();
+    let positions: Vec<DVec3> = mesh.mesh.positions.iter().map(|&p| moved(p)).collect();
     let dir = tempfile::tempdir().expect("a temporary folder");
     let mut first_error = None;
     for extension in EXTENSIONS {

@@ -207,7 +207,7 @@ impl BindingsFile {
     /// Writes the file atomically (temporary file, then rename).
     pub fn save(&self, path: &Path) -> Result<(), BindingsFileError> {
         let bytes = self.to_bytes();
-        crate::mesh::write_atomically(path, |out| out.write_all(&bytes))
+        crate::atomic_file::write_atomically(path, |out| out.write_all(&bytes))
             .map_err(|source| BindingsFileError::Write { path: path.to_path_buf(), source })
     }
 

@@ -1,48 +1,20 @@
-//! Meshes in and out: OBJ, PLY, OFF and glTF files, and the enclosed volume of a closed mesh.
+//! Meshes in code: positions, polygon faces and named face groups, with the measures the
+//! engine and the fitting take of them (enclosed volume, bounds, group vertices), welding and
+//! subdivision. Reading and writing files is `formats` (feature `formats`).
 //!
-//! Data flow: rig → sweep → sweep coefficients → bind → deform → normals → **output**.
+//! Data flow: rig → sweep → sweep coefficients → bind → deform → normals → output.
 //!
-//! A [`Mesh`] keeps what deformation needs (positions in file order, polygon faces, named face
-//! groups) and, privately, what it needs to write the file back faithfully: a deformed file
-//! differs from its input only in the positions of the vertices that moved (and, for glTF,
-//! the normals around them).
-//!
-//! - [`Mesh::load`] reads, by extension, `.obj` (our own scanner, f64, vertex order kept; see
-//!   `obj`), `.ply` (header through `ply-rs-bw`, data straight from the bytes; see `ply`), `.off` (ASCII OFF with the `C`, `N` and
-//!   `ST` variants, our own reader; see `off`) or `.gltf` / `.glb` (through the `gltf` crate:
-//!   every triangle primitive of the default scene, node transforms applied, one group per
-//!   mesh; see `gltf`); [`Mesh::from_parts`] builds a mesh in code.
-//! - [`Mesh::save`] writes faithfully over the loaded file when the format is the same (for
-//!   glTF: `.gltf` or `.glb` from either), generically otherwise, always atomically (temporary
-//!   file + rename, [`write_atomically`], which other file writers of the crate share).
+//! - [`Mesh::from_parts`] builds a mesh and checks it ([`MeshDataError`]);
+//!   [`Faces::from_triangles`] takes an engine's `u32` triangle list.
 //! - [`Mesh::enclosed_volume`], [`Mesh::bounds`], [`Mesh::group_vertices`] measure it.
-//! - [`MeshError`] names the file (and the OBJ or OFF line) at fault; malformed input never
-//!   panics, every number read must be finite, and counts are checked against
-//!   [`crate::limits`] ([`LimitError`]) before anything is allocated for them.
+//! - Counts are checked against [`crate::limits`] ([`LimitError`]) before anything is allocated
+//!   for them.
 
-mod atomic;
 mod bounds;
-#[cfg(feature = "formats")]
-mod decimal;
 mod error;
 mod faces;
-#[cfg(feature = "formats")]
-mod format;
-#[cfg(feature = "formats")]
-mod gltf;
 mod groups;
-#[cfg(feature = "formats")]
-mod load;
-#[cfg(feature = "formats")]
-mod obj;
-#[cfg(feature = "formats")]
-mod off;
 mod parts;
-#[cfg(feature = "formats")]
-mod ply;
-#[cfg(feature = "formats")]
-mod save;
-mod source;
 mod subdivide;
 mod triangles;
 mod volume;
@@ -50,19 +22,8 @@ pub mod weld;
 
 use glam::DVec3;
 
-pub use atomic::{exit_removing_temporaries, write_atomically};
-pub use error::{LimitError, Limited, MeshDataError, MeshError, ObjLineError};
-#[cfg(feature = "formats")]
-pub use format::Format;
-#[cfg(feature = "formats")]
-pub use gltf::GltfDataError;
-#[cfg(feature = "formats")]
-pub use off::OffLineError;
-#[cfg(feature = "formats")]
-pub use ply::PlyHeaderError;
+pub use error::{LimitError, Limited, MeshDataError};
 pub use subdivide::{Parents, Subdivision, SubdivisionError};
-
-use source::Source;
 
 /// Polygon faces as a flat index list: face `f` has the vertex indices
 /// `indices[offsets[f]..offsets[f + 1]]` (zero-based, into [`Mesh::positions`]). An engine's
@@ -84,10 +45,13 @@ pub struct FaceGroup {
     pub faces: Vec<u32>,
 }
 
-/// A polygon mesh read from a file ([`Mesh::load`]) or built in code ([`Mesh::from_parts`]).
+/// A polygon mesh built in code ([`Mesh::from_parts`]) or read from a file (`Mesh::load` and
+/// `LoadedMesh`, feature `formats`).
 ///
-/// Cloning is cheap for the remembered source file, which clones share.
+/// Its fields can be read and changed; it is built only through [`Mesh::from_parts`] (or a
+/// reader), which checks that the faces and groups refer to what exists.
 #[derive(Clone, Debug)]
+#[non_exhaustive]
 pub struct Mesh {
     /// Vertex positions in file order, including vertices no face uses.
     pub positions: Vec<DVec3>,
@@ -95,7 +59,4 @@ pub struct Mesh {
     pub faces: Faces,
     /// Named face groups in order of first appearance.
     pub groups: Vec<FaceGroup>,
-    /// The file the mesh was read from, for faithful saving.
-    #[cfg_attr(not(feature = "formats"), expect(dead_code, reason = "only the file readers and writers use it"))]
-    source: Source,
 }

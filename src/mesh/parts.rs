@@ -2,21 +2,19 @@
 
 use glam::DVec3;
 
-use super::source::Source;
-use super::{FaceGroup, Faces, Mesh, MeshDataError, MeshError};
+use super::{FaceGroup, Faces, Mesh, MeshDataError};
 
 impl Mesh {
-    /// Builds a mesh in code (no source file, so [`Mesh::save`] writes generic files); `groups`
-    /// may be empty.
+    /// Builds a mesh in code; `groups` may be empty.
     ///
     /// # Errors
     ///
-    /// [`MeshError::Invalid`] when `positions` is empty or has a non-finite coordinate, when
+    /// A [`MeshDataError`] when `positions` is empty or has a non-finite coordinate, when
     /// `faces.offsets` does not describe `faces.indices`, when a face has fewer than 3
     /// vertices or an index `>= positions.len()`, or when a group's face list is not strictly
     /// increasing or names a face that does not exist. Numbers in the error are zero-based.
     /// Empty `offsets` (as from `Faces::default()`) are taken as no face.
-    pub fn from_parts(positions: Vec<DVec3>, mut faces: Faces, groups: Vec<FaceGroup>) -> Result<Mesh, MeshError> {
+    pub fn from_parts(positions: Vec<DVec3>, mut faces: Faces, groups: Vec<FaceGroup>) -> Result<Mesh, MeshDataError> {
         check_positions(&positions)?;
         faces.check_offsets()?;
         if faces.offsets.is_empty() {
@@ -24,7 +22,7 @@ impl Mesh {
         }
         check_faces(&faces, positions.len())?;
         check_groups(&groups, faces.len())?;
-        Ok(Mesh { positions, faces, groups, source: Source::Code })
+        Ok(Mesh { positions, faces, groups })
     }
 }
 
@@ -77,11 +75,8 @@ mod tests {
         (positions, faces)
     }
 
-    fn invalid(result: Result<Mesh, MeshError>) -> MeshDataError {
-        match result {
-            Err(MeshError::Invalid(e)) => e,
-            other => panic!("expected MeshError::Invalid, got {other:?}"),
-        }
+    fn invalid(result: Result<Mesh, MeshDataError>) -> MeshDataError {
+        result.expect_err("the parts are invalid")
     }
 
     #[test]

@@ -17,7 +17,7 @@ use std::ops::Range;
 
 use thiserror::Error;
 
-use super::{FaceGroup, Faces, Mesh, MeshError};
+use super::{FaceGroup, Faces, Mesh, MeshDataError};
 use crate::limits::{MAX_FACES, MAX_VERTICES};
 
 /// Why a mesh cannot be subdivided as asked.
@@ -44,7 +44,7 @@ pub enum SubdivisionError {
     },
     /// The subdivided data do not form a mesh.
     #[error(transparent)]
-    Mesh(#[from] MeshError),
+    Mesh(#[from] MeshDataError),
 }
 
 /// The size of a mesh as subdivision changes it: vertices, fan triangles and their distinct

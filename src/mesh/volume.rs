@@ -3,7 +3,7 @@
 use glam::DVec3;
 
 use super::bounds::bounds_of;
-use super::{Mesh, MeshError};
+use super::{Mesh, MeshDataError};
 
 impl Mesh {
     /// Signed volume enclosed by the faces at `positions` (one per vertex, e.g. deformed):
@@ -58,11 +58,11 @@ impl Mesh {
         !edges.is_empty() && edges.chunk_by(|a, b| a == b).all(|run| run.len() == 2)
     }
 
-    /// [`Mesh::enclosed_volume`], or [`MeshError::PositionCount`] if `positions` does not have
+    /// [`Mesh::enclosed_volume`], or [`MeshDataError::PositionCount`] if `positions` does not have
     /// one entry per vertex.
-    pub fn try_enclosed_volume(&self, positions: &[DVec3]) -> Result<f64, MeshError> {
+    pub fn try_enclosed_volume(&self, positions: &[DVec3]) -> Result<f64, MeshDataError> {
         if positions.len() != self.positions.len() {
-            return Err(MeshError::PositionCount { expected: self.positions.len(), found: positions.len() });
+            return Err(MeshDataError::PositionCount { expected: self.positions.len(), found: positions.len() });
         }
         Ok(self.enclosed_volume(positions))
     }

@@ -14,6 +14,7 @@ use std::path::PathBuf;
 
 use glam::DVec3;
 use sweepffd::fit::{FitOptions, fit, largest_connected};
+use sweepffd::formats::LoadedMesh;
 use sweepffd::mesh::Mesh;
 use sweepffd::rig::{FORMAT, RigDocument, VERSION, VertexSelection};
 
@@ -49,5 +50,6 @@ fn write_the_million_vertex_bunny_with_fitted_ears() {
     }
     let rig = RigDocument { format: FORMAT.into(), version: VERSION, sweeps };
     std::fs::write(dir.join("ears.json"), rig.to_json()).unwrap();
-    mesh.save(&dir.join("bunny_1m.obj"), &mesh.positions).unwrap();
+    let file = LoadedMesh::from(mesh);
+    file.save(&dir.join("bunny_1m.obj"), &file.mesh.positions).unwrap();
 }

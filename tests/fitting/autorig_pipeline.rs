@@ -15,6 +15,7 @@ use std::path::PathBuf;
 use glam::DVec3;
 use sweepffd::deform::deform_vertices;
 use sweepffd::fit::autorig::{AutorigOptions, autorig};
+use sweepffd::formats::LoadedMesh;
 use sweepffd::mesh::Mesh;
 use sweepffd::mesh::weld::weld;
 use sweepffd::rig::Rig;
@@ -93,7 +94,7 @@ fn bend_every_part(name: &str, mesh: &Mesh, expected_parts: usize) -> f64 {
     );
     if let Ok(dir) = std::env::var("SWEEPFFD_PICTURES_DIR") {
         let dir = PathBuf::from(dir);
-        mesh.save(&dir.join(format!("{name}.obj")), &mesh.positions).unwrap();
+        LoadedMesh::from(mesh.clone()).save(&dir.join(format!("{name}.obj")), &mesh.positions).unwrap();
         std::fs::write(dir.join(format!("{name}-rig.json")), document.to_json()).unwrap();
         std::fs::write(dir.join(format!("{name}-pose.json")), rig.pose_document(&keys).to_json()).unwrap();
     }

@@ -15,6 +15,7 @@ use std::path::PathBuf;
 
 use glam::DVec3;
 use sweepffd::fit::{FitOptions, fit, largest_connected};
+use sweepffd::formats::LoadedMesh;
 use sweepffd::mesh::Mesh;
 use sweepffd::rig::{FORMAT, Rig, RigDocument, VERSION, VertexSelection};
 use sweepffd::synthetic::BendTwistTaper;
@@ -49,9 +50,10 @@ fn write_the_two_million_vertex_bunny_with_two_rigs() {
         std::fs::write(dir.join(format!("{name}.json")), rig.to_document().to_json()).unwrap();
         std::fs::write(dir.join(format!("{name}_pose.json")), rig.pose_document(&pose.keys(rig)).to_json()).unwrap();
     }
-    mesh.save(&dir.join("bunny_2m.obj"), &mesh.positions).unwrap();
-    mesh.save(&dir.join("bunny_2m.ply"), &mesh.positions).unwrap();
     println!("{} vertices, {} faces", mesh.positions.len(), mesh.faces.len());
+    let file = LoadedMesh::from(mesh);
+    file.save(&dir.join("bunny_2m.obj"), &file.mesh.positions).unwrap();
+    file.save(&dir.join("bunny_2m.ply"), &file.mesh.positions).unwrap();
 }
 
 /// The process's CPU time so far (user + system), from `/proc/self/stat`, in seconds; 0 where
@@ -87,14 +89,15 @@ fn time_loading_and_saving_the_scene() {
             continue;
         }
         let mut mesh = None;
-        let (wall, cpu) = best_of(runs, || mesh = Some(Mesh::load(&path).unwrap()));
+        let (wall, cpu) = best_of(runs, || mesh = Some(LoadedMesh::load(&path).unwrap()));
         println!("{name}: load {wall:.3} s wall, {cpu:.2} s CPU");
         let mesh = mesh.unwrap();
         for rig in ["ears", "axis"] {
             let rig = Rig::load(&dir.join(format!("{rig}.json"))).unwrap();
-            let owners = rig.owners(&mesh, name).unwrap();
+            let owners = rig.owners(&mesh.mesh, name).unwrap();
             // Every owned vertex moved by a little, as a deformation moves it.
             let moved: Vec<DVec3> = mesh
+                .mesh
                 .positions
                 .iter()
                 .zip(&owners)

@@ -11,10 +11,11 @@ use glam::DVec3;
 use ply_rs_bw::parser::Parser;
 use ply_rs_bw::ply::{DefaultElement, Encoding, Ply, Property};
 use ply_rs_bw::writer::Writer;
-use sweepffd::mesh::{FaceGroup, Faces, Mesh, MeshError};
+use sweepffd::formats::{LoadedMesh, MeshError};
+use sweepffd::mesh::{FaceGroup, Faces, Mesh};
 
-fn load(name: &str) -> Option<Mesh> {
-    common::shared_mesh(name).map(|path| Mesh::load(&path).unwrap())
+fn load(name: &str) -> Option<LoadedMesh> {
+    common::shared_mesh(name).map(|path| LoadedMesh::load(&path).unwrap())
 }
 
 fn dir_names(dir: &Path) -> Vec<String> {
@@ -51,8 +52,8 @@ fn shared_meshes_have_the_readme_counts() {
     ];
     for (name, vertices, faces) in table {
         let Some(mesh) = load(name) else { continue };
-        assert_eq!(mesh.positions.len(), vertices, "{name}");
-        assert_eq!(mesh.faces.len(), faces, "{name}");
+        assert_eq!(mesh.mesh.positions.len(), vertices, "{name}");
+        assert_eq!(mesh.mesh.faces.len(), faces, "{name}");
     }
 }
 
@@ -61,8 +62,8 @@ fn bunny_keeps_its_unused_vertices() {
     let Some(mesh) = load("bunny_stanford_zipper.obj") else {
         return;
     };
-    let mut used = vec![false; mesh.positions.len()];
-    for &i in &mesh.faces.indices {
+    let mut used = vec![false; mesh.mesh.positions.len()];
+    for &i in &mesh.mesh.faces.indices {
         used[i as usize] = true;
     }
     assert_eq!(used.iter().filter(|&&u| !u).count(), 1_113);
@@ -73,14 +74,14 @@ fn mcguire_teapot_has_quads_triangles_and_two_groups() {
     let Some(mesh) = load("teapot_mcguire/teapot.obj") else {
         return;
     };
-    let quads = mesh.faces.iter().filter(|f| f.len() == 4).count();
-    let triangles = mesh.faces.iter().filter(|f| f.len() == 3).count();
+    let quads = mesh.mesh.faces.iter().filter(|f| f.len() == 4).count();
+    let triangles = mesh.mesh.faces.iter().filter(|f| f.len() == 3).count();
     assert_eq!((quads, triangles), (7_676, 352));
-    let names: Vec<&str> = mesh.groups.iter().map(|g| g.name.as_str()).collect();
+    let names: Vec<&str> = mesh.mesh.groups.iter().map(|g| g.name.as_str()).collect();
     assert_eq!(names, ["Base", "Top"]);
-    let in_groups: usize = mesh.groups.iter().map(|g| g.faces.len()).sum();
-    assert_eq!(in_groups, mesh.faces.len());
-    let (min, max) = mesh.bounds();
+    let in_groups: usize = mesh.mesh.groups.iter().map(|g| g.faces.len()).sum();
+    assert_eq!(in_groups, mesh.mesh.faces.len());
+    let (min, max) = mesh.mesh.bounds();
     assert!((min.x + 71.9).abs() < 0.05 && (max.x - 82.3).abs() < 0.05, "{min} {max}");
 }
 
@@ -89,9 +90,9 @@ fn spot_control_mesh_has_pentagons_quads_and_triangles() {
     let Some(mesh) = load("spot_control_mesh.obj") else {
         return;
     };
-    let count = |n| mesh.faces.iter().filter(|f| f.len() == n).count();
+    let count = |n| mesh.mesh.faces.iter().filter(|f| f.len() == n).count();
     assert_eq!((count(3), count(4), count(5)), (4, 160, 16));
-    assert_eq!(mesh.faces.triangles().count(), 4 + 2 * 160 + 3 * 16);
+    assert_eq!(mesh.mesh.faces.triangles().count(), 4 + 2 * 160 + 3 * 16);
 }
 
 #[test]
@@ -99,8 +100,8 @@ fn bunny_obj_and_ply_agree() {
     let (Some(obj), Some(ply)) = (load("bunny_stanford_zipper.obj"), load("bunny_stanford_zipper.ply")) else {
         return;
     };
-    assert_eq!(obj.faces, ply.faces);
-    let (worst, at) = worst_difference(&obj.positions, &ply.positions);
+    assert_eq!(obj.mesh.faces, ply.mesh.faces);
+    let (worst, at) = worst_difference(&obj.mesh.positions, &ply.mesh.positions);
     assert!(worst <= 1e-6, "worst difference {worst} at vertex {at}");
 }
 
@@ -117,18 +118,18 @@ fn teapot_parts_groups_match_the_readme() {
         ("lid", 4001, 5560),
         ("body_bottom", 5561, 6320),
     ];
-    assert_eq!(mesh.groups.len(), expected.len());
-    for (group, (name, first, last)) in mesh.groups.iter().zip(expected) {
+    assert_eq!(mesh.mesh.groups.len(), expected.len());
+    for (group, (name, first, last)) in mesh.mesh.groups.iter().zip(expected) {
         assert_eq!(group.name, name);
         let faces: Vec<u32> = (first - 1..last).collect();
         assert_eq!(group.faces, faces, "{name}");
     }
-    let body = mesh.group_vertices("body").unwrap();
-    let handle = mesh.group_vertices("handle").unwrap();
+    let body = mesh.mesh.group_vertices("body").unwrap();
+    let handle = mesh.mesh.group_vertices("handle").unwrap();
     let shared: Vec<u32> = body.iter().copied().filter(|v| handle.binary_search(v).is_ok()).collect();
     assert_eq!(shared, vec![375]);
-    assert_eq!(mesh.positions[375], DVec3::new(-2.0, 0.9, 0.0));
-    assert_eq!(mesh.group_vertices("spoon"), None);
+    assert_eq!(mesh.mesh.positions[375], DVec3::new(-2.0, 0.9, 0.0));
+    assert_eq!(mesh.mesh.group_vertices("spoon"), None);
 }
 
 #[test]
@@ -144,9 +145,9 @@ fn faithful_obj_save_of_shared_meshes_is_byte_identical() {
         let Some(path) = common::shared_mesh(name) else {
             continue;
         };
-        let mesh = Mesh::load(&path).unwrap();
+        let mesh = LoadedMesh::load(&path).unwrap();
         let out = dir.path().join("out.obj");
-        mesh.save(&out, &mesh.positions).unwrap();
+        mesh.save(&out, &mesh.mesh.positions).unwrap();
         assert!(fs::read(&out).unwrap() == fs::read(&path).unwrap(), "{name}");
     }
 }
@@ -158,15 +159,15 @@ fn faithful_obj_save_of_inline_file_is_byte_identical() {
     let dir = tempfile::tempdir().unwrap();
     let input = dir.path().join("in.obj");
     fs::write(&input, INLINE).unwrap();
-    let mesh = Mesh::load(&input).unwrap();
-    assert_eq!(mesh.positions.len(), 4);
-    assert_eq!(mesh.faces.len(), 2);
-    let names: Vec<&str> = mesh.groups.iter().map(|g| g.name.as_str()).collect();
+    let mesh = LoadedMesh::load(&input).unwrap();
+    assert_eq!(mesh.mesh.positions.len(), 4);
+    assert_eq!(mesh.mesh.faces.len(), 2);
+    let names: Vec<&str> = mesh.mesh.groups.iter().map(|g| g.name.as_str()).collect();
     assert_eq!(names, ["part", "left", "right"]);
-    assert_eq!(mesh.groups[0].faces, vec![0, 1]);
-    assert_eq!(mesh.groups[1].faces, vec![0]);
+    assert_eq!(mesh.mesh.groups[0].faces, vec![0, 1]);
+    assert_eq!(mesh.mesh.groups[1].faces, vec![0]);
     let out = dir.path().join("out.obj");
-    mesh.save(&out, &mesh.positions).unwrap();
+    mesh.save(&out, &mesh.mesh.positions).unwrap();
     assert_eq!(fs::read(&out).unwrap(), INLINE);
 }
 
@@ -175,9 +176,9 @@ fn faithful_obj_save_changes_exactly_the_moved_vertex_lines() {
     let Some(path) = common::shared_mesh("teapot_newell_parts.obj") else {
         return;
     };
-    let mesh = Mesh::load(&path).unwrap();
+    let mesh = LoadedMesh::load(&path).unwrap();
     let moved_vertices = [0_usize, 375, 1000, 3643];
-    let mut positions = mesh.positions.clone();
+    let mut positions = mesh.mesh.positions.clone();
     for &v in &moved_vertices {
         positions[v] += DVec3::new(0.125, -1.0 / 3.0, 1e-9);
     }
@@ -201,8 +202,8 @@ fn faithful_obj_save_changes_exactly_the_moved_vertex_lines() {
     }
     let reloaded = Mesh::load(&out).unwrap();
     assert_eq!(reloaded.positions, positions);
-    assert_eq!(reloaded.faces, mesh.faces);
-    assert_eq!(reloaded.groups, mesh.groups);
+    assert_eq!(reloaded.faces, mesh.mesh.faces);
+    assert_eq!(reloaded.groups, mesh.mesh.groups);
 }
 
 #[test]
@@ -210,10 +211,10 @@ fn faithful_ply_save_of_ascii_bunny_parses_to_identical_data() {
     let Some(path) = common::shared_mesh("bunny_stanford_zipper.ply") else {
         return;
     };
-    let mesh = Mesh::load(&path).unwrap();
+    let mesh = LoadedMesh::load(&path).unwrap();
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out.ply");
-    mesh.save(&out, &mesh.positions).unwrap();
+    mesh.save(&out, &mesh.mesh.positions).unwrap();
     let original = parse_ply(&fs::read(&path).unwrap());
     let saved = parse_ply(&fs::read(&out).unwrap());
     assert_eq!(saved.header.encoding, Encoding::Ascii);
@@ -234,13 +235,13 @@ fn faithful_ply_save_of_binary_bunny_keeps_data_and_moves_only_moved_vertices() 
         Writer::new().write_ply(&mut bytes, &mut binary).unwrap();
         fs::write(&input, &bytes).unwrap();
 
-        let mesh = Mesh::load(&input).unwrap();
-        assert_eq!(mesh.positions.len(), 35_947);
+        let mesh = LoadedMesh::load(&input).unwrap();
+        assert_eq!(mesh.mesh.positions.len(), 35_947);
         let out = dir.path().join("out.ply");
-        mesh.save(&out, &mesh.positions).unwrap();
+        mesh.save(&out, &mesh.mesh.positions).unwrap();
         assert!(parse_ply(&fs::read(&out).unwrap()) == binary, "{encoding:?}");
 
-        let mut positions = mesh.positions.clone();
+        let mut positions = mesh.mesh.positions.clone();
         positions[7] = DVec3::new(0.5, 0.25, -0.125);
         mesh.save(&out, &positions).unwrap();
         let mut expected = binary.clone();
@@ -260,12 +261,13 @@ fn obj_to_ply_generic_save_round_trips_within_f32() {
     };
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("teapot.PLY");
-    mesh.save(&out, &mesh.positions).unwrap();
+    mesh.save(&out, &mesh.mesh.positions).unwrap();
     let back = Mesh::load(&out).unwrap();
-    assert_eq!(back.faces, mesh.faces);
+    assert_eq!(back.faces, mesh.mesh.faces);
     assert!(back.groups.is_empty());
-    let (worst, at) = worst_difference(&back.positions, &mesh.positions);
-    let tolerance = mesh.positions.iter().map(|p| p.abs().max_element()).fold(0.0, f64::max) * f64::from(f32::EPSILON);
+    let (worst, at) = worst_difference(&back.positions, &mesh.mesh.positions);
+    let tolerance =
+        mesh.mesh.positions.iter().map(|p| p.abs().max_element()).fold(0.0, f64::max) * f64::from(f32::EPSILON);
     assert!(worst <= tolerance, "worst {worst} at vertex {at}, tolerance {tolerance}");
     assert!(worst > 0.0, "f32 rounding should show somewhere");
 }
@@ -277,12 +279,12 @@ fn ply_to_obj_generic_save_round_trips_exactly() {
     };
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("bunny.obj");
-    mesh.save(&out, &mesh.positions).unwrap();
+    mesh.save(&out, &mesh.mesh.positions).unwrap();
     let text = fs::read_to_string(&out).unwrap();
     assert!(text.starts_with("# written by sweepffd\n"));
     let back = Mesh::load(&out).unwrap();
-    assert_eq!(back.faces, mesh.faces);
-    assert_eq!(back.positions, mesh.positions);
+    assert_eq!(back.faces, mesh.mesh.faces);
+    assert_eq!(back.positions, mesh.mesh.positions);
 }
 
 #[test]
@@ -296,37 +298,39 @@ fn generic_obj_save_of_built_mesh_keeps_groups() {
         FaceGroup { name: "bottom".into(), faces: vec![0] },
         FaceGroup { name: "sides".into(), faces: vec![1, 2, 3] },
     ];
-    let mesh = Mesh::from_parts(positions, faces, groups).unwrap();
+    let mesh = LoadedMesh::from(Mesh::from_parts(positions, faces, groups).unwrap());
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("tet.obj");
-    mesh.save(&out, &mesh.positions).unwrap();
+    mesh.save(&out, &mesh.mesh.positions).unwrap();
     let back = Mesh::load(&out).unwrap();
-    assert_eq!(back.positions, mesh.positions);
-    assert_eq!(back.faces, mesh.faces);
-    assert_eq!(back.groups, mesh.groups);
+    assert_eq!(back.positions, mesh.mesh.positions);
+    assert_eq!(back.faces, mesh.mesh.faces);
+    assert_eq!(back.groups, mesh.mesh.groups);
 }
 
 #[test]
 fn failed_saves_leave_no_file_and_no_temporary() {
-    let mesh = Mesh::from_parts(
-        vec![DVec3::ZERO, DVec3::X, DVec3::Y],
-        {
-            let mut f = Faces::new();
-            f.push(&[0, 1, 2]);
-            f
-        },
-        Vec::new(),
-    )
-    .unwrap();
+    let mesh = LoadedMesh::from(
+        Mesh::from_parts(
+            vec![DVec3::ZERO, DVec3::X, DVec3::Y],
+            {
+                let mut f = Faces::new();
+                f.push(&[0, 1, 2]);
+                f
+            },
+            Vec::new(),
+        )
+        .unwrap(),
+    );
     let dir = tempfile::tempdir().unwrap();
 
     let missing_dir = dir.path().join("no_such_dir").join("out.obj");
-    let err = mesh.save(&missing_dir, &mesh.positions).unwrap_err();
+    let err = mesh.save(&missing_dir, &mesh.mesh.positions).unwrap_err();
     assert!(matches!(err, MeshError::Write { .. }), "{err}");
     assert!(err.to_string().contains("out.obj"), "{err}");
 
     let out = dir.path().join("out.ply");
-    let err = mesh.save(&out, &mesh.positions[..2]).unwrap_err();
+    let err = mesh.save(&out, &mesh.mesh.positions[..2]).unwrap_err();
     assert_eq!(err.to_string(), "positions has 2 entries but the mesh has 3 vertices");
 
     let nan = vec![DVec3::ZERO, DVec3::X, DVec3::new(0.0, f64::NAN, 0.0)];
@@ -336,12 +340,12 @@ fn failed_saves_leave_no_file_and_no_temporary() {
         format!("{}: vertex 2 has the coordinate NaN, which is not finite; nothing was written", out.display())
     );
 
-    let err = mesh.save(&dir.path().join("out.stl"), &mesh.positions).unwrap_err();
+    let err = mesh.save(&dir.path().join("out.stl"), &mesh.mesh.positions).unwrap_err();
     assert!(matches!(err, MeshError::UnsupportedFormat { .. }), "{err}");
     assert!(dir_names(dir.path()).is_empty(), "{:?}", dir_names(dir.path()));
 
     fs::write(&out, b"keep").unwrap();
-    assert!(mesh.save(&out, &mesh.positions[..1]).is_err());
+    assert!(mesh.save(&out, &mesh.mesh.positions[..1]).is_err());
     assert_eq!(fs::read(&out).unwrap(), b"keep");
     assert_eq!(dir_names(dir.path()), ["out.ply"]);
 }
@@ -368,10 +372,10 @@ fn load_errors_name_the_file() {
 
 fn volume_after_translation(name: &str) {
     let Some(mesh) = load(name) else { return };
-    let v = mesh.enclosed_volume(&mesh.positions);
+    let v = mesh.mesh.enclosed_volume(&mesh.mesh.positions);
     assert!(v > 0.0, "{name}: volume {v}");
-    let shifted: Vec<DVec3> = mesh.positions.iter().map(|&p| p + DVec3::new(1000.0, -1000.0, 1000.0)).collect();
-    let w = mesh.enclosed_volume(&shifted);
+    let shifted: Vec<DVec3> = mesh.mesh.positions.iter().map(|&p| p + DVec3::new(1000.0, -1000.0, 1000.0)).collect();
+    let w = mesh.mesh.enclosed_volume(&shifted);
     assert!(((w - v) / v).abs() < 1e-9, "{name}: {v} vs {w} after translation");
 }
 
@@ -385,11 +389,11 @@ fn armadillo_volume_is_positive_and_translation_invariant() {
     volume_after_translation("armadillo_50k.obj");
 }
 
-fn load_inline(name: &str, text: &str) -> Mesh {
+fn load_inline(name: &str, text: &str) -> LoadedMesh {
     let dir = tempfile::tempdir().unwrap();
     let path: PathBuf = dir.path().join(name);
     fs::write(&path, text).unwrap();
-    Mesh::load(&path).unwrap()
+    LoadedMesh::load(&path).unwrap()
 }
 
 #[test]
@@ -399,7 +403,7 @@ fn inline_unit_cube_of_outward_quads_has_volume_one() {
         "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
          f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n",
     );
-    let v = cube.enclosed_volume(&cube.positions);
+    let v = cube.mesh.enclosed_volume(&cube.mesh.positions);
     assert!((v - 1.0).abs() < 1e-14, "{v}");
 }
 
@@ -410,7 +414,7 @@ fn inline_tetrahedron_has_its_closed_form_volume() {
         "tet.obj",
         &format!("v 0 0 0\nv {a} 0 0\nv 0 {b} 0\nv 0 0 {c}\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"),
     );
-    let v = tet.enclosed_volume(&tet.positions);
+    let v = tet.mesh.enclosed_volume(&tet.mesh.positions);
     let exact = a * b * c / 6.0;
     assert!((v - exact).abs() < 1e-14 * exact, "{v} vs {exact}");
 }
@@ -418,13 +422,13 @@ fn inline_tetrahedron_has_its_closed_form_volume() {
 #[test]
 fn edited_faces_fall_back_to_the_generic_obj_writer() {
     let mut mesh = load_inline("quad.obj", "# a quad\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
-    mesh.faces = Faces::new();
-    mesh.faces.push(&[0, 1, 2]);
-    mesh.faces.push(&[0, 2, 3]);
+    mesh.mesh.faces = Faces::new();
+    mesh.mesh.faces.push(&[0, 1, 2]);
+    mesh.mesh.faces.push(&[0, 2, 3]);
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("split.obj");
-    mesh.save(&out, &mesh.positions).unwrap();
+    mesh.save(&out, &mesh.mesh.positions).unwrap();
     let text = fs::read_to_string(&out).unwrap();
     assert!(text.starts_with("# written by sweepffd\n"), "{text}");
-    assert_eq!(Mesh::load(&out).unwrap().faces, mesh.faces);
+    assert_eq!(Mesh::load(&out).unwrap().faces, mesh.mesh.faces);
 }

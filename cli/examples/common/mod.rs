@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 use sweepffd::deform::deform_vertices;
+use sweepffd::formats::LoadedMesh;
 use sweepffd::mesh::Mesh;
 use sweepffd::rig::Rig;
 use sweepffd::sweep::Sweep;
@@ -36,7 +37,7 @@ impl Output {
     }
 
     /// Writes `mesh` at `positions` as `file` (format by extension).
-    pub fn mesh(&self, file: &str, mesh: &Mesh, positions: &[DVec3]) {
+    pub fn mesh(&self, file: &str, mesh: &LoadedMesh, positions: &[DVec3]) {
         let path = self.dir.join(file);
         mesh.save(&path, positions).unwrap_or_else(|e| panic!("{e}"));
         println!("  wrote {}", path.display());

@@ -10,8 +10,9 @@ use serde::Serialize;
 use super::CliResult;
 use super::args::MeshArg;
 use super::flags::fit_error;
+use sweepffd::atomic_file::write_atomically;
 use sweepffd::fit::autorig::{AutorigOptions, autorig};
-use sweepffd::mesh::{Mesh, write_atomically};
+use sweepffd::mesh::Mesh;
 
 /// The arguments of `sweepffd autorig`.
 #[derive(Debug, clap::Args)]

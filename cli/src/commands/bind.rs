@@ -12,8 +12,8 @@ use sweepffd::bind::band::bind_bands;
 use sweepffd::bindings_file::BindingsFile;
 use sweepffd::coeffs::SweepCoefficients;
 use sweepffd::cpu_fast::FastMesh;
+use sweepffd::formats::LoadedMesh;
 use sweepffd::gpu::{BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, GpuError};
-use sweepffd::mesh::Mesh;
 use sweepffd::rig::{Rig, RigError, RigErrorKind};
 
 /// The arguments of `sweepffd bind`.
@@ -34,17 +34,18 @@ pub struct Args {
 
 /// A mesh, its rig and the owning sweep of each vertex.
 pub struct Inputs {
-    pub mesh: Mesh,
+    /// The mesh, with its file for a faithful save.
+    pub file: LoadedMesh,
     pub rig: Rig,
     pub owners: Vec<u32>,
 }
 
 /// Loads the mesh and rig and resolves vertex ownership.
 pub fn load_inputs(mesh_path: &Path, rig_path: &Path) -> Result<Inputs, Box<dyn std::error::Error>> {
-    let mesh = Mesh::load(mesh_path)?;
+    let file = LoadedMesh::load(mesh_path)?;
     let rig = Rig::load(rig_path)?;
-    let owners = rig.owners(&mesh, &mesh_path.display().to_string())?;
-    Ok(Inputs { mesh, rig, owners })
+    let owners = rig.owners(&file.mesh, &mesh_path.display().to_string())?;
+    Ok(Inputs { file, rig, owners })
 }
 
 /// Whether an error of [`load_inputs`] is the rig file's having no sweeps (as `sweepffd
@@ -58,30 +59,30 @@ pub fn is_empty_rig(error: &(dyn std::error::Error + 'static)) -> bool {
 /// made on the CPU (f64), as the file stores them.
 pub fn bind_on_gpu(context: &GpuContext, inputs: &Inputs) -> Result<MeshBindings, GpuError> {
     let rest = inputs.rig.rest();
-    let weights = inputs.rig.band_weights(&inputs.mesh, &inputs.owners);
+    let weights = inputs.rig.band_weights(&inputs.file.mesh, &inputs.owners);
     let source = BindingSource::Bind { owners: &inputs.owners, bands: &weights };
-    let positions = sweepffd::gpu::rest_positions(&inputs.mesh.positions);
+    let positions = sweepffd::gpu::rest_positions(&inputs.file.mesh.positions);
     let deformer = GpuDeformer::new(context, &DeformerDescriptor::new(rest, &positions, source))?;
     let coefficients = SweepCoefficients::new(rest);
     let vertices = deformer.read_bindings()?.iter().map(|b| coefficients.reference_binding(rest, b)).collect();
-    Ok(MeshBindings { vertices, bands: bind_bands(rest, &inputs.mesh.positions, &weights) })
+    Ok(MeshBindings { vertices, bands: bind_bands(rest, &inputs.file.mesh.positions, &weights) })
 }
 
 /// Binds on the fast CPU path, in the reference form as the GPU's bindings are read back; the
 /// falloff bands' second bindings are made in f64, as the file stores them.
 pub fn bind_on_cpu(inputs: &Inputs) -> MeshBindings {
     let rest = inputs.rig.rest();
-    let weights = inputs.rig.band_weights(&inputs.mesh, &inputs.owners);
-    let positions = sweepffd::cpu_fast::packed(&inputs.mesh.positions);
+    let weights = inputs.rig.band_weights(&inputs.file.mesh, &inputs.owners);
+    let positions = sweepffd::cpu_fast::packed(&inputs.file.mesh.positions);
     let fast = FastMesh::bind(rest, &inputs.owners, &weights, &positions);
     let vertices = fast.bindings.iter().map(|b| fast.rest.reference_binding(rest, b)).collect();
-    MeshBindings { vertices, bands: bind_bands(rest, &inputs.mesh.positions, &weights) }
+    MeshBindings { vertices, bands: bind_bands(rest, &inputs.file.mesh.positions, &weights) }
 }
 
 /// Binds with a progress bar (f64 reference path, all cores), with the falloff bands.
 pub fn bind_with_progress(inputs: &Inputs, quiet: bool) -> MeshBindings {
-    let bar = vertex_bar(inputs.mesh.positions.len(), "binding", quiet);
-    let bindings = inputs.rig.bind_mesh(&inputs.mesh, &inputs.owners, &|done| {
+    let bar = vertex_bar(inputs.file.mesh.positions.len(), "binding", quiet);
+    let bindings = inputs.rig.bind_mesh(&inputs.file.mesh, &inputs.owners, &|done| {
         bar.inc(done as u64);
     });
     bar.finish_and_clear();
@@ -100,11 +101,11 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     };
     let seconds = start.elapsed().as_secs_f64();
     let owned = inputs.owners.iter().filter(|&&o| o != sweepffd::bind::UNOWNED).count();
-    BindingsFile::new(&inputs.rig, &inputs.mesh.positions, bindings).save(out)?;
+    BindingsFile::new(&inputs.rig, &inputs.file.mesh.positions, bindings).save(out)?;
     if !quiet {
         println!(
             "bound {owned} of {} vertices to {} sweeps on the {} in {seconds:.3} s -> {}",
-            inputs.mesh.positions.len(),
+            inputs.file.mesh.positions.len(),
             inputs.rig.sweeps().len(),
             context.name(),
             out.display()

@@ -15,8 +15,8 @@ use sweepffd::bindings_file::{BindingsFile, BindingsFileError, MadeFor};
 use sweepffd::coeffs::SweepCoefficients;
 use sweepffd::cpu_fast::FastMesh;
 use sweepffd::deform::deform_vertices;
+use sweepffd::formats::{Format, LoadedMesh};
 use sweepffd::gpu::{BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, GpuError};
-use sweepffd::mesh::{Format, Mesh};
 use sweepffd::sweep::Sweep;
 
 /// The arguments of `sweepffd deform`.
@@ -46,8 +46,8 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     let inputs = match load_inputs(&args.mesh.mesh, &args.rig.rig) {
         Err(error) if is_empty_rig(&*error) => {
             // A rig of no sweeps moves nothing: the mesh is written as it is.
-            let mesh = Mesh::load(&args.mesh.mesh)?;
-            mesh.save(&args.out, &mesh.positions)?;
+            let file = LoadedMesh::load(&args.mesh.mesh)?;
+            file.save(&args.out, &file.mesh.positions)?;
             eprintln!("notice: {error}; wrote the mesh unchanged to {}", args.out.display());
             return Ok(());
         }
@@ -57,7 +57,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     let saved = match &args.bindings {
         Some(path) => {
             let file = BindingsFile::load(path)?;
-            file.check_matches(&inputs.rig, &inputs.mesh.positions, path).map_err(|e| match e {
+            file.check_matches(&inputs.rig, &inputs.file.mesh.positions, path).map_err(|e| match e {
                 // The engine says what the file was made for; the command line says what to do.
                 BindingsFileError::Mismatch { made_for: MadeFor::AnotherRig | MadeFor::AnotherMesh, .. } => {
                     format!("{e} (run `sweepffd bind` again)")
@@ -75,8 +75,8 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
         Device::Cpu => deform_on_cpu(&inputs, &posed, saved.as_ref()),
         Device::Reference => {
             let bindings = saved.clone().unwrap_or_else(|| bind_with_progress(&inputs, quiet));
-            let mut positions = vec![DVec3::ZERO; inputs.mesh.positions.len()];
-            deform_vertices(inputs.rig.rest(), &posed, &bindings, &inputs.mesh.positions, &mut positions);
+            let mut positions = vec![DVec3::ZERO; inputs.file.mesh.positions.len()];
+            deform_vertices(inputs.rig.rest(), &posed, &bindings, &inputs.file.mesh.positions, &mut positions);
             (positions, bindings.vertices.iter().map(|b| b.sweep).collect())
         }
     };
@@ -89,7 +89,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
         )
         .into());
     }
-    inputs.mesh.save(&args.out, &positions)?;
+    inputs.file.save(&args.out, &positions)?;
     if !quiet {
         let owned = owners.iter().filter(|&&o| o != UNOWNED).count();
         let (source, backend) = (if saved.is_some() { "saved" } else { "new" }, context.name());
@@ -116,13 +116,13 @@ fn deform_on_gpu(
     let converted = saved.map(|saved| coefficients.gpu_mesh_bindings(rest, saved));
     let weights = match saved {
         Some(_) => Vec::new(),
-        None => inputs.rig.band_weights(&inputs.mesh, &inputs.owners),
+        None => inputs.rig.band_weights(&inputs.file.mesh, &inputs.owners),
     };
     let source = match &converted {
         Some((bindings, bands)) => BindingSource::Precomputed { bindings, bands },
         None => BindingSource::Bind { owners: &inputs.owners, bands: &weights },
     };
-    let positions = sweepffd::gpu::rest_positions(&inputs.mesh.positions);
+    let positions = sweepffd::gpu::rest_positions(&inputs.file.mesh.positions);
     let mut deformer = GpuDeformer::new(context, &DeformerDescriptor::new(rest, &positions, source))?;
     deformer.deform(posed)?;
     Ok(f32_result(inputs, saved, &weights, &deformer.read_positions()?))
@@ -132,14 +132,14 @@ fn deform_on_gpu(
 /// Returns the positions and owners.
 fn deform_on_cpu(inputs: &Inputs, posed: &[Sweep], saved: Option<&MeshBindings>) -> (Vec<DVec3>, Vec<u32>) {
     let rest = inputs.rig.rest();
-    let mut positions = sweepffd::cpu_fast::packed(&inputs.mesh.positions);
+    let mut positions = sweepffd::cpu_fast::packed(&inputs.file.mesh.positions);
     let (mut fast, weights) = match saved {
         Some(saved) => {
             let (bindings, bands) = SweepCoefficients::new(rest).gpu_mesh_bindings(rest, saved);
             (FastMesh::with_bindings(rest, bindings, bands), Vec::new())
         }
         None => {
-            let weights = inputs.rig.band_weights(&inputs.mesh, &inputs.owners);
+            let weights = inputs.rig.band_weights(&inputs.file.mesh, &inputs.owners);
             (FastMesh::bind(rest, &inputs.owners, &weights, &positions), weights)
         }
     };
@@ -170,7 +170,7 @@ fn f32_result(
     }
     let positions = deformed
         .chunks_exact(3)
-        .zip(&inputs.mesh.positions)
+        .zip(&inputs.file.mesh.positions)
         .zip(&keeps_rest)
         .map(|((p, rest), &keeps)| if keeps { *rest } else { Vec3::from_slice(p).as_dvec3() })
         .collect();

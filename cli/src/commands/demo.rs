@@ -9,8 +9,9 @@ use std::io::Write;
 use glam::DVec3;
 
 use super::CliResult;
+use sweepffd::atomic_file::write_atomically;
 use sweepffd::deform::deform_vertices;
-use sweepffd::mesh::write_atomically;
+use sweepffd::formats::LoadedMesh;
 use sweepffd::synthetic::{BendTwistTaper, Tube, tube_rig};
 
 /// The arguments of `sweepffd demo`.
@@ -42,8 +43,9 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
 
     let [rest_path, deformed_path, rig_path, pose_path] =
         ["rest.obj", "deformed.obj", "rig.json", "pose.json"].map(|name| out.join(name));
-    mesh.save(&rest_path, &mesh.positions)?;
-    mesh.save(&deformed_path, &deformed)?;
+    let file = LoadedMesh::from(mesh);
+    file.save(&rest_path, &file.mesh.positions)?;
+    file.save(&deformed_path, &deformed)?;
     write_text(&rig_path, &rig.to_document().try_to_json(&rig_path)?)?;
     write_text(&pose_path, &rig.pose_document(&posed_keys).try_to_json(&pose_path)?)?;
 
@@ -51,7 +53,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
         let (rest_volume, posed_volume) = (rig.rest()[0].volume(), posed[0].volume());
         println!(
             "sweepffd demo: a tube of {} vertices bound to a 5-key sweep, bent 108°, twisted 135°, tapered to 45%",
-            mesh.positions.len()
+            file.mesh.positions.len()
         );
         println!("  bound in {bind_seconds:.3} s, deformed in {deform_seconds:.4} s");
         println!("  sweep volume (Eq. 1): rest {rest_volume:.4}, posed {posed_volume:.4}");

@@ -9,8 +9,9 @@ use glam::DVec3;
 use super::CliResult;
 use super::args::MeshArg;
 use super::flags::fit_error;
+use sweepffd::atomic_file::write_atomically;
 use sweepffd::fit::{DEFAULT_FALLOFF_FRACTION, Fit, FitOptions, fit};
-use sweepffd::mesh::{Mesh, write_atomically};
+use sweepffd::mesh::Mesh;
 use sweepffd::rig::{FORMAT, LinkKind, ParentLink, Rig, RigDocument, VERSION, VertexSelection};
 
 /// How a fitted sweep hangs from its parent (§5).

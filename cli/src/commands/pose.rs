@@ -7,8 +7,9 @@ use std::path::{Path, PathBuf};
 use super::CliResult;
 use super::args::RigArg;
 use super::volume_rule::VolumeArg;
+use sweepffd::atomic_file::write_atomically;
 use sweepffd::edit::{BoundMesh, Posing, parse_edits};
-use sweepffd::mesh::{Mesh, write_atomically};
+use sweepffd::mesh::Mesh;
 use sweepffd::rig::Rig;
 
 /// The arguments of `sweepffd pose`.

@@ -115,7 +115,7 @@ fn build_scenes(args: &Args) -> Result<Vec<Scene>, Box<dyn std::error::Error>> {
         }
         loaded => loaded?,
     };
-    let mesh = &inputs.mesh;
+    let mesh = &inputs.file.mesh;
     let rest = inputs.rig.rest();
     let Some(pose_path) = &args.pose else {
         let mut scenes = vec![mesh_scene(mesh, &mesh.positions)];

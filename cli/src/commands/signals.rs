@@ -4,7 +4,7 @@
 
 use signal_hook::consts::{SIGINT, SIGTERM};
 use signal_hook::iterator::Signals;
-use sweepffd::mesh::exit_removing_temporaries;
+use sweepffd::atomic_file::exit_removing_temporaries;
 
 /// Starts a thread that waits for SIGINT or SIGTERM and then exits the process through
 /// [`exit_removing_temporaries`].

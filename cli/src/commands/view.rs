@@ -9,7 +9,7 @@ use super::args::MeshArg;
 use super::render;
 use super::volume_rule::VolumeArg;
 use crate::view::{Subdivide, ViewOptions, run};
-use sweepffd::mesh::write_atomically;
+use sweepffd::atomic_file::write_atomically;
 
 /// The arguments of `sweepffd view`.
 #[derive(Debug, clap::Args)]

@@ -15,7 +15,7 @@
 //! use sweepffd_cli::render::{CLAY, Renderer, Scene, ViewAngles, save_png};
 //!
 //! # fn main() -> Result<(), Box<dyn std::error::Error>> {
-//! let mesh = Mesh::load("bunny.obj".as_ref())?;
+//! let mesh = Mesh::load("bunny.obj".as_ref())?; // the mesh data, without its file
 //! let mut scene = Scene::new();
 //! scene.add_mesh(&mesh, &mesh.positions, CLAY);
 //! let renderer = Renderer::new()?;
@@ -43,8 +43,8 @@ pub use pipeline::{COLOUR_FORMAT, DEPTH_FORMAT, Pipelines, SAMPLES, SHADE_WGSL, 
 pub use scene::{CLAY, Layer, RING, RenderVertex, SWEEP_SURFACE, Scene, union_bounds};
 pub use sweeps::{SweepStyle, add_key_ring, add_sweep_surface, add_sweeps};
 
+use sweepffd::atomic_file::write_atomically;
 use sweepffd::gpu::GpuContext;
-use sweepffd::mesh::write_atomically;
 use target::Target;
 pub use target::TextureReadback;
 

@@ -9,10 +9,10 @@ use super::app::App;
 use super::draw::MeshDraw;
 use super::gesture::KeyTool;
 use super::input::Command;
+use sweepffd::atomic_file::write_atomically;
 use sweepffd::edit::{DragMode, KeyMode, VolumeRule};
 use sweepffd::fit::autorig::{AutorigOptions, autorig};
 use sweepffd::fit::{FitOptions, fit};
-use sweepffd::mesh::write_atomically;
 
 impl App {
     pub(super) fn command(&mut self, command: Command) {

@@ -14,6 +14,7 @@ use sweepffd::fit::least_squares::fitted_radii;
 use sweepffd::fit::part::Part;
 use sweepffd::fit::quality::measure;
 use sweepffd::fit::{FitError, OptionError, largest_connected};
+use sweepffd::formats::LoadedMesh;
 use sweepffd::mesh::{Faces, Mesh};
 use sweepffd::sweep::{Key, Sweep};
 
@@ -61,7 +62,7 @@ fn bad_options_are_refused() {
     // The command line names the flag.
     let dir = tempfile::tempdir().unwrap();
     let mesh = dir.path().join("sphere.obj");
-    sphere(8, 16).save(&mesh, &sphere(8, 16).positions).unwrap();
+    LoadedMesh::from(sphere(8, 16)).save(&mesh, &sphere(8, 16).positions).unwrap();
     let out = common::sweepffd(dir.path())
         .args(["autorig", "--mesh", "sphere.obj", "--min-length", "0", "--out", "rig.json"])
         .output()
@@ -175,8 +176,8 @@ fn autorig_command(dir: &std::path::Path, mesh: &str) -> (usize, String, serde_j
 #[test]
 fn the_command_writes_the_rig_and_reports_each_part() {
     let dir = tempfile::tempdir().unwrap();
-    let ball = sphere(24, 48);
-    ball.save(&dir.path().join("ball.obj"), &ball.positions).unwrap();
+    let ball = LoadedMesh::from(sphere(24, 48));
+    ball.save(&dir.path().join("ball.obj"), &ball.mesh.positions).unwrap();
     let (sweeps, stderr, report) = autorig_command(dir.path(), "ball.obj");
     assert!(stderr.contains("ball.obj: found no protrusion"), "{stderr}");
     assert_eq!(sweeps, 0);

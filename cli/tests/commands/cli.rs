@@ -13,6 +13,7 @@ use std::process::Output;
 use glam::DVec3;
 use sweepffd::bind::bind_vertices;
 use sweepffd::bindings_file::BindingsFile;
+use sweepffd::formats::LoadedMesh;
 use sweepffd::mesh::Mesh;
 use sweepffd::rig::Rig;
 use sweepffd::synthetic::{BendTwistTaper, Tube, tube_rig};
@@ -300,8 +301,8 @@ fn volume_with_pose_reports_the_posed_volume() {
 fn bind_file_round_trips_through_the_library() {
     let dir = tempfile::tempdir().unwrap();
     let tube = Tube { rings: 12, around: 16, length: 3.0, radius: 0.4 };
-    let mesh = tube.mesh();
-    mesh.save(&dir.path().join("tube.obj"), &mesh.positions).unwrap();
+    let mesh = LoadedMesh::from(tube.mesh());
+    mesh.save(&dir.path().join("tube.obj"), &mesh.mesh.positions).unwrap();
     let rig = tube_rig(&tube, 4, 8);
     fs::write(dir.path().join("rig.json"), rig.to_document().to_json()).unwrap();
 
@@ -332,8 +333,8 @@ fn gpu_backend_binds_and_deforms_like_the_cpu() {
     }
     let dir = tempfile::tempdir().unwrap();
     let tube = Tube { rings: 40, around: 32, length: 3.0, radius: 0.4 };
-    let mesh = tube.mesh();
-    mesh.save(&dir.path().join("tube.obj"), &mesh.positions).unwrap();
+    let mesh = LoadedMesh::from(tube.mesh());
+    mesh.save(&dir.path().join("tube.obj"), &mesh.mesh.positions).unwrap();
     let rig = tube_rig(&tube, 5, 8);
     fs::write(dir.path().join("rig.json"), rig.to_document().to_json()).unwrap();
     let pose = rig.pose_document(&sweepffd::synthetic::BendTwistTaper { bend: 1.0, twist: 1.5, taper: 0.5 }.keys(&rig));
@@ -402,8 +403,8 @@ fn help_of_each_subcommand_lists_its_options() {
 /// A tube mesh, its rig and a bend-twist-taper pose written into `dir`.
 fn write_tube_scene(dir: &Path) {
     let tube = Tube { rings: 20, around: 16, length: 2.0, radius: 0.3 };
-    let mesh = tube.mesh();
-    mesh.save(&dir.join("tube.obj"), &mesh.positions).unwrap();
+    let mesh = LoadedMesh::from(tube.mesh());
+    mesh.save(&dir.join("tube.obj"), &mesh.mesh.positions).unwrap();
     let rig = tube_rig(&tube, 4, 8);
     fs::write(dir.join("rig.json"), rig.to_document().to_json()).unwrap();
     let keys = BendTwistTaper { bend: 0.8, twist: 1.0, taper: 0.7 }.keys(&rig);

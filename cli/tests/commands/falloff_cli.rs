@@ -8,6 +8,7 @@ use common::falloff_tubes::attached_arm;
 use glam::{DQuat, DVec3};
 use sweepffd::deform::deform_vertices;
 use sweepffd::edit::{Edit, KeyMode, Posing};
+use sweepffd::formats::LoadedMesh;
 use sweepffd::mesh::Mesh;
 
 fn succeed(dir: &std::path::Path, args: &[&str]) {
@@ -19,7 +20,7 @@ fn succeed(dir: &std::path::Path, args: &[&str]) {
 fn every_path_of_the_command_line_deforms_with_the_bands() {
     let dir = tempfile::tempdir().unwrap();
     let (mesh, rig) = attached_arm(1.5);
-    mesh.save(&dir.path().join("tube.obj"), &mesh.positions).unwrap();
+    LoadedMesh::from(mesh.clone()).save(&dir.path().join("tube.obj"), &mesh.positions).unwrap();
     let mesh = Mesh::load(&dir.path().join("tube.obj")).unwrap();
     std::fs::write(dir.path().join("rig.json"), rig.to_document().to_json()).unwrap();
     let mut posing = Posing::new(&rig);

@@ -6,6 +6,7 @@ use crate::common;
 use std::fs;
 use std::path::Path;
 
+use sweepffd::formats::LoadedMesh;
 use sweepffd::mesh::Mesh;
 use sweepffd::rig::Rig;
 use sweepffd::synthetic::Tube;
@@ -14,14 +15,14 @@ use sweepffd::synthetic::Tube;
 /// splitting its wall at z = 1.5.
 fn scene(dir: &Path) -> Mesh {
     let tube = Tube { rings: 40, around: 24, length: 3.0, radius: 0.4 };
-    let mesh = tube.mesh();
-    mesh.save(&dir.join("tube.obj"), &mesh.positions).unwrap();
-    let wall = mesh.group_vertices("wall").unwrap();
-    let (lower, upper): (Vec<u32>, Vec<u32>) = wall.iter().partition(|&&v| mesh.positions[v as usize].z < 1.5);
+    let mesh = LoadedMesh::from(tube.mesh());
+    mesh.save(&dir.join("tube.obj"), &mesh.mesh.positions).unwrap();
+    let wall = mesh.mesh.group_vertices("wall").unwrap();
+    let (lower, upper): (Vec<u32>, Vec<u32>) = wall.iter().partition(|&&v| mesh.mesh.positions[v as usize].z < 1.5);
     fs::write(dir.join("lower.json"), serde_json::to_string(&lower).unwrap()).unwrap();
     let spaced: Vec<String> = upper.iter().map(u32::to_string).collect();
     fs::write(dir.join("upper.txt"), spaced.join(" \n")).unwrap();
-    mesh
+    mesh.mesh
 }
 
 fn fit(dir: &Path, args: &[&str]) -> std::process::Output {

@@ -7,6 +7,7 @@ use std::fs;
 use std::path::Path;
 
 use glam::{DQuat, DVec3};
+use sweepffd::formats::LoadedMesh;
 use sweepffd::rig::{LinkKind, ParentLink, Rig, RigDocument, RigSweep};
 use sweepffd::sweep::Key;
 use sweepffd::synthetic::{Tube, tube_rig};
@@ -15,8 +16,8 @@ use sweepffd::synthetic::{Tube, tube_rig};
 /// short `arm` hangs from the tube as a branch.
 fn scene(dir: &Path) {
     let tube = Tube { rings: 30, around: 16, length: 3.0, radius: 0.4 };
-    let mesh = tube.mesh();
-    mesh.save(&dir.join("tube.obj"), &mesh.positions).unwrap();
+    let mesh = LoadedMesh::from(tube.mesh());
+    mesh.save(&dir.join("tube.obj"), &mesh.mesh.positions).unwrap();
     let rig = tube_rig(&tube, 5, 8);
     fs::write(dir.join("rig.json"), rig.to_document().to_json()).unwrap();
     let mut sweeps = rig.sweeps().to_vec();

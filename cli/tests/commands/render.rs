@@ -15,6 +15,7 @@ use glam::{DVec3, Vec3};
 use image::RgbaImage;
 use sweepffd::bind::bind_vertices;
 use sweepffd::deform::deform_hard;
+use sweepffd::formats::LoadedMesh;
 use sweepffd::synthetic::{BendTwistTaper, Tube, tube_rig};
 use sweepffd_cli::render::{BACKGROUND, CLAY, Camera, Renderer, Scene, ViewAngles, union_bounds};
 
@@ -24,7 +25,7 @@ fn write_tube_scene(dir: &Path) {
     let tube = Tube { rings: 40, around: 32, length: 4.0, radius: 0.5 };
     let rig = tube_rig(&tube, 5, 16);
     let keys = BendTwistTaper { bend: 0.5 * PI, twist: 0.5 * PI, taper: 0.5 }.keys(&rig);
-    tube.mesh().save(&dir.join("tube.obj"), &tube.mesh().positions).unwrap();
+    LoadedMesh::from(tube.mesh()).save(&dir.join("tube.obj"), &tube.mesh().positions).unwrap();
     std::fs::write(dir.join("rig.json"), rig.to_document().to_json()).unwrap();
     std::fs::write(dir.join("pose.json"), rig.pose_document(&keys).to_json()).unwrap();
 }

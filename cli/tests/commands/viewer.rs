@@ -12,6 +12,7 @@
 
 use crate::common;
 use crate::common::star;
+use sweepffd::formats::LoadedMesh;
 
 use std::io::{BufRead, BufReader};
 use std::path::Path;
@@ -212,8 +213,8 @@ fn mesh_without_a_rig_gets_a_sweep_fitted_to_a_clicked_part() {
 fn the_auto_rig_key_rigs_the_loaded_mesh_as_the_command_does() {
     let Some(display) = display() else { return };
     let dir = tempfile::tempdir().unwrap();
-    let mesh = star::star_mesh(0.06);
-    mesh.save(&dir.path().join("star.obj"), &mesh.positions).unwrap();
+    let mesh = LoadedMesh::from(star::star_mesh(0.06));
+    mesh.save(&dir.path().join("star.obj"), &mesh.mesh.positions).unwrap();
     write(
         &dir.path().join("auto.json"),
         r#"[{"wait": 0.1}, {"key": "a"}, {"wait": 0.1}, {"save_rig": "auto-rig.json"}]"#,

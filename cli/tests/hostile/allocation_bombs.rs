@@ -11,6 +11,7 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
+use sweepffd::formats::LoadedMesh;
 use sweepffd::synthetic::{Tube, tube_rig};
 
 /// How long a refusal may take before the test gives up on the process.
@@ -21,8 +22,8 @@ const DEADLINE: Duration = Duration::from_secs(120);
 fn scene() -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
     let tube = Tube { rings: 6, around: 8, length: 3.0, radius: 0.4 };
-    let mesh = tube.mesh();
-    mesh.save(&dir.path().join("tube.obj"), &mesh.positions).unwrap();
+    let mesh = LoadedMesh::from(tube.mesh());
+    mesh.save(&dir.path().join("tube.obj"), &mesh.mesh.positions).unwrap();
     std::fs::write(dir.path().join("rig.json"), tube_rig(&tube, 3, 8).to_document().to_json()).unwrap();
     dir
 }

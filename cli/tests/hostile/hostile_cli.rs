@@ -13,6 +13,7 @@ use std::time::{Duration, Instant};
 
 use sweepffd::bind::{Binding, MeshBindings, VertexBinding};
 use sweepffd::bindings_file::{BindingsFile, check};
+use sweepffd::formats::LoadedMesh;
 use sweepffd::mesh::Mesh;
 use sweepffd::rig::Rig;
 use sweepffd::synthetic::{Tube, attached_tube_rig, split_tube_rig, tube_rig};
@@ -40,8 +41,8 @@ impl Scene {
     /// pose as `pose.json`.
     fn tube(rig: impl Fn(&Tube) -> Rig) -> Scene {
         let scene = Scene { dir: tempfile::tempdir().unwrap() };
-        let mesh = TUBE.mesh();
-        mesh.save(&scene.path("tube.obj"), &mesh.positions).unwrap();
+        let mesh = LoadedMesh::from(TUBE.mesh());
+        mesh.save(&scene.path("tube.obj"), &mesh.mesh.positions).unwrap();
         let json = rig(&TUBE).to_document().to_json();
         scene.write("rig.json", &json);
         scene.write("pose.json", &json);
@@ -467,8 +468,8 @@ fn a_symbolic_link_at_out_is_written_through() {
 fn large_scene(vertices: usize) -> Scene {
     let scene = Scene { dir: tempfile::tempdir().unwrap() };
     let tube = Tube::with_vertex_count(vertices, 4.0, 0.5);
-    let mesh = tube.mesh();
-    mesh.save(&scene.path("tube.obj"), &mesh.positions).unwrap();
+    let mesh = LoadedMesh::from(tube.mesh());
+    mesh.save(&scene.path("tube.obj"), &mesh.mesh.positions).unwrap();
     let json = tube_rig(&tube, 4, 8).to_document().to_json();
     scene.write("rig.json", &json);
     scene.write("pose.json", &json);

@@ -15,6 +15,7 @@ use base64::Engine;
 use base64::engine::general_purpose::STANDARD;
 use glam::DVec3;
 use serde_json::{Value, json};
+use sweepffd::formats::LoadedMesh;
 use sweepffd::limits::{MAX_GLTF_INSTANCES, MAX_GLTF_NODE_DEPTH};
 use sweepffd::mesh::{Faces, Mesh};
 
@@ -77,10 +78,10 @@ fn triangle() -> (Value, Vec<u8>) {
 }
 
 /// Writes `bytes` as `name` in `dir` and loads it: the mesh, or the error's message.
-fn load(dir: &Path, name: &str, bytes: &[u8]) -> Result<Mesh, String> {
+fn load(dir: &Path, name: &str, bytes: &[u8]) -> Result<LoadedMesh, String> {
     let path = dir.join(name);
     fs::write(&path, bytes).unwrap();
-    Mesh::load(&path).map_err(|e| e.to_string())
+    LoadedMesh::load(&path).map_err(|e| e.to_string())
 }
 
 /// Loads `bytes` as `name` in `dir`, expecting the error `"<path>: <message>"`.
@@ -116,7 +117,7 @@ fn a_deep_node_chain_is_refused_naming_the_node_and_the_limit() {
     );
     // The deepest chain allowed loads, its triangle at depth MAX_GLTF_NODE_DEPTH.
     let mesh = load(dir.path(), "deepest.glb", &chain(limit + 1)).unwrap();
-    assert_eq!(mesh.positions.len(), 3);
+    assert_eq!(mesh.mesh.positions.len(), 3);
 }
 
 #[test]
@@ -162,7 +163,7 @@ fn exponential_instancing_is_refused_before_anything_is_built() {
     // 2^16 instances is the limit itself: it loads.
     assert_eq!(1 << 16, MAX_GLTF_INSTANCES);
     let mesh = load(dir.path(), "doubling16.glb", &doubling(16)).unwrap();
-    assert_eq!(mesh.positions.len(), 3 << 16);
+    assert_eq!(mesh.mesh.positions.len(), 3 << 16);
 }
 
 #[test]
@@ -275,14 +276,14 @@ fn relative_buffer_files_inside_the_folder_are_read_up_to_their_byte_length() {
     data.extend([0xAB; 1000]);
     fs::write(dir.path().join("sub dir/data.bin"), &data).unwrap();
     let mesh = load(dir.path(), "ok.gltf", &gltf_with_uri("sub%20dir/data.bin")).unwrap();
-    assert_eq!(mesh.positions[1], DVec3::X);
+    assert_eq!(mesh.mesh.positions[1], DVec3::X);
     // A link that stays inside the folder is followed.
     std::os::unix::fs::symlink(dir.path().join("sub dir/data.bin"), dir.path().join("inside.bin")).unwrap();
     let mesh = load(dir.path(), "inside.gltf", &gltf_with_uri("./sub%20dir/../inside.bin")).unwrap();
-    assert_eq!(mesh.positions[2], DVec3::Y);
+    assert_eq!(mesh.mesh.positions[2], DVec3::Y);
     // Written back, the buffer is embedded with its byteLength bytes only.
     let out = dir.path().join("out.gltf");
-    mesh.save(&out, &mesh.positions).unwrap();
+    mesh.save(&out, &mesh.mesh.positions).unwrap();
     let written: Value = serde_json::from_slice(&fs::read(&out).unwrap()).unwrap();
     let uri = written["buffers"][0]["uri"].as_str().unwrap();
     let embedded = STANDARD.decode(uri.split_once(',').unwrap().1).unwrap();
@@ -301,7 +302,7 @@ fn image_uris_are_never_read() {
     document["textures"] = json!([{"source": 0}]);
     let mesh = load(dir.path(), "images.glb", &glb(&document, &data)).unwrap();
     let out = dir.path().join("out.glb");
-    mesh.save(&out, &mesh.positions).unwrap();
+    mesh.save(&out, &mesh.mesh.positions).unwrap();
     let bytes = fs::read(&out).unwrap();
     assert!(!bytes.windows(5).any(|w| w == b"root:"), "nothing of /etc/passwd is embedded");
     let text = String::from_utf8_lossy(&bytes);
@@ -425,7 +426,7 @@ fn a_sparse_position_accessor_substitutes_its_values() {
     document["accessors"][0]["sparse"] =
         json!({"count": 1, "indices": {"bufferView": 5, "componentType": 5123}, "values": {"bufferView": 4}});
     let mesh = load(dir.path(), "sparse.glb", &glb(&document, &data)).unwrap();
-    assert_eq!(mesh.positions, [DVec3::ZERO, DVec3::new(5.0, 6.0, 7.0), DVec3::Y]);
+    assert_eq!(mesh.mesh.positions, [DVec3::ZERO, DVec3::new(5.0, 6.0, 7.0), DVec3::Y]);
     // Two sparse indices that do not increase: 1, 0.
     document["accessors"][0]["sparse"]["count"] = json!(2);
     document["bufferViews"][5]["byteLength"] = json!(4);
@@ -514,7 +515,7 @@ fn the_glb_writers_refuse_coordinates_beyond_f32_and_write_nothing() {
     let mut faces = Faces::new();
     faces.push(&[0, 1, 2]);
     let positions = vec![DVec3::ZERO, DVec3::X, DVec3::Y];
-    let mesh = Mesh::from_parts(positions.clone(), faces, Vec::new()).unwrap();
+    let mesh = LoadedMesh::from(Mesh::from_parts(positions.clone(), faces, Vec::new()).unwrap());
     let far = vec![DVec3::ZERO, DVec3::new(1e39, 0.0, 0.0), DVec3::Y];
     for name in ["generic.glb", "generic.gltf"] {
         // `Mesh::save` refuses it before any writer runs.
@@ -572,16 +573,16 @@ fn instances_of_one_position_accessor_write_only_when_they_moved_alike() {
     let dir = tempfile::tempdir().unwrap();
     let bytes = two_instances(json!({"translation": [5.0, 0.0, 0.0]}));
     let mesh = load(dir.path(), "in.glb", &bytes).unwrap();
-    assert_eq!(mesh.positions.len(), 6, "one copy of the triangle per node");
+    assert_eq!(mesh.mesh.positions.len(), 6, "one copy of the triangle per node");
     let shift = DVec3::new(0.5, 0.25, -1.0);
     // Under translated nodes a world translation is the same local translation for both.
-    let both: Vec<DVec3> = mesh.positions.iter().map(|&p| p + shift).collect();
+    let both: Vec<DVec3> = mesh.mesh.positions.iter().map(|&p| p + shift).collect();
     let out = dir.path().join("both.glb");
     mesh.save(&out, &both).unwrap();
     reads_back(&out, &both);
     // The second instance alone: the one accessor cannot hold both triangles.
     let second: Vec<DVec3> =
-        mesh.positions.iter().enumerate().map(|(v, &p)| if v < 3 { p } else { p + shift }).collect();
+        mesh.mesh.positions.iter().enumerate().map(|(v, &p)| if v < 3 { p } else { p + shift }).collect();
     for name in ["second.glb", "second.gltf"] {
         let out = dir.path().join(name);
         let error = mesh.save(&out, &second).unwrap_err().to_string();
@@ -607,8 +608,8 @@ fn unmoved_instances_of_one_position_accessor_still_write() {
     let bytes = two_instances(json!({"rotation": [0.0, 0.0, 0.38268343, 0.9238795], "scale": [2.0, 2.0, 2.0]}));
     let mesh = load(dir.path(), "in.glb", &bytes).unwrap();
     let out = dir.path().join("out.glb");
-    mesh.save(&out, &mesh.positions).unwrap();
-    reads_back(&out, &mesh.positions);
+    mesh.save(&out, &mesh.mesh.positions).unwrap();
+    reads_back(&out, &mesh.mesh.positions);
     let mut names: Vec<PathBuf> = fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().path()).collect();
     names.sort();
     assert_eq!(names, [dir.path().join("in.glb"), out]);
@@ -639,10 +640,10 @@ fn one_far_element_does_not_let_instances_moved_apart_through() {
     let dir = tempfile::tempdir().unwrap();
     let bytes = far_vertex_instances(json!({"translation": [0.0, 0.0, 2.0]}), json!({"scale": [2.0, 2.0, 2.0]}));
     let mesh = load(dir.path(), "in.glb", &bytes).unwrap();
-    assert_eq!(mesh.positions[5], DVec3::new(0.0, 8.0e6, 0.0), "the far vertex, second instance");
+    assert_eq!(mesh.mesh.positions[5], DVec3::new(0.0, 8.0e6, 0.0), "the far vertex, second instance");
     // A world translation d is d locally under node 0 but d / 2 under node 1 (scaled by 2).
     let shift = DVec3::new(0.5, 0.25, -1.0);
-    let moved: Vec<DVec3> = mesh.positions.iter().map(|&p| p + shift).collect();
+    let moved: Vec<DVec3> = mesh.mesh.positions.iter().map(|&p| p + shift).collect();
     for name in ["apart.glb", "apart.gltf"] {
         let out = dir.path().join(name);
         let error = mesh.save(&out, &moved).err().map(|e| e.to_string());
@@ -660,7 +661,7 @@ fn one_far_element_does_not_let_instances_moved_apart_through() {
     // the same turn), whose stored coordinates are rounded to f32.
     let bytes = far_vertex_instances(json!({"translation": [0.0, 0.0, 2.0]}), json!({"translation": [5.0, 0.0, 0.0]}));
     let mesh = load(dir.path(), "alike.glb", &bytes).unwrap();
-    let moved: Vec<DVec3> = mesh.positions.iter().map(|&p| p + shift).collect();
+    let moved: Vec<DVec3> = mesh.mesh.positions.iter().map(|&p| p + shift).collect();
     let out = dir.path().join("translated.glb");
     mesh.save(&out, &moved).unwrap();
     reads_back(&out, &moved);
@@ -671,7 +672,7 @@ fn one_far_element_does_not_let_instances_moved_apart_through() {
     let mesh = load(dir.path(), "turned.glb", &bytes).unwrap();
     for degrees in [1.0f64, 17.0, 30.0, 123.0, 271.5] {
         let turn = glam::DQuat::from_rotation_z(degrees.to_radians());
-        let moved: Vec<DVec3> = mesh.positions.iter().map(|&p| turn * p).collect();
+        let moved: Vec<DVec3> = mesh.mesh.positions.iter().map(|&p| turn * p).collect();
         let out = dir.path().join(format!("turned{degrees}.glb"));
         mesh.save(&out, &moved).unwrap_or_else(|e| panic!("turned by {degrees}°: {e}"));
         let read = Mesh::load(&out).unwrap();

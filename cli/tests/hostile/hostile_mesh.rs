@@ -8,6 +8,7 @@ use std::fs;
 use std::path::{Path, PathBuf};
 
 use glam::DVec3;
+use sweepffd::formats::LoadedMesh;
 use sweepffd::mesh::{Faces, Mesh};
 
 /// Parses `bytes` as the file `name`, expecting an error, and returns its message.
@@ -38,17 +39,17 @@ const TRIANGLE_OFF: &str = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
 // Case 2: values no output can hold.
 
 /// A triangle built in code whose vertex 1 is at `x` on the x axis.
-fn triangle_at(x: f64) -> (Mesh, Vec<DVec3>) {
+fn triangle_at(x: f64) -> (LoadedMesh, Vec<DVec3>) {
     let mut faces = Faces::new();
     faces.push(&[0, 1, 2]);
-    let mesh = Mesh::from_parts(vec![DVec3::ZERO, DVec3::X, DVec3::Y], faces, Vec::new()).unwrap();
+    let mesh = LoadedMesh::from(Mesh::from_parts(vec![DVec3::ZERO, DVec3::X, DVec3::Y], faces, Vec::new()).unwrap());
     let moved = vec![DVec3::ZERO, DVec3::new(x, 0.0, 0.0), DVec3::Y];
     (mesh, moved)
 }
 
 /// Saves `positions` to `name` in a fresh folder, expecting an error; asserts nothing was
 /// written and returns the message with the folder left out.
-fn save_error(mesh: &Mesh, name: &str, positions: &[DVec3]) -> String {
+fn save_error(mesh: &LoadedMesh, name: &str, positions: &[DVec3]) -> String {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join(name);
     let message = mesh.save(&out, positions).unwrap_err().to_string();
@@ -73,8 +74,8 @@ fn a_coordinate_over_f32_is_refused_by_every_f32_writer() {
 fn a_coordinate_over_f32_is_refused_by_the_faithful_float_ply_writer() {
     let ply =
         binary_ply(&format!("element vertex 3\n{XYZ}"), &f32_bytes(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0]));
-    let mesh = Mesh::parse(Path::new("in.ply"), ply).unwrap();
-    let mut moved = mesh.positions.clone();
+    let mesh = LoadedMesh::parse(Path::new("in.ply"), ply).unwrap();
+    let mut moved = mesh.mesh.positions.clone();
     moved[2].z = -1e39;
     assert_eq!(
         save_error(&mesh, "out.ply", &moved),
@@ -93,7 +94,7 @@ fn f64_writers_keep_a_coordinate_over_f32() {
     }
     let doubles = "property double x\nproperty double y\nproperty double z\n";
     let ply = format!("ply\nformat ascii 1.0\nelement vertex 3\n{doubles}end_header\n0 0 0\n1 0 0\n0 1 0\n");
-    let mesh = Mesh::parse(Path::new("in.ply"), ply.into_bytes()).unwrap();
+    let mesh = LoadedMesh::parse(Path::new("in.ply"), ply.into_bytes()).unwrap();
     let out = dir.path().join("out.ply");
     mesh.save(&out, &moved).unwrap();
     assert_eq!(Mesh::load(&out).unwrap().positions, moved);
@@ -110,7 +111,7 @@ fn non_finite_coordinates_are_refused_by_every_writer() {
     }
     moved[1].x = 0.5;
     moved[2].y = f64::NAN;
-    let mesh = Mesh::parse(Path::new("in.obj"), TRIANGLE_OBJ.as_bytes().to_vec()).unwrap();
+    let mesh = LoadedMesh::parse(Path::new("in.obj"), TRIANGLE_OBJ.as_bytes().to_vec()).unwrap();
     assert_eq!(
         save_error(&mesh, "out.obj", &moved),
         "out.obj: vertex 2 has the coordinate NaN, which is not finite; nothing was written"

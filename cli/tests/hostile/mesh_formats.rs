@@ -12,7 +12,8 @@ use base64::Engine;
 use base64::engine::general_purpose::STANDARD;
 use glam::DVec3;
 use serde_json::json;
-use sweepffd::mesh::{FaceGroup, Faces, Mesh, MeshError};
+use sweepffd::formats::{LoadedMesh, MeshError};
+use sweepffd::mesh::{FaceGroup, Faces, Mesh};
 use sweepffd::synthetic::{BendTwistTaper, Tube, tube_rig};
 
 // ---------------------------------------------------------------- OFF
@@ -39,8 +40,8 @@ fn off_lines(text: &str) -> Vec<Vec<&str>> {
 #[test]
 fn dino_colours_survive_a_deformation() {
     let Some(path) = common::shared_mesh("dino.off") else { return };
-    let mesh = Mesh::load(&path).unwrap();
-    let moved: Vec<DVec3> = mesh.positions.iter().map(|p| *p * 2.0 + DVec3::X).collect();
+    let mesh = LoadedMesh::load(&path).unwrap();
+    let moved: Vec<DVec3> = mesh.mesh.positions.iter().map(|p| *p * 2.0 + DVec3::X).collect();
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("dino2.off");
     mesh.save(&out, &moved).unwrap();
@@ -49,17 +50,17 @@ fn dino_colours_survive_a_deformation() {
     let (input, output) = (off_lines(&input), off_lines(&output));
     assert_eq!(input.len(), output.len());
     assert_eq!(output[0], ["COFF"]);
-    for v in 0..mesh.positions.len() {
+    for v in 0..mesh.mesh.positions.len() {
         assert_eq!(output[2 + v][3..], input[2 + v][3..], "colour of vertex {v}");
         assert_eq!(output[2 + v][3..].len(), 4, "RGBA of vertex {v}");
     }
-    assert_eq!(output[2 + mesh.positions.len()..], input[2 + mesh.positions.len()..], "faces");
+    assert_eq!(output[2 + mesh.mesh.positions.len()..], input[2 + mesh.mesh.positions.len()..], "faces");
     let back = Mesh::load(&out).unwrap();
     assert_eq!(back.positions, moved, "shortest round-trip digits read back exactly");
-    assert_eq!(back.faces, mesh.faces);
+    assert_eq!(back.faces, mesh.mesh.faces);
     // Unchanged positions: byte-identical.
     let same = dir.path().join("same.off");
-    mesh.save(&same, &mesh.positions).unwrap();
+    mesh.save(&same, &mesh.mesh.positions).unwrap();
     assert_eq!(fs::read(&same).unwrap(), fs::read(&path).unwrap());
 }
 
@@ -121,29 +122,29 @@ fn house() -> Mesh {
 
 #[test]
 fn off_generic_save_keeps_polygons() {
-    let mesh = house();
+    let mesh = LoadedMesh::from(house());
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("house.OFF");
-    mesh.save(&path, &mesh.positions).unwrap();
+    mesh.save(&path, &mesh.mesh.positions).unwrap();
     let back = Mesh::load(&path).unwrap();
-    assert_eq!(back.positions, mesh.positions);
-    assert_eq!(back.faces, mesh.faces);
+    assert_eq!(back.positions, mesh.mesh.positions);
+    assert_eq!(back.faces, mesh.mesh.faces);
 }
 
 // ---------------------------------------------------------------- glTF
 
 #[test]
 fn code_mesh_round_trips_through_glb_and_gltf() {
-    let mesh = house();
+    let mesh = LoadedMesh::from(house());
     let dir = tempfile::tempdir().unwrap();
     for name in ["house.glb", "house.gltf"] {
         let path = dir.path().join(name);
-        mesh.save(&path, &mesh.positions).unwrap();
+        mesh.save(&path, &mesh.mesh.positions).unwrap();
         let back = Mesh::load(&path).unwrap();
-        let expected: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_vec3().as_dvec3()).collect();
+        let expected: Vec<DVec3> = mesh.mesh.positions.iter().map(|p| p.as_vec3().as_dvec3()).collect();
         assert_eq!(back.positions, expected, "{name}: f32 positions");
         let triangles: Vec<[u32; 3]> = back.faces.iter().map(|f| [f[0], f[1], f[2]]).collect();
-        assert_eq!(triangles, mesh.faces.triangles().collect::<Vec<_>>(), "{name}: fan-triangulated faces");
+        assert_eq!(triangles, mesh.mesh.faces.triangles().collect::<Vec<_>>(), "{name}: fan-triangulated faces");
         assert_eq!(back.groups, [FaceGroup { name: "mesh0".into(), faces: vec![0, 1, 2] }], "{name}");
     }
     let glb = fs::read(dir.path().join("house.glb")).unwrap();
@@ -216,11 +217,11 @@ fn gltf_node_transforms_apply_on_load_and_invert_on_save() {
     let dir = tempfile::tempdir().unwrap();
     let input = dir.path().join("plate.gltf");
     fs::write(&input, serde_json::to_vec(&document).unwrap()).unwrap();
-    let mesh = Mesh::load(&input).unwrap();
-    assert_eq!(mesh.positions[2], DVec3::new(3.0, 4.0, 3.0), "scale 2, then translate (1, 2, 3)");
-    assert_eq!(mesh.groups, [FaceGroup { name: "plate".into(), faces: vec![0, 1] }]);
+    let mesh = LoadedMesh::load(&input).unwrap();
+    assert_eq!(mesh.mesh.positions[2], DVec3::new(3.0, 4.0, 3.0), "scale 2, then translate (1, 2, 3)");
+    assert_eq!(mesh.mesh.groups, [FaceGroup { name: "plate".into(), faces: vec![0, 1] }]);
 
-    let mut moved = mesh.positions.clone();
+    let mut moved = mesh.mesh.positions.clone();
     moved[0] += DVec3::new(0.0, 0.0, 1.0);
     for name in ["moved.glb", "moved.gltf"] {
         let out = dir.path().join(name);
@@ -253,19 +254,19 @@ fn unchanged_gltf_save_keeps_buffer_bytes_and_values() {
     let dir = tempfile::tempdir().unwrap();
     let input = dir.path().join("plate.gltf");
     fs::write(&input, serde_json::to_vec(&document).unwrap()).unwrap();
-    let mesh = Mesh::load(&input).unwrap();
+    let mesh = LoadedMesh::load(&input).unwrap();
     for name in ["same.gltf", "same.glb"] {
         let out = dir.path().join(name);
-        mesh.save(&out, &mesh.positions).unwrap();
+        mesh.save(&out, &mesh.mesh.positions).unwrap();
         let (json, bytes) = parts(&out);
         assert_eq!(bytes, data, "{name}: buffer byte-identical");
         assert_eq!(json["accessors"], document["accessors"], "{name}");
-        let back = Mesh::load(&out).unwrap();
-        assert_eq!(back.positions, mesh.positions, "{name}");
-        assert_eq!(back.faces, mesh.faces, "{name}");
+        let back = LoadedMesh::load(&out).unwrap();
+        assert_eq!(back.mesh.positions, mesh.mesh.positions, "{name}");
+        assert_eq!(back.mesh.faces, mesh.mesh.faces, "{name}");
         // And again from the re-written file: stable.
         let again = dir.path().join(format!("again.{}", name.rsplit('.').next().unwrap()));
-        back.save(&again, &back.positions).unwrap();
+        back.save(&again, &back.mesh.positions).unwrap();
         assert_eq!(fs::read(&again).unwrap(), fs::read(&out).unwrap(), "{name}: second save byte-identical");
     }
 }
@@ -303,9 +304,9 @@ fn gltf_errors_name_the_file() {
 fn deform_a_glb_tube_through_the_command_line() {
     let dir = tempfile::tempdir().unwrap();
     let tube = Tube { rings: 20, around: 16, length: 2.0, radius: 0.3 };
-    let mesh = tube.mesh();
-    mesh.save(&dir.path().join("tube.glb"), &mesh.positions).unwrap();
-    mesh.save(&dir.path().join("tube.obj"), &mesh.positions).unwrap();
+    let mesh = LoadedMesh::from(tube.mesh());
+    mesh.save(&dir.path().join("tube.glb"), &mesh.mesh.positions).unwrap();
+    mesh.save(&dir.path().join("tube.obj"), &mesh.mesh.positions).unwrap();
     let rig = tube_rig(&tube, 4, 8);
     fs::write(dir.path().join("rig.json"), rig.to_document().to_json()).unwrap();
     let keys = BendTwistTaper { bend: 0.8, twist: 1.0, taper: 0.7 }.keys(&rig);
@@ -332,10 +333,10 @@ fn deform_a_glb_tube_through_the_command_line() {
 
 #[test]
 fn corrupted_glb_and_off_do_not_panic() {
-    let mesh = house();
+    let mesh = LoadedMesh::from(house());
     let dir = tempfile::tempdir().unwrap();
     let glb = dir.path().join("house.glb");
-    mesh.save(&glb, &mesh.positions).unwrap();
+    mesh.save(&glb, &mesh.mesh.positions).unwrap();
     let bytes = fs::read(&glb).unwrap();
     let noisy = dir.path().join("noisy.glb");
     let mut state = 0x9e37_79b9_7f4a_7c15_u64;
@@ -349,8 +350,8 @@ fn corrupted_glb_and_off_do_not_panic() {
             corrupt[at] = (state >> 40) as u8;
         }
         fs::write(&noisy, &corrupt).unwrap();
-        if let Ok(loaded) = Mesh::load(&noisy) {
-            let _ = loaded.save(&dir.path().join("again.glb"), &loaded.positions);
+        if let Ok(loaded) = LoadedMesh::load(&noisy) {
+            let _ = loaded.save(&dir.path().join("again.glb"), &loaded.mesh.positions);
         }
     }
 }
@@ -405,19 +406,19 @@ fn gltf_instances_shared_accessors_sparse_positions_and_groups() {
     let dir = tempfile::tempdir().unwrap();
     let input = dir.path().join("scene.gltf");
     fs::write(&input, serde_json::to_vec(&scene_gltf()).unwrap()).unwrap();
-    let mesh = Mesh::load(&input).unwrap();
+    let mesh = LoadedMesh::load(&input).unwrap();
     // Two instances of the plate's 4 shared vertices, then the sparse triangle's 3.
-    assert_eq!(mesh.positions.len(), 11);
-    assert_eq!(mesh.positions[6], DVec3::new(1.0, 1.0, 10.0));
-    assert_eq!(mesh.positions[9], DVec3::new(5.0, 5.0, 5.0), "sparse substitution applied");
-    assert_eq!(mesh.faces.face(1), &[0, 2, 3]);
-    assert_eq!(mesh.faces.face(2), &[4, 5, 6]);
-    let names: Vec<&str> = mesh.groups.iter().map(|g| g.name.as_str()).collect();
+    assert_eq!(mesh.mesh.positions.len(), 11);
+    assert_eq!(mesh.mesh.positions[6], DVec3::new(1.0, 1.0, 10.0));
+    assert_eq!(mesh.mesh.positions[9], DVec3::new(5.0, 5.0, 5.0), "sparse substitution applied");
+    assert_eq!(mesh.mesh.faces.face(1), &[0, 2, 3]);
+    assert_eq!(mesh.mesh.faces.face(2), &[4, 5, 6]);
+    let names: Vec<&str> = mesh.mesh.groups.iter().map(|g| g.name.as_str()).collect();
     assert_eq!(names, ["plate", "mesh1"]);
-    assert_eq!(mesh.groups[0].faces, [0, 1, 2, 3]);
-    assert_eq!(mesh.group_vertices("mesh1").unwrap(), [8, 9, 10]);
+    assert_eq!(mesh.mesh.groups[0].faces, [0, 1, 2, 3]);
+    assert_eq!(mesh.mesh.group_vertices("mesh1").unwrap(), [8, 9, 10]);
 
-    let mut moved = mesh.positions.clone();
+    let mut moved = mesh.mesh.positions.clone();
     moved[9] = DVec3::new(6.0, 6.0, 6.0);
     moved[1] = DVec3::new(2.0, 0.0, 0.0);
     // The plate's instances share one accessor: both must move alike (else nothing is written).

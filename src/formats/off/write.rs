@@ -5,8 +5,8 @@ use std::io::{self, Write};
 use glam::DVec3;
 
 use super::OffFile;
+use crate::formats::obj::write::Coordinate;
 use crate::mesh::Faces;
-use crate::mesh::obj::write::Coordinate;
 
 /// Writes the OFF file `file` with new vertex positions: every byte is copied as it is except
 /// the `x y z` of vertices whose position changed (any coordinate differs bit for bit from
@@ -54,8 +54,8 @@ mod tests {
     use std::path::Path;
 
     use super::*;
-    use crate::mesh::off::read::read;
-    use crate::mesh::source::Source;
+    use crate::formats::loaded::Source;
+    use crate::formats::off::read::read;
 
     const COFF: &str =
         "COFF\n# colours\n3 1 0\n0 0 0 255 0 0 255\n1 0 0  0 255 0 128 # green\n0 1 0 0 0 255 255\n3 0 1 2 9 9 9\n";
@@ -63,12 +63,12 @@ mod tests {
     fn faithful(text: &str, moved: &[(usize, DVec3)]) -> String {
         let mesh = read(Path::new("m.off"), text.as_bytes().to_vec()).unwrap();
         let Source::Off(original) = &mesh.source else { panic!("not an OFF source") };
-        let mut positions = mesh.positions.clone();
+        let mut positions = mesh.mesh.positions.clone();
         for &(i, p) in moved {
             positions[i] = p;
         }
         let mut out = Vec::new();
-        write_faithful(&mut out, &original.file, &mesh.positions, &positions).unwrap();
+        write_faithful(&mut out, &original.file, &mesh.mesh.positions, &positions).unwrap();
         String::from_utf8(out).unwrap()
     }
 
@@ -92,7 +92,7 @@ mod tests {
         let mut out = Vec::new();
         write_generic(&mut out, &positions, &faces).unwrap();
         let mesh = read(Path::new("m.off"), out).unwrap();
-        assert_eq!(mesh.positions, positions);
-        assert_eq!(mesh.faces, faces);
+        assert_eq!(mesh.mesh.positions, positions);
+        assert_eq!(mesh.mesh.faces, faces);
     }
 }

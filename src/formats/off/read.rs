@@ -8,8 +8,9 @@ use glam::DVec3;
 use super::OffFile;
 use super::error::OffLineError;
 use super::lines::{Line, Lines};
-use crate::mesh::source::{Original, Source};
-use crate::mesh::{Faces, Limited, Mesh, MeshError};
+use crate::formats::MeshError;
+use crate::formats::loaded::{LoadedMesh, Original, Source};
+use crate::mesh::{Faces, Limited, Mesh};
 
 /// What the header keyword says each vertex line holds beyond `x y z`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -28,7 +29,7 @@ impl Header {
 }
 
 /// Reads the OFF file `bytes` (read from `path`, which errors name).
-pub(crate) fn read(path: &Path, bytes: Vec<u8>) -> Result<Mesh, MeshError> {
+pub(crate) fn read(path: &Path, bytes: Vec<u8>) -> Result<LoadedMesh, MeshError> {
     let mut lines = Lines::new(&bytes);
     let error = |line: usize, problem| MeshError::Off { path: path.to_path_buf(), line, problem };
     let Some(first) = lines.next() else {
@@ -85,9 +86,9 @@ pub(crate) fn read(path: &Path, bytes: Vec<u8>) -> Result<Mesh, MeshError> {
     if let Some(line) = lines.next() {
         return Err(error(line.number, OffLineError::TrailingData { faces: face_count }));
     }
-    let mesh = Mesh { positions, faces, groups: Vec::new(), source: Source::Code };
+    let mesh = Mesh { positions, faces, groups: Vec::new() };
     let file = OffFile { bytes, coordinates };
-    Ok(Mesh { source: Source::Off(Original::new(file, &mesh)), ..mesh })
+    Ok(LoadedMesh { source: Source::Off(Original::new(file, &mesh)), mesh })
 }
 
 /// The header keyword: `[ST][C][N]OFF`, any case.
@@ -187,7 +188,7 @@ fn read_face(line: &Line, f: usize, count: usize, face: &mut Vec<u32>) -> Result
 mod tests {
     use super::*;
 
-    fn load(text: &str) -> Result<Mesh, MeshError> {
+    fn load(text: &str) -> Result<LoadedMesh, MeshError> {
         read(Path::new("m.off"), text.as_bytes().to_vec())
     }
 
@@ -201,19 +202,19 @@ mod tests {
     #[test]
     fn reads_polygons_comments_and_unused_vertices() {
         let mesh = load(SQUARE).unwrap();
-        assert_eq!(mesh.positions.len(), 5);
-        assert_eq!(mesh.faces.face(0), &[0, 1, 2, 3]);
-        assert_eq!(mesh.faces.face(1), &[0, 1, 4]);
-        assert!(mesh.groups.is_empty());
+        assert_eq!(mesh.mesh.positions.len(), 5);
+        assert_eq!(mesh.mesh.faces.face(0), &[0, 1, 2, 3]);
+        assert_eq!(mesh.mesh.faces.face(1), &[0, 1, 4]);
+        assert!(mesh.mesh.groups.is_empty());
     }
 
     #[test]
     fn header_variants_and_counts_on_the_header_line() {
         let text = "CNOFF 3 1\n0 0 0  0 0 1  255 0 0 255\n1 0 0 0 0 1 0 255 0 255\n0 1 0 0 0 1 0 0 255 255\n3 0 1 2 0.5 0.5 0.5\n";
         let mesh = load(text).unwrap();
-        assert_eq!(mesh.positions[1], DVec3::X);
+        assert_eq!(mesh.mesh.positions[1], DVec3::X);
         let text = "stoff\n3 1 3\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n3 2 1 0\n";
-        assert_eq!(load(text).unwrap().faces.face(0), &[2, 1, 0]);
+        assert_eq!(load(text).unwrap().mesh.faces.face(0), &[2, 1, 0]);
     }
 
     #[test]

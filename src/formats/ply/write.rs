@@ -183,7 +183,7 @@ mod tests {
     use std::path::Path;
 
     use super::*;
-    use crate::mesh::ply::read::read;
+    use crate::formats::ply::read::read;
 
     const ASCII: &str = "ply\nformat ascii 1.0\ncomment keep me\nelement vertex 3\nproperty float x\nproperty double y\nproperty float z\nproperty uchar red\nelement face 1\nproperty list uchar int vertex_indices\nproperty float quality\nelement extra 1\nproperty int stuff\nend_header\n0 0 0 10\n1 0.1 0 20\n0 1 0.5 30\n3 0 1 2 0.75\n42\n";
 
@@ -196,7 +196,7 @@ mod tests {
         let mesh = read(Path::new("m.ply"), ASCII.as_bytes().to_vec()).unwrap();
         let original = parse(ASCII.as_bytes());
         let mut out = Vec::new();
-        write_parsed(&mut out, &original, &mesh.positions, &mesh.positions).unwrap();
+        write_parsed(&mut out, &original, &mesh.mesh.positions, &mesh.mesh.positions).unwrap();
         assert_eq!(parse(&out), original);
     }
 
@@ -204,13 +204,13 @@ mod tests {
     fn faithful_moved_vertex_changes_only_its_coordinates_in_their_types() {
         let mesh = read(Path::new("m.ply"), ASCII.as_bytes().to_vec()).unwrap();
         let original = parse(ASCII.as_bytes());
-        let mut moved = mesh.positions.clone();
+        let mut moved = mesh.mesh.positions.clone();
         moved[1] = DVec3::new(0.1, 0.2, 0.3);
         for encoding in [Encoding::Ascii, Encoding::BinaryLittleEndian, Encoding::BinaryBigEndian] {
             let mut source = original.clone();
             source.header.encoding = encoding;
             let mut out = Vec::new();
-            write_parsed(&mut out, &source, &mesh.positions, &moved).unwrap();
+            write_parsed(&mut out, &source, &mesh.mesh.positions, &moved).unwrap();
             let back = parse(&out);
             assert_eq!(back.header, source.header);
             let mut expected = source.clone();
@@ -253,7 +253,7 @@ mod tests {
         let mut out = Vec::new();
         write_generic(&mut out, &positions, &faces).unwrap();
         let mesh = read(Path::new("m.ply"), out.clone()).unwrap();
-        assert_eq!(mesh.faces, faces);
+        assert_eq!(mesh.mesh.faces, faces);
         let back = parse(&out);
         assert_eq!(
             back.header.elements["face"].properties["vertex_indices"].data_type,

@@ -8,7 +8,6 @@ use glam::DVec3;
 
 use super::as_read::{AsRead, Run};
 use super::part::{GroupChange, Part};
-use crate::mesh::source::Source;
 use crate::mesh::{FaceGroup, Faces, Limited, Mesh};
 use crate::parallel::prelude::*;
 
@@ -58,7 +57,7 @@ pub(crate) fn join(mut parts: Vec<Part>) -> (Mesh, AsRead) {
         groups.replay(&part.events, 0, part.faces.len());
         let (positions, faces) = crate::parallel::join(|| part.positions.clone(), || part.faces.clone());
         let run = Run { positions, lines: part.lines, faces };
-        let mesh = Mesh { positions: part.positions, faces: part.faces, groups: groups.finish(), source: Source::Code };
+        let mesh = Mesh { positions: part.positions, faces: part.faces, groups: groups.finish() };
         return (mesh, AsRead::new(vec![run]));
     }
     let vertices: usize = parts.iter().map(|p| p.positions.len()).sum();
@@ -91,7 +90,7 @@ pub(crate) fn join(mut parts: Vec<Part>) -> (Mesh, AsRead) {
         first_face += part.faces.len();
     }
     let runs = parts.into_iter().map(|part| Run { positions: part.positions, lines: part.lines, faces: part.faces });
-    let mesh = Mesh { positions, faces: all, groups: groups.finish(), source: Source::Code };
+    let mesh = Mesh { positions, faces: all, groups: groups.finish() };
     (mesh, AsRead::new(runs.collect()))
 }
 

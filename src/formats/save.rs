@@ -1,15 +1,15 @@
-//! [`Mesh::save`]: writing a mesh with new positions, faithfully when possible.
+//! [`LoadedMesh::save`]: writing a mesh with new positions, faithfully when possible.
 
 use std::path::Path;
 
 use glam::DVec3;
 
-use super::atomic::write_atomically;
 use super::format::Format;
-use super::source::Source;
-use super::{Mesh, MeshError, gltf, obj, off, ply};
+use super::loaded::{LoadedMesh, Source};
+use super::{MeshError, gltf, obj, off, ply};
+use crate::atomic_file::write_atomically;
 
-impl Mesh {
+impl LoadedMesh {
     /// Writes the mesh with `positions` (one per vertex, same order) to `path`, format by
     /// extension (`.obj`, `.ply`, `.off`, `.gltf` or `.glb`, case-insensitive).
     ///
@@ -22,7 +22,8 @@ impl Mesh {
     /// faithfully to either: the same document with only the POSITION data of moved vertices
     /// (back in each node's local space), their accessors' `min`/`max`, and the NORMAL of
     /// their triangles changed (see `gltf::write`). Otherwise (another format, a mesh built with
-    /// [`Mesh::from_parts`], or edited connectivity) a generic file is written: OBJ with `v`,
+    /// [`Mesh::from_parts`](crate::mesh::Mesh::from_parts) and turned into a `LoadedMesh` by `From`, or edited connectivity)
+    /// a generic file is written: OBJ with `v`,
     /// `g` and `f` lines, binary little-endian PLY with float coordinates, OFF with `V F 0`
     /// counts, or glTF with one mesh of one primitive (f32 POSITION, area-weighted NORMAL, u32
     /// indices of the fan-triangulated faces).
@@ -37,42 +38,43 @@ impl Mesh {
     ///
     /// # Errors
     ///
-    /// [`MeshError::PositionCount`] if `positions.len() != self.positions.len()`,
+    /// [`MeshError::PositionCount`] if `positions.len() != self.mesh.positions.len()`,
     /// [`MeshError::Unwritable`] naming `path`, the vertex and the coordinate for a NaN or
     /// infinite coordinate or one that overflows the f32 of the format,
     /// [`MeshError::UnsupportedFormat`] for another extension, [`MeshError::Write`] if the file
     /// cannot be written.
     pub fn save(&self, path: &Path, positions: &[DVec3]) -> Result<(), MeshError> {
-        if positions.len() != self.positions.len() {
-            return Err(MeshError::PositionCount { expected: self.positions.len(), found: positions.len() });
+        let mesh = &self.mesh;
+        if positions.len() != mesh.positions.len() {
+            return Err(MeshError::PositionCount { expected: mesh.positions.len(), found: positions.len() });
         }
         let format = Format::of(path)?;
         check_writable(path, positions, self.stores_f32(format))?;
         write_atomically(path, |out| match (&self.source, format) {
-            (Source::Obj(o), Format::Obj) if o.describes(self) => obj::write::write_faithful(out, o, positions),
-            (Source::Ply(p), Format::Ply) if p.describes(self) => {
+            (Source::Obj(o), Format::Obj) if o.describes(mesh) => obj::write::write_faithful(out, o, positions),
+            (Source::Ply(p), Format::Ply) if p.describes(mesh) => {
                 ply::write::write_faithful(out, &p.file, &p.positions, positions)
             }
-            (Source::Off(o), Format::Off) if o.describes(self) => {
+            (Source::Off(o), Format::Off) if o.describes(mesh) => {
                 off::write::write_faithful(out, &o.file, &o.positions, positions)
             }
-            (Source::Gltf(g), Format::Gltf | Format::Glb) if g.describes(self) => {
+            (Source::Gltf(g), Format::Gltf | Format::Glb) if g.describes(mesh) => {
                 gltf::write::write_faithful(out, g, positions, format == Format::Glb)
             }
-            (_, Format::Obj) => obj::write::write_generic(out, positions, &self.faces, &self.groups),
-            (_, Format::Ply) => ply::write::write_generic(out, positions, &self.faces),
-            (_, Format::Off) => off::write::write_generic(out, positions, &self.faces),
+            (_, Format::Obj) => obj::write::write_generic(out, positions, &mesh.faces, &mesh.groups),
+            (_, Format::Ply) => ply::write::write_generic(out, positions, &mesh.faces),
+            (_, Format::Off) => off::write::write_generic(out, positions, &mesh.faces),
             (_, Format::Gltf | Format::Glb) => {
-                gltf::generic::write_generic(out, positions, &self.faces, format == Format::Glb)
+                gltf::generic::write_generic(out, positions, &mesh.faces, format == Format::Glb)
             }
         })
         .map_err(|e| MeshError::write(path, e))
     }
 
-    /// Whether [`Mesh::save`] to a file of `format` stores positions as f32.
+    /// Whether [`LoadedMesh::save`] to a file of `format` stores positions as f32.
     fn stores_f32(&self, format: Format) -> bool {
         match (&self.source, format) {
-            (Source::Ply(p), Format::Ply) if p.describes(self) => ply::write::stores_f32(p.file.header()),
+            (Source::Ply(p), Format::Ply) if p.describes(&self.mesh) => ply::write::stores_f32(p.file.header()),
             (_, Format::Ply | Format::Gltf | Format::Glb) => true,
             (_, Format::Obj | Format::Off) => false,
         }

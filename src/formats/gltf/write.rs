@@ -9,7 +9,7 @@ use serde_json::{Value, json};
 
 use super::generic::{bounds, first_non_finite};
 use super::{Block, GltfFile, Target, container, normals};
-use crate::mesh::source::Original;
+use crate::formats::loaded::Original;
 
 /// Writes the glTF file `original` with new mesh positions (GLB when `binary`).
 ///

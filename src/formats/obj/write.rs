@@ -11,7 +11,7 @@ use glam::DVec3;
 
 use super::ObjFile;
 use super::scan::{self, Scanner};
-use crate::mesh::decimal::{push_display, push_lower_exp};
+use crate::formats::decimal::{push_display, push_lower_exp};
 use crate::mesh::{FaceGroup, Faces};
 use crate::parallel::prelude::*;
 
@@ -279,11 +279,11 @@ mod tests {
     use std::path::Path;
 
     use super::*;
+    use crate::formats::obj::as_read::AsRead;
+    use crate::formats::obj::pieces::read_pieces;
+    use crate::formats::obj::read;
+    use crate::formats::obj::read::read_whole;
     use crate::mesh::Mesh;
-    use crate::mesh::obj::as_read::AsRead;
-    use crate::mesh::obj::pieces::read_pieces;
-    use crate::mesh::obj::read;
-    use crate::mesh::obj::read::read_whole;
 
     const MIXED: &[u8] = b"# exported\r\nmtllib m.mtl\r\no thing\r\n  v 0 0 0 1.0\r\nv 1.0 0.0 0.0 # right\r\nv 0 \\\r\n 1 0\r\nv 0 0 1 0.5 0.25 0.125\nvt 0 0\r\nvn 0 0 1\r\ng a b\r\nusemtl red\r\nf 1/1/1 2/1/1 3/1/1\r\nf 1//1 \\\n 3//1 4//1\r\n\r\n# end";
 
@@ -305,13 +305,13 @@ mod tests {
 
     #[test]
     fn unchanged_positions_give_identical_bytes() {
-        let mesh = read(Path::new("m.obj"), MIXED.to_vec()).unwrap();
+        let (mesh, _) = read(Path::new("m.obj"), MIXED.to_vec()).unwrap();
         assert_eq!(faithful(MIXED, &mesh.positions), MIXED);
     }
 
     #[test]
     fn moved_vertex_rewrites_only_its_line_keeping_tail_and_ending() {
-        let mesh = read(Path::new("m.obj"), MIXED.to_vec()).unwrap();
+        let (mesh, _) = read(Path::new("m.obj"), MIXED.to_vec()).unwrap();
         let mut moved = mesh.positions.clone();
         moved[0] = DVec3::new(0.5, -0.25, 1e-7);
         moved[1].y = 2.0;
@@ -326,13 +326,13 @@ mod tests {
 
     #[test]
     fn moved_continued_vertex_becomes_one_line() {
-        let mesh = read(Path::new("m.obj"), MIXED.to_vec()).unwrap();
+        let (mesh, _) = read(Path::new("m.obj"), MIXED.to_vec()).unwrap();
         let mut moved = mesh.positions.clone();
         moved[2].x = -3.5;
         let out = faithful(MIXED, &moved);
         let expected = String::from_utf8_lossy(MIXED).replace("v 0 \\\r\n 1 0\r\n", "v -3.5 1 0\r\n");
         assert_eq!(String::from_utf8(out).unwrap(), expected);
-        let reread = read(Path::new("m.obj"), expected.into_bytes()).unwrap();
+        let (reread, _) = read(Path::new("m.obj"), expected.into_bytes()).unwrap();
         assert_eq!(reread.positions, moved);
         assert_eq!(reread.faces, mesh.faces);
     }
@@ -370,7 +370,7 @@ mod tests {
             "# written by sweepffd\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0.5 0.25 -1\n\
              f 2 3 4\ng left_side\nf 1 3 4\nf 1 2 4\ng right\nf 1 2 3\n"
         );
-        let back = read(Path::new("m.obj"), text.into_bytes()).unwrap();
+        let (back, _) = read(Path::new("m.obj"), text.into_bytes()).unwrap();
         assert_eq!(back.positions, positions);
         let back_faces: Vec<Vec<u32>> = back.faces.iter().map(<[u32]>::to_vec).collect();
         assert_eq!(back_faces, vec![vec![1, 2, 3], vec![0, 2, 3], vec![0, 1, 3], vec![0, 1, 2]]);
@@ -384,7 +384,7 @@ mod tests {
         let positions = vec![DVec3::new(0.1, -1e-300, 1e300), DVec3::new(std::f64::consts::PI, -0.0, 123456.789)];
         let mut out = Vec::new();
         write_generic(&mut out, &positions, &Faces::new(), &[]).unwrap();
-        let back = read(Path::new("m.obj"), out).unwrap();
+        let (back, _) = read(Path::new("m.obj"), out).unwrap();
         for (a, b) in back.positions.iter().zip(&positions) {
             assert!(same_bits(*a, *b), "{a} vs {b}");
         }
@@ -472,7 +472,7 @@ mod tests {
             text.extend_from_slice(line.as_bytes());
         }
         text.extend_from_slice(b"g end\nf 1 2 3");
-        let mesh = read(Path::new("m.obj"), text.clone()).unwrap();
+        let (mesh, _) = read(Path::new("m.obj"), text.clone()).unwrap();
         assert_eq!(mesh.positions.len(), count);
         let patterns: [&dyn Fn(usize) -> bool; 5] =
             [&|_| false, &|_| true, &|i| i == 0 || i == count - 1, &|i| (BLOCK..2 * BLOCK).contains(&i), &|i| {

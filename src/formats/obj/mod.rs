@@ -24,12 +24,11 @@ pub(crate) mod scan;
 pub(crate) mod write;
 
 use std::path::Path;
-use std::sync::Arc;
 
 use as_read::AsRead;
 
-use super::source::Source;
-use super::{FaceGroup, Mesh, MeshError};
+use super::MeshError;
+use crate::mesh::{FaceGroup, Mesh};
 
 /// An OBJ file as read, for the faithful writer: its bytes and what they gave ([`AsRead`]:
 /// the positions, the faces and where each vertex's `v` statement starts, the byte offset of
@@ -53,12 +52,13 @@ impl ObjFile {
     }
 }
 
-/// Reads the OBJ file `bytes` (read from `path`, which errors name).
-pub(crate) fn read(path: &Path, bytes: Vec<u8>) -> Result<Mesh, MeshError> {
+/// Reads the OBJ file `bytes` (read from `path`, which errors name): the mesh, and the file for
+/// the faithful writer.
+pub(crate) fn read(path: &Path, bytes: Vec<u8>) -> Result<(Mesh, ObjFile), MeshError> {
     let (mesh, read) = match pieces::read_in_pieces(&bytes) {
         Some(read) => read,
         None => read::read_whole(path, &bytes)?,
     };
     let file = ObjFile { bytes, read, groups: mesh.groups.clone() };
-    Ok(Mesh { source: Source::Obj(Arc::new(file)), ..mesh })
+    Ok((mesh, file))
 }

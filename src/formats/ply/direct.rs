@@ -405,11 +405,10 @@ mod tests {
     use ply_rs_bw::writer::Writer;
 
     use super::*;
-    use crate::mesh::Mesh;
-    use crate::mesh::ply::header;
-    use crate::mesh::ply::patch::write_faithful;
-    use crate::mesh::ply::read::read_parsed;
-    use crate::mesh::source::Source;
+    use crate::formats::loaded::{LoadedMesh, Source};
+    use crate::formats::ply::header;
+    use crate::formats::ply::patch::write_faithful;
+    use crate::formats::ply::read::read_parsed;
 
     fn parse(bytes: &[u8]) -> Ply<DefaultElement> {
         Parser::<DefaultElement>::new().read_ply(&mut &bytes[..]).unwrap()
@@ -465,8 +464,8 @@ mod tests {
         let Some((positions, faces, ..)) = direct else { return false };
         let expected = parsed.unwrap_or_else(|e| panic!("the direct reader read a file that is an error: {e}"));
         let bits = |p: &[DVec3]| p.iter().map(|p| p.to_array().map(f64::to_bits)).collect::<Vec<_>>();
-        assert_eq!(bits(&positions), bits(&expected.positions));
-        assert_eq!(faces, expected.faces);
+        assert_eq!(bits(&positions), bits(&expected.mesh.positions));
+        assert_eq!(faces, expected.mesh.faces);
         true
     }
 
@@ -546,19 +545,19 @@ mod tests {
     fn a_vertex_with_a_list_is_left_to_the_parser() {
         let text = "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nproperty list uchar int n\nend_header\n1 2 3 2 4 5\n";
         assert!(read(text.as_bytes()).is_none());
-        let mesh = crate::mesh::ply::read::read(Path::new("m.ply"), text.as_bytes().to_vec()).unwrap();
-        assert_eq!(mesh.positions, vec![DVec3::new(1.0, 2.0, 3.0)]);
+        let mesh = crate::formats::ply::read::read(Path::new("m.ply"), text.as_bytes().to_vec()).unwrap();
+        assert_eq!(mesh.mesh.positions, vec![DVec3::new(1.0, 2.0, 3.0)]);
     }
 
-    fn load(bytes: &[u8]) -> Mesh {
-        let mesh = crate::mesh::ply::read::read(Path::new("m.ply"), bytes.to_vec()).unwrap();
-        assert!(matches!(&mesh.source, Source::Ply(p) if matches!(p.file, crate::mesh::ply::PlyFile::Bytes(_))));
+    fn load(bytes: &[u8]) -> LoadedMesh {
+        let mesh = crate::formats::ply::read::read(Path::new("m.ply"), bytes.to_vec()).unwrap();
+        assert!(matches!(&mesh.source, Source::Ply(p) if matches!(p.file, crate::formats::ply::PlyFile::Bytes(_))));
         mesh
     }
 
-    fn faithful(mesh: &Mesh, positions: &[DVec3]) -> Vec<u8> {
+    fn faithful(mesh: &LoadedMesh, positions: &[DVec3]) -> Vec<u8> {
         let Source::Ply(original) = &mesh.source else { unreachable!() };
-        let crate::mesh::ply::PlyFile::Bytes(file) = &original.file else { unreachable!() };
+        let crate::formats::ply::PlyFile::Bytes(file) = &original.file else { unreachable!() };
         let mut out = Vec::new();
         write_faithful(&mut out, file, &original.positions, positions).unwrap();
         out
@@ -569,7 +568,7 @@ mod tests {
         for bytes in files() {
             if header::check(&bytes).is_ok() && read(&bytes).is_some() {
                 let mesh = load(&bytes);
-                assert_eq!(faithful(&mesh, &mesh.positions), bytes);
+                assert_eq!(faithful(&mesh, &mesh.mesh.positions), bytes);
             }
         }
     }
@@ -580,7 +579,7 @@ mod tests {
         for encoding in [Encoding::Ascii, Encoding::BinaryLittleEndian, Encoding::BinaryBigEndian] {
             let bytes = encoded(&source, encoding);
             let mesh = load(&bytes);
-            let mut moved = mesh.positions.clone();
+            let mut moved = mesh.mesh.positions.clone();
             moved[1] = DVec3::new(0.1, -0.2, 1e-7);
             moved[3] = DVec3::new(-0.0, 1e300, 123_456.789);
             let out = faithful(&mesh, &moved);

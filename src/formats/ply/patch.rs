@@ -7,7 +7,7 @@ use std::ops::Range;
 use glam::DVec3;
 
 use super::direct::{Layout, PlyBytes, Scalar};
-use crate::mesh::decimal::push_display;
+use crate::formats::decimal::push_display;
 
 /// Whether two positions are equal bit for bit.
 fn same_bits(a: DVec3, b: DVec3) -> bool {

@@ -1,43 +1,64 @@
-//! What a [`Mesh`] remembers of the file it was read from, so that [`Mesh::save`] can write the
-//! file back faithfully: the file itself and the data as loaded.
+//! [`LoadedMesh`]: a [`Mesh`] with the file it was read from, so that [`LoadedMesh::save`] can
+//! write the file back faithfully: the file itself and the data as loaded.
 
 use std::fmt;
 use std::sync::Arc;
 
 use glam::DVec3;
 
-#[cfg(feature = "formats")]
 use super::gltf::GltfFile;
-#[cfg(feature = "formats")]
 use super::obj::ObjFile;
-#[cfg(feature = "formats")]
 use super::off::OffFile;
-#[cfg(feature = "formats")]
 use super::ply::PlyFile;
-use super::{FaceGroup, Faces, Mesh};
+use crate::mesh::{FaceGroup, Faces, Mesh};
 
-/// Where a mesh came from. Cloning a mesh shares its source.
+/// A mesh read from a file ([`LoadedMesh::load`]), with what is needed to write the file back
+/// faithfully ([`LoadedMesh::save`]): a deformed file differs from its input only in the
+/// positions of the vertices that moved (and, for glTF, the normals around them).
+///
+/// [`Mesh::load`] reads the mesh data alone, for callers that do not write the file back. A mesh
+/// built in code becomes one with no file behind it by `LoadedMesh::from(mesh)`, and is saved
+/// generically. Cloning is cheap for the file, which clones share.
+#[derive(Clone, Debug)]
+pub struct LoadedMesh {
+    /// The mesh as read: positions in file order, faces, groups. Editing its connectivity makes
+    /// [`LoadedMesh::save`] write a generic file instead of the faithful one.
+    pub mesh: Mesh,
+    /// The file it was read from.
+    pub(crate) source: Source,
+}
+
+impl LoadedMesh {
+    /// The mesh data, without the file.
+    pub fn into_mesh(self) -> Mesh {
+        self.mesh
+    }
+}
+
+impl From<Mesh> for LoadedMesh {
+    /// A mesh with no file behind it: [`LoadedMesh::save`] writes a generic file.
+    fn from(mesh: Mesh) -> Self {
+        LoadedMesh { mesh, source: Source::Code }
+    }
+}
+
+/// Where a mesh came from. Cloning shares it.
 #[derive(Clone, Default)]
 pub(crate) enum Source {
-    /// Built in code by [`Mesh::from_parts`]: no file to be faithful to.
+    /// Built in code: no file to be faithful to.
     #[default]
     Code,
     /// Read from an OBJ file: its bytes, what they gave and where each vertex's statement lies.
-    #[cfg(feature = "formats")]
     Obj(Arc<ObjFile>),
     /// Read from a PLY file: its bytes and where the vertices lie, or every element as parsed.
-    #[cfg(feature = "formats")]
     Ply(Arc<Original<PlyFile>>),
     /// Read from an OFF file: its bytes and where each vertex's coordinates lie.
-    #[cfg(feature = "formats")]
     Off(Arc<Original<OffFile>>),
     /// Read from a glTF or GLB file: its JSON, its buffers and where each vertex came from.
-    #[cfg(feature = "formats")]
     Gltf(Arc<Original<GltfFile>>),
 }
 
 /// A file as read, with the mesh data it gave.
-#[cfg_attr(not(feature = "formats"), expect(dead_code, reason = "only the file readers and writers use it"))]
 pub(crate) struct Original<F> {
     /// The file, in whatever form its faithful writer needs.
     pub file: F,
@@ -49,7 +70,6 @@ pub(crate) struct Original<F> {
     pub groups: Vec<FaceGroup>,
 }
 
-#[cfg_attr(not(feature = "formats"), expect(dead_code, reason = "only the file readers and writers use it"))]
 impl<F> Original<F> {
     /// Wraps `file` with a copy of the mesh data read from it (the positions and the faces
     /// copied at once on two cores, with the feature `parallel`).
@@ -69,13 +89,9 @@ impl fmt::Debug for Source {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Source::Code => f.write_str("Code"),
-            #[cfg(feature = "formats")]
             Source::Obj(o) => write!(f, "Obj({} bytes)", o.bytes.len()),
-            #[cfg(feature = "formats")]
             Source::Ply(p) => write!(f, "Ply({:?})", p.file.header().encoding),
-            #[cfg(feature = "formats")]
             Source::Off(o) => write!(f, "Off({} bytes)", o.file.bytes.len()),
-            #[cfg(feature = "formats")]
             Source::Gltf(g) => write!(f, "Gltf({} buffers)", g.file.buffers.len()),
         }
     }

@@ -15,16 +15,17 @@ use glam::{DMat4, DVec3};
 use super::accessor::{self, f32_at};
 use super::scene::Instance;
 use super::{Block, GltfDataError, GltfFile, PrimitiveRecord, Target, buffers, container, precheck, quiet, scene};
+use crate::formats::MeshError;
+use crate::formats::loaded::{LoadedMesh, Original, Source};
 use crate::limits::{MAX_FACES, MAX_VERTICES};
-use crate::mesh::source::{Original, Source};
-use crate::mesh::{FaceGroup, Faces, Mesh, MeshError};
+use crate::mesh::{FaceGroup, Faces, Mesh};
 
 /// Reads the glTF (JSON) or GLB (binary, by its `glTF` magic) file `bytes` read from `path`.
 ///
 /// What the `gltf` crate (1.4) is known to panic on is checked before it is called. A panic
 /// it did not foresee is still caught and reported as [`MeshError::InvalidGltf`], and the
 /// panic hook stays silent for it ([`quiet`]): only the error reaches the user.
-pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
+pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<LoadedMesh, MeshError> {
     quiet::catch_quietly(|| read_unguarded(path, bytes)).unwrap_or_else(|_| {
         let reason = "the glTF reader panicked on this malformed file".to_string();
         Err(MeshError::InvalidGltf { path: path.to_path_buf(), reason })
@@ -32,7 +33,7 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
 }
 
 /// [`read`] without the panic guard.
-fn read_unguarded(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
+fn read_unguarded(path: &Path, bytes: &[u8]) -> Result<LoadedMesh, MeshError> {
     let invalid = |reason: String| MeshError::InvalidGltf { path: path.to_path_buf(), reason };
     let data_error = |problem| MeshError::GltfData { path: path.to_path_buf(), problem };
     let (text, blob) =
@@ -56,9 +57,9 @@ fn read_unguarded(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
         return Err(MeshError::TooLarge { path: path.to_path_buf() });
     }
     let groups = builder.groups.into_iter().map(|(_, group)| group).collect();
-    let mesh = Mesh { positions: builder.positions, faces: builder.faces, groups, source: Source::Code };
+    let mesh = Mesh { positions: builder.positions, faces: builder.faces, groups };
     let file = GltfFile { json, buffers, blocks: builder.blocks, primitives: builder.primitives };
-    Ok(Mesh { source: Source::Gltf(Original::new(file, &mesh)), ..mesh })
+    Ok(LoadedMesh { source: Source::Gltf(Original::new(file, &mesh)), mesh })
 }
 
 /// The parser's message on one line.

@@ -22,7 +22,8 @@ use super::join::join;
 use super::part::{GroupChange, Part};
 use super::plain;
 use super::scan::{self, Keyword, Scanner, VertexIssue};
-use crate::mesh::{Faces, Limited, Mesh, MeshError, ObjLineError};
+use crate::formats::{MeshError, ObjLineError};
+use crate::mesh::{Faces, Limited, Mesh};
 
 /// Reads `bytes` as one part, on the calling thread: the mesh and the file's data as read,
 /// or the first fault in file order.
@@ -237,7 +238,7 @@ mod tests {
     use super::*;
 
     fn load(text: &[u8]) -> Result<Mesh, MeshError> {
-        crate::mesh::obj::read(Path::new("mesh.obj"), text.to_vec())
+        crate::formats::obj::read(Path::new("mesh.obj"), text.to_vec()).map(|(mesh, _)| mesh)
     }
 
     fn error(text: &[u8]) -> String {

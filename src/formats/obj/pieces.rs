@@ -121,8 +121,8 @@ mod tests {
     use std::path::Path;
 
     use super::*;
-    use crate::mesh::obj::read::read_whole;
-    use crate::mesh::obj::scan::Scanner;
+    use crate::formats::obj::read::read_whole;
+    use crate::formats::obj::scan::Scanner;
 
     /// The OBJ files of the fuzzing corpus and its regressions, and the shared test meshes
     /// that are present.

@@ -9,28 +9,29 @@ use ply_rs_bw::ply::{DefaultElement, ElementDef, Ply, Property, PropertyType, Sc
 use super::direct::{self, PlyBytes};
 use super::index_list::index_list;
 use super::{PlyFile, header};
-use crate::mesh::source::{Original, Source};
-use crate::mesh::{Faces, Mesh, MeshDataError, MeshError};
+use crate::formats::MeshError;
+use crate::formats::loaded::{LoadedMesh, Original, Source};
+use crate::mesh::{Faces, Mesh, MeshDataError};
 
 /// Reads the PLY file `bytes` (read from `path`, which errors name): straight from the bytes
 /// ([`direct`]) when that reader accepts the file, else through `ply-rs-bw`, which names the
 /// fault (or reads what the direct reader leaves to it, a `vertex` element with a list).
-pub(crate) fn read(path: &Path, bytes: Vec<u8>) -> Result<Mesh, MeshError> {
+pub(crate) fn read(path: &Path, bytes: Vec<u8>) -> Result<LoadedMesh, MeshError> {
     header::check(&bytes).map_err(|(line, problem)| MeshError::PlyHeader {
         path: path.to_path_buf(),
         line,
         problem,
     })?;
     if let Some((positions, faces, header, layout, xyz)) = direct::read(&bytes) {
-        let mesh = Mesh { positions, faces, groups: Vec::new(), source: Source::Code };
+        let mesh = Mesh { positions, faces, groups: Vec::new() };
         let file = PlyFile::Bytes(PlyBytes { bytes, header, layout, xyz });
-        return Ok(Mesh { source: Source::Ply(Original::new(file, &mesh)), ..mesh });
+        return Ok(LoadedMesh { source: Source::Ply(Original::new(file, &mesh)), mesh });
     }
     read_parsed(path, &bytes)
 }
 
 /// Reads the PLY file `bytes` through `ply-rs-bw`.
-pub(crate) fn read_parsed(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> {
+pub(crate) fn read_parsed(path: &Path, bytes: &[u8]) -> Result<LoadedMesh, MeshError> {
     header::check(bytes).map_err(|(line, problem)| MeshError::PlyHeader { path: path.to_path_buf(), line, problem })?;
     let ply = Parser::<DefaultElement>::new()
         .read_ply(&mut &bytes[..])
@@ -38,8 +39,8 @@ pub(crate) fn read_parsed(path: &Path, bytes: &[u8]) -> Result<Mesh, MeshError> 
     let positions = positions(path, &ply)?;
     let faces = faces(path, &ply, positions.len())?;
     check_finite(path, &ply)?;
-    let mesh = Mesh { positions, faces, groups: Vec::new(), source: Source::Code };
-    Ok(Mesh { source: Source::Ply(Original::new(PlyFile::Parsed(ply), &mesh)), ..mesh })
+    let mesh = Mesh { positions, faces, groups: Vec::new() };
+    Ok(LoadedMesh { source: Source::Ply(Original::new(PlyFile::Parsed(ply), &mesh)), mesh })
 }
 
 /// The longest parser message shown, in characters: the parser quotes the offending line,
@@ -167,7 +168,7 @@ fn integers(property: &Property) -> Vec<i64> {
 mod tests {
     use super::*;
 
-    fn load(text: &[u8]) -> Result<Mesh, MeshError> {
+    fn load(text: &[u8]) -> Result<LoadedMesh, MeshError> {
         read(Path::new("m.ply"), text.to_vec())
     }
 
@@ -188,16 +189,16 @@ mod tests {
     fn reads_float_and_double_coordinates_and_index_lists() {
         let text = ply(XYZ, "property list uchar uint vertex_indices\n", &format!("{SQUARE}3 0 1 2\n4 0 1 2 3\n"));
         let mesh = load(text.as_bytes()).unwrap();
-        assert_eq!(mesh.positions[2], DVec3::new(1.0, 1.0, 0.5));
-        assert_eq!(mesh.faces.face(1), &[0, 1, 2, 3]);
-        assert!(mesh.groups.is_empty());
+        assert_eq!(mesh.mesh.positions[2], DVec3::new(1.0, 1.0, 0.5));
+        assert_eq!(mesh.mesh.faces.face(1), &[0, 1, 2, 3]);
+        assert!(mesh.mesh.groups.is_empty());
     }
 
     #[test]
     fn vertex_index_name_and_signed_short_lists_are_accepted() {
         let text = ply(XYZ, "property list int short vertex_index\n", &format!("{SQUARE}3 0 1 2\n3 2 3 0\n"));
         let mesh = load(text.as_bytes()).unwrap();
-        assert_eq!(mesh.faces.face(1), &[2, 3, 0]);
+        assert_eq!(mesh.mesh.faces.face(1), &[2, 3, 0]);
     }
 
     #[test]
@@ -234,8 +235,8 @@ mod tests {
     fn point_cloud_is_allowed_and_no_vertices_is_empty() {
         let text = "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n1 2 3\n";
         let mesh = load(text.as_bytes()).unwrap();
-        assert_eq!(mesh.positions.len(), 2);
-        assert!(mesh.faces.is_empty());
+        assert_eq!(mesh.mesh.positions.len(), 2);
+        assert!(mesh.mesh.faces.is_empty());
         let text = "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
         assert_eq!(error(text), "m.ply: the mesh has no vertices");
     }
