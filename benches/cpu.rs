@@ -4,7 +4,7 @@
 //! the same run, the fused deform with Jacobian normals (fast and twin) beside them, and of the
 //! falloff bands of binding, with the normals' adjacency build as the baseline.
 //!
-//! `cargo bench --bench cpu`; criterion reports vertices per second (throughput elements).
+//! `cargo bench --features internals --bench cpu`; criterion reports vertices per second (throughput elements).
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use glam::DVec3;

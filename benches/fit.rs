@@ -4,7 +4,7 @@
 //! counts, and the shared meshes' limbs when `../shared/meshes` is beside the clone; and
 //! `autorig` (protrusions found and each fitted) on the bunny and the armadillo.
 //!
-//! `cargo bench --bench fit`.
+//! `cargo bench --features internals --bench fit`.
 
 #[path = "../tests/common/mod.rs"]
 mod common;

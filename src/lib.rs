@@ -39,8 +39,8 @@
 //!   criterion benches.
 //!
 //! The f32 twins of the WGSL kernels (`cpu`), the kernels themselves and the spline and fitting
-//! machinery are internals, public only with the feature `internals` (for the benches and the
-//! equivalence tests).
+//! machinery are internals, public only with the feature `internals` (for the benches `cpu` and
+//! `fit`); the equivalence tests are unit tests of the modules that own them.
 //!
 //! The command line, the interactive viewer and the PNG renderer are the workspace member
 //! `sweepffd-cli` (`cli/`), so that this crate's default build pulls no app crates.
@@ -70,7 +70,7 @@
 
 /// Declares modules that are the engine's internals: the CPU twins of the kernels, the kernels
 /// and shaders themselves, the spline and fitting machinery. They are public with the feature
-/// `internals`, which the benches and the equivalence tests use (no stable API), and
+/// `internals`, which the benches `cpu` and `fit` use (no stable API), and
 /// crate-private otherwise, so that an embedder's documentation shows what it builds on.
 macro_rules! internal_mod {
     ($($(#[$attr:meta])* $name:ident;)*) => {$(
@@ -124,6 +124,13 @@ pub mod normals;
 pub mod rig;
 pub mod sweep;
 pub mod synthetic;
+
+// The unit tests name the crate as the integration tests do, and share their helpers.
+#[cfg(test)]
+extern crate self as sweepffd;
+#[cfg(test)]
+#[path = "../tests/common/mod.rs"]
+mod common;
 
 // What an embedder's frame loop names, and the two crates whose versions it must match.
 pub use glam;

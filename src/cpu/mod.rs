@@ -40,3 +40,6 @@ pub fn packed(positions: &[DVec3]) -> Vec<f32> {
 pub(crate) fn position(positions: &[f32], i: usize) -> Vec3 {
     Vec3::new(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2])
 }
+
+#[cfg(test)]
+mod tests;

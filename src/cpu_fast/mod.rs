@@ -38,3 +38,6 @@ pub use crate::cpu::packed;
 pub const CHUNK: usize = 16 * 1024;
 pub use isa::Isa;
 pub use mesh::FastMesh;
+
+#[cfg(test)]
+mod tests;

@@ -54,3 +54,6 @@ pub fn rest_positions(positions: &[glam::DVec3]) -> Vec<[f32; 3]> {
 pub fn vec3_positions(positions: &[glam::Vec3]) -> &[[f32; 3]] {
     bytemuck::cast_slice(positions)
 }
+
+#[cfg(test)]
+mod tests;

@@ -30,7 +30,7 @@ pub fn shared_mesh(name: &str) -> Option<PathBuf> {
 }
 
 use glam::{DMat3, DQuat, DVec3};
-use sweepffd::mesh::Mesh;
+use sweepffd::mesh::{Faces, Mesh};
 use sweepffd::rig::{Rig, RigSweep, VertexSelection};
 use sweepffd::sweep::Key;
 
@@ -158,6 +158,32 @@ pub fn worst_f32(a: &[f32], b: &[f32]) -> (f32, u32, usize) {
     worst
 }
 
+/// A UV sphere of radius 1: `rings` − 1 latitude rings of `around` vertices and two poles.
+pub fn sphere(rings: u32, around: u32) -> Mesh {
+    let mut positions = vec![DVec3::Y];
+    for r in 1..rings {
+        let phi = std::f64::consts::PI * r as f64 / rings as f64;
+        for a in 0..around {
+            let theta = std::f64::consts::TAU * a as f64 / around as f64;
+            positions.push(DVec3::new(phi.sin() * theta.cos(), phi.cos(), phi.sin() * theta.sin()));
+        }
+    }
+    positions.push(-DVec3::Y);
+    let ring = |r: u32, a: u32| 1 + (r - 1) * around + a % around;
+    let south = positions.len() as u32 - 1;
+    let mut faces = Faces::new();
+    for a in 0..around {
+        faces.push(&[0, ring(1, a + 1), ring(1, a)]);
+        faces.push(&[south, ring(rings - 1, a), ring(rings - 1, a + 1)]);
+    }
+    for r in 1..rings - 1 {
+        for a in 0..around {
+            faces.push(&[ring(r, a), ring(r, a + 1), ring(r + 1, a + 1), ring(r + 1, a)]);
+        }
+    }
+    Mesh::from_parts(positions, faces, Vec::new()).unwrap()
+}
+
 pub mod app_buffer;
 pub mod autorig_report;
 pub mod bends;
@@ -166,12 +192,9 @@ pub mod isas;
 pub mod normal_angles;
 pub mod star;
 mod teapot;
-mod twin;
 
 #[allow(unused_imports, reason = "each test binary uses a different subset of the helpers")]
 pub use teapot::{keys_through, teapot_rig};
-#[allow(unused_imports, reason = "each test binary uses a different subset of the helpers")]
-pub use twin::twin_positions;
 
 /// A GPU deformer of f64 `positions` (converted to f32) with the normals of `faces` if given.
 pub fn deformer(

@@ -1,14 +1,8 @@
-//! Fitting and autorig: sweeps fitted to parts (§3), skeletons, sections, autorig on stars and real
-//! meshes, falloff bands.
+//! Fitting and autorig through the public API: fits of real parts and autorig end to end. The
+//! fitting machinery's own tests are unit tests of `fit` (`src/fit/tests`).
 
 #[path = "../common/mod.rs"]
 mod common;
 
 mod autorig_pipeline;
-mod autorig_star;
-mod falloff;
-mod falloff_meshes;
-mod falloff_rebind;
 mod fit;
-mod fit_sections;
-mod fit_skeleton;

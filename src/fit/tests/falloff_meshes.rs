@@ -179,7 +179,7 @@ fn gpu_matches_reference(name: &str, mesh: &Mesh, rig: &Rig) {
     deformer.deform(&posed).unwrap();
     let gpu = deformer.read_positions().unwrap();
     let reference = cpu::packed(&reference);
-    let twin = common::twin_positions(rig, mesh, &bindings, &keys);
+    let twin = super::twin::twin_positions(rig, mesh, &bindings, &keys);
     let diagonal = mesh.diagonal() as f32;
     for (pair, a, b) in
         [("twin vs f64", &twin, &reference), ("GPU vs twin", &gpu, &twin), ("GPU vs f64", &gpu, &reference)]

@@ -1,3 +1,12 @@
+mod autorig;
+mod autorig_star;
+mod falloff;
+mod falloff_meshes;
+mod falloff_rebind;
+mod fit_sections;
+mod fit_skeleton;
+mod twin;
+
 use std::f64::consts::TAU;
 
 use glam::{DQuat, DVec3};

@@ -202,14 +202,14 @@ fn twin_and_gpu_match_the_f64_reference_with_falloff() {
         let bindings = rig.bind_mesh(&mesh, &owners, &|_| {});
         let keys = turn_key0(&rig, sweep, DQuat::from_rotation_x(0.8) * DQuat::from_rotation_z(0.6));
         let reference = cpu::packed(&deform(&rig, &bindings, &mesh, &keys));
-        let twin = common::twin_positions(&rig, &mesh, &bindings, &keys);
+        let twin = super::twin::twin_positions(&rig, &mesh, &bindings, &keys);
         let (error, ulps, at) = common::worst_f32(&reference, &twin);
         eprintln!("{name}: twin vs f64 {:.2e} × diagonal, {ulps} ULP, at vertex {}", error / diagonal, at / 3);
         assert!(error <= 1e-5 * diagonal, "{name}: twin vs f64 {error:e} at vertex {}", at / 3);
         // Round trip at rest, falloff on.
         let rest = cpu::packed(&mesh.positions);
         let rest_keys: Vec<Vec<Key>> = rig.sweeps().iter().map(|s| s.keys.clone()).collect();
-        let back = common::twin_positions(&rig, &mesh, &bindings, &rest_keys);
+        let back = super::twin::twin_positions(&rig, &mesh, &bindings, &rest_keys);
         let (error, _, at) = common::worst_f32(&rest, &back);
         assert!(error <= 1e-5 * diagonal, "{name}: twin round trip {error:e} at vertex {}", at / 3);
         let Some(context) = common::gpu() else { continue };

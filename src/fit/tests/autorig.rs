@@ -1,0 +1,250 @@
+//! `fit::autorig`: the protrusions found on a sphere (none), the bunny's ears, spot's legs, the
+//! chair's legs, the armadillo's limbs and the teapot's spout and handle, and the same parts on a
+//! rigidly moved mesh. The command's report and rig file are tested with the command line.
+
+use crate::common;
+
+use glam::{DQuat, DVec3};
+use sweepffd::fit::autorig::{Autorig, AutorigOptions, RiggedPart, autorig};
+use sweepffd::fit::least_squares::fitted_radii;
+use sweepffd::fit::part::Part;
+use sweepffd::fit::quality::measure;
+use sweepffd::fit::{FitError, OptionError, largest_connected};
+use sweepffd::mesh::Mesh;
+use sweepffd::sweep::{Key, Sweep};
+
+use common::autorig_report::print_parts;
+use common::sphere;
+
+#[test]
+fn a_sphere_has_no_protrusions() {
+    let rigged = autorig(&sphere(48, 96), &AutorigOptions::default()).unwrap();
+    assert!(rigged.parts.is_empty(), "{} parts", rigged.parts.len());
+    assert!(rigged.document().sweeps.is_empty());
+}
+
+#[test]
+fn bad_options_are_refused() {
+    let options = AutorigOptions { min_length: 0.0, ..AutorigOptions::default() };
+    let error = autorig(&sphere(8, 16), &options).unwrap_err();
+    assert_eq!(error, FitError::Options(OptionError::MinLength(0.0)));
+    assert_eq!(error.to_string(), "min_length must be a positive fraction of the mesh's size, found 0");
+}
+
+/// The bunny's ears, as the fit tests select them: the front ear (bending towards −z) and
+/// the back ear.
+fn bunny_ears(mesh: &Mesh) -> [(&'static str, Vec<u32>); 2] {
+    [
+        ("front ear", largest_connected(mesh, |p| p.z < -0.012 && p.x < -0.055 && p.y > 0.13)),
+        ("back ear", largest_connected(mesh, |p| p.x > -0.055 && p.x < 0.0 && p.y > 0.148 && p.z < 0.01)),
+    ]
+}
+
+#[test]
+fn the_bunny_gets_its_two_ears_each_with_its_tip() {
+    let Some(path) = common::shared_mesh("bunny_stanford_zipper.obj") else { return };
+    let mesh = Mesh::load(&path).unwrap();
+    let rigged = autorig(&mesh, &AutorigOptions::default()).unwrap();
+    print_parts("bunny", &mesh, &rigged);
+    for part in &rigged.parts {
+        assert_eq!(part.fit.quality.without_root, 0, "{}: every owned vertex binds with a root", part.name);
+    }
+    assert_eq!(rigged.parts.len(), 2);
+    for (ear, selected) in bunny_ears(&mesh) {
+        // The part whose tip lies in the ear holds most of the ear as the fit tests select it.
+        let owner = rigged.parts.iter().find(|p| selected.binary_search(&p.tip).is_ok());
+        let owner = owner.unwrap_or_else(|| panic!("no part has its tip in the {ear}"));
+        let shared = selected.iter().filter(|v| owner.vertices.binary_search(v).is_ok()).count();
+        let share = shared as f64 / selected.len() as f64;
+        eprintln!("{ear}: {} holds {:.0}% of its {} vertices", owner.name, 100.0 * share, selected.len());
+        assert!(share >= 0.8, "{ear}: {} holds {shared} of its {} vertices", owner.name, selected.len());
+        // The front ear within 10%; the back ear, whose cupped sections are crescents (the fit
+        // reports them), within 15%.
+        let crescents = owner.fit.sections.iter().any(|s| s.several_crossings > 0);
+        let target = if ear == "front ear" { TARGET } else { NOT_STAR_TARGET };
+        assert!(ear == "front ear" || crescents, "{ear}: the fit reports its crescent sections");
+        assert!(owner.fit.quality.rms_d <= target, "{ear}: {:?}", owner.fit.quality);
+    }
+}
+
+/// `mesh` (named `name`) and a rigidly moved copy give the same parts, with the moved keys
+/// (centers within 1e-6 of each part's length), and the same mesh twice the same rig.
+fn moved_mesh_gets_the_moved_rig(name: &str, mesh: &Mesh) {
+    let rotation = DQuat::from_axis_angle(DVec3::new(0.2, 0.9, -0.4).normalize(), 2.3);
+    let translation = DVec3::new(-3.0, 0.5, 10.0);
+    let mut moved = mesh.clone();
+    for p in &mut moved.positions {
+        *p = rotation * *p + translation;
+    }
+    let here = autorig(mesh, &AutorigOptions::default()).unwrap();
+    let there = autorig(&moved, &AutorigOptions::default()).unwrap();
+    assert_eq!(here.parts.len(), there.parts.len(), "{name}");
+    for (a, b) in here.parts.iter().zip(&there.parts) {
+        assert_eq!(a.vertices, b.vertices, "{name} {}", a.name);
+        let length: f64 = a.fit.keys.windows(2).map(|w| w[0].center.distance(w[1].center)).sum();
+        let worst = a
+            .fit
+            .keys
+            .iter()
+            .zip(&b.fit.keys)
+            .map(|(k, m)| (rotation * k.center + translation).distance(m.center))
+            .fold(0.0, f64::max);
+        eprintln!("moved {name} {}: worst key center {:.2e} of the part's length", a.name, worst / length);
+        assert!(worst <= 1e-6 * length, "{name} {}: {worst} of {length}", a.name);
+    }
+    assert_eq!(autorig(mesh, &AutorigOptions::default()).unwrap().document(), here.document(), "{name}");
+}
+
+#[test]
+fn a_rigidly_moved_bunny_gets_the_same_parts_and_the_moved_keys() {
+    let Some(path) = common::shared_mesh("bunny_stanford_zipper.obj") else { return };
+    moved_mesh_gets_the_moved_rig("bunny", &Mesh::load(&path).unwrap());
+}
+
+#[test]
+fn a_rigidly_moved_spot_gets_the_same_legs_and_the_moved_keys() {
+    let Some(path) = common::shared_mesh("spot_triangulated.obj") else { return };
+    moved_mesh_gets_the_moved_rig("spot", &Mesh::load(&path).unwrap());
+}
+
+/// The chair's four legs (their tips on the floor, y ≈ 0), and its back, whose flat panel no
+/// sweep fits closely.
+#[test]
+fn the_chair_gets_its_four_legs() {
+    let Some(path) = common::shared_mesh("chair.off") else { return };
+    let mesh = Mesh::load(&path).unwrap();
+    let rigged = autorig(&mesh, &AutorigOptions::default()).unwrap();
+    print_parts("chair", &mesh, &rigged);
+    let legs = rigged.parts.iter().filter(|p| mesh.positions[p.tip as usize].y < 0.05).collect::<Vec<_>>();
+    assert_eq!(legs.len(), 4);
+    assert!(legs.iter().all(|p| p.fit.quality.rms_d <= 0.10), "the legs fit within 10%");
+}
+
+/// The vertex of `mesh` that maximizes `score`, among those that `inside` accepts.
+fn extreme(mesh: &Mesh, inside: impl Fn(DVec3) -> bool, score: impl Fn(DVec3) -> f64) -> u32 {
+    (0..mesh.positions.len() as u32)
+        .filter(|&v| inside(mesh.positions[v as usize]))
+        .max_by(|&a, &b| score(mesh.positions[a as usize]).total_cmp(&score(mesh.positions[b as usize])))
+        .unwrap()
+}
+
+/// The issue's fit target: RMS |d| within 10% of the mean radius, or 15% for a part with
+/// sections that are not star-shaped around any center (the fit reports them).
+const TARGET: f64 = 0.10;
+/// See [`TARGET`].
+const NOT_STAR_TARGET: f64 = 0.15;
+
+/// The part of `rigged` holding vertex `tip`, checked against its fit target ([`TARGET`], or
+/// [`NOT_STAR_TARGET`] where the fit reports sections that are not star-shaped), with every
+/// owned vertex binding with a root.
+fn part_at<'a>(mesh: &Mesh, rigged: &'a Autorig, name: &str, tip: u32) -> &'a RiggedPart {
+    let part = rigged.parts.iter().find(|p| p.vertices.binary_search(&tip).is_ok());
+    let part = part.unwrap_or_else(|| panic!("{name}: no part holds its tip, vertex {tip}"));
+    let q = part.fit.quality;
+    let crescents = part.fit.sections.iter().filter(|s| s.several_crossings > 0).count();
+    let target = if crescents > 0 { NOT_STAR_TARGET } else { TARGET };
+    eprintln!(
+        "{name}: {} ({} vertices), RMS |d| {:.2}% (target {:.0}%), max {:.1}%, {crescents} of {} sections not \
+         star-shaped, {} keys, {:.3} s",
+        part.name,
+        part.vertices.len(),
+        100.0 * q.rms_d,
+        100.0 * target,
+        100.0 * q.max_d,
+        part.fit.sections.len(),
+        part.fit.keys.len(),
+        part.seconds
+    );
+    assert_eq!(q.without_root, 0, "{name}: every owned vertex binds with a root");
+    assert!(q.rms_d <= target, "{name}: {q:?}");
+    // Between the vertices too: at the centroids of the part's triangles.
+    let between = centroid_rms(mesh, part, &part.fit.keys);
+    eprintln!("{name}: RMS |d| at the triangles' centroids {:.2}%", 100.0 * between);
+    assert!(between <= target, "{name}: RMS |d| {between} at the triangles' centroids");
+    part
+}
+
+/// RMS |d| / mean radius of the sweep of `keys` at the centroids of `part`'s triangles.
+fn centroid_rms(mesh: &Mesh, part: &RiggedPart, keys: &[Key]) -> f64 {
+    let centroids = Part::new(mesh, &part.vertices).triangle_centroids();
+    measure(&Sweep::try_new(keys, None).unwrap(), &centroids).quality.rms_d
+}
+
+/// Spot's four legs, each holding its hoof's lowest vertex (its head is towards −z, its front
+/// legs at z ≈ 0.06, its hind legs at z ≈ 0.79); the head, horns and ears are not found (their
+/// persistence, 0.04–0.07 of its size for the horns and ears, is under `--min-length`; the
+/// head's level sets never open into the body before its own reach).
+#[test]
+fn spot_gets_its_four_legs() {
+    let Some(path) = common::shared_mesh("spot_triangulated.obj") else { return };
+    let mesh = Mesh::load(&path).unwrap();
+    let rigged = autorig(&mesh, &AutorigOptions::default()).unwrap();
+    print_parts("spot", &mesh, &rigged);
+    assert_eq!(rigged.parts.len(), 4, "four legs and nothing else");
+    let mut owners = Vec::new();
+    for (leg, sx, z0) in
+        [("front +x", 1.0, 0.06), ("front −x", -1.0, 0.06), ("hind +x", 1.0, 0.79), ("hind −x", -1.0, 0.79)]
+    {
+        let hoof = extreme(&mesh, |p| p.x * sx > 0.0 && (p.z - z0).abs() < 0.25, |p| -p.y);
+        let part = part_at(&mesh, &rigged, &format!("spot {leg} leg"), hoof);
+        owners.push(part.name.clone());
+        // Radii fitted to the few vertices alone pass through them and bulge between: the
+        // hind legs (83 vertices, 192 radii) would miss the target at their centroids.
+        if leg.starts_with("hind") {
+            let before = &part.fit.steps[part.fit.steps.len() - 2].keys;
+            let sweep = Sweep::try_new(before, None).unwrap();
+            let vertices: Vec<DVec3> = part.vertices.iter().map(|&v| mesh.positions[v as usize]).collect();
+            let radii = fitted_radii(&sweep, before, &vertices).unwrap();
+            let keys: Vec<Key> = before.iter().zip(radii).map(|(k, radii)| Key { radii, ..k.clone() }).collect();
+            let bulging = centroid_rms(&mesh, part, &keys);
+            eprintln!("spot {leg} leg: radii fitted to the vertices alone: {:.2}% at the centroids", 100.0 * bulging);
+            assert!(bulging > TARGET, "spot {leg} leg: {bulging}");
+        }
+    }
+    owners.sort();
+    owners.dedup();
+    assert_eq!(owners.len(), 4, "one part per leg");
+}
+
+/// The armadillo's four limbs, two ears and tail, each part holding the limb's extreme vertex
+/// (a foot's lowest, a hand's outermost, an ear's highest, the tail's rearmost), and no part
+/// on the head itself.
+#[test]
+fn the_armadillo_gets_its_limbs_ears_and_tail() {
+    let Some(path) = common::shared_mesh("armadillo_50k.obj") else { return };
+    let mesh = Mesh::load(&path).unwrap();
+    let rigged = autorig(&mesh, &AutorigOptions::default()).unwrap();
+    print_parts("armadillo", &mesh, &rigged);
+    let limbs: [(&str, u32); 7] = [
+        ("foot −x", extreme(&mesh, |p| p.x < 0.0, |p| -p.y)),
+        ("foot +x", extreme(&mesh, |p| p.x > 0.0, |p| -p.y)),
+        ("hand −x", extreme(&mesh, |p| p.y > 40.0, |p| -p.x)),
+        ("hand +x", extreme(&mesh, |p| p.y > 40.0, |p| p.x)),
+        ("ear −x", extreme(&mesh, |p| p.x < -10.0 && p.x > -35.0, |p| p.y)),
+        ("ear +x", extreme(&mesh, |p| p.x > 10.0 && p.x < 35.0, |p| p.y)),
+        ("tail", extreme(&mesh, |_| true, |p| p.z)),
+    ];
+    let mut owners: Vec<String> = limbs
+        .iter()
+        .map(|&(limb, tip)| part_at(&mesh, &rigged, &format!("armadillo {limb}"), tip).name.clone())
+        .collect();
+    owners.sort();
+    owners.dedup();
+    assert_eq!(owners.len(), 7, "one part per limb, ear and tail");
+    assert_eq!(rigged.parts.len(), 7, "and nothing else (no part on the head)");
+}
+
+/// The Newell teapot (patches, unwelded seams; the spout a component of its own, the handle
+/// touching the pot at one vertex): its spout and handle, each holding its outermost vertex;
+/// the lid's flange, found too, fits no sweep and is left out.
+#[test]
+fn the_teapot_gets_its_spout_and_handle() {
+    let Some(path) = common::shared_mesh("teapot_newell.obj") else { return };
+    let mesh = Mesh::load(&path).unwrap();
+    let rigged = autorig(&mesh, &AutorigOptions::default()).unwrap();
+    print_parts("teapot", &mesh, &rigged);
+    let spout = part_at(&mesh, &rigged, "teapot spout", extreme(&mesh, |_| true, |p| p.x));
+    let handle = part_at(&mesh, &rigged, "teapot handle", extreme(&mesh, |_| true, |p| -p.x));
+    assert_ne!(spout.name, handle.name);
+    assert_eq!(rigged.parts.len(), 2, "{} parts", rigged.parts.len());
+}
