@@ -16,6 +16,7 @@
 //! - [`layout`]: the GPU buffer layouts shared with the WGSL, and [`UNOWNED`].
 //! - [`limits`]: the largest inputs accepted, checked before allocating.
 //! - [`atomic_file`]: files written whole or not at all.
+//! - [`names`]: names in error messages, a few listed and the rest counted.
 //! - [`sweep`]: the f64 sweep surface model, C(t), R(t), r(θ, t), and its volume (Eq. 1).
 //! - [`mesh`]: meshes in code: positions, faces, groups, and their measures.
 //! - `formats` (feature `formats`): mesh files in and out, OBJ, PLY, OFF and glTF, written back
@@ -120,6 +121,7 @@ pub mod gpu;
 pub mod layout;
 pub mod limits;
 pub mod mesh;
+pub mod names;
 pub mod normals;
 pub mod rig;
 pub mod sweep;

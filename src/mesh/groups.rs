@@ -1,12 +1,18 @@
 //! Vertices of named face groups.
 
-use super::Mesh;
+use super::{FaceGroup, Mesh};
 
 impl Mesh {
     /// The vertices used by the faces of the group `name`, increasing and deduplicated;
     /// `None` if no group has that name (the first one counts if several do).
     pub fn group_vertices(&self, name: &str) -> Option<Vec<u32>> {
         let group = self.groups.iter().find(|g| g.name == name)?;
+        Some(self.face_group_vertices(group))
+    }
+
+    /// The vertices used by the faces of `group` (one of [`Mesh::groups`]), increasing and
+    /// deduplicated.
+    pub fn face_group_vertices(&self, group: &FaceGroup) -> Vec<u32> {
         let mut vertices: Vec<u32> = group
             .faces
             .iter()
@@ -15,7 +21,7 @@ impl Mesh {
             .collect();
         vertices.sort_unstable();
         vertices.dedup();
-        Some(vertices)
+        vertices
     }
 }
 

@@ -4,6 +4,8 @@
 //! name and its vertex indices), without a [`Mesh`]; [`Rig::owners`] is the same for a mesh's
 //! face groups, plus the check that no falloff is wider than the mesh.
 
+use std::collections::HashSet;
+
 use super::{Rig, RigError, RigErrorKind, RigSweep, VertexSelection};
 use crate::layout::UNOWNED;
 use crate::mesh::Mesh;
@@ -15,10 +17,24 @@ impl Rig {
     /// index out of range, a vertex claimed by two sweeps, or a falloff wider than the mesh.
     pub fn owners(&self, mesh: &Mesh, mesh_name: &str) -> Result<Vec<u32>, RigError> {
         self.check_falloffs_fit(mesh, mesh_name)?;
+        // Only the groups a sweep names are gathered: a file may have 100,000 groups.
+        let named: HashSet<&str> = self
+            .sweeps
+            .iter()
+            .filter_map(|sweep| match &sweep.vertices {
+                Some(VertexSelection::Groups(names)) => Some(names.iter().map(String::as_str)),
+                _ => None,
+            })
+            .flatten()
+            .collect();
         let groups: Vec<(&str, Vec<u32>)> = mesh
             .groups
             .iter()
-            .map(|group| (group.name.as_str(), mesh.group_vertices(&group.name).unwrap_or_default()))
+            .map(|group| {
+                let vertices =
+                    if named.contains(group.name.as_str()) { mesh.face_group_vertices(group) } else { Vec::new() };
+                (group.name.as_str(), vertices)
+            })
             .collect();
         let groups: Vec<(&str, &[u32])> = groups.iter().map(|(name, vertices)| (*name, vertices.as_slice())).collect();
         self.owners_of(mesh.positions.len(), &groups, mesh_name)
@@ -87,12 +103,11 @@ fn claimed_vertices(
             let mut vertices = Vec::new();
             for name in names {
                 let Some((_, members)) = groups.iter().find(|(group, _)| group == name) else {
-                    let available = groups.iter().map(|(group, _)| *group).collect::<Vec<_>>().join(", ");
                     return Err(RigErrorKind::UnknownGroup {
                         sweep: sweep.name.clone(),
-                        group: name.clone(),
+                        group: crate::names::shown(name),
                         mesh: mesh_name.to_string(),
-                        available: if available.is_empty() { "none".to_string() } else { available },
+                        available: crate::names::listed(groups.iter().map(|(group, _)| *group)),
                     });
                 };
                 vertices.extend_from_slice(members);

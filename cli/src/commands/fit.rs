@@ -146,8 +146,8 @@ fn select(mesh: &Mesh, args: &Args) -> Result<(VertexSelection, Vec<u32>), Box<d
             let mut vertices = Vec::new();
             for group in &args.groups {
                 let Some(members) = mesh.group_vertices(group) else {
-                    let available = mesh.groups.iter().map(|g| g.name.as_str()).collect::<Vec<_>>().join(", ");
-                    let available = if available.is_empty() { "none".to_string() } else { available };
+                    let available = sweepffd::names::listed(mesh.groups.iter().map(|g| g.name.as_str()));
+                    let group = sweepffd::names::shown(group);
                     return Err(
                         format!("{}: no group {group:?} (groups: {available})", args.mesh.mesh.display()).into()
                     );

@@ -33,7 +33,7 @@ pub fn select_part(mesh: &Mesh, seed: u32, face: usize, rule: PartRule, taken: &
     let part = match rule {
         PartRule::Group => {
             let group = mesh.groups.iter().find(|g| g.faces.binary_search(&(face as u32)).is_ok())?;
-            let members = mesh.group_vertices(&group.name)?;
+            let members = mesh.face_group_vertices(group);
             let vertices: Vec<u32> = members.iter().copied().filter(free).collect();
             let selection = if vertices.len() == members.len() {
                 VertexSelection::Groups(vec![group.name.clone()])

@@ -9,6 +9,7 @@ mod bad_input;
 mod fuzz_regressions;
 mod hostile_cli;
 mod hostile_gltf;
+mod hostile_groups;
 mod hostile_mesh;
 mod hostile_rig;
 mod mesh_formats;
