@@ -81,6 +81,10 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
     if !(options.min_length.is_finite() && options.min_length > 0.0) {
         return Err(FitError::Options(OptionError::MinLength(options.min_length)));
     }
+    // What autorig writes, sweepffd must read: no more parts than a rig may hold.
+    if options.max_parts > crate::limits::MAX_SWEEPS {
+        return Err(FitError::Options(OptionError::TooManyParts(options.max_parts)));
+    }
     let started = Instant::now();
     let (lo, hi) = mesh
         .positions

@@ -57,6 +57,9 @@ pub enum OptionError {
     Falloff(f64),
     #[error("min_length must be a positive fraction of the mesh's size, found {0}")]
     MinLength(f64),
+    /// More parts asked for than a rig may hold ([`crate::limits::MAX_SWEEPS`]).
+    #[error("max_parts {0} is over the limit of {max} sweeps per rig", max = crate::limits::MAX_SWEEPS)]
+    TooManyParts(usize),
 }
 
 impl OptionError {
@@ -69,6 +72,7 @@ impl OptionError {
             OptionError::Tolerance(_) => "tolerance",
             OptionError::Falloff(_) => "falloff",
             OptionError::MinLength(_) => "min_length",
+            OptionError::TooManyParts(_) => "max_parts",
         }
     }
 }

@@ -42,6 +42,7 @@ mod tests {
             (OptionError::Tolerance(-1.0), "--tolerance must be a positive number, found -1"),
             (OptionError::Falloff(f64::NAN), "--falloff must be a finite width of at least 0 (mesh units), found NaN"),
             (OptionError::MinLength(0.0), "--min-length must be a positive fraction of the mesh's size, found 0"),
+            (OptionError::TooManyParts(331), "--max-parts 331 is over the limit of 256 sweeps per rig"),
         ];
         for (error, expected) in cases {
             assert_eq!(fit_error(&FitError::Options(error)), expected);

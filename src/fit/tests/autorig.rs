@@ -29,6 +29,12 @@ fn bad_options_are_refused() {
     let error = autorig(&sphere(8, 16), &options).unwrap_err();
     assert_eq!(error, FitError::Options(OptionError::MinLength(0.0)));
     assert_eq!(error.to_string(), "min_length must be a positive fraction of the mesh's size, found 0");
+    // A rig may hold 256 sweeps: autorig never writes one that sweepffd refuses.
+    let options = AutorigOptions { max_parts: crate::limits::MAX_SWEEPS + 1, ..AutorigOptions::default() };
+    let error = autorig(&sphere(8, 16), &options).unwrap_err();
+    assert_eq!(error, FitError::Options(OptionError::TooManyParts(257)));
+    let options = AutorigOptions { max_parts: crate::limits::MAX_SWEEPS, ..AutorigOptions::default() };
+    assert!(autorig(&sphere(8, 16), &options).is_ok(), "the limit itself is allowed");
 }
 
 /// The bunny's ears, as the fit tests select them: the front ear (bending towards −z) and
