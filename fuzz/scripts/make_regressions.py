@@ -98,6 +98,13 @@ def main():
         "property float x\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
         "0 0 0 5\n1 0 0 5\n0 1 0 5\n3 0 1 2\n",
     )
+    # Issue 28: a NORMAL on POSITION's own accessor, which a faithful write would overwrite
+    # (first byte 4: GLB input), and an OBJ of a group before each of 2,000 faces.
+    primitive = {"attributes": {"POSITION": 0, "NORMAL": 0}}
+    doc = gltf_json([{"mesh": 0}], {"byteLength": 36}, None, primitive)
+    write("write_round_trip", "case28_aliased_normal.glb", b"\4" + glb(doc, TRIANGLE))
+    groups = "".join(f"g g{i}\nf 1 2 3\n" for i in range(2_000))
+    write("obj", "case28_many_groups.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n" + groups)
 
 
 if __name__ == "__main__":

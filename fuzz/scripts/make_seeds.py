@@ -163,6 +163,19 @@ def main(meshes, corpus):
     seeds[("gltf", "spot.glb")] = glb(doc, blob)
     doc, _ = gltf_document(v, fa, data_uri, NODES)
     seeds[("gltf", "spot.gltf")] = json.dumps(doc, indent=1)
+    # Accessors that alias: the NORMAL of every primitive on its POSITION accessor.
+    doc, blob = gltf_document(v, fa, None, NODES)
+    for mesh in doc["meshes"]:
+        for primitive in mesh["primitives"]:
+            primitive["attributes"]["NORMAL"] = primitive["attributes"]["POSITION"]
+    seeds[("gltf", "aliased_normal.glb")] = glb(doc, blob)
+    # Many groups: a `g` (or an `o`) before each face of a 16 × 16 grid.
+    grid = "".join(f"v {x} {y} 0\n" for y in range(17) for x in range(17))
+    for y in range(16):
+        for x in range(16):
+            a = 17 * y + x + 1
+            grid += f"{'g' if (x + y) % 2 else 'o'} part{16 * y + x}\nf {a} {a + 1} {a + 18} {a + 17}\n"
+    seeds[("obj", "many_groups.obj")] = grid
     for (target, name), data in seeds.items():
         write(os.path.join(corpus, target), name, data)
         # write_round_trip: the first byte picks the format (obj 0, ply 1, off 2, gltf 3, glb 4).

@@ -719,3 +719,51 @@ fn only_the_error_reaches_stderr() {
         "error: deep.glb: node 1025 is at depth 1025 of the node hierarchy, deeper than the limit of 1024 (MAX_GLTF_NODE_DEPTH in sweepffd::limits)\n"
     );
 }
+
+/// A triangle whose NORMAL is POSITION's own accessor, or a second accessor on POSITION's
+/// buffer view: writing the normals back would overwrite the positions (the file read back
+/// 4.2 off). The write is refused naming both accessors, and nothing is written; interleaved
+/// attributes in one buffer view (no byte shared) still write faithfully.
+#[test]
+fn aliased_normals_are_refused_naming_the_accessors() {
+    let dir = tempfile::tempdir().unwrap();
+    let moved = |mesh: &LoadedMesh| -> Vec<DVec3> { mesh.mesh.positions.iter().map(|&p| p * 1.5).collect() };
+    for (case, normal) in [("same accessor", 0), ("same buffer view", 1)] {
+        let (mut document, data) = triangle();
+        document["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = json!(normal);
+        document["accessors"][1]["bufferView"] = json!(0);
+        let mesh = load(dir.path(), "aliased.glb", &glb(&document, &data)).unwrap();
+        let out = dir.path().join("out.glb");
+        let error = mesh.save(&out, &moved(&mesh)).unwrap_err().to_string();
+        assert_eq!(
+            error,
+            format!(
+                "cannot write {}: accessor 0 (POSITION) and accessor {normal} (NORMAL) share bytes of buffer 0: writing \
+                 one would overwrite the other (write .obj, .ply or .off instead)",
+                out.display()
+            ),
+            "{case}"
+        );
+        assert!(!out.exists(), "{case}");
+    }
+    // POSITION and NORMAL interleaved at a stride of 24 share a buffer view but no byte.
+    let mut data = Vec::new();
+    for (p, n) in [([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]), ([1.0, 0.0, 0.0], [0.0, 0.0, 1.0]), ([0.0, 1.0, 0.0], [0.0, 0.0, 1.0])]
+    {
+        data.extend(f32_bytes(&p));
+        data.extend(f32_bytes(&n));
+    }
+    let (mut document, _) = triangle();
+    document["meshes"][0]["primitives"][0]["attributes"] = json!({"POSITION": 0, "NORMAL": 1});
+    document["meshes"][0]["primitives"][0].as_object_mut().unwrap().remove("indices");
+    document["accessors"][1]["bufferView"] = json!(0);
+    document["accessors"][1]["byteOffset"] = json!(12);
+    document["bufferViews"] = json!([{"buffer": 0, "byteOffset": 0, "byteLength": 72, "byteStride": 24}]);
+    document["buffers"] = json!([{"byteLength": 72}]);
+    document["accessors"].as_array_mut().unwrap().truncate(2);
+    let mesh = load(dir.path(), "interleaved.glb", &glb(&document, &data)).unwrap();
+    let out = dir.path().join("interleaved-out.glb");
+    let positions = moved(&mesh);
+    mesh.save(&out, &positions).unwrap();
+    reads_back(&out, &positions);
+}

@@ -38,6 +38,7 @@
 //! area-weighted NORMAL and u32 indices of the fan-triangulated faces.
 
 mod accessor;
+mod aliasing;
 mod buffers;
 mod container;
 mod error;
@@ -103,6 +104,6 @@ pub(crate) struct PrimitiveRecord {
     pub block: usize,
     /// Its faces (triangles) in the mesh.
     pub faces: std::ops::Range<usize>,
-    /// Its NORMAL accessor, when dense float VEC3: (accessor count, where it lies).
-    pub normal: Option<(usize, Target)>,
+    /// Its NORMAL accessor, when dense float VEC3: (accessor index, its count, where it lies).
+    pub normal: Option<(usize, usize, Target)>,
 }

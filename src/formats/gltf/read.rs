@@ -162,7 +162,7 @@ impl Builder {
             return Ok(());
         }
         self.group(mesh).faces.extend(faces.clone().map(|f| f as u32));
-        let normal = primitive.get(&Semantic::Normals).and_then(|a| Some((a.count(), dense_target(&a)?)));
+        let normal = primitive.get(&Semantic::Normals).and_then(|a| Some((a.index(), a.count(), dense_target(&a)?)));
         self.primitives.push(PrimitiveRecord { block, faces, normal });
         Ok(())
     }

@@ -7,6 +7,7 @@ use std::io::{self, Write};
 use glam::{DMat4, DVec3};
 use serde_json::{Value, json};
 
+use super::aliasing::{self, Store};
 use super::generic::{bounds, first_non_finite};
 use super::{Block, GltfFile, Target, container, normals};
 use crate::formats::loaded::Original;
@@ -28,7 +29,8 @@ use crate::formats::loaded::Original;
 /// # Errors
 ///
 /// `InvalidData` when a node's world matrix is not invertible, a position does not fit in
-/// f32, or two instances of one POSITION accessor moved differently; any error of `out`.
+/// f32, two instances of one POSITION accessor moved differently, or two of the accessors
+/// written share bytes ([`aliasing`]); any error of `out`.
 pub(crate) fn write_faithful(
     out: &mut impl Write,
     original: &Original<GltfFile>,
@@ -39,6 +41,8 @@ pub(crate) fn write_faithful(
     let mut json = file.json.clone();
     let mut buffers = file.buffers.clone();
     let mut written = HashSet::new();
+    let buffer_lengths: Vec<usize> = buffers.iter().map(Vec::len).collect();
+    let mut stores = Vec::new();
     let mut moved = vec![false; positions.len()];
     let mut new_local: Vec<Option<Vec<[f32; 3]>>> = Vec::with_capacity(file.blocks.len());
     for block in &file.blocks {
@@ -50,9 +54,13 @@ pub(crate) fn write_faithful(
             new_local.push(None);
             continue;
         }
-        let local = to_local(block, old, new, &mut moved[range])?;
+        let local = to_local(block, old, new, &mut moved[range.clone()])?;
         match block.target {
-            Some(target) => store(&mut buffers, target, &local, &moved[block.first..])?,
+            Some(target) => {
+                store(&mut buffers, target, &local, &moved[block.first..])?;
+                let elements = moved[range].iter().enumerate().filter(|(_, m)| **m).map(|(i, _)| i).collect();
+                stores.push(Store { accessor: block.accessor, semantic: "POSITION", target, elements });
+            }
             None => make_dense(&mut json, &mut buffers, block.accessor, &local),
         }
         let (min, max) = bounds(&local);
@@ -64,7 +72,8 @@ pub(crate) fn write_faithful(
     }
     check_instances(file, original, positions, &new_local)?;
     for primitive in &file.primitives {
-        let (Some((count, target)), Some(Some(local))) = (primitive.normal, new_local.get(primitive.block)) else {
+        let (Some((accessor, count, target)), Some(Some(local))) = (primitive.normal, new_local.get(primitive.block))
+        else {
             continue;
         };
         let first = file.blocks[primitive.block].first;
@@ -96,7 +105,10 @@ pub(crate) fn write_faithful(
         }
         let keep: Vec<bool> = dirty.iter().zip(&unit).map(|(&d, n)| d && *n != [0.0; 3]).collect();
         store(&mut buffers, target, &unit, &keep)?;
+        let elements = keep.iter().enumerate().filter(|(_, k)| **k).map(|(i, _)| i).collect();
+        stores.push(Store { accessor, semantic: "NORMAL", target, elements });
     }
+    aliasing::check(&buffer_lengths, &stores)?;
     container::write(out, json, &buffers, binary)
 }
 
