@@ -57,6 +57,19 @@ pub enum OptionError {
     Falloff(f64),
     #[error("min_length must be a positive fraction of the mesh's size, found {0}")]
     MinLength(f64),
+    /// More keys or radii than the part's vertices determine: at most the larger of the
+    /// default and the part's vertex count, so that a fit's cost follows its part.
+    #[error("{field} {value} is more than a part of {vertices} vertices determines (at most {most})")]
+    BeyondPart {
+        /// The option: `keys`, `max_keys` or `radii`.
+        field: &'static str,
+        /// Its value.
+        value: usize,
+        /// The most the part allows.
+        most: usize,
+        /// The part's vertex count.
+        vertices: usize,
+    },
     /// More parts asked for than a rig may hold ([`crate::limits::MAX_SWEEPS`]).
     #[error("max_parts {0} is over the limit of {max} sweeps per rig", max = crate::limits::MAX_SWEEPS)]
     TooManyParts(usize),
@@ -73,6 +86,7 @@ impl OptionError {
             OptionError::Falloff(_) => "falloff",
             OptionError::MinLength(_) => "min_length",
             OptionError::TooManyParts(_) => "max_parts",
+            OptionError::BeyondPart { field, .. } => field,
         }
     }
 }

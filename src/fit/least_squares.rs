@@ -22,7 +22,7 @@
 use glam::DVec3;
 
 use crate::bind::SweepBinder;
-use crate::sweep::radius::RadiusField;
+use crate::sweep::radius::{RadiusField, angular_cell};
 use crate::sweep::{Key, Sweep};
 
 /// Keys and angular nodes kept on either side of a vertex's cell.
@@ -51,18 +51,22 @@ pub fn fitted_radii(sweep: &Sweep, keys: &[Key], positions: &[DVec3]) -> Option<
     }
     let knots = sweep.knots().to_vec();
     let (n, m) = (keys.len(), keys[0].radii.len());
+    // a_i: the field of key i's unit radii, three nodes around (the fewest a field takes; a
+    // constant row interpolates to itself), so that memory grows with n² rather than n²·M.
     let along: Vec<RadiusField> = (0..n)
         .map(|i| {
-            let rows: Vec<Vec<f64>> = (0..n).map(|k| vec![f64::from(u8::from(k == i)); m]).collect();
-            RadiusField::new(&knots, &rows.iter().map(Vec::as_slice).collect::<Vec<_>>())
+            let rows: Vec<[f64; 3]> = (0..n).map(|k| [f64::from(u8::from(k == i)); 3]).collect();
+            RadiusField::new(&knots, &rows.iter().map(<[f64; 3]>::as_slice).collect::<Vec<_>>())
         })
         .collect();
-    let around: Vec<RadiusField> = (0..m)
-        .map(|j| {
-            let row: Vec<f64> = (0..m).map(|q| f64::from(u8::from(q == j))).collect();
-            RadiusField::new(&[0.0, 1.0], &[&row, &row])
-        })
-        .collect();
+    // b_j: the periodic cardinal spline of node 0 on uniform nodes, shifted: b_j's patch on
+    // cell c is b_0's on cell c − j, so one field serves every node (M rather than M² patches).
+    let node: Vec<f64> = (0..m).map(|q| f64::from(u8::from(q == 0))).collect();
+    let around = RadiusField::new(&[0.0, 1.0], &[&node, &node]);
+    let basis = |j: usize, theta: f64| {
+        let (cell, phi) = angular_cell(theta, m);
+        around.patch(0, (cell + m - j) % m).value(0.0, phi)
+    };
     let binder = SweepBinder::new(sweep);
     let intervals = knots.len() - 1;
     let rows: Vec<Row> = positions
@@ -81,7 +85,7 @@ pub fn fitted_radii(sweep: &Sweep, keys: &[Key], positions: &[DVec3]) -> Option<
                     if offset >= m {
                         break;
                     }
-                    entries.push((i * m + j, a * around[j].value(0, 0.0, b.theta)));
+                    entries.push((i * m + j, a * basis(j, b.theta)));
                 }
             }
             Row { entries, y: b.d + sweep.radius(b.theta, b.t), theta: b.theta, t: b.t }

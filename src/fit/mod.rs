@@ -134,6 +134,25 @@ impl Default for FitOptions {
 }
 
 impl FitOptions {
+    /// Checks the keys and radii against what a part of `vertices` vertices determines: at
+    /// most the larger of the default and `vertices` each (the keys of the default
+    /// [`FitOptions::max_keys`]), so that a fit's time and memory follow its part.
+    fn check_for_part(&self, vertices: usize) -> Result<(), FitError> {
+        let defaults = FitOptions::default();
+        let checks = [
+            ("keys", self.keys, defaults.max_keys),
+            ("max_keys", self.max_keys, defaults.max_keys),
+            ("radii", self.radii, defaults.radii),
+        ];
+        for (field, value, default) in checks {
+            let most = default.max(vertices);
+            if value > most {
+                return Err(FitError::Options(OptionError::BeyondPart { field, value, most, vertices }));
+            }
+        }
+        Ok(())
+    }
+
     fn check(&self) -> Result<(), FitError> {
         let fail = |error: OptionError| Err(FitError::Options(error));
         if self.keys < 2 {
@@ -263,6 +282,7 @@ pub fn fit(mesh: &Mesh, vertices: &[u32], options: &FitOptions) -> Result<Fit, F
     if part.triangles.is_empty() {
         return Err(FitError::NoFaces);
     }
+    options.check_for_part(part.positions.len())?;
     let (mut fitted, mut steps) = refine::run(&part, options)?;
     let mut rim = attached::rim_lengths(&part, &fitted.sweep);
     if options.axis.is_none() && rim[1] > rim[0] {

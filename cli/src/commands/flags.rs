@@ -43,6 +43,10 @@ mod tests {
             (OptionError::Falloff(f64::NAN), "--falloff must be a finite width of at least 0 (mesh units), found NaN"),
             (OptionError::MinLength(0.0), "--min-length must be a positive fraction of the mesh's size, found 0"),
             (OptionError::TooManyParts(331), "--max-parts 331 is over the limit of 256 sweeps per rig"),
+            (
+                OptionError::BeyondPart { field: "max_keys", value: 49, most: 48, vertices: 48 },
+                "--max-keys 49 is more than a part of 48 vertices determines (at most 48)",
+            ),
         ];
         for (error, expected) in cases {
             assert_eq!(fit_error(&FitError::Options(error)), expected);

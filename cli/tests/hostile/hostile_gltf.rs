@@ -748,7 +748,8 @@ fn aliased_normals_are_refused_naming_the_accessors() {
     }
     // POSITION and NORMAL interleaved at a stride of 24 share a buffer view but no byte.
     let mut data = Vec::new();
-    for (p, n) in [([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]), ([1.0, 0.0, 0.0], [0.0, 0.0, 1.0]), ([0.0, 1.0, 0.0], [0.0, 0.0, 1.0])]
+    for (p, n) in
+        [([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]), ([1.0, 0.0, 0.0], [0.0, 0.0, 1.0]), ([0.0, 1.0, 0.0], [0.0, 0.0, 1.0])]
     {
         data.extend(f32_bytes(&p));
         data.extend(f32_bytes(&n));

@@ -8,6 +8,7 @@ mod allocation_bombs;
 mod bad_input;
 mod fuzz_regressions;
 mod hostile_cli;
+mod hostile_fit;
 mod hostile_gltf;
 mod hostile_groups;
 mod hostile_mesh;

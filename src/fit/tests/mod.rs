@@ -159,8 +159,16 @@ fn bad_options_and_parts_are_refused() {
     assert_eq!(keys, OptionError::TooManyKeys(2000));
     let max_keys = option(FitOptions { max_keys: usize::MAX, ..FitOptions::default() });
     assert_eq!(max_keys.to_string(), "max_keys 18446744073709551615 is over the limit of 1024 keys per sweep");
+    // The part has 128 vertices: more keys or radii than that (and than the defaults) are
+    // refused; as many are allowed.
+    let beyond = option(FitOptions { radii: 129, ..FitOptions::default() });
+    assert_eq!(beyond, OptionError::BeyondPart { field: "radii", value: 129, most: 128, vertices: 128 });
+    assert_eq!(beyond.to_string(), "radii 129 is more than a part of 128 vertices determines (at most 128)");
+    let max_keys_beyond = option(FitOptions { max_keys: 129, ..FitOptions::default() });
+    assert_eq!(max_keys_beyond.field(), "max_keys");
+    assert!(fit(&mesh, &all, &FitOptions { radii: 128, ..FitOptions::default() }).is_ok());
     // The library names fields, never the command line's flags.
-    for error in [below, radii, keys, max_keys] {
+    for error in [below, radii, keys, max_keys, beyond] {
         assert!(!error.to_string().contains("--"), "{error}");
     }
     assert_eq!(with(FitOptions { axis: Some(vec![DVec3::ONE]), ..FitOptions::default() }), FitError::Axis);
