@@ -101,6 +101,19 @@ fn follow_links(path: &Path) -> io::Result<PathBuf> {
     Err(io::Error::new(io::ErrorKind::InvalidInput, format!("more than {MAX_LINKS} symbolic links to follow")))
 }
 
+/// The bytes of the target's name kept in its temporary file's name: file systems allow 255,
+/// and the rest of the temporary name takes at most 38.
+const TEMPORARY_NAME_BYTES: usize = 200;
+
+/// `name` cut on a character boundary to at most [`TEMPORARY_NAME_BYTES`] bytes.
+fn cut(name: &str) -> &str {
+    let mut end = name.len().min(TEMPORARY_NAME_BYTES);
+    while !name.is_char_boundary(end) {
+        end -= 1;
+    }
+    &name[..end]
+}
+
 /// A registered temporary file: removed (and unregistered) when dropped unless renamed.
 struct Temporary {
     path: PathBuf,
@@ -108,7 +121,8 @@ struct Temporary {
 
 impl Temporary {
     /// Creates and registers a new, empty temporary file beside `path`:
-    /// `.<name>.<pid>-<n>.tmp`.
+    /// `.<name>.<pid>-<n>.tmp`, the name cut to [`TEMPORARY_NAME_BYTES`] so that a target
+    /// whose own name is as long as a file system allows still has a temporary sibling.
     fn create(path: &Path) -> io::Result<(Temporary, File)> {
         let name = path
             .file_name()
@@ -120,9 +134,7 @@ impl Temporary {
         let mut last = None;
         for _ in 0..ATTEMPTS {
             let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-            let mut temp_name = std::ffi::OsString::from(".");
-            temp_name.push(name);
-            temp_name.push(format!(".{}-{n}.tmp", std::process::id()));
+            let temp_name = format!(".{}.{}-{n}.tmp", cut(&name.to_string_lossy()), std::process::id());
             let temp = dir.join(temp_name);
             // Created and listed under the lock: a signal handler never misses it.
             let mut registry = temporaries();
@@ -183,6 +195,21 @@ mod tests {
         write_atomically(&path, |w| w.write_all(b"new")).unwrap();
         assert_eq!(fs::read(&path).unwrap(), b"new");
         assert_eq!(entries(dir.path()), vec!["out.obj"]);
+    }
+
+    /// A name of 255 bytes, the most file systems allow: the temporary name once added 37
+    /// bytes to it ("File name too long").
+    #[test]
+    fn a_name_as_long_as_the_file_system_allows_is_written() {
+        let dir = tempfile::tempdir().unwrap();
+        for name in [format!("{}.obj", "a".repeat(251)), format!("{}.obj", "é".repeat(125))] {
+            let path = dir.path().join(&name);
+            write_atomically(&path, |w| w.write_all(b"new")).unwrap();
+            assert_eq!(fs::read(&path).unwrap(), b"new");
+            assert_eq!(entries(dir.path()), vec![name.clone()]);
+            fs::remove_file(&path).unwrap();
+        }
+        assert_eq!(cut(&"é".repeat(125)).len(), 200);
     }
 
     #[test]

@@ -29,6 +29,8 @@ pub enum EditError {
     VolumeNotConverged { rounds: usize, remaining: f64 },
     #[error("the volume rule cannot give sweep {sweep:?} the volume {target:.6e}")]
     VolumeUnreachable { sweep: String, target: f64 },
+    #[error("the volume rule `ratio` cannot keep sweep {sweep:?}'s volume in ratio: it had no volume before the edit")]
+    NoVolumeToKeep { sweep: String },
     #[error("the mesh volume rule needs a closed mesh bound to the rig")]
     MeshNeeded,
 }

@@ -278,6 +278,13 @@ fn keep_ratios(
         let mut worst = 0.0f64;
         let mut rescaled = Vec::with_capacity(order.len());
         for &(child, parent, rescale_child) in &order {
+            // A ratio needs both volumes: a sweep of zero radii has none to keep.
+            if let Some(&none) = [child, parent]
+                .iter()
+                .find(|&&s| before.sweeps[s].partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater))
+            {
+                return Err(EditError::NoVolumeToKeep { sweep: rig.sweeps()[none].name.clone() });
+            }
             let ratio = before.sweeps[child] / before.sweeps[parent];
             let (child_volume, parent_volume) =
                 (sweep_volume(rig, keys, child, shapes)?, sweep_volume(rig, keys, parent, shapes)?);

@@ -85,6 +85,7 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
     if options.max_parts > crate::limits::MAX_SWEEPS {
         return Err(FitError::Options(OptionError::TooManyParts(options.max_parts)));
     }
+    super::beyond_rig(mesh, 0..mesh.positions.len() as u32)?;
     let started = Instant::now();
     let (lo, hi) = mesh
         .positions

@@ -14,6 +14,13 @@ pub enum FitError {
     /// A selected vertex is not in the mesh.
     #[error("vertex {index} is out of range: the mesh has {count} vertices")]
     VertexOutOfRange { index: u32, count: usize },
+    /// A vertex lies beyond the coordinates a rig may hold
+    /// ([`MAX_RIG_COORDINATE`](crate::limits::MAX_RIG_COORDINATE)), so no sweep could reach it.
+    #[error(
+        "vertex {vertex} has the coordinate {value:e}, beyond the ±{:e} a rig may hold (limits::MAX_RIG_COORDINATE)",
+        crate::limits::MAX_RIG_COORDINATE
+    )]
+    BeyondRig { vertex: u32, value: f64 },
     /// Too few vertices to fit anything.
     #[error("the part has {0} vertices; a sweep needs at least 4")]
     TooFewVertices(usize),

@@ -269,12 +269,25 @@ impl Fit {
     }
 }
 
+/// `Err` naming the first of `vertices` (of `mesh`) with a coordinate beyond what a rig may
+/// hold.
+fn beyond_rig(mesh: &Mesh, vertices: impl Iterator<Item = u32>) -> Result<(), FitError> {
+    for vertex in vertices {
+        let p = mesh.positions[vertex as usize];
+        if let Some(value) = p.to_array().into_iter().find(|c| c.abs() > crate::limits::MAX_RIG_COORDINATE) {
+            return Err(FitError::BeyondRig { vertex, value });
+        }
+    }
+    Ok(())
+}
+
 /// Fits a control sweep to the part of `mesh` made of `vertices` (see the module docs).
 pub fn fit(mesh: &Mesh, vertices: &[u32], options: &FitOptions) -> Result<Fit, FitError> {
     options.check()?;
     if let Some(&index) = vertices.iter().find(|&&v| v as usize >= mesh.positions.len()) {
         return Err(FitError::VertexOutOfRange { index, count: mesh.positions.len() });
     }
+    beyond_rig(mesh, vertices.iter().copied())?;
     let part = Part::new(mesh, vertices);
     if part.positions.len() < 4 {
         return Err(FitError::TooFewVertices(part.positions.len()));

@@ -11,6 +11,7 @@
 //!   for them.
 
 mod bounds;
+mod closed;
 mod error;
 mod faces;
 mod groups;
@@ -22,6 +23,7 @@ pub mod weld;
 
 use glam::DVec3;
 
+pub use closed::OpenEdge;
 pub use error::{LimitError, Limited, MeshDataError};
 pub use subdivide::{Parents, Subdivision, SubdivisionError};
 

@@ -261,3 +261,25 @@ fn mesh_rule_keeps_the_enclosed_volume_of_the_closed_bunny() {
     assert!(((without - rest_volume) / rest_volume).abs() > 0.10, "the pose must change the volume by over 10%");
     assert!(((with - rest_volume) / rest_volume).abs() <= 1e-3, "{with} vs {rest_volume}");
 }
+
+/// The ratio rule on a branch of zero radii says why it cannot keep the ratio (it printed the
+/// target volume as NaN).
+#[test]
+fn ratio_rule_names_a_sweep_without_volume() {
+    let straight = |x: f64, radius: f64| -> Vec<Key> {
+        [0.0, 0.5, 1.0].iter().map(|&z| Key::circle(DVec3::new(x, 0.0, z), DQuat::IDENTITY, radius, 8)).collect()
+    };
+    let trunk = RigSweep::new("trunk", straight(0.0, 0.3)).owning(VertexSelection::Indices(vec![]));
+    let branch = RigSweep::new("branch", straight(0.1, 0.0))
+        .owning(VertexSelection::Indices(vec![]))
+        .with_parent(ParentLink { sweep: "trunk".into(), kind: LinkKind::Branch });
+    let rig = Rig::new(vec![trunk, branch]).unwrap();
+    let mut posing = Posing::new(&rig);
+    posing.volume = VolumeRule::Ratio;
+    let grow = Edit::ScaleRadii { sweep: "trunk".into(), key: 1, factor: 1.2, theta_range: None };
+    let error = posing.apply(&grow).unwrap_err();
+    assert_eq!(
+        error.to_string(),
+        "the volume rule `ratio` cannot keep sweep \"branch\"'s volume in ratio: it had no volume before the edit"
+    );
+}

@@ -37,7 +37,20 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
         .map_err(|e| format!("cannot read {}: {e}", args.edits.display()))?;
     let edits = parse_edits(&text).map_err(|e| format!("{}: not a valid edits file: {e}", args.edits.display()))?;
     let mesh = match (&args.mesh, args.volume) {
-        (Some(path), _) => Some((Mesh::load(path)?, path)),
+        (Some(path), volume) => {
+            let mesh = Mesh::load(path)?;
+            if let (VolumeArg::Mesh, Some(open)) = (volume, mesh.open_edge()) {
+                let [a, b] = open.vertices;
+                return Err(format!(
+                    "{}: --volume mesh needs a closed mesh, but the edge between vertices {a} and {b} borders {} \
+                     face(s), not 2",
+                    path.display(),
+                    open.faces
+                )
+                .into());
+            }
+            Some((mesh, path))
+        }
         (None, VolumeArg::Mesh) => return Err("--volume mesh needs --mesh".into()),
         (None, _) => None,
     };

@@ -237,3 +237,20 @@ fn mesh_rule_without_a_mesh_is_an_error() {
     assert_eq!(output.status.code(), Some(1));
     assert_eq!(String::from_utf8_lossy(&output.stderr), "error: --volume mesh needs --mesh\n");
 }
+
+/// The mesh rule keeps an enclosed volume, which an open mesh does not have: refused naming an
+/// edge of its rim (it was accepted silently).
+#[test]
+fn mesh_rule_with_an_open_mesh_is_an_error() {
+    let dir = tempfile::tempdir().unwrap();
+    scene(dir.path());
+    fs::write(dir.path().join("open.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\n").unwrap();
+    let output = pose(dir.path(), "rig.json", "[]", &["--volume", "mesh", "--mesh", "open.obj"]);
+    assert_eq!(output.status.code(), Some(1));
+    assert_eq!(
+        String::from_utf8_lossy(&output.stderr),
+        "error: open.obj: --volume mesh needs a closed mesh, but the edge between vertices 0 and 2 borders 1 face(s), \
+         not 2\n"
+    );
+    assert!(!dir.path().join("pose.json").exists());
+}

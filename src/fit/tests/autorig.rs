@@ -23,6 +23,19 @@ fn a_sphere_has_no_protrusions() {
     assert!(rigged.document().sweeps.is_empty());
 }
 
+/// A mesh beyond the coordinates a rig may hold is refused, not reported as having no
+/// protrusion (a sphere scaled by 10³⁰ gave an empty rig).
+#[test]
+fn a_mesh_beyond_the_rig_limit_is_refused() {
+    let mut mesh = sphere(8, 16);
+    for p in &mut mesh.positions {
+        *p *= 1e30;
+    }
+    let error = autorig(&mesh, &AutorigOptions::default()).unwrap_err();
+    assert_eq!(error, FitError::BeyondRig { vertex: 0, value: 1e30 });
+    assert!(error.to_string().contains("beyond the ±1e15 a rig may hold"), "{error}");
+}
+
 #[test]
 fn bad_options_are_refused() {
     let options = AutorigOptions { min_length: 0.0, ..AutorigOptions::default() };
