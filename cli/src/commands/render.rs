@@ -43,13 +43,25 @@ pub struct Args {
     pub out: PathBuf,
 }
 
-/// Parses `--size WxH` (both at least 1).
+/// The most pixels a picture may have: 4096 × 4096. A pixel takes about 44 bytes while it is
+/// drawn (a colour and a depth sample at 4× multisampling, the resolved colour, its readback
+/// and the image), so this bounds a picture at about 0.7 GB; 8192 × 8192 took 3.25 GB.
+pub const MAX_PICTURE_PIXELS: u64 = 1 << 24;
+
+/// Parses `--size WxH` (both at least 1, at most [`MAX_PICTURE_PIXELS`] in all).
 pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
     let invalid = || format!("expected WIDTHxHEIGHT in pixels, such as 640x480, not {text:?}");
     let (w, h) = text.split_once(['x', 'X']).ok_or_else(invalid)?;
     let (w, h): (u32, u32) = (w.trim().parse().map_err(|_| invalid())?, h.trim().parse().map_err(|_| invalid())?);
     if w == 0 || h == 0 {
         return Err(format!("the picture size {w}x{h} has a zero side"));
+    }
+    let pixels = u64::from(w) * u64::from(h);
+    if pixels > MAX_PICTURE_PIXELS {
+        return Err(format!(
+            "the picture size {w}x{h} is {pixels} pixels, over the limit of {MAX_PICTURE_PIXELS} (4096x4096: about 44 \
+             bytes each while drawn)"
+        ));
     }
     Ok((w, h))
 }
@@ -167,6 +179,14 @@ mod tests {
         assert!(parse_size("0x10").is_err());
         assert!(parse_size("320").is_err());
         assert!(parse_size("ax3").is_err());
+        assert_eq!(parse_size("4096x4096"), Ok((4096, 4096)));
+        assert_eq!(
+            parse_size("8192x8192"),
+            Err("the picture size 8192x8192 is 67108864 pixels, over the limit of 16777216 (4096x4096: about 44 bytes \
+                 each while drawn)"
+                .to_string())
+        );
+        assert!(parse_size("16384x1025").is_err());
     }
 
     #[test]

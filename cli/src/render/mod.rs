@@ -179,11 +179,17 @@ impl Renderer {
         self.context.queue.submit([encoder.finish()]);
     }
 
-    /// `Err(Size)` unless 1 ≤ width, height ≤ the device's largest 2D texture.
+    /// `Err(Size)` unless 1 ≤ width, height ≤ the device's largest 2D texture; `Err(Readback)`
+    /// when the picture's readback buffer is larger than the device's largest buffer.
     fn check_size(&self, width: u32, height: u32) -> Result<(), RenderError> {
-        let limit = self.context.device.limits().max_texture_dimension_2d;
+        let limits = self.context.device.limits();
+        let limit = limits.max_texture_dimension_2d;
         if width == 0 || height == 0 || width > limit || height > limit {
             return Err(RenderError::Size { width, height, limit });
+        }
+        let bytes = target::readback_bytes(width, height);
+        if bytes > limits.max_buffer_size {
+            return Err(RenderError::Readback { width, height, bytes, limit: limits.max_buffer_size });
         }
         Ok(())
     }

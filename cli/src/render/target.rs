@@ -24,6 +24,16 @@ pub struct Target {
     pub resolved_view: wgpu::TextureView,
 }
 
+/// The bytes of one row of a readback of `width` pixels, padded as copies need.
+fn padded_row(width: u32) -> u32 {
+    (4 * width).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT
+}
+
+/// The bytes of the readback buffer of a `width` × `height` picture.
+pub fn readback_bytes(width: u32, height: u32) -> u64 {
+    u64::from(padded_row(width)) * u64::from(height)
+}
+
 impl Target {
     /// Creates the textures; the size must have been checked against the device's limits.
     pub fn new(device: &wgpu::Device, width: u32, height: u32) -> Target {
@@ -77,7 +87,7 @@ impl TextureReadback {
         texture: &wgpu::Texture,
     ) -> TextureReadback {
         let (width, height) = (texture.width(), texture.height());
-        let padded_row = (4 * width).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let padded_row = padded_row(width);
         let staging = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("sweepffd texture readback"),
             size: u64::from(padded_row) * u64::from(height),
