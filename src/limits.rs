@@ -99,6 +99,18 @@ pub const MAX_PLY_ENTRIES: usize = MAX_FACES;
 /// children.
 pub const MAX_GLTF_NODE_INSTANCES: usize = 1 << 22;
 
+/// How many times the vertices (and triangles) a glTF file stores its scene may give, past
+/// [`MAX_GLTF_UNSTORED`]: instancing a mesh by many nodes, or an accessor whose count is not
+/// backed by bytes (no buffer view, a few sparse values), multiplies a small file into a large
+/// mesh (a 20 KB node graph into 33 million vertices, a 600-byte file into 33 million zero
+/// positions); the cost of a file follows what it holds.
+pub const MAX_GLTF_EXPANSION: usize = 16;
+
+/// The vertices (and triangles) a glTF scene may give beyond what its file stores, whatever
+/// [`MAX_GLTF_EXPANSION`] allows (2²⁰ = 1,048,576): a small file instancing a part many times
+/// stays readable up to a mesh the rest of the engine handles in well under a gigabyte.
+pub const MAX_GLTF_UNSTORED: usize = 1 << 20;
+
 /// The most radii of a whole rig, summed over its sweeps' keys (2²⁰ = 1,048,576). A sweep's
 /// radius function keeps one 128-byte bicubic patch per radius (§3), and an edit rebuilds it,
 /// so this keeps a rig's surfaces within about 128 MB and an edit's work bounded.

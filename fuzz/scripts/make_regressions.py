@@ -103,6 +103,25 @@ def main():
     primitive = {"attributes": {"POSITION": 0, "NORMAL": 0}}
     doc = gltf_json([{"mesh": 0}], {"byteLength": 36}, None, primitive)
     write("write_round_trip", "case28_aliased_normal.glb", b"\4" + glb(doc, TRIANGLE))
+    # Issue 28: tiny files whose scene expands far past what they store: a POSITION accessor
+    # of 33,554,430 elements backed by 3 sparse values, an index accessor of 201,326,592 backed
+    # by 3, and 16 levels of shared children over a 512-vertex mesh (33,554,432 vertices).
+    sparse = lambda view_indices, view_values: {"count": 3, "indices": {"bufferView": view_indices, "componentType": 5125}, "values": {"bufferView": view_values}}
+    three = struct.pack("<3I", 0, 1, 2)
+    views = [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 12}, {"buffer": 0, "byteOffset": 48, "byteLength": 12}]
+    accessors = [{"componentType": 5126, "count": 33_554_430, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0], "sparse": sparse(1, 0)}]
+    doc = gltf_json([{"mesh": 0}], {"byteLength": 60}, accessors)
+    doc["bufferViews"] = views
+    write("gltf", "case28_sparse_positions.glb", glb(doc, TRIANGLE + three + three))
+    accessors = gltf_json([], {})["accessors"] + [{"componentType": 5125, "count": 201_326_592, "type": "SCALAR", "sparse": sparse(1, 2)}]
+    doc = gltf_json([{"mesh": 0}], {"byteLength": 60}, accessors, {"attributes": {"POSITION": 0}, "indices": 1})
+    doc["bufferViews"] = views
+    write("gltf", "case28_sparse_indices.glb", glb(doc, TRIANGLE + three + three))
+    grid = struct.pack("<1536f", *[c for i in range(512) for c in (i % 32, i // 32, 0)])
+    accessors = [{"bufferView": 0, "componentType": 5126, "count": 512, "type": "VEC3", "min": [0, 0, 0], "max": [31, 15, 0]}]
+    doc = gltf_json(doubling(16), {"byteLength": len(grid)}, accessors)
+    doc["bufferViews"] = [{"buffer": 0, "byteLength": len(grid)}]
+    write("gltf", "case28_shared_levels.glb", glb(doc, grid))
     groups = "".join(f"g g{i}\nf 1 2 3\n" for i in range(2_000))
     write("obj", "case28_many_groups.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n" + groups)
 

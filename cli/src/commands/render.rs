@@ -182,9 +182,11 @@ mod tests {
         assert_eq!(parse_size("4096x4096"), Ok((4096, 4096)));
         assert_eq!(
             parse_size("8192x8192"),
-            Err("the picture size 8192x8192 is 67108864 pixels, over the limit of 16777216 (4096x4096: about 44 bytes \
+            Err(
+                "the picture size 8192x8192 is 67108864 pixels, over the limit of 16777216 (4096x4096: about 44 bytes \
                  each while drawn)"
-                .to_string())
+                    .to_string()
+            )
         );
         assert!(parse_size("16384x1025").is_err());
     }

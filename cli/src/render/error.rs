@@ -20,7 +20,9 @@ pub enum RenderError {
     #[error("the picture size {width}x{height} is out of range (each side from 1 to {limit} pixels)")]
     Size { width: u32, height: u32, limit: u32 },
     /// The picture's readback buffer is larger than the device's largest buffer.
-    #[error("the picture size {width}x{height} needs a readback buffer of {bytes} bytes, over the device's limit of {limit}")]
+    #[error(
+        "the picture size {width}x{height} needs a readback buffer of {bytes} bytes, over the device's limit of {limit}"
+    )]
     Readback { width: u32, height: u32, bytes: u64, limit: u64 },
     /// The view angles are not finite, or the elevation is outside [−90°, 90°].
     #[error("the view azimuth {azimuth}°, elevation {elevation}° is out of range (elevation from -90 to 90)")]

@@ -181,6 +181,26 @@ pub enum GltfDataError {
         /// The limit's name.
         name: &'static str,
     },
+    /// A scene that would give far more vertices or triangles than its file stores
+    /// ([`MAX_GLTF_EXPANSION`](crate::limits::MAX_GLTF_EXPANSION)), counted before anything is
+    /// built.
+    #[error(
+        "the scene would give {} {what} from {stored} stored in the file, more than {expansion} times as many \
+         (beyond the first {unstored}; MAX_GLTF_EXPANSION in sweepffd::limits)",
+        saturated(*count)
+    )]
+    SceneExpands {
+        /// What is counted: `"vertices"` or `"triangles"`.
+        what: &'static str,
+        /// The count (saturating).
+        count: usize,
+        /// What the file's bytes hold.
+        stored: usize,
+        /// The factor allowed.
+        expansion: usize,
+        /// The count allowed whatever is stored.
+        unstored: usize,
+    },
     /// A buffer whose data cannot be had.
     #[error("buffer {buffer}: {reason}")]
     Buffer {

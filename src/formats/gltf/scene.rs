@@ -11,7 +11,9 @@ use glam::DMat4;
 
 use super::GltfDataError;
 use super::graph::{self, Graph, Totals};
-use crate::limits::{MAX_FACES, MAX_GLTF_INSTANCES, MAX_GLTF_NODE_INSTANCES, MAX_VERTICES};
+use crate::limits::{
+    MAX_FACES, MAX_GLTF_EXPANSION, MAX_GLTF_INSTANCES, MAX_GLTF_NODE_INSTANCES, MAX_GLTF_UNSTORED, MAX_VERTICES,
+};
 
 /// One mesh drawn by one node (or, in a file without nodes, by none).
 #[derive(Clone, Copy, Debug)]
@@ -35,8 +37,11 @@ pub(super) struct Instance {
 /// [`GltfDataError::NodeWorldOverflow`] for a world matrix that overflows.
 pub(super) fn instances(document: &::gltf::Document) -> Result<Vec<Instance>, GltfDataError> {
     let meshes: Vec<Totals> = document.meshes().map(|m| mesh_totals(&m)).collect();
+    let stored = stored(document);
     if document.nodes().len() == 0 {
-        check(meshes.iter().fold(Totals::default(), |sum, m| sum.plus(*m)))?;
+        let totals = meshes.iter().fold(Totals::default(), |sum, m| sum.plus(*m));
+        check(totals)?;
+        check_expansion(totals, stored)?;
         return Ok((0..meshes.len()).map(|mesh| Instance { node: None, mesh, world: DMat4::IDENTITY }).collect());
     }
     let graph = Graph {
@@ -45,7 +50,9 @@ pub(super) fn instances(document: &::gltf::Document) -> Result<Vec<Instance>, Gl
     };
     let roots = roots(document, &graph);
     let totals = graph::measure(&graph, &roots, &meshes)?;
-    check(roots.iter().fold(Totals::default(), |sum, &r| sum.plus(totals[r])))?;
+    let scene = roots.iter().fold(Totals::default(), |sum, &r| sum.plus(totals[r]));
+    check(scene)?;
+    check_expansion(scene, stored)?;
     let locals = document.nodes().map(|n| local_matrix(&n)).collect::<Vec<_>>();
     let mut out = Vec::new();
     let mut stack: Vec<(usize, DMat4)> = roots.iter().rev().map(|&r| (r, DMat4::IDENTITY)).collect();
@@ -90,6 +97,46 @@ fn check(totals: Totals) -> Result<(), GltfDataError> {
         Some((what, count, limit, name)) => Err(GltfDataError::SceneTooLarge { what, count, limit, name }),
         None => Ok(()),
     }
+}
+
+/// The vertices and triangles the file's bytes hold: over every distinct POSITION accessor
+/// and every primitive, the elements backed by a buffer view (else only the sparse ones).
+fn stored(document: &::gltf::Document) -> Totals {
+    let backed = |accessor: &::gltf::Accessor| match accessor.view() {
+        Some(_) => accessor.count(),
+        None => accessor.sparse().map_or(0, |sparse| sparse.count()),
+    };
+    let mut positions: Vec<usize> = Vec::new();
+    let mut totals = Totals::default();
+    for primitive in document.meshes().flat_map(|m| m.primitives().collect::<Vec<_>>()) {
+        let Some(accessor) = primitive.get(&Semantic::Positions) else { continue };
+        if !positions.contains(&accessor.index()) {
+            positions.push(accessor.index());
+            totals.vertices = totals.vertices.saturating_add(backed(&accessor));
+        }
+        let corners = primitive.indices().map_or_else(|| backed(&accessor), |a| backed(&a));
+        totals.triangles = totals.triangles.saturating_add(corners / 3);
+    }
+    totals
+}
+
+/// Refuses a scene that gives more than [`MAX_GLTF_EXPANSION`] times the vertices or triangles
+/// its file stores, beyond [`MAX_GLTF_UNSTORED`].
+fn check_expansion(scene: Totals, stored: Totals) -> Result<(), GltfDataError> {
+    for (what, count, held) in
+        [("vertices", scene.vertices, stored.vertices), ("triangles", scene.triangles, stored.triangles)]
+    {
+        if count > MAX_GLTF_UNSTORED.max(held.saturating_mul(MAX_GLTF_EXPANSION)) {
+            return Err(GltfDataError::SceneExpands {
+                what,
+                count,
+                stored: held,
+                expansion: MAX_GLTF_EXPANSION,
+                unstored: MAX_GLTF_UNSTORED,
+            });
+        }
+    }
+    Ok(())
 }
 
 /// What one instance of `mesh` gives, from its accessors' declared counts: the vertices of
