@@ -23,6 +23,8 @@
 //!   faithfully.
 //! - [`coeffs`]: sweeps as compact f32 coefficient arrays (the sweep coefficients).
 //! - [`bind`]: binding parameters of each vertex by root-finding (§3).
+//! - [`frame`]: a frame local to a part, where the f32 paths keep their accuracy wherever the
+//!   part sits and whatever its size.
 //! - [`normals`]: vertex normals and tangents, and which vertices a deformation can reach,
 //!   f64 reference.
 //! - [`rig`]: rigs built in code or read from files (feature `json`), which sweep owns which
@@ -117,6 +119,7 @@ pub mod edit;
 pub mod fit;
 #[cfg(feature = "formats")]
 pub mod formats;
+pub mod frame;
 pub mod gpu;
 pub mod layout;
 pub mod limits;

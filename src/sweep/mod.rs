@@ -120,6 +120,30 @@ impl Sweep {
         Sweep { knots, segments, radius }
     }
 
+    /// The same surface in the coordinates p' = (p − `origin`) / `scale`: centers moved and
+    /// scaled, radii scaled, frames and knots unchanged (Eq. 2 is covariant under translation
+    /// and uniform scale). With `scale` a power of two the scaling is exact; only the
+    /// subtraction of `origin` rounds. See [`crate::frame::Frame`].
+    pub fn in_frame(&self, origin: DVec3, scale: f64) -> Sweep {
+        let moved = |piece: &cubic::CubicPiece, origin: f64| cubic::CubicPiece {
+            y0: (piece.y0 - origin) / scale,
+            y1: (piece.y1 - origin) / scale,
+            m0: piece.m0 / scale,
+            m1: piece.m1 / scale,
+            h: piece.h,
+        };
+        let segments = self
+            .segments
+            .iter()
+            .map(|segment| {
+                let [x, y, z] = &segment.curve.axes;
+                let axes = [moved(x, origin.x), moved(y, origin.y), moved(z, origin.z)];
+                Segment { curve: curve::CurvePiece { axes }, ..segment.clone() }
+            })
+            .collect();
+        Sweep { knots: self.knots.clone(), segments, radius: Arc::new(self.radius.scaled(1.0 / scale)) }
+    }
+
     /// The knots u_0 = 0 < … < u_n = 1.
     pub fn knots(&self) -> &[f64] {
         &self.knots

@@ -13,6 +13,7 @@ use sweepffd::bindings_file::BindingsFile;
 use sweepffd::coeffs::SweepCoefficients;
 use sweepffd::cpu_fast::FastMesh;
 use sweepffd::formats::LoadedMesh;
+use sweepffd::frame::Frame;
 use sweepffd::gpu::{BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, GpuError};
 use sweepffd::rig::{Rig, RigError, RigErrorKind};
 
@@ -56,27 +57,31 @@ pub fn is_empty_rig(error: &(dyn std::error::Error + 'static)) -> bool {
 }
 
 /// Binds on the GPU, read back in the reference form; the falloff bands' second bindings are
-/// made on the CPU (f64), as the file stores them.
+/// made on the CPU (f64), as the file stores them. Binds in the frame of the mesh ([`Frame`]),
+/// as `deform` deforms, and returns the bindings in world units.
 pub fn bind_on_gpu(context: &GpuContext, inputs: &Inputs) -> Result<MeshBindings, GpuError> {
-    let rest = inputs.rig.rest();
+    let frame = Frame::of_points(&inputs.file.mesh.positions);
+    let (rest, local) = (frame.local_sweeps(inputs.rig.rest()), frame.local_positions(&inputs.file.mesh.positions));
     let weights = inputs.rig.band_weights(&inputs.file.mesh, &inputs.owners);
     let source = BindingSource::Bind { owners: &inputs.owners, bands: &weights };
-    let positions = sweepffd::gpu::rest_positions(&inputs.file.mesh.positions);
-    let deformer = GpuDeformer::new(context, &DeformerDescriptor::new(rest, &positions, source))?;
-    let coefficients = SweepCoefficients::new(rest);
-    let vertices = deformer.read_bindings()?.iter().map(|b| coefficients.reference_binding(rest, b)).collect();
-    Ok(MeshBindings { vertices, bands: bind_bands(rest, &inputs.file.mesh.positions, &weights) })
+    let positions = sweepffd::gpu::rest_positions(&local);
+    let deformer = GpuDeformer::new(context, &DeformerDescriptor::new(&rest, &positions, source))?;
+    let coefficients = SweepCoefficients::new(&rest);
+    let vertices = deformer.read_bindings()?.iter().map(|b| coefficients.reference_binding(&rest, b)).collect();
+    Ok(frame.world_bindings(&MeshBindings { vertices, bands: bind_bands(&rest, &local, &weights) }))
 }
 
 /// Binds on the fast CPU path, in the reference form as the GPU's bindings are read back; the
-/// falloff bands' second bindings are made in f64, as the file stores them.
+/// falloff bands' second bindings are made in f64, as the file stores them. In the frame of
+/// the mesh, as on the GPU.
 pub fn bind_on_cpu(inputs: &Inputs) -> MeshBindings {
-    let rest = inputs.rig.rest();
+    let frame = Frame::of_points(&inputs.file.mesh.positions);
+    let (rest, local) = (frame.local_sweeps(inputs.rig.rest()), frame.local_positions(&inputs.file.mesh.positions));
     let weights = inputs.rig.band_weights(&inputs.file.mesh, &inputs.owners);
-    let positions = sweepffd::cpu_fast::packed(&inputs.file.mesh.positions);
-    let fast = FastMesh::bind(rest, &inputs.owners, &weights, &positions);
-    let vertices = fast.bindings.iter().map(|b| fast.rest.reference_binding(rest, b)).collect();
-    MeshBindings { vertices, bands: bind_bands(rest, &inputs.file.mesh.positions, &weights) }
+    let positions = sweepffd::cpu_fast::packed(&local);
+    let fast = FastMesh::bind(&rest, &inputs.owners, &weights, &positions);
+    let vertices = fast.bindings.iter().map(|b| fast.rest.reference_binding(&rest, b)).collect();
+    frame.world_bindings(&MeshBindings { vertices, bands: bind_bands(&rest, &local, &weights) })
 }
 
 /// Binds with a progress bar (f64 reference path, all cores), with the falloff bands.

@@ -16,6 +16,7 @@ use sweepffd::coeffs::SweepCoefficients;
 use sweepffd::cpu_fast::FastMesh;
 use sweepffd::deform::deform_vertices;
 use sweepffd::formats::{Format, LoadedMesh};
+use sweepffd::frame::Frame;
 use sweepffd::gpu::{BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, GpuError};
 use sweepffd::sweep::Sweep;
 
@@ -71,8 +72,8 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     let context = resolve(args.backend, quiet)?;
     let start = Instant::now();
     let (positions, owners) = match &context {
-        Device::Gpu(context) => deform_on_gpu(context, &inputs, &posed, saved.as_ref())?,
-        Device::Cpu => deform_on_cpu(&inputs, &posed, saved.as_ref()),
+        Device::Gpu(context) => deform_on_gpu(context, &inputs, &Local::new(&inputs, &posed, saved.as_ref()))?,
+        Device::Cpu => deform_on_cpu(&inputs, &Local::new(&inputs, &posed, saved.as_ref())),
         Device::Reference => {
             let bindings = saved.clone().unwrap_or_else(|| bind_with_progress(&inputs, quiet));
             let mut positions = vec![DVec3::ZERO; inputs.file.mesh.positions.len()];
@@ -102,16 +103,35 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     Ok(())
 }
 
-/// Binds (or uploads `saved` bindings), deforms on the GPU and reads the positions back; the
+/// What the f32 paths compute with: the rest and posed sweeps, the mesh's positions and the
+/// saved bindings, in the frame of the mesh ([`Frame`]), so that their accuracy is relative to
+/// the mesh wherever it sits and whatever its size.
+struct Local {
+    frame: Frame,
+    rest: Vec<Sweep>,
+    posed: Vec<Sweep>,
+    positions: Vec<DVec3>,
+    saved: Option<MeshBindings>,
+}
+
+impl Local {
+    fn new(inputs: &Inputs, posed: &[Sweep], saved: Option<&MeshBindings>) -> Local {
+        let frame = Frame::of_points(&inputs.file.mesh.positions);
+        Local {
+            frame,
+            rest: frame.local_sweeps(inputs.rig.rest()),
+            posed: frame.local_sweeps(posed),
+            positions: frame.local_positions(&inputs.file.mesh.positions),
+            saved: saved.map(|saved| frame.local_bindings(saved)),
+        }
+    }
+}
+
+/// Binds (or uploads the saved bindings), deforms on the GPU and reads the positions back; the
 /// vertices no sweep moves (unowned, or at weight 0 against the rest position) keep their exact
 /// rest positions. Returns the positions and owners.
-fn deform_on_gpu(
-    context: &GpuContext,
-    inputs: &Inputs,
-    posed: &[Sweep],
-    saved: Option<&MeshBindings>,
-) -> Result<(Vec<DVec3>, Vec<u32>), GpuError> {
-    let rest = inputs.rig.rest();
+fn deform_on_gpu(context: &GpuContext, inputs: &Inputs, local: &Local) -> Result<(Vec<DVec3>, Vec<u32>), GpuError> {
+    let (rest, saved) = (&local.rest[..], local.saved.as_ref());
     let coefficients = SweepCoefficients::new(rest);
     let converted = saved.map(|saved| coefficients.gpu_mesh_bindings(rest, saved));
     let weights = match saved {
@@ -122,17 +142,17 @@ fn deform_on_gpu(
         Some((bindings, bands)) => BindingSource::Precomputed { bindings, bands },
         None => BindingSource::Bind { owners: &inputs.owners, bands: &weights },
     };
-    let positions = sweepffd::gpu::rest_positions(&inputs.file.mesh.positions);
+    let positions = sweepffd::gpu::rest_positions(&local.positions);
     let mut deformer = GpuDeformer::new(context, &DeformerDescriptor::new(rest, &positions, source))?;
-    deformer.deform(posed)?;
-    Ok(f32_result(inputs, saved, &weights, &deformer.read_positions()?))
+    deformer.deform(&local.posed)?;
+    Ok(f32_result(inputs, local, &weights, &deformer.read_positions()?))
 }
 
 /// Binds (or converts `saved` bindings) and deforms on the fast CPU path, as on the GPU.
 /// Returns the positions and owners.
-fn deform_on_cpu(inputs: &Inputs, posed: &[Sweep], saved: Option<&MeshBindings>) -> (Vec<DVec3>, Vec<u32>) {
-    let rest = inputs.rig.rest();
-    let mut positions = sweepffd::cpu_fast::packed(&inputs.file.mesh.positions);
+fn deform_on_cpu(inputs: &Inputs, local: &Local) -> (Vec<DVec3>, Vec<u32>) {
+    let (rest, saved) = (&local.rest[..], local.saved.as_ref());
+    let mut positions = sweepffd::cpu_fast::packed(&local.positions);
     let (mut fast, weights) = match saved {
         Some(saved) => {
             let (bindings, bands) = SweepCoefficients::new(rest).gpu_mesh_bindings(rest, saved);
@@ -143,18 +163,15 @@ fn deform_on_cpu(inputs: &Inputs, posed: &[Sweep], saved: Option<&MeshBindings>)
             (FastMesh::bind(rest, &inputs.owners, &weights, &positions), weights)
         }
     };
-    fast.deform(posed, &mut positions).expect("a pose loaded for this rig fits it");
-    f32_result(inputs, saved, &weights, &positions)
+    fast.deform(&local.posed, &mut positions).expect("a pose loaded for this rig fits it");
+    f32_result(inputs, local, &weights, &positions)
 }
 
-/// The f32 positions `deformed` in f64, the vertices no sweep moves (unowned, or at weight 0
-/// against the rest position) at their exact rest positions; and the owners.
-fn f32_result(
-    inputs: &Inputs,
-    saved: Option<&MeshBindings>,
-    weights: &[BandWeight],
-    deformed: &[f32],
-) -> (Vec<DVec3>, Vec<u32>) {
+/// The f32 positions `deformed` (in the frame of `local`) in the world in f64, the vertices no
+/// sweep moves (unowned, or at weight 0 against the rest position) at their exact rest
+/// positions; and the owners.
+fn f32_result(inputs: &Inputs, local: &Local, weights: &[BandWeight], deformed: &[f32]) -> (Vec<DVec3>, Vec<u32>) {
+    let saved = local.saved.as_ref();
     let owners: Vec<u32> = match saved {
         Some(saved) => saved.vertices.iter().map(|b| b.sweep).collect(),
         None => inputs.owners.clone(),
@@ -172,7 +189,7 @@ fn f32_result(
         .chunks_exact(3)
         .zip(&inputs.file.mesh.positions)
         .zip(&keeps_rest)
-        .map(|((p, rest), &keeps)| if keeps { *rest } else { Vec3::from_slice(p).as_dvec3() })
+        .map(|((p, rest), &keeps)| if keeps { *rest } else { local.frame.to_world(Vec3::from_slice(p).as_dvec3()) })
         .collect();
     (positions, owners)
 }

@@ -9,6 +9,7 @@ mod cli;
 mod edit_time;
 mod examples;
 mod falloff_cli;
+mod far_meshes;
 mod fit_cli;
 mod pose_cli;
 mod render;
