@@ -111,6 +111,12 @@ pub const MAX_GLTF_EXPANSION: usize = 16;
 /// stays readable up to a mesh the rest of the engine handles in well under a gigabyte.
 pub const MAX_GLTF_UNSTORED: usize = 1 << 20;
 
+/// How many times its mesh's size (bounding-box diagonal) a key radius may be when the rig is
+/// bound to the mesh. A vertex far inside a radius r is placed by r + d, and f64 keeps
+/// r + d to about r · 10⁻¹⁶: at 10⁶ times the mesh that is 10⁻¹⁰ of the mesh, while radii of
+/// 10¹⁵ on a 4-unit tube moved its vertices by 0.3 under the rest pose.
+pub const MAX_RADIUS_PER_MESH_SIZE: f64 = 1e6;
+
 /// The most radii of a whole rig, summed over its sweeps' keys (2²⁰ = 1,048,576). A sweep's
 /// radius function keeps one 128-byte bicubic patch per radius (§3), and an edit rebuilds it,
 /// so this keeps a rig's surfaces within about 128 MB and an edit's work bounded.

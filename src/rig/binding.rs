@@ -4,6 +4,7 @@
 use super::{Rig, RigError, RigErrorKind};
 use crate::bind::MeshBindings;
 use crate::bind::falloff::{BandWeight, band_weights};
+use crate::limits::MAX_RADIUS_PER_MESH_SIZE;
 use crate::mesh::Mesh;
 
 impl Rig {
@@ -20,9 +21,28 @@ impl Rig {
     }
 
     /// Fails, naming the sweep, if a falloff is wider than `mesh` (its bounding box diagonal):
-    /// a band that wide would cover every part and is a units mistake.
-    pub fn check_falloffs_fit(&self, mesh: &Mesh, mesh_name: &str) -> Result<(), RigError> {
+    /// a band that wide would cover every part and is a units mistake. Fails, naming the sweep
+    /// and key, if a radius is more than [`MAX_RADIUS_PER_MESH_SIZE`] times the diagonal, where
+    /// f64 no longer places the mesh's vertices accurately.
+    pub fn check_fits_mesh(&self, mesh: &Mesh, mesh_name: &str) -> Result<(), RigError> {
         let diagonal = mesh.diagonal();
+        for sweep in self.sweeps() {
+            let radii = sweep.keys.iter().enumerate().flat_map(|(k, key)| key.radii.iter().map(move |&r| (k, r)));
+            if let Some((key, radius)) =
+                radii.into_iter().find(|(_, r)| diagonal > 0.0 && *r > MAX_RADIUS_PER_MESH_SIZE * diagonal)
+            {
+                return Err(RigError::new(
+                    self.file().map(Into::into),
+                    RigErrorKind::RadiusTooLarge {
+                        sweep: sweep.name.clone(),
+                        key,
+                        radius,
+                        mesh: mesh_name.to_string(),
+                        diagonal,
+                    },
+                ));
+            }
+        }
         match self.sweeps().iter().find(|sweep| sweep.falloff > diagonal) {
             Some(sweep) => Err(RigError::new(
                 self.file().map(Into::into),

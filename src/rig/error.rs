@@ -94,6 +94,12 @@ pub enum RigErrorKind {
         "sweep {sweep:?}: falloff {falloff} is larger than the mesh {mesh} (its bounding box diagonal is {diagonal})"
     )]
     FalloffTooLarge { sweep: String, falloff: f64, mesh: String, diagonal: f64 },
+    #[error(
+        "sweep {sweep:?}, key {key}: radius {radius:e} is more than {most:e} times the mesh {mesh} (its bounding box \
+         diagonal is {diagonal}), beyond what f64 places accurately (limits::MAX_RADIUS_PER_MESH_SIZE)",
+        most = crate::limits::MAX_RADIUS_PER_MESH_SIZE
+    )]
+    RadiusTooLarge { sweep: String, key: usize, radius: f64, mesh: String, diagonal: f64 },
     #[error("vertex index {vertex} (zero-based) is claimed by both sweep {first:?} and sweep {second:?}")]
     VertexClaimedTwice { vertex: u32, first: String, second: String },
 }

@@ -16,7 +16,7 @@ impl Rig {
     /// ([`Mesh::group_vertices`]). `mesh_name` names the mesh in errors: an unknown group, an
     /// index out of range, a vertex claimed by two sweeps, or a falloff wider than the mesh.
     pub fn owners(&self, mesh: &Mesh, mesh_name: &str) -> Result<Vec<u32>, RigError> {
-        self.check_falloffs_fit(mesh, mesh_name)?;
+        self.check_fits_mesh(mesh, mesh_name)?;
         // Only the groups a sweep names are gathered: a file may have 100,000 groups.
         let named: HashSet<&str> = self
             .sweeps

@@ -147,3 +147,34 @@ fn a_rig_built_in_code_is_held_to_the_same_limits() {
     let error = message(Rig::new((0..2).map(sweep).collect()));
     assert_eq!(error, "sweep \"s1\": the rig holds more than 1048576 radii in all, the most a rig may have");
 }
+
+/// Radii far larger than the mesh place its vertices by a difference f64 cannot hold (radii of
+/// 10¹⁵ moved a 4-unit tube's vertices by 0.3 under the rest pose): a rig whose radius is more
+/// than 10⁶ times the mesh is refused when bound, naming the sweep and key; 10⁵ times binds and
+/// keeps the rest pose to 10⁻⁹ of the mesh.
+#[test]
+fn radii_far_beyond_the_mesh_are_refused_when_bound() {
+    use crate::synthetic::{Tube, tube_rig};
+    let tube = Tube { rings: 12, around: 8, length: 4.0, radius: 0.5 };
+    let mesh = tube.mesh();
+    let widened = |factor: f64| {
+        let mut sweeps = tube_rig(&tube, 3, 8).sweeps().to_vec();
+        for key in &mut sweeps[0].keys {
+            key.radii.iter_mut().for_each(|r| *r *= factor);
+        }
+        Rig::new(sweeps).unwrap()
+    };
+    let error = widened(2e15).owners(&mesh, "tube.obj").unwrap_err();
+    assert!(
+        matches!(&error.kind, RigErrorKind::RadiusTooLarge { sweep, key: 0, radius, .. } if sweep == "tube" && *radius == 1e15),
+        "{error}"
+    );
+    assert!(error.to_string().contains("radius 1e15 is more than 1e6 times the mesh tube.obj"), "{error}");
+    let rig = widened(4e5 * mesh.diagonal());
+    let owners = rig.owners(&mesh, "tube.obj").unwrap();
+    let bindings = rig.bind_mesh(&mesh, &owners, &|_| {});
+    let mut rest = vec![DVec3::ZERO; mesh.positions.len()];
+    crate::deform::deform_vertices(rig.rest(), rig.rest(), &bindings, &mesh.positions, &mut rest);
+    let worst = rest.iter().zip(&mesh.positions).map(|(a, b)| a.distance(*b)).fold(0.0, f64::max);
+    assert!(worst <= 1e-9 * mesh.diagonal(), "{worst}");
+}

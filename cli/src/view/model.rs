@@ -132,7 +132,7 @@ impl Model {
         document.sweeps[sweep].falloff = if width == 0.0 { None } else { Some(width) };
         let fail = |e: sweepffd::rig::RigError| ViewError::Input(e.to_string());
         let rig = Rig::from_document(&document, rig.file().map(Path::to_path_buf)).map_err(fail)?;
-        rig.check_falloffs_fit(&self.mesh, &self.mesh_name).map_err(fail)?;
+        rig.check_fits_mesh(&self.mesh, &self.mesh_name).map_err(fail)?;
         self.bands = rig.band_weights(&self.mesh, &self.owners);
         self.rig = Some(rig);
         self.document = document;
