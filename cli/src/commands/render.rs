@@ -11,6 +11,7 @@ use super::args::MeshArg;
 use super::bind::{is_empty_rig, load_inputs};
 use crate::render::{CLAY, Renderer, Scene, SweepStyle, ViewAngles, add_sweeps, save_png, union_bounds};
 use sweepffd::deform::deform_vertices;
+use sweepffd::frame::Frame;
 use sweepffd::mesh::Mesh;
 use sweepffd::sweep::Sweep;
 
@@ -113,38 +114,45 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
 }
 
 /// The panels to draw: the mesh alone; rest or pose with the rig; rest and pose to compare.
+/// Everything is drawn in the frame of the rest mesh ([`Frame`]), so that a mesh far from the
+/// origin or at a tiny scale draws as it would near the origin at unit size (the renderer is
+/// f32).
 fn build_scenes(args: &Args) -> Result<Vec<Scene>, Box<dyn std::error::Error>> {
     let Some(rig_path) = &args.rig else {
         let mesh = Mesh::load(&args.mesh.mesh)?;
-        return Ok(vec![mesh_scene(&mesh, &mesh.positions)]);
+        let frame = Frame::of_points(&mesh.positions);
+        return Ok(vec![mesh_scene(&mesh, &frame.local_positions(&mesh.positions))]);
     };
     let inputs = match load_inputs(&args.mesh.mesh, rig_path) {
         Err(error) if is_empty_rig(&*error) => {
             // A rig of no sweeps moves nothing and has no sweeps to show: the mesh alone.
             eprintln!("notice: {error}; drawing the mesh as it is");
             let mesh = Mesh::load(&args.mesh.mesh)?;
-            return Ok(vec![mesh_scene(&mesh, &mesh.positions)]);
+            let frame = Frame::of_points(&mesh.positions);
+            return Ok(vec![mesh_scene(&mesh, &frame.local_positions(&mesh.positions))]);
         }
         loaded => loaded?,
     };
     let mesh = &inputs.file.mesh;
-    let rest = inputs.rig.rest();
+    let frame = Frame::of_points(&mesh.positions);
+    let (rest, rest_positions) = (frame.local_sweeps(inputs.rig.rest()), frame.local_positions(&mesh.positions));
     let Some(pose_path) = &args.pose else {
-        let mut scenes = vec![mesh_scene(mesh, &mesh.positions)];
-        add_sweeps_if(args.show_sweeps, &mut scenes, &[rest]);
+        let mut scenes = vec![mesh_scene(mesh, &rest_positions)];
+        add_sweeps_if(args.show_sweeps, &mut scenes, &[&rest]);
         return Ok(scenes);
     };
     let posed = inputs.rig.load_pose(pose_path)?;
     let bindings = inputs.rig.bind_mesh(mesh, &inputs.owners, &|_| {});
     let mut deformed = vec![DVec3::ZERO; mesh.positions.len()];
-    deform_vertices(rest, &posed, &bindings, &mesh.positions, &mut deformed);
+    deform_vertices(inputs.rig.rest(), &posed, &bindings, &mesh.positions, &mut deformed);
     if let Some(i) = deformed.iter().position(|p| !p.is_finite()) {
         return Err(format!("{}: vertex index {i} deforms to a non-finite position", pose_path.display()).into());
     }
-    let posed_scene = mesh_scene(mesh, &deformed);
+    let posed = frame.local_sweeps(&posed);
+    let posed_scene = mesh_scene(mesh, &frame.local_positions(&deformed));
     let mut scenes =
-        if args.compare { vec![mesh_scene(mesh, &mesh.positions), posed_scene] } else { vec![posed_scene] };
-    let sweeps: Vec<&[Sweep]> = if args.compare { vec![rest, &posed] } else { vec![&posed] };
+        if args.compare { vec![mesh_scene(mesh, &rest_positions), posed_scene] } else { vec![posed_scene] };
+    let sweeps: Vec<&[Sweep]> = if args.compare { vec![&rest, &posed] } else { vec![&posed] };
     add_sweeps_if(args.show_sweeps, &mut scenes, &sweeps);
     Ok(scenes)
 }

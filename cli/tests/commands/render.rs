@@ -69,6 +69,29 @@ fn picture_has_the_requested_size_and_shows_the_mesh_over_the_background() {
     assert!(covered > 0.1 && covered < 0.9, "the tube covers {:.1}% of the picture", 100.0 * covered);
 }
 
+/// The tube scaled by 10⁻²⁵ and the tube moved by 10⁷ draw as the tube does (the renderer
+/// draws in the frame of the mesh; the tiny one drew an empty picture, the far one a coarse
+/// one).
+#[test]
+fn a_tiny_or_far_mesh_draws_as_the_mesh_near_the_origin_does() {
+    if common::gpu().is_none() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    write_tube_scene(dir.path());
+    let args = |mesh: &'static str| ["--mesh", mesh, "--size", "160x120", "--view", "90,20"];
+    let near = render_ok(dir.path(), &args("tube.obj"), "near.png");
+    let tube = Tube { rings: 40, around: 32, length: 4.0, radius: 0.5 };
+    for (name, scale, offset) in [("tiny.obj", 1e-25, 0.0), ("far.obj", 1.0, 1e7)] {
+        let positions: Vec<_> = tube.mesh().positions.iter().map(|&p| p * scale + offset).collect();
+        LoadedMesh::from(tube.mesh()).save(&dir.path().join(name), &positions).unwrap();
+        let picture = render_ok(dir.path(), &args(if scale < 1.0 { "tiny.obj" } else { "far.obj" }), "other.png");
+        let covered = foreground(&picture) as f64 / foreground(&near) as f64;
+        let changed = differing(&picture, &near) as f64 / (160.0 * 120.0);
+        assert!((covered - 1.0).abs() < 0.01 && changed < 0.01, "{name}: {covered} of the coverage, {changed} changed");
+    }
+}
+
 #[test]
 fn compare_is_twice_as_wide_and_its_halves_differ() {
     if common::gpu().is_none() {
