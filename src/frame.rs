@@ -22,6 +22,7 @@
 use glam::{DMat4, DVec3};
 
 use crate::bind::{Binding, MeshBindings};
+use crate::mesh::bounds_of;
 use crate::sweep::Sweep;
 
 /// The frame p' = (p − origin) / scale of a part.
@@ -41,8 +42,7 @@ impl Frame {
     /// above its largest side ([`Frame::IDENTITY`] for no point, a single point or a
     /// non-finite one).
     pub fn of_points(points: &[DVec3]) -> Frame {
-        let (lo, hi) =
-            points.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
+        let (lo, hi) = bounds_of(points);
         let (origin, side) = ((lo + hi) / 2.0, (hi - lo).max_element());
         if !(origin.is_finite() && side.is_finite() && side > 0.0) {
             return Frame::IDENTITY;

@@ -63,10 +63,7 @@ pub fn fitted_radii(sweep: &Sweep, keys: &[Key], positions: &[DVec3]) -> Option<
     // cell c is b_0's on cell c − j, so one field serves every node (M rather than M² patches).
     let node: Vec<f64> = (0..m).map(|q| f64::from(u8::from(q == 0))).collect();
     let around = RadiusField::new(&[0.0, 1.0], &[&node, &node]);
-    let basis = |j: usize, theta: f64| {
-        let (cell, phi) = angular_cell(theta, m);
-        around.patch(0, (cell + m - j) % m).value(0.0, phi)
-    };
+    let basis = |j: usize, (cell, phi): (usize, f64)| around.patch(0, (cell + m - j) % m).value(0.0, phi);
     let binder = SweepBinder::new(sweep);
     let intervals = knots.len() - 1;
     let rows: Vec<Row> = positions
@@ -77,6 +74,7 @@ pub fn fitted_radii(sweep: &Sweep, keys: &[Key], positions: &[DVec3]) -> Option<
             let s = ((b.t - knots[segment]) / (knots[segment + 1] - knots[segment])).clamp(0.0, 1.0);
             let cell = ((b.theta / std::f64::consts::TAU * m as f64).floor() as usize).min(m - 1);
             let keys_near = segment.saturating_sub(WINDOW - 1)..(segment + 1 + WINDOW).min(n);
+            let angle = angular_cell(b.theta, m);
             let mut entries = Vec::new();
             for i in keys_near {
                 let a = along[i].value(segment, s, 0.0);
@@ -85,7 +83,7 @@ pub fn fitted_radii(sweep: &Sweep, keys: &[Key], positions: &[DVec3]) -> Option<
                     if offset >= m {
                         break;
                     }
-                    entries.push((i * m + j, a * basis(j, b.theta)));
+                    entries.push((i * m + j, a * basis(j, angle)));
                 }
             }
             Row { entries, y: b.d + sweep.radius(b.theta, b.t), theta: b.theta, t: b.t }

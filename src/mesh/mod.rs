@@ -23,6 +23,7 @@ pub mod weld;
 
 use glam::DVec3;
 
+pub(crate) use bounds::bounds_of;
 pub use closed::OpenEdge;
 pub use error::{LimitError, Limited, MeshDataError};
 pub use subdivide::{Parents, Subdivision, SubdivisionError};

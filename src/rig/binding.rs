@@ -27,9 +27,8 @@ impl Rig {
     pub fn check_fits_mesh(&self, mesh: &Mesh, mesh_name: &str) -> Result<(), RigError> {
         let diagonal = mesh.diagonal();
         for sweep in self.sweeps() {
-            let radii = sweep.keys.iter().enumerate().flat_map(|(k, key)| key.radii.iter().map(move |&r| (k, r)));
-            if let Some((key, radius)) =
-                radii.into_iter().find(|(_, r)| diagonal > 0.0 && *r > MAX_RADIUS_PER_MESH_SIZE * diagonal)
+            let mut radii = sweep.keys.iter().enumerate().flat_map(|(k, key)| key.radii.iter().map(move |&r| (k, r)));
+            if let Some((key, radius)) = radii.find(|(_, r)| diagonal > 0.0 && *r > MAX_RADIUS_PER_MESH_SIZE * diagonal)
             {
                 return Err(RigError::new(
                     self.file().map(Into::into),

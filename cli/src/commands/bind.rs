@@ -14,8 +14,10 @@ use sweepffd::coeffs::SweepCoefficients;
 use sweepffd::cpu_fast::FastMesh;
 use sweepffd::formats::LoadedMesh;
 use sweepffd::frame::Frame;
+use sweepffd::glam::DVec3;
 use sweepffd::gpu::{BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, GpuError};
 use sweepffd::rig::{Rig, RigError, RigErrorKind};
+use sweepffd::sweep::Sweep;
 
 /// The arguments of `sweepffd bind`.
 #[derive(Debug, clap::Args)]
@@ -56,12 +58,28 @@ pub fn is_empty_rig(error: &(dyn std::error::Error + 'static)) -> bool {
     error.downcast_ref::<RigError>().is_some_and(|e| matches!(e.kind, RigErrorKind::NoSweeps))
 }
 
+/// The rig's rest sweeps and the mesh's positions in the frame of the mesh ([`Frame`]), where
+/// the f32 paths bind and deform, so that their accuracy is relative to the mesh wherever it
+/// sits and whatever its size.
+pub struct InFrame {
+    pub frame: Frame,
+    pub rest: Vec<Sweep>,
+    pub positions: Vec<DVec3>,
+}
+
+impl InFrame {
+    pub fn of(inputs: &Inputs) -> InFrame {
+        let frame = Frame::of_points(&inputs.file.mesh.positions);
+        let positions = frame.local_positions(&inputs.file.mesh.positions);
+        InFrame { frame, rest: frame.local_sweeps(inputs.rig.rest()), positions }
+    }
+}
+
 /// Binds on the GPU, read back in the reference form; the falloff bands' second bindings are
 /// made on the CPU (f64), as the file stores them. Binds in the frame of the mesh ([`Frame`]),
 /// as `deform` deforms, and returns the bindings in world units.
 pub fn bind_on_gpu(context: &GpuContext, inputs: &Inputs) -> Result<MeshBindings, GpuError> {
-    let frame = Frame::of_points(&inputs.file.mesh.positions);
-    let (rest, local) = (frame.local_sweeps(inputs.rig.rest()), frame.local_positions(&inputs.file.mesh.positions));
+    let InFrame { frame, rest, positions: local } = InFrame::of(inputs);
     let weights = inputs.rig.band_weights(&inputs.file.mesh, &inputs.owners);
     let source = BindingSource::Bind { owners: &inputs.owners, bands: &weights };
     let positions = sweepffd::gpu::rest_positions(&local);
@@ -75,8 +93,7 @@ pub fn bind_on_gpu(context: &GpuContext, inputs: &Inputs) -> Result<MeshBindings
 /// falloff bands' second bindings are made in f64, as the file stores them. In the frame of
 /// the mesh, as on the GPU.
 pub fn bind_on_cpu(inputs: &Inputs) -> MeshBindings {
-    let frame = Frame::of_points(&inputs.file.mesh.positions);
-    let (rest, local) = (frame.local_sweeps(inputs.rig.rest()), frame.local_positions(&inputs.file.mesh.positions));
+    let InFrame { frame, rest, positions: local } = InFrame::of(inputs);
     let weights = inputs.rig.band_weights(&inputs.file.mesh, &inputs.owners);
     let positions = sweepffd::cpu_fast::packed(&local);
     let fast = FastMesh::bind(&rest, &inputs.owners, &weights, &positions);

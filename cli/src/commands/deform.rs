@@ -8,7 +8,7 @@ use glam::{DVec3, Vec3};
 use super::CliResult;
 use super::args::{MeshArg, PoseArg, RigArg};
 use super::backend::{Backend, Device, resolve};
-use super::bind::{Inputs, bind_with_progress, is_empty_rig, load_inputs};
+use super::bind::{InFrame, Inputs, bind_with_progress, is_empty_rig, load_inputs};
 use sweepffd::bind::falloff::BandWeight;
 use sweepffd::bind::{MeshBindings, UNOWNED};
 use sweepffd::bindings_file::{BindingsFile, BindingsFileError, MadeFor};
@@ -16,7 +16,6 @@ use sweepffd::coeffs::SweepCoefficients;
 use sweepffd::cpu_fast::FastMesh;
 use sweepffd::deform::deform_vertices;
 use sweepffd::formats::{Format, LoadedMesh};
-use sweepffd::frame::Frame;
 use sweepffd::gpu::{BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, GpuError};
 use sweepffd::sweep::Sweep;
 
@@ -103,27 +102,19 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     Ok(())
 }
 
-/// What the f32 paths compute with: the rest and posed sweeps, the mesh's positions and the
-/// saved bindings, in the frame of the mesh ([`Frame`]), so that their accuracy is relative to
-/// the mesh wherever it sits and whatever its size.
+/// What the f32 paths compute with: the rest sweeps and the mesh's positions ([`InFrame`]), the
+/// posed sweeps and the saved bindings, all in the frame of the mesh.
 struct Local {
-    frame: Frame,
-    rest: Vec<Sweep>,
+    framed: InFrame,
     posed: Vec<Sweep>,
-    positions: Vec<DVec3>,
     saved: Option<MeshBindings>,
 }
 
 impl Local {
     fn new(inputs: &Inputs, posed: &[Sweep], saved: Option<&MeshBindings>) -> Local {
-        let frame = Frame::of_points(&inputs.file.mesh.positions);
-        Local {
-            frame,
-            rest: frame.local_sweeps(inputs.rig.rest()),
-            posed: frame.local_sweeps(posed),
-            positions: frame.local_positions(&inputs.file.mesh.positions),
-            saved: saved.map(|saved| frame.local_bindings(saved)),
-        }
+        let framed = InFrame::of(inputs);
+        let frame = framed.frame;
+        Local { framed, posed: frame.local_sweeps(posed), saved: saved.map(|saved| frame.local_bindings(saved)) }
     }
 }
 
@@ -131,7 +122,7 @@ impl Local {
 /// vertices no sweep moves (unowned, or at weight 0 against the rest position) keep their exact
 /// rest positions. Returns the positions and owners.
 fn deform_on_gpu(context: &GpuContext, inputs: &Inputs, local: &Local) -> Result<(Vec<DVec3>, Vec<u32>), GpuError> {
-    let (rest, saved) = (&local.rest[..], local.saved.as_ref());
+    let (rest, saved) = (&local.framed.rest[..], local.saved.as_ref());
     let coefficients = SweepCoefficients::new(rest);
     let converted = saved.map(|saved| coefficients.gpu_mesh_bindings(rest, saved));
     let weights = match saved {
@@ -142,7 +133,7 @@ fn deform_on_gpu(context: &GpuContext, inputs: &Inputs, local: &Local) -> Result
         Some((bindings, bands)) => BindingSource::Precomputed { bindings, bands },
         None => BindingSource::Bind { owners: &inputs.owners, bands: &weights },
     };
-    let positions = sweepffd::gpu::rest_positions(&local.positions);
+    let positions = sweepffd::gpu::rest_positions(&local.framed.positions);
     let mut deformer = GpuDeformer::new(context, &DeformerDescriptor::new(rest, &positions, source))?;
     deformer.deform(&local.posed)?;
     Ok(f32_result(inputs, local, &weights, &deformer.read_positions()?))
@@ -151,8 +142,8 @@ fn deform_on_gpu(context: &GpuContext, inputs: &Inputs, local: &Local) -> Result
 /// Binds (or converts `saved` bindings) and deforms on the fast CPU path, as on the GPU.
 /// Returns the positions and owners.
 fn deform_on_cpu(inputs: &Inputs, local: &Local) -> (Vec<DVec3>, Vec<u32>) {
-    let (rest, saved) = (&local.rest[..], local.saved.as_ref());
-    let mut positions = sweepffd::cpu_fast::packed(&local.positions);
+    let (rest, saved) = (&local.framed.rest[..], local.saved.as_ref());
+    let mut positions = sweepffd::cpu_fast::packed(&local.framed.positions);
     let (mut fast, weights) = match saved {
         Some(saved) => {
             let (bindings, bands) = SweepCoefficients::new(rest).gpu_mesh_bindings(rest, saved);
@@ -189,7 +180,11 @@ fn f32_result(inputs: &Inputs, local: &Local, weights: &[BandWeight], deformed: 
         .chunks_exact(3)
         .zip(&inputs.file.mesh.positions)
         .zip(&keeps_rest)
-        .map(|((p, rest), &keeps)| if keeps { *rest } else { local.frame.to_world(Vec3::from_slice(p).as_dvec3()) })
+        .map(
+            |((p, rest), &keeps)| {
+                if keeps { *rest } else { local.framed.frame.to_world(Vec3::from_slice(p).as_dvec3()) }
+            },
+        )
         .collect();
     (positions, owners)
 }

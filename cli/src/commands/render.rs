@@ -119,17 +119,13 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
 /// f32).
 fn build_scenes(args: &Args) -> Result<Vec<Scene>, Box<dyn std::error::Error>> {
     let Some(rig_path) = &args.rig else {
-        let mesh = Mesh::load(&args.mesh.mesh)?;
-        let frame = Frame::of_points(&mesh.positions);
-        return Ok(vec![mesh_scene(&mesh, &frame.local_positions(&mesh.positions))]);
+        return Ok(vec![mesh_alone(&Mesh::load(&args.mesh.mesh)?)]);
     };
     let inputs = match load_inputs(&args.mesh.mesh, rig_path) {
         Err(error) if is_empty_rig(&*error) => {
             // A rig of no sweeps moves nothing and has no sweeps to show: the mesh alone.
             eprintln!("notice: {error}; drawing the mesh as it is");
-            let mesh = Mesh::load(&args.mesh.mesh)?;
-            let frame = Frame::of_points(&mesh.positions);
-            return Ok(vec![mesh_scene(&mesh, &frame.local_positions(&mesh.positions))]);
+            return Ok(vec![mesh_alone(&Mesh::load(&args.mesh.mesh)?)]);
         }
         loaded => loaded?,
     };
@@ -155,6 +151,11 @@ fn build_scenes(args: &Args) -> Result<Vec<Scene>, Box<dyn std::error::Error>> {
     let sweeps: Vec<&[Sweep]> = if args.compare { vec![&rest, &posed] } else { vec![&posed] };
     add_sweeps_if(args.show_sweeps, &mut scenes, &sweeps);
     Ok(scenes)
+}
+
+/// The mesh at rest, in its frame, in clay.
+fn mesh_alone(mesh: &Mesh) -> Scene {
+    mesh_scene(mesh, &Frame::of_points(&mesh.positions).local_positions(&mesh.positions))
 }
 
 /// The mesh at `positions` in clay.
