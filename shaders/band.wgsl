@@ -8,7 +8,7 @@
 // (binding 4: the rest cells), sweep_eval.wgsl and blend.wgsl. Twin: src/cpu/band.rs.
 
 @group(0) @binding(0) var<uniform> params: InstanceParams;
-@group(0) @binding(2) var<storage, read> bindings: array<GpuBinding>;
+@group(0) @binding(2) var<storage, read> bindings: array<vec4<u32>>;
 // Tightly packed xyz, instance z at z * params.instance_stride floats into the window.
 @group(0) @binding(3) var<storage, read_write> positions: array<f32>;
 @group(0) @binding(5) var<storage, read> bands: array<BandRecord>;
@@ -33,7 +33,7 @@ fn band_main(
     if (band.cell == UNOWNED && band.weight == 0.0) {
         return;
     }
-    let binding = bindings[band.vertex];
+    let binding = unpack_binding(bindings[band.vertex]);
     let cell = binding.cell & ~BAND_FLAG;
     let rest = rest_cells[cell];
     let frame = rest_frame(rest, binding.s, binding.phi);

@@ -7,7 +7,7 @@
 
 @group(0) @binding(0) var<uniform> params: DispatchParams;
 @group(0) @binding(1) var<storage, read> flags: array<BandFlag>;
-@group(0) @binding(2) var<storage, read_write> bindings: array<GpuBinding>;
+@group(0) @binding(2) var<storage, read_write> bindings: array<vec4<u32>>;
 // Tightly packed xyz; the window of the dispatch's vertices.
 @group(0) @binding(3) var<storage, read_write> positions: array<f32>;
 
@@ -23,12 +23,12 @@ fn band_flags_main(
     }
     let flag = flags[i];
     let v = flag.vertex & ~(BAND_FLAG | KEEPS_REST);
-    let cell = bindings[v].cell;
+    let cell = bindings[v].x;
     // An unbound vertex is in no band (UNOWNED has BAND_FLAG set already and stays as it is).
     if (cell == UNOWNED) {
         return;
     }
-    bindings[v].cell = (cell & ~BAND_FLAG) | (flag.vertex & BAND_FLAG);
+    bindings[v].x = (cell & ~BAND_FLAG) | (flag.vertex & BAND_FLAG);
     if ((flag.vertex & KEEPS_REST) != 0u) {
         positions[3u * v] = flag.x;
         positions[3u * v + 1u] = flag.y;

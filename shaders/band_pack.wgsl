@@ -3,7 +3,7 @@
 // Composed after layout.wgsl. Twin: src/cpu/band_pack.rs.
 
 @group(0) @binding(0) var<uniform> params: DispatchParams;
-@group(0) @binding(1) var<storage, read> second_bindings: array<GpuBinding>;
+@group(0) @binding(1) var<storage, read> second_bindings: array<vec4<u32>>;
 @group(0) @binding(2) var<storage, read_write> bands: array<BandRecord>;
 
 // x in [0, 1] as a 16-bit fixed-point value, rounded to nearest.
@@ -21,7 +21,7 @@ fn band_pack_main(
     if (i >= params.vertex_count) {
         return;
     }
-    let second = second_bindings[i];
+    let second = unpack_binding(second_bindings[i]);
     bands[i].cell = second.cell;
     bands[i].s_phi = unorm16(second.s) | (unorm16(second.phi) << 16u);
 }

@@ -13,7 +13,7 @@
 @group(0) @binding(4) var<storage, read> owners: array<u32>;
 // Rest positions, tightly packed xyz.
 @group(0) @binding(5) var<storage, read> positions: array<f32>;
-@group(0) @binding(6) var<storage, read_write> bindings: array<GpuBinding>;
+@group(0) @binding(6) var<storage, read_write> bindings: array<vec4<u32>>;
 
 const TAU: f32 = 6.283185307179586;
 // Dyadic subdivision depth: intervals of width 2^-12 that still show several sign variations
@@ -188,7 +188,7 @@ fn bind_main(
     }
     let flagged_owner = owners[i];
     if (flagged_owner == UNOWNED) {
-        bindings[i] = GpuBinding(UNOWNED, 0.0, 0.0, 0.0, 0.0);
+        bindings[i] = vec4<u32>(UNOWNED, 0u, 0u, 0u);
         return;
     }
     let band = flagged_owner & BAND_FLAG;
@@ -227,5 +227,5 @@ fn bind_main(
     let phi = clamp(x - f32(j), 0.0, 1.0);
     let cell = nearest.cell + j;
     let r = radius_at(cells[cell], nearest.s, phi);
-    bindings[i] = GpuBinding(cell | band, nearest.s, phi, length(local.xy) - r, local.z);
+    bindings[i] = pack_binding(GpuBinding(cell | band, nearest.s, phi, length(local.xy) - r, local.z));
 }

@@ -16,7 +16,7 @@
 // Composed after layout.wgsl. Twin: src/cpu/cell_order.rs.
 
 @group(0) @binding(0) var<uniform> params: CellOrderParams;
-@group(0) @binding(1) var<storage, read> bindings: array<GpuBinding>;
+@group(0) @binding(1) var<storage, read> bindings: array<vec4<u32>>;
 // Per bucket: its vertex count (count pass), then the next free slot of its range (scan and
 // scatter passes).
 @group(0) @binding(2) var<storage, read_write> cursors: array<atomic<u32>>;
@@ -44,10 +44,11 @@ var<workgroup> run_totals: array<u32, SCAN_LANES>;
 
 // The bucket of vertex i, or UNOWNED if it is in no group (unbound, in a band, or past the cells).
 fn bucket_of(i: u32) -> u32 {
-    let cell = bindings[i].cell;
-    if (cell >= params.cell_count) {
+    let x = bindings[i].x;
+    if (!is_plain(x) || plain_cell(x) >= params.cell_count) {
         return UNOWNED;
     }
+    let cell = plain_cell(x);
     return i / params.block_size * params.cell_count + cell;
 }
 

@@ -1,9 +1,10 @@
-// Benchmark baseline: the memory ceiling of the deform kernel. Reads each vertex's 20-byte
-// binding and writes 12 bytes of position, as deform does, with no arithmetic to speak of.
-// Composed after layout.wgsl. Twin: src/cpu/copy.rs.
+// Benchmark baseline: the memory ceiling of the deform kernel. Reads each vertex's 16-byte
+// packed binding and writes 12 bytes of position, as deform does, with no arithmetic to speak of.
+// Composed after layout.wgsl. The CPU bench's twin, src/cpu/copy.rs, reads the f32 bindings
+// instead.
 
 @group(0) @binding(0) var<uniform> params: DispatchParams;
-@group(0) @binding(1) var<storage, read> bindings: array<GpuBinding>;
+@group(0) @binding(1) var<storage, read> bindings: array<vec4<u32>>;
 @group(0) @binding(2) var<storage, read_write> positions: array<f32>;
 
 @compute @workgroup_size(WORKGROUP_SIZE)
@@ -17,7 +18,7 @@ fn copy_main(
         return;
     }
     let b = bindings[i];
-    positions[3u * i] = b.s + f32(b.cell);
-    positions[3u * i + 1u] = b.phi + b.h;
-    positions[3u * i + 2u] = b.d;
+    positions[3u * i] = bitcast<f32>(b.x ^ b.y);
+    positions[3u * i + 1u] = bitcast<f32>(b.w);
+    positions[3u * i + 2u] = bitcast<f32>(b.z);
 }

@@ -1,10 +1,11 @@
 // Benchmark baseline: the memory ceiling of the fused deform + Jacobian normals kernel. Reads
-// each vertex's 20-byte binding and 16-byte normal coordinates record and writes 12 bytes of
+// each vertex's 16-byte binding and 16-byte normal coordinates record and writes 12 bytes of
 // position and 12 of normal, as deform_normals.wgsl does, with no arithmetic to speak of.
-// Composed after layout.wgsl. Twin: src/cpu/copy.rs (copy_wide).
+// Composed after layout.wgsl. The CPU bench's twin, src/cpu/copy.rs (copy_wide),
+// reads the f32 bindings instead.
 
 @group(0) @binding(0) var<uniform> params: DispatchParams;
-@group(0) @binding(1) var<storage, read> bindings: array<GpuBinding>;
+@group(0) @binding(1) var<storage, read> bindings: array<vec4<u32>>;
 @group(0) @binding(2) var<storage, read> records: array<vec4<f32>>;
 @group(0) @binding(3) var<storage, read_write> positions: array<f32>;
 @group(0) @binding(4) var<storage, read_write> normals: array<f32>;
@@ -21,9 +22,9 @@ fn copy_wide_main(
     }
     let b = bindings[i];
     let r = records[i];
-    positions[3u * i] = b.s + f32(b.cell);
-    positions[3u * i + 1u] = b.phi + b.h;
-    positions[3u * i + 2u] = b.d;
+    positions[3u * i] = bitcast<f32>(b.x ^ b.y);
+    positions[3u * i + 1u] = bitcast<f32>(b.w);
+    positions[3u * i + 2u] = bitcast<f32>(b.z);
     normals[3u * i] = r.x + r.w;
     normals[3u * i + 1u] = r.y;
     normals[3u * i + 2u] = r.z;

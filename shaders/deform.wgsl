@@ -7,7 +7,7 @@
 // (deform_main), or instances numbered flat (deform_instances_main).
 
 @group(0) @binding(0) var<uniform> params: InstanceParams;
-@group(0) @binding(2) var<storage, read> bindings: array<GpuBinding>;
+@group(0) @binding(2) var<storage, read> bindings: array<vec4<u32>>;
 // Tightly packed xyz, instance z at z * params.instance_stride floats; unbound vertices keep the
 // rest position written at creation.
 @group(0) @binding(3) var<storage, read_write> positions: array<f32>;
@@ -48,10 +48,11 @@ fn deform_instances_main(
     if (z0 >= params.instance_count) {
         return;
     }
-    let binding = bindings[i];
-    if (binding.cell >= BAND_FLAG) {
+    let packed = bindings[i];
+    if (!is_plain(packed.x)) {
         return;
     }
+    let binding = unpack_plain(packed);
     let last = min(z0 + INSTANCES_PER_INVOCATION, params.instance_count);
     for (var z = z0; z < last; z++) {
         deform_bound_vertex(i, z, binding);
@@ -60,13 +61,13 @@ fn deform_instances_main(
 
 // Vertex i of the dispatch's instance z.
 fn deform_vertex(i: u32, z: u32) {
-    let binding = bindings[i];
+    let packed = bindings[i];
     // Unbound vertices keep their rest position; vertices in falloff bands (BAND_FLAG, which
     // UNOWNED also has) are moved by the band kernel.
-    if (binding.cell >= BAND_FLAG) {
+    if (!is_plain(packed.x)) {
         return;
     }
-    deform_bound_vertex(i, z, binding);
+    deform_bound_vertex(i, z, unpack_plain(packed));
 }
 
 // Vertex i of the dispatch's instance z, bound by `binding` (no falloff band).

@@ -26,10 +26,10 @@ fn deform_groups_main(
     }
     let first = groups_order[CELL_GROUP * g];
     let z = group.z;
-    let cell = cells[(params.first_instance + z) * params.cells_per_instance + bindings[first].cell];
+    let cell = cells[(params.first_instance + z) * params.cells_per_instance + plain_cell(bindings[first].x)];
     for (var k = 0u; k < CELL_GROUP; k++) {
         let i = groups_order[CELL_GROUP * g + k];
-        deform_in_cell(i, z, bindings[i], cell);
+        deform_in_cell(i, z, unpack_plain(bindings[i]), cell);
     }
 }
 
@@ -61,7 +61,7 @@ fn deform_groups_instances_main(
     var members: array<GpuBinding, CELL_GROUP>;
     for (var k = 0u; k < CELL_GROUP; k++) {
         vertices[k] = groups_order[CELL_GROUP * g + k];
-        members[k] = bindings[vertices[k]];
+        members[k] = unpack_plain(bindings[vertices[k]]);
     }
     let last = min(z0 + INSTANCES_PER_INVOCATION, params.instance_count);
     for (var z = z0; z < last; z++) {

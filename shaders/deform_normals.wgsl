@@ -10,7 +10,7 @@
 // Every instance in one dispatch: workgroup layer z is instance params.first_instance + z.
 
 @group(0) @binding(0) var<uniform> params: InstanceParams;
-@group(0) @binding(2) var<storage, read> bindings: array<GpuBinding>;
+@group(0) @binding(2) var<storage, read> bindings: array<vec4<u32>>;
 // Tightly packed xyz, instance z at z * params.instance_stride floats, as deform.wgsl's.
 @group(0) @binding(3) var<storage, read_write> positions: array<f32>;
 // The chunk's normal coordinates records (jacobian.wgsl), one per vertex, shared by instances.
@@ -28,10 +28,11 @@ fn deform_normals_main(
     if (i >= params.vertex_count) {
         return;
     }
-    let binding = bindings[i];
-    if (binding.cell >= BAND_FLAG) {
+    let packed = bindings[i];
+    if (!is_plain(packed.x)) {
         return;
     }
+    let binding = unpack_plain(packed);
     deform_with_normal_in_cell(i, group.z, binding, cells[(params.first_instance + group.z) * params.cells_per_instance + binding.cell]);
 }
 

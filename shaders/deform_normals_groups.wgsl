@@ -21,9 +21,9 @@ fn deform_normals_groups_main(
     }
     let z = group.z;
     let first = normal_groups[CELL_GROUP * g];
-    let cell = cells[(params.first_instance + z) * params.cells_per_instance + bindings[first].cell];
+    let cell = cells[(params.first_instance + z) * params.cells_per_instance + plain_cell(bindings[first].x)];
     for (var k = 0u; k < CELL_GROUP; k++) {
         let i = normal_groups[CELL_GROUP * g + k];
-        deform_with_normal_in_cell(i, z, bindings[i], cell);
+        deform_with_normal_in_cell(i, z, unpack_plain(bindings[i]), cell);
     }
 }

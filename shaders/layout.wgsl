@@ -48,13 +48,66 @@ struct BindSegment {
     _pad: f32,
 }
 
-// A vertex's binding: its radius cell (or UNOWNED), local (s, phi) in that cell, d and h.
+// A vertex's binding, unpacked: its radius cell (or UNOWNED; BAND_FLAG set in a falloff band),
+// local (s, phi) in that cell, d and h.
 struct GpuBinding {
     cell: u32,
     s: f32,
     phi: f32,
     d: f32,
     h: f32,
+}
+
+// A binding as the buffers store it (PackedBinding in src/layout.rs), one vec4<u32> so that it
+// is read in one aligned 16-byte load: x holds the cell in its low CELL_BITS bits (all set: unbound),
+// the low LOW_BITS bits of s and of phi above them and BAND_FLAG; y the high 16 bits of s (low
+// half) and of phi (high half); z and w the bits of d and h. s and phi are 21-bit unorms.
+const CELL_BITS: u32 = 20u;
+const CELL_MASK: u32 = 0xfffffu;
+const LOW_BITS: u32 = 5u;
+const LOW_MASK: u32 = 0x1fu;
+const PARAMETER_MAX: f32 = 2097151.0;
+// 1 / PARAMETER_MAX in f32, (1 + 2^-21) 2^-21 exactly; PARAMETER_MAX * PARAMETER_SCALE rounds to 1.
+const PARAMETER_SCALE: f32 = 0x1.000008p-21f;
+
+// Whether a packed binding's vertex is deformed by the deform kernel: bound, outside the bands.
+fn is_plain(x: u32) -> bool {
+    return x < BAND_FLAG;
+}
+
+// The cell of a plain packed binding (is_plain).
+fn plain_cell(x: u32) -> u32 {
+    return x & CELL_MASK;
+}
+
+// A packed binding unpacked, its cell without BAND_FLAG: for plain bindings (is_plain).
+fn unpack_plain(w: vec4<u32>) -> GpuBinding {
+    let s = ((w.y & 0xffffu) << LOW_BITS) | ((w.x >> CELL_BITS) & LOW_MASK);
+    let phi = ((w.y >> 16u) << LOW_BITS) | ((w.x >> (CELL_BITS + LOW_BITS)) & LOW_MASK);
+    return GpuBinding(plain_cell(w.x), f32(s) * PARAMETER_SCALE, f32(phi) * PARAMETER_SCALE, bitcast<f32>(w.z), bitcast<f32>(w.w));
+}
+
+// A packed binding unpacked: UNOWNED and zeros if unbound, BAND_FLAG in its cell in a falloff
+// band.
+fn unpack_binding(w: vec4<u32>) -> GpuBinding {
+    if ((w.x & CELL_MASK) == CELL_MASK) {
+        return GpuBinding(UNOWNED, 0.0, 0.0, 0.0, 0.0);
+    }
+    var binding = unpack_plain(w);
+    binding.cell |= w.x & BAND_FLAG;
+    return binding;
+}
+
+// The packed form of b (s and phi in [0, 1], rounded to the nearest step, ties to even).
+fn pack_binding(b: GpuBinding) -> vec4<u32> {
+    if (b.cell == UNOWNED) {
+        return vec4<u32>(UNOWNED, 0u, 0u, 0u);
+    }
+    let s = u32(round(clamp(b.s, 0.0, 1.0) * PARAMETER_MAX));
+    let phi = u32(round(clamp(b.phi, 0.0, 1.0) * PARAMETER_MAX));
+    let x = (b.cell & CELL_MASK) | (b.cell & BAND_FLAG) | ((s & LOW_MASK) << CELL_BITS)
+        | ((phi & LOW_MASK) << (CELL_BITS + LOW_BITS));
+    return vec4<u32>(x, (s >> LOW_BITS) | ((phi >> LOW_BITS) << 16u), bitcast<u32>(b.d), bitcast<u32>(b.h));
 }
 
 // A vertex in a falloff band: its vertex (relative to the dispatch's first), weight w, and second

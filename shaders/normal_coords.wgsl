@@ -6,7 +6,7 @@
 // cell records), sweep_eval.wgsl and jacobian.wgsl. Twin: src/cpu/jacobian.rs.
 
 @group(0) @binding(0) var<uniform> params: DispatchParams;
-@group(0) @binding(2) var<storage, read> bindings: array<GpuBinding>;
+@group(0) @binding(2) var<storage, read> bindings: array<vec4<u32>>;
 // The chunk's window of the rest normals, tightly packed xyz.
 @group(0) @binding(3) var<storage, read> rest_normals: array<f32>;
 @group(0) @binding(4) var<storage, read_write> coordinates: array<vec4<f32>>;
@@ -21,7 +21,7 @@ fn normal_coords_main(
     if (i >= params.vertex_count) {
         return;
     }
-    let binding = bindings[i];
+    let binding = unpack_binding(bindings[i]);
     if (binding.cell == UNOWNED) {
         coordinates[i] = vec4<f32>(0.0);
         return;

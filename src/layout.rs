@@ -113,8 +113,9 @@ pub struct BindSegment {
     pub _pad: f32,
 }
 
-/// A vertex's binding as the GPU stores it: the cell it lies in, local parameters in that
-/// cell, and (d, h). 20 bytes, so positions (12) and bindings fit in 32 bytes a vertex.
+/// A vertex's binding in f32: the cell it lies in, local parameters in that cell, and (d, h).
+/// The CPU twins and the bindings file hold bindings in this form; the GPU stores each as a
+/// 16-byte [`PackedBinding`] and the kernels unpack it to this.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuBinding {
@@ -129,6 +130,95 @@ pub struct GpuBinding {
     /// Axial offset h.
     pub h: f32,
 }
+
+/// Bits of a [`PackedBinding`]'s cell index: rigs of the GPU engine have fewer than
+/// [`MAX_PACKED_CELLS`] cells.
+pub const CELL_BITS: u32 = 20;
+
+/// The cell bits of a [`PackedBinding`]'s first word; all set for an unbound vertex.
+pub const CELL_MASK: u32 = (1 << CELL_BITS) - 1;
+
+/// Most cells a rig may have on the GPU: [`CELL_MASK`] marks an unbound vertex.
+pub const MAX_PACKED_CELLS: u32 = CELL_MASK;
+
+/// Bits of s and of φ in a [`PackedBinding`]: each is stored as a 21-bit unsigned normalized
+/// integer, so that it differs from its f32 by at most half a step, 2⁻²² of the cell.
+pub const PARAMETER_BITS: u32 = 21;
+
+/// The largest stored s or φ, which reads as 1.
+pub const PARAMETER_MAX: u32 = (1 << PARAMETER_BITS) - 1;
+
+/// The bits of s and of φ held in the first word, below the [`BAND_FLAG`].
+const LOW_BITS: u32 = PARAMETER_BITS - 16;
+
+/// A vertex's binding as the GPU stores it, 16 bytes (one aligned 16-byte load a vertex, so
+/// that a bound vertex moves 28 bytes a frame: the binding read and its position written).
+///
+/// - `cell_low`: the cell in the low [`CELL_BITS`] bits (all set: unbound, which reads as
+///   [`UNOWNED`]), the low bits of s and then of φ above them, and the [`BAND_FLAG`];
+/// - `s_phi_high`: the high 16 bits of s (low half) and of φ (high half);
+/// - `d` and `h` as f32.
+///
+/// s and φ are stored to 21 bits ([`PARAMETER_BITS`]): at most 2⁻²² off their f32 values
+/// (which carry 24 bits), 0 and 1 exact. A deformed position moves by at most
+/// 2⁻²² (|∂p/∂s| + |∂p/∂φ|): 2.4e-7 of a knot interval's length plus 2.4e-7 of the arc of an
+/// angular interval (docs/engine.md, "Bindings on the GPU").
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct PackedBinding {
+    /// The cell, the low bits of s and φ and the band flag.
+    pub cell_low: u32,
+    /// The high 16 bits of s and φ.
+    pub s_phi_high: u32,
+    /// Signed distance d from the sweep surface.
+    pub d: f32,
+    /// Axial offset h.
+    pub h: f32,
+}
+
+impl PackedBinding {
+    /// The packed form of `binding`, whose cell (without [`BAND_FLAG`]) is below
+    /// [`MAX_PACKED_CELLS`] or [`UNOWNED`]: s and φ clamped to [0, 1] and rounded to the
+    /// nearest of [`PARAMETER_MAX`] + 1 steps, ties to even (as WGSL's `round`).
+    pub fn pack(binding: &GpuBinding) -> PackedBinding {
+        let quantize = |x: f32| (x.clamp(0.0, 1.0) * PARAMETER_MAX as f32).round_ties_even() as u32;
+        let (s, phi) = (quantize(binding.s), quantize(binding.phi));
+        let cell = match binding.cell {
+            UNOWNED => return PackedBinding { cell_low: UNOWNED, s_phi_high: 0, d: 0.0, h: 0.0 },
+            cell => (cell & CELL_MASK) | (cell & BAND_FLAG),
+        };
+        let low_mask = (1 << LOW_BITS) - 1;
+        PackedBinding {
+            cell_low: cell | (s & low_mask) << CELL_BITS | (phi & low_mask) << (CELL_BITS + LOW_BITS),
+            s_phi_high: (s >> LOW_BITS) | (phi >> LOW_BITS) << 16,
+            d: binding.d,
+            h: binding.h,
+        }
+    }
+
+    /// The binding this packs, as the kernels unpack it (`unpack_binding` in
+    /// `shaders/layout.wgsl`), bit for bit; an unbound vertex's is [`UNOWNED`] and zeros.
+    pub fn unpack(&self) -> GpuBinding {
+        let cell = match self.cell_low & CELL_MASK {
+            CELL_MASK => return GpuBinding { cell: UNOWNED, ..GpuBinding::default() },
+            cell => cell | (self.cell_low & BAND_FLAG),
+        };
+        let low_mask = (1 << LOW_BITS) - 1;
+        let s = (self.s_phi_high & 0xffff) << LOW_BITS | (self.cell_low >> CELL_BITS) & low_mask;
+        let phi = (self.s_phi_high >> 16) << LOW_BITS | (self.cell_low >> (CELL_BITS + LOW_BITS)) & low_mask;
+        GpuBinding { cell, s: unorm(s), phi: unorm(phi), d: self.d, h: self.h }
+    }
+}
+
+/// A stored s or φ as f32: `q / PARAMETER_MAX` as one correctly rounded product (1 reads as
+/// exactly 1: (2²¹ − 1)(1 + 2⁻²¹)2⁻²¹ = 1 − 2⁻⁴², which rounds to 1).
+fn unorm(q: u32) -> f32 {
+    q as f32 * PARAMETER_SCALE
+}
+
+/// 1 / [`PARAMETER_MAX`] in f32, (1 + 2⁻²¹)2⁻²¹ exactly (`PARAMETER_SCALE` in
+/// `shaders/layout.wgsl`, spelled `0x1.000008p-21f`).
+pub const PARAMETER_SCALE: f32 = 1.0 / PARAMETER_MAX as f32;
 
 /// A vertex in a falloff band, for the band kernel: its weight and its second influence. 16
 /// bytes, only for vertices with w < 1.
@@ -264,6 +354,8 @@ const _: () = assert!(UNIFORM_CELL_CAPACITY as usize * size_of::<CellCoeffs>() <
 const _: () = assert!(size_of::<SweepInfo>() == 16);
 const _: () = assert!(size_of::<BindSegment>() == 96);
 const _: () = assert!(size_of::<GpuBinding>() == 20);
+const _: () = assert!(size_of::<PackedBinding>() == 16);
+const _: () = assert!(CELL_BITS + 2 * LOW_BITS < 31);
 const _: () = assert!(size_of::<DispatchParams>() == 16);
 const _: () = assert!(size_of::<InstanceParams>() == 32);
 const _: () = assert!(size_of::<CellOrderParams>() == 32);
@@ -271,3 +363,58 @@ const _: () = assert!(size_of::<BandRecord>() == 16);
 const _: () = assert!(size_of::<BandFlag>() == 16);
 const _: () = assert!(size_of::<SkinInfluence>() == 8);
 const _: () = assert!(size_of::<Joint>() == 48);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn binding(cell: u32, s: f32, phi: f32) -> GpuBinding {
+        GpuBinding { cell, s, phi, d: -0.25, h: 1.5 }
+    }
+
+    #[test]
+    fn packed_parameters_are_within_half_a_step_and_the_ends_exact() {
+        let half_step = 0.5 / PARAMETER_MAX as f32;
+        let mut worst = 0.0f32;
+        for k in 0..=100_000u32 {
+            let x = k as f32 / 100_000.0;
+            let unpacked = PackedBinding::pack(&binding(7, x, 1.0 - x)).unpack();
+            worst = worst.max((unpacked.s - x).abs()).max((unpacked.phi - (1.0 - x)).abs());
+            assert_eq!((unpacked.cell, unpacked.d, unpacked.h), (7, -0.25, 1.5));
+        }
+        // Half a step, plus the rounding of the f32 product and of 1 − x.
+        assert!(worst <= half_step * 1.001, "worst {worst:e} > half a step {half_step:e}");
+        assert!(worst >= half_step * 0.5, "worst {worst:e}: the parameters are not quantized at all?");
+        for end in [0.0, 1.0] {
+            let unpacked = PackedBinding::pack(&binding(3, end, end)).unpack();
+            assert_eq!((unpacked.s, unpacked.phi), (end, end));
+        }
+        assert_eq!(PARAMETER_MAX as f32 * PARAMETER_SCALE, 1.0);
+        assert_eq!(PARAMETER_SCALE.to_bits(), 0x3500_0004, "0x1.000008p-21, as shaders/layout.wgsl spells it");
+    }
+
+    #[test]
+    fn packing_keeps_the_cell_the_band_flag_and_unbound_vertices() {
+        let last = MAX_PACKED_CELLS - 1;
+        for cell in [0, 1, 409, last, last | BAND_FLAG, BAND_FLAG] {
+            assert_eq!(PackedBinding::pack(&binding(cell, 0.3, 0.9)).unpack().cell, cell);
+        }
+        let unbound = PackedBinding::pack(&binding(UNOWNED, 0.5, 0.5));
+        assert_eq!(unbound.cell_low, UNOWNED);
+        assert_eq!(unbound.unpack(), GpuBinding { cell: UNOWNED, ..GpuBinding::default() });
+        // The deform kernel skips exactly the flagged and unbound vertices: their first word is
+        // at least BAND_FLAG, every plain one's below (whatever its s and φ).
+        assert!(PackedBinding::pack(&binding(last, 1.0, 1.0)).cell_low < BAND_FLAG);
+        assert!(PackedBinding::pack(&binding(0, 0.0, 0.0)).cell_low < BAND_FLAG);
+        assert!(PackedBinding::pack(&binding(5 | BAND_FLAG, 0.0, 0.0)).cell_low >= BAND_FLAG);
+    }
+
+    #[test]
+    fn packing_an_unpacked_binding_gives_it_back() {
+        for k in 0..10_000u32 {
+            let b = binding(k % 997, (k as f32 * 0.618).fract(), (k as f32 * 0.377).fract());
+            let packed = PackedBinding::pack(&b);
+            assert_eq!(PackedBinding::pack(&packed.unpack()), packed, "binding {b:?}");
+        }
+    }
+}

@@ -35,8 +35,10 @@ pub const MAX_GLTF_NODE_DEPTH: usize = 1024;
 /// The most mesh instances of a glTF scene (a mesh drawn by several nodes counts once each).
 pub const MAX_GLTF_INSTANCES: usize = 1 << 16;
 
-/// The most vertices `bench` measures on a synthetic tube.
-pub const MAX_BENCH_VERTICES: usize = 1 << 25;
+/// The most vertices `bench` measures on a synthetic tube on any backend (the host builds the
+/// tube, about 100 bytes a vertex); on a GPU the device's largest buffer bounds it further
+/// ([`crate::bench::gpu_vertex_limit`]).
+pub const MAX_BENCH_VERTICES: usize = 1 << 30;
 
 /// The most timed runs per `bench` figure.
 pub const MAX_BENCH_RUNS: usize = 10_000;

@@ -84,6 +84,8 @@ impl CpuBench {
             backend: "cpu",
             adapter: format!("{} threads", crate::parallel::thread_count()),
             n,
+            cell_records: None,
+            deform_order: None,
             bind_verts_per_s: n_f / bind,
             deform_verts_per_s: n_f / deform,
             copy_verts_per_s: n_f / copy,
@@ -108,6 +110,8 @@ impl CpuBench {
             normals_angle_p99_deg: None,
             falloff: self.falloff_reports(&rounds),
             runs,
+            creation: None,
+            memory: None,
             timestamps: false,
         }
     }
@@ -146,6 +150,7 @@ impl CpuBench {
                 partial: (0.0, 1.0),
                 fused: 0.0,
                 wide_copy: 1.0,
+                buffer_copy: 0.0,
                 deform: time(&mut || cpu_fast::deform::deform(&posed.cells, &self.bound.bindings, &mut out_f32)),
                 falloff: self
                     .falloff

@@ -74,9 +74,7 @@ impl EngineComparisons {
         timer: Option<&GpuTimer>,
     ) -> Result<(f64, f64), GpuError> {
         let deform = |deformer: &mut GpuDeformer| {
-            time(context, timer, |encoder, timer| {
-                deformer.encode_deform_pass(encoder, timer.and_then(|t| t.writes(true, true)))
-            })
+            time(context, timer, |encoder, stamps| deformer.encode_deform_pass(encoder, stamps.pass()))
         };
         Ok((deform(&mut self.instances)?, deform(&mut self.single)?))
     }
@@ -88,9 +86,9 @@ impl EngineComparisons {
         timer: Option<&GpuTimer>,
     ) -> Result<(f64, f64), GpuError> {
         let frame = |deformer: &mut GpuDeformer| {
-            time(context, timer, |encoder, timer| {
-                deformer.encode_deform_pass(encoder, timer.and_then(|t| t.writes(true, false)));
-                deformer.encode_normals_pass(encoder, timer.and_then(|t| t.writes(false, true)));
+            time(context, timer, |encoder, stamps| {
+                deformer.encode_deform_pass(encoder, stamps.opening());
+                deformer.encode_normals_pass(encoder, stamps.closing());
             })
         };
         Ok((frame(&mut self.partial)?, frame(&mut self.full)?))

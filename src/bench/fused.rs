@@ -4,6 +4,7 @@
 //! the bench's scene.
 
 use super::GpuTimer;
+use super::creation::timed_deformer;
 use super::passes::{Dispatches, chunk_params, encode, time};
 use crate::coeffs::{BAND_FLAG, UNOWNED};
 use crate::gpu::buffers::window;
@@ -12,7 +13,7 @@ use crate::normals::jacobian_reach;
 use crate::sweep::Sweep;
 
 /// Bytes of a normal coordinates record.
-const RECORD_STRIDE: u64 = 16;
+pub(super) const RECORD_STRIDE: u64 = 16;
 
 /// The fused deformer of the bench's scene and its memory-ceiling baseline.
 pub(super) struct FusedComparison {
@@ -23,6 +24,8 @@ pub(super) struct FusedComparison {
     /// and those [`crate::deform::jacobian_normal_vertices`] leaves to the normals pass),
     /// degrees.
     pub(super) angle_p99_deg: f64,
+    /// Milliseconds to create the deformer: the whole and the host's share.
+    pub(super) creation: (f64, f64),
 }
 
 impl FusedComparison {
@@ -36,7 +39,8 @@ impl FusedComparison {
     ) -> Result<FusedComparison, GpuError> {
         let device = &context.device;
         let triangles = descriptor.triangles.unwrap_or(&[]);
-        let mut deformer = GpuDeformer::new(context, &descriptor.with_jacobian_normals())?;
+        let (mut deformer, creation_ms, creation_host_ms) =
+            timed_deformer(context, &descriptor.with_jacobian_normals())?;
         deformer.deform(posed)?;
         plain.deform(posed)?;
         let angle_p99_deg = normals_angle_p99_deg(&deformer, plain, triangles)?;
@@ -72,20 +76,25 @@ impl FusedComparison {
                 (group, dispatch_grid(range.len() as u32, &limits))
             })
             .collect();
-        Ok(FusedComparison { deformer, wide_copy: (kernel, dispatches), angle_p99_deg })
+        Ok(FusedComparison {
+            deformer,
+            wide_copy: (kernel, dispatches),
+            angle_p99_deg,
+            creation: (creation_ms, creation_host_ms),
+        })
     }
 
     /// Seconds of the fused deform pass (positions and Jacobian normals).
     pub(super) fn time_fused(&mut self, context: &GpuContext, timer: Option<&GpuTimer>) -> Result<f64, GpuError> {
-        time(context, timer, |encoder, timer| {
-            self.deformer.encode_deform_pass(encoder, timer.and_then(|t| t.writes(true, false)));
-            self.deformer.encode_normals_pass(encoder, timer.and_then(|t| t.writes(false, true)));
+        time(context, timer, |encoder, stamps| {
+            self.deformer.encode_deform_pass(encoder, stamps.opening());
+            self.deformer.encode_normals_pass(encoder, stamps.closing());
         })
     }
 
     /// Seconds of the copy kernel moving the fused kernel's bytes.
     pub(super) fn time_wide_copy(&self, context: &GpuContext, timer: Option<&GpuTimer>) -> Result<f64, GpuError> {
-        time(context, timer, |encoder, timer| encode(encoder, &self.wide_copy, timer))
+        time(context, timer, |encoder, stamps| encode(encoder, &self.wide_copy, stamps))
     }
 }
 

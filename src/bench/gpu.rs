@@ -5,17 +5,19 @@ use std::time::Instant;
 
 use wgpu::util::DeviceExt;
 
+use super::creation::{CreationReport, timed_deformer};
 use super::engine::EngineComparisons;
-use super::fused::FusedComparison;
-use super::passes::{Dispatches, chunk_params, encode, time};
+use super::fused::{FusedComparison, RECORD_STRIDE};
+use super::passes::{Dispatches, Stamps, chunk_params, encode, time};
 use super::skinning::{skinning_influences, skinning_joints};
+use super::traffic::{BufferCopy, MemoryReport, PassTimes};
 use super::{BenchReport, BenchScene, FalloffKind, FalloffReport, GpuTimer, Round, best_of, median, median_of};
 use crate::coeffs::{BAND_FLAG, SweepCoefficients};
 use crate::gpu::binder::Binder;
 use crate::gpu::buffers::window;
 use crate::gpu::{
-    BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, GpuError, POSITION_STRIDE, dispatch_grid, kernels,
-    uniform_chunks, wait,
+    BAND_STRIDE, BINDING_STRIDE, BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, GpuError, POSITION_STRIDE,
+    dispatch_grid, kernels, uniform_chunks, wait,
 };
 
 /// Runs before the timed ones.
@@ -41,6 +43,9 @@ pub struct GpuBench {
     engine: EngineComparisons,
     /// The fused deform + Jacobian normals kernel.
     fused: FusedComparison,
+    /// The whole-buffer copy, the memory ceiling of the copy engine.
+    buffer_copy: BufferCopy,
+    creation: CreationReport,
 }
 
 impl GpuBench {
@@ -53,7 +58,7 @@ impl GpuBench {
         let positions = crate::gpu::rest_positions(&scene.mesh.positions);
         let triangles: Vec<u32> = scene.mesh.faces.triangles().flatten().collect();
         let descriptor = DeformerDescriptor::new(rest, &positions, source).with_triangles(&triangles);
-        let mut deformer = GpuDeformer::new(context, &descriptor)?;
+        let (mut deformer, creation_ms, creation_host_ms) = timed_deformer(context, &descriptor)?;
         let fused = FusedComparison::new(context, descriptor, &mut deformer, &scene.posed)?;
         let mut flagged_owners = scene.owners.clone();
         for band in &bands {
@@ -69,6 +74,13 @@ impl GpuBench {
             mapped_at_creation: false,
         });
         let copy = copy_baseline(device, &deformer, &scratch);
+        let buffer_copy = BufferCopy::new(context, n as u64 * BINDING_STRIDE);
+        let creation = CreationReport {
+            ms: creation_ms,
+            host_ms: creation_host_ms,
+            jacobian_normals_ms: fused.creation.0,
+            jacobian_normals_host_ms: fused.creation.1,
+        };
         let skinning = skinning_baseline(device, &scene, deformer.limits(), &scratch);
         Ok(GpuBench {
             context: context.clone(),
@@ -82,6 +94,8 @@ impl GpuBench {
             timer: GpuTimer::new(context),
             engine: EngineComparisons::new(context, n as usize)?,
             fused,
+            buffer_copy,
+            creation,
         })
     }
 
@@ -96,11 +110,16 @@ impl GpuBench {
         let limits = *self.deformer.limits();
         let chunks: Vec<(Range<u32>, wgpu::Buffer)> =
             self.deformer.binding_chunks().map(|(range, buffer)| (range.clone(), buffer.clone())).collect();
-        self.time(|encoder, timer| {
+        self.time(|encoder, stamps| {
             let last = chunks.len() - 1;
             for (c, (range, bindings)) in chunks.iter().enumerate() {
                 let owners = &self.flagged_owners[range.start as usize..range.end as usize];
-                let writes = timer.and_then(|t| t.writes(c == 0, c == last));
+                let writes = match (c == 0, c == last) {
+                    (true, true) => stamps.pass(),
+                    (true, false) => stamps.opening(),
+                    (false, true) => stamps.closing(),
+                    (false, false) => None,
+                };
                 self.binder.encode(encoder, range, owners, self.deformer.positions(), bindings, &limits, writes);
             }
         })
@@ -109,17 +128,15 @@ impl GpuBench {
     /// Seconds of the deform kernel alone, after the pose has been set.
     pub fn time_deform(&mut self) -> Result<f64, GpuError> {
         self.deformer.set_pose(0, &self.scene.posed)?;
-        time(&self.context, self.timer.as_ref(), |encoder, timer| {
-            self.deformer.encode_deform_pass(encoder, timer.and_then(|t| t.writes(true, true)))
+        time(&self.context, self.timer.as_ref(), |encoder, stamps| {
+            self.deformer.encode_deform_pass(encoder, stamps.pass())
         })
     }
 
     /// Seconds of the deform pass of falloff comparison `i`.
     pub fn time_falloff_deform(&mut self, i: usize) -> Result<f64, GpuError> {
         let deformer = &mut self.falloff[i].1;
-        time(&self.context, self.timer.as_ref(), |encoder, timer| {
-            deformer.encode_deform_pass(encoder, timer.and_then(|t| t.writes(true, true)))
-        })
+        time(&self.context, self.timer.as_ref(), |encoder, stamps| deformer.encode_deform_pass(encoder, stamps.pass()))
     }
 
     /// Seconds of the deform pass of [`INSTANCES`](super::INSTANCES) instances of a small tube
@@ -146,12 +163,12 @@ impl GpuBench {
 
     /// Seconds of the copy baseline.
     pub fn time_copy(&self) -> Result<f64, GpuError> {
-        self.time(|encoder, timer| encode(encoder, &self.copy, timer))
+        self.time(|encoder, stamps| encode(encoder, &self.copy, stamps))
     }
 
     /// Seconds of the skinning baseline.
     pub fn time_skinning(&self) -> Result<f64, GpuError> {
-        self.time(|encoder, timer| encode(encoder, &self.skinning, timer))
+        self.time(|encoder, stamps| encode(encoder, &self.skinning, stamps))
     }
 
     /// Wall-clock seconds of one frame: posing the rig's sweeps from keys, turning them into
@@ -172,7 +189,7 @@ impl GpuBench {
 
     /// Seconds of the normals pass alone (zero without faces).
     pub fn time_normals(&self) -> Result<f64, GpuError> {
-        self.time(|encoder, timer| self.deformer.encode_normals_pass(encoder, timer.and_then(|t| t.writes(true, true))))
+        self.time(|encoder, stamps| self.deformer.encode_normals_pass(encoder, stamps.pass()))
     }
 
     /// Wall-clock seconds to read the positions back.
@@ -203,6 +220,7 @@ impl GpuBench {
                 partial: self.engine.time_partial(&self.context, self.timer.as_ref())?,
                 fused: best_of(BEST_OF, || self.time_fused())?,
                 wide_copy: best_of(BEST_OF, || self.time_wide_copy())?,
+                buffer_copy: best_of(BEST_OF, || self.buffer_copy.seconds(&self.context, self.timer.as_ref()))?,
             };
             if round >= WARMUP {
                 rounds.push(times);
@@ -234,6 +252,8 @@ impl GpuBench {
             backend: "gpu",
             adapter: format!("{} ({:?})", self.context.info.name, self.context.info.backend),
             n: n as usize,
+            cell_records: Some(self.deformer.cell_records().name()),
+            deform_order: Some(self.deformer.deform_order().name()),
             bind_verts_per_s: n / bind,
             deform_verts_per_s: n / column(|r| r.deform),
             copy_verts_per_s: n / column(|r| r.copy),
@@ -252,14 +272,46 @@ impl GpuBench {
             fused_over_copy: Some(column(|r| r.fused / r.wide_copy)),
             fused_over_separate: Some(column(|r| r.fused / (r.deform + r.normals))),
             normals_angle_p99_deg: Some(self.fused.angle_p99_deg),
+            creation: Some(self.creation),
+            memory: Some(self.memory_report(&rounds, bind)),
             runs,
             timestamps: self.timer.is_some(),
         })
     }
 
+    /// The traffic of every pass over `rounds`, binding (timed apart) at its median `bind`
+    /// seconds in each.
+    fn memory_report(&self, rounds: &[Round], bind: f64) -> MemoryReport {
+        let n = self.deformer.vertex_count() as f64;
+        let column = |f: &dyn Fn(&Round) -> f64| rounds.iter().map(f).collect::<Vec<f64>>();
+        let plain = (self.deformer.dispatched_vertex_count() as u64 * (BINDING_STRIDE + POSITION_STRIDE)) as f64 / n;
+        let times = |pass, bytes_per_vertex, seconds| PassTimes { pass, bytes_per_vertex, seconds };
+        let copy = times("copy kernel", plain, column(&|r| r.copy));
+        let mut passes = vec![
+            times("deform", plain, column(&|r| r.deform)),
+            times("copy kernel", plain, column(&|r| r.copy)),
+            times("lbs", (2 * POSITION_STRIDE + 8) as f64, column(&|r| r.lbs)),
+        ];
+        for (i, (kind, deformer)) in self.falloff.iter().enumerate() {
+            let band_share = deformer.band_vertex_count() as f64 / deformer.vertex_count() as f64;
+            let bytes = (BINDING_STRIDE + POSITION_STRIDE) as f64 + band_share * (BAND_STRIDE + BINDING_STRIDE) as f64;
+            let pass = match kind {
+                FalloffKind::Rest => "bands (rest)",
+                FalloffKind::Sweep => "bands (sweep)",
+            };
+            passes.push(times(pass, bytes, column(&|r| r.falloff[i])));
+        }
+        passes.push(times("normals", self.deformer.normals_frame_bytes() as f64 / n, column(&|r| r.normals)));
+        let fused = (BINDING_STRIDE + RECORD_STRIDE + 2 * POSITION_STRIDE) as f64;
+        passes.push(times("fused", fused, column(&|r| r.fused)));
+        passes.push(times("bind", (4 + POSITION_STRIDE + BINDING_STRIDE) as f64, vec![bind; rounds.len()]));
+        let copy_rates = column(&|r| self.buffer_copy.bytes() / r.buffer_copy);
+        MemoryReport::new(n, &copy, &copy_rates, &passes)
+    }
+
     /// Records with `record`, submits, waits, and returns the timestamped seconds (wall-clock
     /// without timestamp queries).
-    fn time(&self, record: impl FnOnce(&mut wgpu::CommandEncoder, Option<&GpuTimer>)) -> Result<f64, GpuError> {
+    fn time(&self, record: impl FnMut(&mut wgpu::CommandEncoder, Stamps)) -> Result<f64, GpuError> {
         time(&self.context, self.timer.as_ref(), record)
     }
 }

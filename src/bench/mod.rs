@@ -4,9 +4,11 @@
 //! skinning (what real-time applications use today).
 //!
 //! Every figure is the median of several runs after warm-up; GPU kernel times come from
-//! timestamp queries where the device supports them, wall-clock otherwise.
+//! timestamp queries over [`REPEATS`] passes back to back where the device supports them,
+//! wall-clock otherwise.
 
 mod cpu;
+mod creation;
 mod engine;
 mod frame;
 mod fused;
@@ -16,17 +18,21 @@ mod scene;
 mod size;
 mod skinning;
 mod timer;
+mod traffic;
 
 use serde::Serialize;
 
 pub use cpu::CpuBench;
+pub use creation::CreationReport;
 pub use engine::{INSTANCES, PARTIAL_SHARE};
 pub use frame::{FRAME_CPU_FRAMES, FRAME_WARMUP, FrameBench, host_frame_seconds, median_host_frame_ms};
 pub use gpu::GpuBench;
+pub use passes::REPEATS;
 pub use scene::{BAND_FRACTION, BenchScene, FalloffKind};
-pub use size::{BenchSizeError, MIN_BENCH_VERTICES, check_runs, tube_vertex_count};
+pub use size::{BenchSizeError, MIN_BENCH_VERTICES, check_runs, gpu_vertex_limit, tube_vertex_count};
 pub use skinning::{skinning_influences, skinning_joints};
 pub use timer::GpuTimer;
+pub use traffic::{MemoryReport, PassTraffic};
 
 /// One bench run's results, printed by `sweepffd bench --json` as one JSON line.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -37,6 +43,12 @@ pub struct BenchReport {
     pub adapter: String,
     /// Number of vertices.
     pub n: usize,
+    /// Where the deformer's kernels read the cell records from, as chosen for the adapter:
+    /// `"uniform"` or `"storage"` (`null` on the CPU).
+    pub cell_records: Option<&'static str>,
+    /// Which vertices an invocation of the deform kernel deforms, as chosen for the adapter:
+    /// `"vertices"` or `"cell groups"` (`null` on the CPU).
+    pub deform_order: Option<&'static str>,
     /// Vertices bound per second.
     pub bind_verts_per_s: f64,
     /// Vertices deformed per second (deform kernel alone).
@@ -85,6 +97,11 @@ pub struct BenchReport {
     /// of the posed scene, over the vertices whose normals the fused kernel writes, degrees
     /// (`null` on the CPU).
     pub normals_angle_p99_deg: Option<f64>,
+    /// Creating the deformers, milliseconds (`null` on the CPU).
+    pub creation: Option<CreationReport>,
+    /// Bytes a vertex and rates of the GPU passes against the copy kernel and a whole-buffer
+    /// copy measured in the same rounds (`null` on the CPU).
+    pub memory: Option<MemoryReport>,
     /// Runs each median is taken over.
     pub runs: usize,
     /// Whether GPU times come from timestamp queries.
@@ -137,6 +154,8 @@ struct Round {
     /// The fused deform + Jacobian normals pass and its copy baseline (GPU only).
     fused: f64,
     wide_copy: f64,
+    /// A whole-buffer copy (GPU only).
+    buffer_copy: f64,
 }
 
 /// The median of `samples` (which it sorts).

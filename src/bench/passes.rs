@@ -1,5 +1,8 @@
-//! Timing GPU passes for the bench: a pipeline's dispatches recorded as one pass, submitted and
-//! timed with timestamp queries where the device has them (wall-clock otherwise).
+//! Timing GPU passes for the bench: a figure's passes recorded [`REPEATS`] times back to back in
+//! one command buffer, submitted, and timed from the start of the first to the end of the last
+//! with timestamp queries where the device has them (wall-clock otherwise), divided by
+//! [`REPEATS`]: one dispatch of a 1M-vertex mesh lasts tens of microseconds on a discrete GPU,
+//! as long as the gaps between passes.
 
 use std::ops::Range;
 use std::time::Instant;
@@ -13,27 +16,67 @@ use crate::gpu::{GpuContext, GpuError, wait};
 /// A pipeline's dispatches, one per chunk.
 pub(super) type Dispatches = (kernels::Kernel, Vec<(wgpu::BindGroup, (u32, u32))>);
 
-/// Records with `record`, submits, waits, and returns the timestamped seconds (wall-clock
-/// without timestamp queries).
+/// Times each figure's passes are recorded in one timed command buffer.
+pub const REPEATS: usize = 10;
+
+/// The timestamp writes one repetition of a figure's passes may make: the first repetition's
+/// first pass writes the start, the last repetition's last pass the end.
+#[derive(Clone, Copy)]
+pub(super) struct Stamps<'a> {
+    timer: Option<&'a GpuTimer>,
+    first: bool,
+    last: bool,
+}
+
+impl<'a> Stamps<'a> {
+    /// For a repetition of a single pass.
+    pub(super) fn pass(self) -> Option<wgpu::ComputePassTimestampWrites<'a>> {
+        self.timer.and_then(|t| t.writes(self.first, self.last))
+    }
+
+    /// For the first of a repetition's passes.
+    pub(super) fn opening(self) -> Option<wgpu::ComputePassTimestampWrites<'a>> {
+        self.timer.and_then(|t| t.writes(self.first, false))
+    }
+
+    /// For the last of a repetition's passes.
+    pub(super) fn closing(self) -> Option<wgpu::ComputePassTimestampWrites<'a>> {
+        self.timer.and_then(|t| t.writes(false, self.last))
+    }
+}
+
+/// Records `record` [`REPEATS`] times, submits, waits, and returns the timestamped seconds of
+/// one repetition (wall-clock without timestamp queries).
 pub(super) fn time(
     context: &GpuContext,
     timer: Option<&GpuTimer>,
-    record: impl FnOnce(&mut wgpu::CommandEncoder, Option<&GpuTimer>),
+    mut record: impl FnMut(&mut wgpu::CommandEncoder, Stamps),
 ) -> Result<f64, GpuError> {
     let device = &context.device;
     let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd bench") });
     let start = Instant::now();
-    record(&mut encoder, timer);
+    for k in 0..REPEATS {
+        record(&mut encoder, Stamps { timer, first: k == 0, last: k == REPEATS - 1 });
+    }
     if let Some(timer) = timer {
         timer.resolve(&mut encoder);
     }
     context.queue.submit([encoder.finish()]);
     wait(context)?;
     let wall = start.elapsed().as_secs_f64();
-    match timer {
-        Some(timer) => timer.seconds(context),
-        None => Ok(wall),
-    }
+    let seconds = match timer {
+        Some(timer) => timer.seconds(context)?,
+        None => wall,
+    };
+    Ok(seconds / REPEATS as f64)
+}
+
+/// An empty compute pass writing the timestamps of `stamps` (around copies, which make none).
+pub(super) fn stamp(encoder: &mut wgpu::CommandEncoder, stamps: Option<wgpu::ComputePassTimestampWrites>) {
+    encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+        label: Some("sweepffd bench stamp"),
+        timestamp_writes: stamps,
+    });
 }
 
 pub(super) fn chunk_params(device: &wgpu::Device, range: &Range<u32>) -> wgpu::Buffer {
@@ -41,10 +84,10 @@ pub(super) fn chunk_params(device: &wgpu::Device, range: &Range<u32>) -> wgpu::B
 }
 
 /// Records one pass over all of a pipeline's dispatches.
-pub(super) fn encode(encoder: &mut wgpu::CommandEncoder, (kernel, dispatches): &Dispatches, timer: Option<&GpuTimer>) {
+pub(super) fn encode(encoder: &mut wgpu::CommandEncoder, (kernel, dispatches): &Dispatches, stamps: Stamps) {
     let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
         label: Some("sweepffd bench"),
-        timestamp_writes: timer.and_then(|t| t.writes(true, true)),
+        timestamp_writes: stamps.pass(),
     });
     pass.set_pipeline(&kernel.pipeline);
     for (group, grid) in dispatches {

@@ -14,8 +14,9 @@ use std::f64::consts::PI;
 use glam::{DQuat, DVec3};
 
 pub use crate::layout::{
-    BAND_FLAG, BandFlag, BandRecord, BindSegment, CELL_GROUP, CellCoeffs, CellOrderParams, DispatchParams, GpuBinding,
-    INSTANCES_PER_INVOCATION, InstanceParams, Joint, KEEPS_REST, SCAN_RUN, SkinInfluence, SweepInfo,
+    BAND_FLAG, BandFlag, BandRecord, BindSegment, CELL_BITS, CELL_GROUP, CELL_MASK, CellCoeffs, CellOrderParams,
+    DispatchParams, GpuBinding, INSTANCES_PER_INVOCATION, InstanceParams, Joint, KEEPS_REST, MAX_PACKED_CELLS,
+    PARAMETER_BITS, PARAMETER_MAX, PARAMETER_SCALE, PackedBinding, SCAN_RUN, SkinInfluence, SweepInfo,
     UNIFORM_CELL_CAPACITY, UNOWNED, WORKGROUP_SIZE,
 };
 

@@ -1,5 +1,6 @@
-//! Twin of `shaders/copy.wgsl`, the benchmark's memory-ceiling kernel: reads each binding,
-//! writes three floats derived from it.
+//! The CPU bench's memory-ceiling kernel, after `shaders/copy.wgsl`: reads each binding (the
+//! f32 form, as the CPU paths hold them; the GPU kernel reads the packed form), writes three
+//! floats derived from it.
 
 use crate::parallel::prelude::*;
 

@@ -7,12 +7,12 @@ use wgpu::util::DeviceExt;
 
 use super::GpuError;
 use super::kernels::DeformVariant;
-use crate::coeffs::{CellCoeffs, DispatchParams, GpuBinding, SweepCoefficients, UNIFORM_CELL_CAPACITY};
+use crate::coeffs::{CellCoeffs, DispatchParams, GpuBinding, PackedBinding, SweepCoefficients, UNIFORM_CELL_CAPACITY};
 
 /// Bytes per vertex of the position and normal buffers (tightly packed f32 xyz).
 pub const POSITION_STRIDE: u64 = 12;
-/// Bytes per vertex of the binding buffers.
-pub const BINDING_STRIDE: u64 = size_of::<GpuBinding>() as u64;
+/// Bytes per vertex of the binding buffers ([`PackedBinding`](crate::coeffs::PackedBinding)).
+pub const BINDING_STRIDE: u64 = size_of::<PackedBinding>() as u64;
 
 /// `Err(TooLarge)` when `needed` bytes exceed `limit`.
 pub(crate) fn check_fits(what: &'static str, needed: u64, limit: u64) -> Result<(), GpuError> {
@@ -66,11 +66,12 @@ pub(crate) fn cells_buffer(
     })
 }
 
-/// A binding buffer holding `bindings`.
+/// A binding buffer holding `bindings`, packed.
 pub(crate) fn binding_buffer_with(device: &wgpu::Device, bindings: &[GpuBinding]) -> wgpu::Buffer {
+    let packed: Vec<PackedBinding> = bindings.iter().map(PackedBinding::pack).collect();
     device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("sweepffd bindings"),
-        contents: bytemuck::cast_slice(bindings),
+        contents: bytemuck::cast_slice(&packed),
         usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
     })
 }

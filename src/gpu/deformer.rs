@@ -38,7 +38,9 @@ use super::readback::{read_bytes, wait};
 use super::tangents_pass::{TANGENT_STRIDE, TangentStage};
 use super::{GpuContext, GpuError};
 use crate::bind::falloff::BandWeight;
-use crate::coeffs::{BAND_FLAG, BandRecord, CELL_GROUP, CellCoeffs, GpuBinding, SweepCoefficients, UNOWNED};
+use crate::coeffs::{
+    BAND_FLAG, BandRecord, CELL_GROUP, CellCoeffs, GpuBinding, PackedBinding, SweepCoefficients, UNOWNED,
+};
 use crate::sweep::Sweep;
 
 /// Storage buffers the bind kernel uses in one stage, the most of any kernel.
@@ -97,6 +99,8 @@ pub struct GpuDeformer {
     uploads: PoseUploads,
     coefficients: SweepCoefficients,
     variant: DeformVariant,
+    /// Whether the deform kernel runs over cell groups.
+    cell_groups: bool,
     /// The rest rig's cell records, which binding and the band kernel read.
     rest_cells: wgpu::Buffer,
     chunks: Vec<DeformChunk>,
@@ -281,6 +285,7 @@ impl GpuDeformer {
             uploads,
             coefficients: plan.coefficients,
             variant: plan.variant,
+            cell_groups: plan.kernel.cell_groups,
             rest_cells,
             chunks,
             bands,
@@ -378,6 +383,22 @@ impl GpuDeformer {
         fn normals_dispatch_count(&self) -> usize {
             let tangents = self.tangents.get(self.current).map_or(0, TangentStage::dispatch_count);
             self.normals.get(self.current).map_or(0, |n| n.dispatches.len()) + tangents
+        }
+    }
+
+    /// Where the kernels read the cell records from, as [`CellRecords`](crate::gpu::CellRecords)
+    /// chose for this rig and adapter.
+    pub fn cell_records(&self) -> DeformVariant {
+        self.variant
+    }
+
+    /// Which vertices an invocation of the deform kernel deforms, as
+    /// [`DeformOrder`] chose for this adapter: [`DeformOrder::Vertices`] or
+    /// [`DeformOrder::CellGroups`].
+    pub fn deform_order(&self) -> DeformOrder {
+        match self.cell_groups {
+            true => DeformOrder::CellGroups,
+            false => DeformOrder::Vertices,
         }
     }
 
@@ -610,7 +631,8 @@ impl GpuDeformer {
         }
     }
 
-    /// Copies the bindings back to the CPU (blocking), one per vertex; band vertices carry
+    /// Copies the bindings back to the CPU (blocking), one per vertex, unpacked from the GPU's
+    /// [`PackedBinding`]s (s and φ as stored, to 21 bits); band vertices carry
     /// [`BAND_FLAG`] in their cell; vertices outside every dispatch are unbound ([`UNOWNED`],
     /// as the bind kernel writes it).
     pub fn read_bindings(&self) -> Result<Vec<GpuBinding>, GpuError> {
@@ -619,7 +641,10 @@ impl GpuDeformer {
         for chunk in &self.chunks {
             let bytes = read_bytes(&self.context, &chunk.bindings, 0, chunk.range.len() as u64 * BINDING_STRIDE)?;
             let range = chunk.range.start as usize..chunk.range.end as usize;
-            bindings[range].copy_from_slice(&bytemuck::pod_collect_to_vec::<u8, GpuBinding>(&bytes));
+            let packed = bytemuck::pod_collect_to_vec::<u8, PackedBinding>(&bytes);
+            for (binding, packed) in bindings[range].iter_mut().zip(&packed) {
+                *binding = packed.unpack();
+            }
         }
         Ok(bindings)
     }
@@ -628,6 +653,12 @@ impl GpuDeformer {
     #[cfg(feature = "bench")]
     pub(crate) fn binding_chunks(&self) -> impl Iterator<Item = (&Range<u32>, &wgpu::Buffer)> {
         self.chunks.iter().map(|chunk| (&chunk.range, &chunk.bindings))
+    }
+
+    /// Bytes the normals pass reads and writes a frame (for the bench).
+    #[cfg(feature = "bench")]
+    pub(crate) fn normals_frame_bytes(&self) -> u64 {
+        self.normals.get(self.current).map_or(0, NormalsStage::frame_bytes)
     }
 
     /// The rest rig's cell records, as the bind kernel reads them (for the bench).

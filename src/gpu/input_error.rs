@@ -22,6 +22,8 @@ pub enum InputError {
     BindingCount { bindings: usize, vertices: usize },
     #[error("binding {binding} refers to radius cell {cell} of {cells}")]
     BindingCellOutOfRange { binding: usize, cell: u32, cells: usize },
+    #[error("the rig has {cells} radius cells; the GPU engine binds to at most {max}")]
+    TooManyCells { cells: usize, max: u32 },
     #[error("the falloff bands are not sorted, owned and in range")]
     BandsOutOfOrder,
     #[error("the band records are not sorted, bound and in range")]

@@ -91,24 +91,62 @@ impl Kernel {
 
 use Slot::{Read, ReadWrite, Uniform};
 
+/// Where the deform, band and normal-coordinate kernels read a deformer's cell records from,
+/// as chosen: by adapter, or forced ([`DeformerDescriptor::with_cell_records`]).
+///
+/// [`DeformerDescriptor::with_cell_records`]: crate::gpu::DeformerDescriptor::with_cell_records
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum CellRecords {
+    /// [`Uniform`](CellRecords::Uniform) on a CPU adapter (lavapipe, llvmpipe, SwiftShader),
+    /// [`Storage`](CellRecords::Storage) on any other. On lavapipe the uniform records halve the
+    /// deform pass; on an NVIDIA H200 they cost 1.5× at 10M vertices (2.5× at 1M) and 2.5× in
+    /// the falloff bands: lanes of a warp reading records at different indices from a uniform
+    /// buffer serialize there (docs/performance.md).
+    #[default]
+    Auto,
+    /// A uniform buffer, where the rig fits one ([`DeformVariant::Uniform`]); storage otherwise.
+    Uniform,
+    /// A storage buffer.
+    Storage,
+}
+
+impl CellRecords {
+    /// The variant for a rig of `cells` cells (every instance's) on an adapter of `device_type`
+    /// with `limits`.
+    pub fn variant(self, cells: usize, limits: &wgpu::Limits, device_type: wgpu::DeviceType) -> DeformVariant {
+        let fits = DeformVariant::uniform_fits(cells, limits);
+        match self {
+            CellRecords::Auto if fits && device_type == wgpu::DeviceType::Cpu => DeformVariant::Uniform,
+            CellRecords::Uniform if fits => DeformVariant::Uniform,
+            _ => DeformVariant::Storage,
+        }
+    }
+}
+
 /// Where the deform kernel reads the cell records from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum DeformVariant {
-    /// A uniform buffer of [`UNIFORM_CELL_CAPACITY`] records: much faster on lavapipe and many
-    /// GPUs; for rigs of up to that many cells on devices that allow 64 KiB uniform buffers.
+    /// A uniform buffer of [`UNIFORM_CELL_CAPACITY`] records: rigs and instances of up to that
+    /// many cells on devices that allow 64 KiB uniform buffers; the faster choice on CPU
+    /// adapters.
     Uniform,
-    /// A storage buffer: rigs of any size.
+    /// A storage buffer: rigs of any size; the faster choice on GPUs.
     Storage,
 }
 
 impl DeformVariant {
-    /// The uniform variant when the rig's `cells` and the device allow it.
-    pub fn for_cells(cells: usize, limits: &wgpu::Limits) -> DeformVariant {
+    /// Whether a rig of `cells` cells (every instance's) fits a uniform buffer on a device with
+    /// `limits`.
+    pub fn uniform_fits(cells: usize, limits: &wgpu::Limits) -> bool {
         let bytes = UNIFORM_CELL_CAPACITY as u64 * size_of::<CellCoeffs>() as u64;
-        if cells <= UNIFORM_CELL_CAPACITY as usize && limits.max_uniform_buffer_binding_size >= bytes {
-            DeformVariant::Uniform
-        } else {
-            DeformVariant::Storage
+        cells <= UNIFORM_CELL_CAPACITY as usize && limits.max_uniform_buffer_binding_size >= bytes
+    }
+
+    /// `"uniform"` or `"storage"`, as `sweepffd info` and the bench name it.
+    pub fn name(self) -> &'static str {
+        match self {
+            DeformVariant::Uniform => "uniform",
+            DeformVariant::Storage => "storage",
         }
     }
 }

@@ -35,7 +35,7 @@ pub use deformer::{
 };
 pub use error::GpuError;
 pub use input_error::InputError;
-pub use kernels::DeformVariant;
+pub use kernels::{CellRecords, DeformVariant};
 pub use readback::{read_bytes, read_staging, wait};
 pub use tangents_pass::TANGENT_STRIDE;
 

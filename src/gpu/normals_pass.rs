@@ -196,6 +196,14 @@ impl NormalsStage {
         let device_bytes = buffer.size() + list_bytes;
         Ok(NormalsStage { kernel, buffer, dispatches, dirty, device_bytes })
     }
+
+    /// Bytes a frame's pass reads and writes, each buffer counted once: its lists, and the
+    /// position read and the normal written of each vertex it recomputes.
+    #[cfg(feature = "bench")]
+    pub(crate) fn frame_bytes(&self) -> u64 {
+        let lists = self.device_bytes - self.buffer.size();
+        lists + self.dirty.len() as u64 * 2 * POSITION_STRIDE
+    }
 }
 
 impl NormalsPlan<'_> {

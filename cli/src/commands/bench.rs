@@ -5,15 +5,19 @@ use std::path::PathBuf;
 
 use super::CliResult;
 use super::backend::{Backend, Device, resolve};
-use sweepffd::bench::{BenchReport, BenchScene, CpuBench, FalloffKind, GpuBench, check_runs, tube_vertex_count};
+use sweepffd::bench::{
+    BenchReport, BenchScene, CpuBench, FalloffKind, GpuBench, check_runs, gpu_vertex_limit, tube_vertex_count,
+};
+use sweepffd::limits::MAX_BENCH_VERTICES;
 use sweepffd::mesh::Mesh;
 use sweepffd::rig::Rig;
 
 /// The arguments of `sweepffd bench`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Vertices of the synthetic tube to measure, 770 to 33554432 (ignored with --mesh and
-    /// --rig); rounded down to a whole tube, 256·k + 2 vertices, with a note.
+    /// Vertices of the synthetic tube to measure, from 770 up to what the device's largest
+    /// buffer holds (16 bytes a vertex; at most 2^30) (ignored with --mesh and --rig); rounded
+    /// down to a whole tube, 256·k + 2 vertices, with a note.
     #[arg(long, default_value_t = 1_000_000)]
     pub vertices: usize,
     /// Measure this mesh instead of a synthetic tube (needs --rig).
@@ -37,6 +41,11 @@ pub struct Args {
 pub fn run(args: &Args, quiet: bool) -> CliResult {
     // The engine names the field; the command line, the flag that sets it.
     check_runs(args.runs).map_err(|e| format!("--{e}"))?;
+    let device = resolve(args.backend, quiet || args.json)?;
+    let max_vertices = match &device {
+        Device::Gpu(context) => gpu_vertex_limit(&context.device.limits()),
+        Device::Cpu | Device::Reference => MAX_BENCH_VERTICES,
+    };
     let scene = match (&args.mesh, &args.rig) {
         (Some(mesh_path), Some(rig_path)) => {
             let mesh = Mesh::load(mesh_path)?;
@@ -44,7 +53,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
             BenchScene::new(mesh, rig, &mesh_path.display().to_string())?
         }
         (None, None) => {
-            let vertices = tube_vertex_count(args.vertices).map_err(|e| format!("--{e}"))?;
+            let vertices = tube_vertex_count(args.vertices, max_vertices).map_err(|e| format!("--{e}"))?;
             if vertices != args.vertices && !quiet {
                 eprintln!(
                     "note: measuring {vertices} vertices, the largest synthetic tube with at most --vertices {} \
@@ -57,7 +66,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
         _ => return Err("--mesh and --rig go together".into()),
     };
     let runs = args.runs;
-    let report = match resolve(args.backend, quiet || args.json)? {
+    let report = match device {
         Device::Gpu(context) => GpuBench::new(&context, scene)?.report(runs)?,
         Device::Cpu | Device::Reference => CpuBench::new(scene).report(runs),
     };

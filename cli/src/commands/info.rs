@@ -1,8 +1,9 @@
 //! `sweepffd info`: the GPU adapter, its backend and the limits that shape the kernels.
 
 use super::CliResult;
+use sweepffd::coeffs::UNIFORM_CELL_CAPACITY;
 use sweepffd::coeffs::WORKGROUP_SIZE;
-use sweepffd::gpu::GpuContext;
+use sweepffd::gpu::{CellRecords, DeformOrder, DeformVariant, GpuContext};
 
 pub fn run() -> CliResult {
     let context = GpuContext::new()?;
@@ -19,5 +20,13 @@ pub fn run() -> CliResult {
     println!("max_compute_workgroups_per_dimension: {}", limits.max_compute_workgroups_per_dimension);
     println!("min_storage_buffer_offset_alignment:  {} bytes", limits.min_storage_buffer_offset_alignment);
     println!("workgroup size of the kernels:     {WORKGROUP_SIZE}");
+    let small = CellRecords::Auto.variant(1, &limits, info.device_type);
+    let records = match small {
+        DeformVariant::Uniform => format!("uniform (rigs of up to {UNIFORM_CELL_CAPACITY} cells), storage beyond"),
+        DeformVariant::Storage => "storage".to_string(),
+    };
+    let order = if DeformOrder::Auto.groups_on(info) { "cell groups" } else { "vertices" };
+    println!("cell records (auto):               {records}");
+    println!("deform order (auto):               {order}");
     Ok(())
 }

@@ -406,8 +406,8 @@ fn bench_sizes_and_run_counts_it_cannot_honour_are_refused() {
     assert_eq!(bench(&["--vertices", "0"]), format!("error: --vertices 0 {small}\n"));
     assert_eq!(bench(&["--vertices", "769"]), format!("error: --vertices 769 {small}\n"));
     assert_eq!(
-        bench(&["--vertices", "40000000"]),
-        "error: --vertices 40000000 is over the limit of 33554432 vertices\n"
+        bench(&["--vertices", "2000000000"]),
+        "error: --vertices 2000000000 is over the limit of 1073741824 vertices on this backend\n"
     );
     assert_eq!(bench(&["--runs", "0"]), "error: --runs must be at least 1, found 0\n");
     assert_eq!(bench(&["--runs", "10001"]), "error: --runs 10001 is over the limit of 10000 runs\n");

@@ -41,6 +41,15 @@ pub enum DeformOrder {
 }
 
 impl DeformOrder {
+    /// `"auto"`, `"vertices"` or `"cell groups"`, as `sweepffd info` and the bench name it.
+    pub fn name(self) -> &'static str {
+        match self {
+            DeformOrder::Auto => "auto",
+            DeformOrder::Vertices => "vertices",
+            DeformOrder::CellGroups => "cell groups",
+        }
+    }
+
     /// Whether the deform kernel runs over cell groups on the adapter `info` describes.
     pub fn groups_on(self, info: &wgpu::AdapterInfo) -> bool {
         self.groups_on_type(info.device_type)

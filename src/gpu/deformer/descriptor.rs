@@ -2,10 +2,11 @@
 //! engine's own types (f32 rest positions, a `u32` triangle list), and the checks made on it
 //! before anything reaches the GPU.
 
+use super::super::kernels::CellRecords;
 use super::super::{GpuError, InputError};
 use super::BindingSource;
 use super::cell_groups::DeformOrder;
-use crate::coeffs::{BAND_FLAG, BandRecord, UNOWNED};
+use crate::coeffs::{BAND_FLAG, BandRecord, MAX_PACKED_CELLS, UNOWNED};
 use crate::mesh::Faces;
 use crate::sweep::Sweep;
 
@@ -59,6 +60,9 @@ pub struct DeformerDescriptor<'a> {
     /// Which vertices one invocation of the deform kernel (or the fused deform + Jacobian normals
     /// kernel) deforms: the same positions and normals, bit for bit.
     pub deform_order: DeformOrder,
+    /// Where the kernels read the cell records from: the same positions and normals, bit for
+    /// bit.
+    pub cell_records: CellRecords,
 }
 
 /// An application buffer the deformer writes its positions into (an engine's own vertex buffer):
@@ -104,6 +108,7 @@ impl<'a> DeformerDescriptor<'a> {
             output: None,
             full_dispatch: false,
             deform_order: DeformOrder::Auto,
+            cell_records: CellRecords::Auto,
         }
     }
 
@@ -186,6 +191,12 @@ impl<'a> DeformerDescriptor<'a> {
         DeformerDescriptor { deform_order, ..self }
     }
 
+    /// The same, reading the cell records from `cell_records` (see [`CellRecords`]; default
+    /// [`CellRecords::Auto`]).
+    pub fn with_cell_records(self, cell_records: CellRecords) -> DeformerDescriptor<'a> {
+        DeformerDescriptor { cell_records, ..self }
+    }
+
     /// `Err(Input)` naming the first problem: no vertices, too many, a non-finite position, owners
     /// or bindings of another length or out of the rig's range, falloff bands not sorted, bound and
     /// in range, a triangle list not a multiple of three or indexing past the vertices.
@@ -245,6 +256,10 @@ fn check_input(rest: &[Sweep], positions: &[[f32; 3]], bindings: &BindingSource)
     if positions.is_empty() {
         return Err(InputError::NoVertices.into());
     }
+    let cells: usize = rest.iter().map(|s| s.segments().len() * s.radius_samples()).sum();
+    if cells > MAX_PACKED_CELLS as usize {
+        return Err(InputError::TooManyCells { cells, max: MAX_PACKED_CELLS }.into());
+    }
     if positions.len() >= UNOWNED as usize {
         return Err(InputError::TooManyVertices { vertices: positions.len() }.into());
     }
@@ -265,7 +280,6 @@ fn check_input(rest: &[Sweep], positions: &[[f32; 3]], bindings: &BindingSource)
             if bindings.len() != positions.len() {
                 return Err(InputError::BindingCount { bindings: bindings.len(), vertices: positions.len() }.into());
             }
-            let cells: usize = rest.iter().map(|s| s.segments().len() * s.radius_samples()).sum();
             if let Some(i) = bindings.iter().position(|b| b.cell != UNOWNED && (b.cell & !BAND_FLAG) as usize >= cells)
             {
                 return Err(InputError::BindingCellOutOfRange { binding: i, cell: bindings[i].cell, cells }.into());

@@ -82,7 +82,7 @@ pub(super) struct DeformerPlan {
 
 impl DeformerPlan {
     /// The plan of `descriptor` on a device with `device_limits`, of `device_type` (which
-    /// chooses the deform order); input errors are found here, before the GPU.
+    /// chooses the deform order and the cell records); input errors are found here, before the GPU.
     pub fn new(
         descriptor: &DeformerDescriptor,
         device_limits: &wgpu::Limits,
@@ -109,7 +109,7 @@ impl DeformerPlan {
         check_output(descriptor, &targets, &limits)?;
         let coefficients = SweepCoefficients::new(descriptor.rest);
         let total_cells = coefficients.cells.len() * descriptor.instances as usize;
-        let variant = DeformVariant::for_cells(total_cells, device_limits);
+        let variant = descriptor.cell_records.variant(total_cells, device_limits, device_type);
         let cell_groups = descriptor.deform_order.groups_on_type(device_type);
         let kernel = KernelChoice::new(descriptor.jacobian_normals, cell_groups, descriptor.instances);
         let band_vertices: Vec<u32> = match descriptor.bindings {

@@ -5,9 +5,9 @@
 use std::mem::{offset_of, size_of};
 
 use sweepffd::coeffs::{
-    BAND_FLAG, BandFlag, BandRecord, BindSegment, CELL_GROUP, CellCoeffs, CellOrderParams, DispatchParams, GpuBinding,
-    INSTANCES_PER_INVOCATION, InstanceParams, Joint, KEEPS_REST, SkinInfluence, SweepInfo, UNIFORM_CELL_CAPACITY,
-    UNOWNED, WORKGROUP_SIZE,
+    BAND_FLAG, BandFlag, BandRecord, BindSegment, CELL_BITS, CELL_GROUP, CELL_MASK, CellCoeffs, CellOrderParams,
+    DispatchParams, GpuBinding, INSTANCES_PER_INVOCATION, InstanceParams, Joint, KEEPS_REST, PARAMETER_BITS,
+    PARAMETER_MAX, PARAMETER_SCALE, SkinInfluence, SweepInfo, UNIFORM_CELL_CAPACITY, UNOWNED, WORKGROUP_SIZE,
 };
 use sweepffd::gpu::shaders;
 use sweepffd::normals::{FAN_CLOSE, FAN_END, FAN_INDEX, FAN_START};
@@ -118,6 +118,15 @@ fn u32_constant(module: &naga::Module, name: &str) -> Option<u32> {
     }
 }
 
+/// The value of the `f32` constant `name` in a kernel, if it declares it.
+fn f32_constant(module: &naga::Module, name: &str) -> Option<f32> {
+    let (_, constant) = module.constants.iter().find(|(_, c)| c.name.as_deref() == Some(name))?;
+    match module.global_expressions[constant.init] {
+        naga::Expression::Literal(naga::Literal::F32(value)) => Some(value),
+        _ => None,
+    }
+}
+
 #[test]
 fn shared_constants_have_the_rust_values() {
     for (name, source, _) in shaders::ALL {
@@ -129,6 +138,12 @@ fn shared_constants_have_the_rust_values() {
         let per_invocation = u32_constant(&module, "INSTANCES_PER_INVOCATION");
         assert_eq!(per_invocation, Some(INSTANCES_PER_INVOCATION), "{name}");
         assert_eq!(u32_constant(&module, "CELL_GROUP"), Some(CELL_GROUP), "{name}");
+        assert_eq!(u32_constant(&module, "CELL_BITS"), Some(CELL_BITS), "{name}");
+        assert_eq!(u32_constant(&module, "CELL_MASK"), Some(CELL_MASK), "{name}");
+        assert_eq!(u32_constant(&module, "LOW_BITS"), Some(PARAMETER_BITS - 16), "{name}");
+        assert_eq!(u32_constant(&module, "LOW_MASK"), Some((1 << (PARAMETER_BITS - 16)) - 1), "{name}");
+        assert_eq!(f32_constant(&module, "PARAMETER_MAX"), Some(PARAMETER_MAX as f32), "{name}");
+        assert_eq!(f32_constant(&module, "PARAMETER_SCALE"), Some(PARAMETER_SCALE), "{name}");
     }
     let order = parse("cell_order", shaders::CELL_ORDER);
     assert_eq!(u32_constant(&order, "SCAN_RUN"), Some(sweepffd::coeffs::SCAN_RUN));
