@@ -58,6 +58,7 @@ const KERNELS: &[(&str, &[&str])] = &[
     ("copy_wide", &["layout.wgsl", "copy_wide.wgsl"]),
     ("skinning", &["layout.wgsl", "skinning.wgsl"]),
     ("tangents", &["layout.wgsl", "tangents.wgsl"]),
+    ("jacobian_probe", &["layout.wgsl", "jacobian_probe.wgsl"]),
 ];
 
 fn main() {

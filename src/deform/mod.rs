@@ -23,6 +23,7 @@ use glam::DVec3;
 use crate::bind::{BandBinding, Binding, MeshBindings, UNOWNED, VertexBinding};
 
 use crate::sweep::Sweep;
+pub(crate) use probe::probe_sweep;
 pub use probe::{PROBE, PROBE_TOLERANCE_DEG, jacobian_normal_vertices};
 
 /// The position of a vertex bound by `binding` on the (posed) `sweep`, Eq. 2.

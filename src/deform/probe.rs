@@ -80,7 +80,7 @@ pub fn jacobian_normal_vertices(
 
 /// `rest` under [`PROBE`]: its keys read back at its knots (centers, frames and radii at
 /// θ_j = 2πj/M, a zero radius's round-off below zero clamped), bent, twisted and tapered; `None` if the probed keys make no valid sweep.
-fn probe_sweep(rest: &Sweep) -> Option<Sweep> {
+pub(crate) fn probe_sweep(rest: &Sweep) -> Option<Sweep> {
     let samples = rest.radius_samples();
     let keys: Vec<Key> = rest
         .knots()

@@ -5,6 +5,7 @@ mod bounds;
 mod cell_groups;
 mod descriptor;
 pub(crate) mod instances;
+mod jacobian_probe;
 mod normal_coords;
 mod plan;
 mod set_bands;
@@ -21,6 +22,7 @@ use std::sync::Arc;
 use self::bounds::BoundsStage;
 use self::cell_groups::CellGroups;
 use self::instances::{InstanceDispatch, Numbering, PosedCells, PositionTargets};
+use self::jacobian_probe::{JacobianProbe, ProbeInputs};
 use self::normal_coords::NormalCoordinates;
 use self::plan::DeformerPlan;
 use self::set_bands::{BandMember, Rebanding};
@@ -41,6 +43,7 @@ use crate::bind::falloff::BandWeight;
 use crate::coeffs::{
     BAND_FLAG, BandRecord, CELL_GROUP, CellCoeffs, GpuBinding, PackedBinding, SweepCoefficients, UNOWNED,
 };
+use crate::normals::NormalAdjacency;
 use crate::sweep::Sweep;
 
 /// Storage buffers the bind kernel uses in one stage, the most of any kernel.
@@ -115,6 +118,8 @@ pub struct GpuDeformer {
     /// deform dispatches' bind groups).
     coordinates_bytes: u64,
     jacobian_normals: bool,
+    /// With Jacobian normals, whether the deform kernel writes each vertex's normal.
+    by_deform: Option<Vec<bool>>,
     /// The position buffer holding the latest positions.
     current: usize,
 }
@@ -209,7 +214,9 @@ impl GpuDeformer {
 
     /// [`new`](GpuDeformer::new) without blocking the host thread: records and submits the
     /// binding, then awaits only wgpu's error scopes, never the GPU. The deformer can be encoded
-    /// at once; its first frame runs after the binding on the queue.
+    /// at once; its first frame runs after the binding on the queue. With Jacobian normals it
+    /// does wait for the GPU once: the probe that decides which vertices keep them runs on the
+    /// GPU, and its verdicts are read back (one word a vertex).
     pub async fn new_async(context: &GpuContext, descriptor: &DeformerDescriptor<'_>) -> Result<GpuDeformer, GpuError> {
         let plan = DeformerPlan::new(descriptor, &context.device.limits(), context.info.device_type)?;
         let device = &context.device;
@@ -217,8 +224,12 @@ impl GpuDeformer {
         let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let mut encoder =
             device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd bind") });
-        let deformer = GpuDeformer::build(context, descriptor, plan, &mut encoder)?;
+        let (mut deformer, probe) = GpuDeformer::build(context, descriptor, plan, &mut encoder)?;
         context.queue.submit([encoder.finish()]);
+        let probed = match probe {
+            Some((probe, adjacency)) => deformer.apply_probe(probe, &adjacency),
+            None => Ok(()),
+        };
         // Both scopes are popped on this thread before either is awaited: wgpu's error scopes
         // belong to the thread that pushed them.
         let (validation, out_of_memory) = (validation.pop(), out_of_memory.pop());
@@ -226,17 +237,20 @@ impl GpuDeformer {
         if let Some(error) = validation_error.or(memory_error) {
             return Err(error.into());
         }
+        probed?;
         Ok(deformer)
     }
 
     /// Builds the stages `plan` calls for, recording their passes (binding, the rest normals,
-    /// the normal coordinates, the cell-group sorts, the bands) into `encoder`.
+    /// the normal coordinates, the Jacobian probe, the cell-group sorts, the bands) into
+    /// `encoder`; with Jacobian normals, returns the probe to read once `encoder` is submitted,
+    /// with the mesh's fans.
     fn build(
         context: &GpuContext,
         descriptor: &DeformerDescriptor,
         mut plan: DeformerPlan,
         encoder: &mut wgpu::CommandEncoder,
-    ) -> Result<GpuDeformer, GpuError> {
+    ) -> Result<(GpuDeformer, Option<(JacobianProbe, NormalAdjacency)>), GpuError> {
         let device = &context.device;
         let rest_buffer = make_position_buffers(context, descriptor, &mut plan.targets);
         let (coefficients, variant) = (&plan.coefficients, plan.variant);
@@ -263,6 +277,26 @@ impl GpuDeformer {
         let (chunks, coordinates): (Vec<DeformChunk>, Vec<Option<NormalCoordinates>>) =
             plan.ranges.iter().map(|range| inputs.build(range.clone(), encoder)).unzip();
         let coordinates_bytes = coordinates.iter().flatten().map(|c| c.buffer.size()).sum();
+        let probe = match (plan.adjacency.take(), &plan.reach, &plan.influence) {
+            (Some(adjacency), Some(reach), Some(influence)) => {
+                let inputs = ProbeInputs {
+                    rest: descriptor.rest,
+                    coefficients: &plan.coefficients,
+                    chunks: chunks
+                        .iter()
+                        .zip(&coordinates)
+                        .filter_map(|(chunk, c)| c.as_ref().map(|c| (chunk.range.clone(), &chunk.bindings, &c.buffer)))
+                        .collect(),
+                    rest_positions: &rest_buffer,
+                    rest_normals: &normals.first().expect("Jacobian normals need triangles").buffer,
+                    vertex_count: plan.vertex_count,
+                    limits: &plan.limits,
+                };
+                let probe = JacobianProbe::encode(context, encoder, &inputs, (&adjacency, reach, influence))?;
+                Some((probe, adjacency))
+            }
+            _ => None,
+        };
         let bands = band_stage(context, descriptor, &plan, (&cells, &rest_cells), (&chunks, binder.as_ref()), encoder);
         let members: Vec<BandMember> = match descriptor.bindings {
             BindingSource::Bind { bands, .. } => bands.iter().map(BandMember::of_weight).collect(),
@@ -274,7 +308,7 @@ impl GpuDeformer {
             .bounds
             .then(|| BoundsStage::new(context, &plan.targets, &plan.ranges, descriptor.positions, &plan.limits));
         let poses = (0..descriptor.instances).flat_map(|_| plan.coefficients.cells.iter().copied()).collect();
-        Ok(GpuDeformer {
+        let deformer = GpuDeformer {
             context: context.clone(),
             limits: plan.limits,
             kernel,
@@ -295,8 +329,30 @@ impl GpuDeformer {
             bounds,
             coordinates_bytes,
             jacobian_normals: descriptor.jacobian_normals,
+            by_deform: None,
             current: 0,
-        })
+        };
+        Ok((deformer, probe))
+    }
+
+    /// Reads the Jacobian probe's verdicts (once its passes are submitted) and makes the
+    /// normals pass skip the vertices whose normals the deform kernel writes.
+    fn apply_probe(&mut self, probe: JacobianProbe, adjacency: &NormalAdjacency) -> Result<(), GpuError> {
+        let by_deform = probe.by_deform(&self.context)?;
+        for stage in &mut self.normals {
+            stage.restrict(&self.context.device, adjacency, &by_deform)?;
+        }
+        self.by_deform = Some(by_deform);
+        Ok(())
+    }
+
+    internal_fn! {
+        /// With Jacobian normals, whether the deform kernel writes each vertex's normal (as the
+        /// probe on the GPU decided; [`crate::deform::jacobian_normal_vertices`] is its f64
+        /// twin).
+        fn jacobian_normal_vertices(&self) -> Option<&[bool]> {
+            self.by_deform.as_deref()
+        }
     }
 
     /// Number of vertices.
@@ -744,13 +800,14 @@ fn surface_stages(
     encoder: &mut wgpu::CommandEncoder,
 ) -> Result<(Vec<NormalsStage>, Vec<TangentStage>), GpuError> {
     let (mut normals, mut tangents) = (Vec::new(), Vec::new());
-    let Some(faces) = &plan.faces else { return Ok((normals, tangents)) };
+    let Some(adjacency) = &plan.adjacency else { return Ok((normals, tangents)) };
     let (targets, instances, limits) = (&plan.targets, descriptor.instances, &plan.limits);
     for buffer in &targets.buffers {
         let sizes = (plan.vertex_count, targets.stride);
         let positions = (buffer, targets.offset);
-        let moves = (&plan.bound[..], plan.by_deform.as_deref());
-        let stage = NormalsStage::new(context, encoder, faces, positions, sizes, instances, moves, limits)?;
+        // With Jacobian normals the vertices the probe passes leave the per-frame lists after it.
+        let moves = (&plan.bound[..], plan.reach.as_deref());
+        let stage = NormalsStage::new(context, encoder, adjacency, positions, sizes, instances, moves, limits)?;
         if let Some(rest_tangents) = descriptor.rest_tangents {
             tangents.push(TangentStage::new(context, encoder, rest_tangents, &stage, sizes, instances, limits)?);
         }

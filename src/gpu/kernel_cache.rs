@@ -29,6 +29,7 @@ pub(crate) struct KernelCache {
     bounds: Slot,
     bounds_finalize: Slot,
     tangents: Slot,
+    jacobian_probe: Slot,
     /// Number of pipelines compiled so far.
     compiled: AtomicUsize,
 }
@@ -127,6 +128,11 @@ impl KernelCache {
     /// `shaders/tangents.wgsl`.
     pub(crate) fn tangents(&self, device: &wgpu::Device) -> Arc<Kernel> {
         self.get(&self.tangents, || kernels::tangents(device))
+    }
+
+    /// `shaders/jacobian_probe.wgsl`.
+    pub(crate) fn jacobian_probe(&self, device: &wgpu::Device) -> Arc<Kernel> {
+        self.get(&self.jacobian_probe, || kernels::jacobian_probe(device))
     }
 
     /// Number of pipelines compiled on this cache so far.

@@ -310,6 +310,13 @@ pub fn skinning(device: &wgpu::Device) -> Kernel {
     Kernel::new(device, "sweepffd skinning baseline", shaders::SKINNING, "skinning_main", &slots)
 }
 
+/// `shaders/jacobian_probe.wgsl`: params, probed vertices, Jacobian normals, facet normals,
+/// rest normals (read); verdicts (written).
+pub fn jacobian_probe(device: &wgpu::Device) -> Kernel {
+    let slots = [Uniform, Read, Read, Read, Read, ReadWrite];
+    Kernel::new(device, "sweepffd jacobian probe", shaders::JACOBIAN_PROBE, "jacobian_probe_main", &slots)
+}
+
 /// `shaders/tangents.wgsl`: params, vertices, rest normals, normals, rest tangents (read);
 /// tangents (written).
 pub fn tangents(device: &wgpu::Device) -> Kernel {

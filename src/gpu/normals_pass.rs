@@ -21,8 +21,11 @@ use super::chunks::{ChunkLimits, dispatch_grid};
 use super::kernels::Kernel;
 use super::{GpuContext, GpuError};
 use crate::coeffs::DispatchParams;
-use crate::mesh::Faces;
 use crate::normals::{FAN_INDEX, NormalAdjacency, dirty_vertices, instanced};
+use crate::parallel::prelude::*;
+
+/// Vertices of a list whose fan rows one parallel task copies.
+const LIST_BLOCK: usize = 8192;
 
 /// One dispatch: its bind group and workgroup grid.
 pub(crate) type Dispatch = (wgpu::BindGroup, (u32, u32));
@@ -106,6 +109,10 @@ pub(crate) struct NormalsStage {
     pub(crate) dispatches: Vec<Dispatch>,
     /// The vertices (all instances) recomputed per frame, ascending.
     pub(crate) dirty: Vec<u32>,
+    /// The mesh's vertices whose normals can move, ascending (instance 0's `dirty`).
+    moving: Vec<u32>,
+    instances: u32,
+    shape: NormalsShape,
     /// Device memory the stage keeps: the normals and the per-frame dispatches' lists.
     pub(crate) device_bytes: u64,
 }
@@ -124,18 +131,18 @@ struct NormalsPlan<'a> {
 }
 
 impl NormalsStage {
-    /// Plans the normals of `instances` copies of the mesh of `faces` over `vertex_count`
+    /// Plans the normals of `instances` copies of the mesh of `adjacency` over `vertex_count`
     /// vertices each, `stride` vertices apart (instance k's vertex v at k · stride + v), read
     /// from `positions` from byte `positions_base` on; `moves[v]` says whether vertex v of the
     /// mesh can move (a sweep owns it). Records the pass over every vertex (the rest normals)
     /// into `encoder`; the stage's own dispatches then cover only the vertices whose normal can
     /// change, less those for which `by_deform` is true (the deform kernel writes their normals
-    /// through its Jacobian).
+    /// through its Jacobian; [`restrict`](Self::restrict) changes them).
     #[expect(clippy::too_many_arguments, reason = "the stage's inputs, each used once")]
     pub(crate) fn new(
         context: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
-        faces: &Faces,
+        adjacency: &NormalAdjacency,
         (positions, positions_base): (&wgpu::Buffer, u64),
         (vertex_count, stride): (u32, u32),
         instances: u32,
@@ -148,53 +155,54 @@ impl NormalsStage {
             return Err(InputError::TooManyNormalVertices { vertices: total }.into());
         }
         let total = total as u32;
-        let adjacency = NormalAdjacency::new(faces, vertex_count as usize);
-        // Positions are read at any index, through two windows of at most one binding each; the
-        // second starts at a multiple of 64 vertices (768 bytes), aligned for any device.
-        let split = (limits.max_binding.min(limits.max_buffer) / POSITION_STRIDE / 64 * 64).min(total as u64) as u32;
-        check_fits(
-            "the normals' second position window",
-            (total - split) as u64 * POSITION_STRIDE,
-            limits.max_binding,
-        )?;
         let buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("sweepffd normals"),
             size: total as u64 * POSITION_STRIDE,
             usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
-        let kernel = context.kernels().normals(device, split < total);
-        let plan = NormalsPlan {
-            kernel: &kernel,
-            adjacency: &adjacency,
-            stride,
-            low: based(positions, positions_base, 0..split.max(1)),
-            high: if split < total {
-                based(positions, positions_base, split..total)
-            } else {
-                based(positions, positions_base, 0..split.max(1))
-            },
-            split,
-            normals: &buffer,
-            limits,
-        };
+        let shape = NormalsShape { positions: positions.clone(), positions_base, stride, total, limits: *limits };
+        let kernel = context.kernels().normals(device, shape.split() < total);
+        let plan = shape.plan(&kernel, adjacency, &buffer)?;
         // A vertex without incident triangles keeps the zero the buffer starts with; the kernel
         // reads a row up to its FAN_END, so it is given only non-empty rows.
         let with_triangles: Vec<u32> =
             (0..vertex_count).filter(|&v| !adjacency.fans_of(v as usize).is_empty()).collect();
         let every = instanced(&with_triangles, stride, instances.max(1));
-        record(encoder, "sweepffd rest normals", &kernel, &plan.dispatches(device, &every)?.0);
-        let moving = dirty_vertices(&adjacency, |v| moves[v]);
+        let moving = dirty_vertices(adjacency, |v| moves[v]);
         let dirty = instanced(&moving, stride, instances.max(1));
         let (dispatches, list_bytes) = match by_deform {
             None => plan.dispatches(device, &dirty)?,
             Some(by_deform) => {
-                let faced: Vec<u32> = moving.into_iter().filter(|&v| !by_deform[v as usize]).collect();
+                let faced: Vec<u32> = moving.iter().copied().filter(|&v| !by_deform[v as usize]).collect();
                 plan.dispatches(device, &instanced(&faced, stride, instances.max(1)))?
             }
         };
+        // A rig moving every vertex recomputes the rest pass's list each frame: its dispatches
+        // serve both, their lists built and uploaded once.
+        match by_deform.is_none() && dirty == every {
+            true => record(encoder, "sweepffd rest normals", &kernel, &dispatches),
+            false => record(encoder, "sweepffd rest normals", &kernel, &plan.dispatches(device, &every)?.0),
+        }
         let device_bytes = buffer.size() + list_bytes;
-        Ok(NormalsStage { kernel, buffer, dispatches, dirty, device_bytes })
+        Ok(NormalsStage { kernel, buffer, dispatches, dirty, moving, instances, shape, device_bytes })
+    }
+
+    /// Makes the per-frame dispatches cover the moving vertices less those for which
+    /// `by_deform` is true (decided after creation, by the Jacobian probe on the GPU).
+    pub(crate) fn restrict(
+        &mut self,
+        device: &wgpu::Device,
+        adjacency: &NormalAdjacency,
+        by_deform: &[bool],
+    ) -> Result<(), GpuError> {
+        let plan = self.shape.plan(&self.kernel, adjacency, &self.buffer)?;
+        let faced: Vec<u32> = self.moving.iter().copied().filter(|&v| !by_deform[v as usize]).collect();
+        let (dispatches, list_bytes) =
+            plan.dispatches(device, &instanced(&faced, self.shape.stride, self.instances.max(1)))?;
+        self.dispatches = dispatches;
+        self.device_bytes = self.buffer.size() + list_bytes;
+        Ok(())
     }
 
     /// Bytes a frame's pass reads and writes, each buffer counted once: its lists, and the
@@ -203,6 +211,75 @@ impl NormalsStage {
     pub(crate) fn frame_bytes(&self) -> u64 {
         let lists = self.device_bytes - self.buffer.size();
         lists + self.dirty.len() as u64 * 2 * POSITION_STRIDE
+    }
+}
+
+/// Where a normals pass reads its positions, and how its vertices are laid out.
+#[derive(Clone, Debug)]
+pub(crate) struct NormalsShape {
+    pub(crate) positions: wgpu::Buffer,
+    /// Byte of vertex 0 in `positions`.
+    pub(crate) positions_base: u64,
+    /// Vertices from one instance to the next.
+    pub(crate) stride: u32,
+    /// Vertices of every instance.
+    pub(crate) total: u32,
+    pub(crate) limits: ChunkLimits,
+}
+
+impl NormalsShape {
+    /// The first vertex read through the second position window: positions are read at any
+    /// index, through two windows of at most one binding each; the second starts at a multiple
+    /// of 64 vertices (768 bytes), aligned for any device.
+    fn split(&self) -> u32 {
+        let limits = &self.limits;
+        (limits.max_binding.min(limits.max_buffer) / POSITION_STRIDE / 64 * 64).min(self.total as u64) as u32
+    }
+
+    /// The plan of dispatches of `kernel` over `adjacency` writing `normals`.
+    fn plan<'a>(
+        &'a self,
+        kernel: &'a Kernel,
+        adjacency: &'a NormalAdjacency,
+        normals: &'a wgpu::Buffer,
+    ) -> Result<NormalsPlan<'a>, GpuError> {
+        let (split, total) = (self.split(), self.total);
+        check_fits(
+            "the normals' second position window",
+            (total - split) as u64 * POSITION_STRIDE,
+            self.limits.max_binding,
+        )?;
+        let (positions, base) = (&self.positions, self.positions_base);
+        Ok(NormalsPlan {
+            kernel,
+            adjacency,
+            stride: self.stride,
+            low: based(positions, base, 0..split.max(1)),
+            high: if split < total {
+                based(positions, base, split..total)
+            } else {
+                based(positions, base, 0..split.max(1))
+            },
+            split,
+            normals,
+            limits: &self.limits,
+        })
+    }
+
+    /// Records the normals kernel over `vertices` (ascending, each with an incident triangle)
+    /// of these positions into `normals`, laid out as the positions from byte 0.
+    pub(crate) fn record(
+        &self,
+        context: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        adjacency: &NormalAdjacency,
+        normals: &wgpu::Buffer,
+        vertices: &[u32],
+    ) -> Result<(), GpuError> {
+        let kernel = context.kernels().normals(&context.device, self.split() < self.total);
+        let plan = self.plan(&kernel, adjacency, normals)?;
+        record(encoder, "sweepffd normals", &kernel, &plan.dispatches(&context.device, vertices)?.0);
+        Ok(())
     }
 }
 
@@ -220,15 +297,28 @@ impl NormalsPlan<'_> {
             .map(|chunk| {
                 let list = &vertices[chunk.items.clone()];
                 // Row starts only: each row ends with the entry carrying FAN_END.
-                let (mut offsets, mut fans) = (Vec::with_capacity(list.len()), Vec::new());
+                let mut offsets = Vec::with_capacity(list.len());
+                let mut start = 0u32;
                 for &g in list {
-                    // Instance k's copy of a fan entry is the same neighbour in instance k.
-                    let base = g / n * n;
-                    let entries = self.adjacency.fans_of((g % n) as usize);
-                    debug_assert!(!entries.is_empty(), "vertex {g} has no row for the kernel to end");
-                    offsets.push(fans.len() as u32);
-                    fans.extend(entries.iter().map(|&e| ((e & FAN_INDEX) + base) | (e & !FAN_INDEX)));
+                    offsets.push(start);
+                    start += self.adjacency.fans_of((g % n) as usize).len() as u32;
                 }
+                // The rows are copied in blocks of vertices in parallel, then joined in order.
+                let blocks: Vec<Vec<u32>> = list
+                    .par_chunks(LIST_BLOCK)
+                    .map(|block| {
+                        let mut fans = Vec::new();
+                        for &g in block {
+                            // Instance k's copy of a fan entry is the same neighbour in instance k.
+                            let base = g / n * n;
+                            let entries = self.adjacency.fans_of((g % n) as usize);
+                            debug_assert!(!entries.is_empty(), "vertex {g} has no row for the kernel to end");
+                            fans.extend(entries.iter().map(|&e| ((e & FAN_INDEX) + base) | (e & !FAN_INDEX)));
+                        }
+                        fans
+                    })
+                    .collect();
+                let fans = blocks.concat();
                 list_bytes += 4 * (list.len() + offsets.len() + fans.len()) as u64;
                 let params = params_buffer(
                     device,

@@ -66,8 +66,12 @@ pub const SKINNING: &str = include_str!(concat!(env!("OUT_DIR"), "/skinning.wgsl
 /// entry point `tangents_main`.
 pub const TANGENTS: &str = include_str!(concat!(env!("OUT_DIR"), "/tangents.wgsl"));
 
+/// The Jacobian probe's verdicts at creation: `shaders/jacobian_probe.wgsl`,
+/// `jacobian_probe_main`.
+pub const JACOBIAN_PROBE: &str = include_str!(concat!(env!("OUT_DIR"), "/jacobian_probe.wgsl"));
+
 /// Every kernel as (name, composed source, entry point).
-pub const ALL: [(&str, &str, &str); 34] = [
+pub const ALL: [(&str, &str, &str); 35] = [
     ("bind", BIND, "bind_main"),
     ("deform_uniform", DEFORM_UNIFORM, "deform_main"),
     ("deform_storage", DEFORM_STORAGE, "deform_main"),
@@ -102,4 +106,5 @@ pub const ALL: [(&str, &str, &str); 34] = [
     ("copy_wide", COPY_WIDE, "copy_wide_main"),
     ("skinning", SKINNING, "skinning_main"),
     ("tangents", TANGENTS, "tangents_main"),
+    ("jacobian_probe", JACOBIAN_PROBE, "jacobian_probe_main"),
 ];

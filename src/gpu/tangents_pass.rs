@@ -212,7 +212,7 @@ mod tests {
         let normals = NormalsStage::new(
             &context,
             &mut encoder,
-            &mesh.faces,
+            &NormalAdjacency::new(&mesh.faces, n),
             (&positions, 0),
             (n as u32, n as u32),
             3,

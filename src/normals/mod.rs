@@ -55,37 +55,39 @@ pub struct NormalAdjacency {
 impl NormalAdjacency {
     /// Builds the fans of the fan triangulation of `faces` over `vertex_count` vertices
     /// (`vertex_count` at most [`FAN_INDEX`] + 1).
+    ///
+    /// The vertices are split into a few ranges per thread, built in parallel: each range
+    /// gathers the edges of its vertices from every triangle and chains them into its rows
+    /// ([`chain_range`]); the rows are then joined in order.
     pub fn new(faces: &Faces, vertex_count: usize) -> NormalAdjacency {
-        // Each vertex's triangles as directed edges (j → k) of its one-ring, grouped by vertex.
-        let mut starts = vec![0usize; vertex_count + 1];
-        for triangle in faces.triangles() {
-            for v in triangle {
-                starts[v as usize + 1] += 1;
+        // A triangle list (every face a triangle, as the GPU engine's) is read three indices at
+        // a time rather than fanned face by face.
+        let list = faces.offsets.windows(2).all(|w| w[1] - w[0] == 3);
+        let fanned: Vec<[u32; 3]>;
+        let triangles: &[[u32; 3]] = match list {
+            true => bytemuck::cast_slice(&faces.indices),
+            false => {
+                fanned = faces.triangles().collect();
+                &fanned
             }
-        }
-        for i in 0..vertex_count {
-            starts[i + 1] += starts[i];
-        }
-        let mut cursor = starts.clone();
-        let mut edges = vec![(0u32, 0u32); starts[vertex_count]];
-        for [a, b, c] in faces.triangles() {
-            for (v, edge) in [(a, (b, c)), (b, (c, a)), (c, (a, b))] {
-                edges[cursor[v as usize]] = edge;
-                cursor[v as usize] += 1;
-            }
-        }
+        };
+        // Few ranges (each reads every triangle), enough for every thread and to balance them.
+        let ranges = (4 * crate::parallel::thread_count()).clamp(1, vertex_count.max(1));
+        let span = vertex_count.div_ceil(ranges).max(1);
+        let blocks: Vec<(Vec<u32>, Vec<u32>)> = (0..vertex_count.div_ceil(span))
+            .into_par_iter()
+            .map(|part| chain_range(triangles, part * span..((part + 1) * span).min(vertex_count)))
+            .collect();
         let mut offsets = Vec::with_capacity(vertex_count + 1);
-        let mut fans = Vec::with_capacity(edges.len() + vertex_count);
-        offsets.push(0);
-        for i in 0..vertex_count {
-            let row = fans.len();
-            chain_edges(&mut edges[starts[i]..starts[i + 1]], &mut fans);
-            if fans.len() > row
-                && let Some(last) = fans.last_mut()
-            {
-                *last |= FAN_END;
-            }
-            offsets.push(fans.len() as u32);
+        let mut fans = Vec::with_capacity(blocks.iter().map(|(fans, _)| fans.len()).sum());
+        offsets.push(0u32);
+        for (block_fans, lengths) in &blocks {
+            let mut end = fans.len() as u32;
+            offsets.extend(lengths.iter().map(|&length| {
+                end += length;
+                end
+            }));
+            fans.extend_from_slice(block_fans);
         }
         NormalAdjacency { offsets, fans }
     }
@@ -101,22 +103,81 @@ impl NormalAdjacency {
     }
 }
 
+/// The rows of the vertices `range`: each vertex's triangles of `triangles` as directed edges
+/// (j → k) of its one-ring, grouped by vertex, then chained ([`chain_edges`]); returns their
+/// entries and each row's length.
+fn chain_range(triangles: &[[u32; 3]], range: std::ops::Range<usize>) -> (Vec<u32>, Vec<u32>) {
+    let inside = |v: u32| range.contains(&(v as usize));
+    let mut starts = vec![0u32; range.len() + 1];
+    for triangle in triangles {
+        for &v in triangle {
+            if inside(v) {
+                starts[v as usize - range.start + 1] += 1;
+            }
+        }
+    }
+    for i in 0..range.len() {
+        starts[i + 1] += starts[i];
+    }
+    let mut cursor = starts.clone();
+    let mut edges = vec![(0u32, 0u32); starts[range.len()] as usize];
+    for &[a, b, c] in triangles {
+        for (v, edge) in [(a, (b, c)), (b, (c, a)), (c, (a, b))] {
+            if inside(v) {
+                let slot = &mut cursor[v as usize - range.start];
+                edges[*slot as usize] = edge;
+                *slot += 1;
+            }
+        }
+    }
+    let (mut fans, mut lengths) = (Vec::with_capacity(edges.len()), Vec::with_capacity(range.len()));
+    let mut scratch = ChainScratch::default();
+    for i in 0..range.len() {
+        let row = fans.len();
+        chain_edges(&edges[starts[i] as usize..starts[i + 1] as usize], &mut fans, &mut scratch);
+        if fans.len() > row
+            && let Some(last) = fans.last_mut()
+        {
+            *last |= FAN_END;
+        }
+        lengths.push((fans.len() - row) as u32);
+    }
+    (fans, lengths)
+}
+
+/// The working lists of [`chain_edges`], kept from one vertex to the next so that chaining a
+/// mesh allocates once a block, not once a vertex.
+#[derive(Default)]
+struct ChainScratch {
+    edges: Vec<(u32, u32)>,
+    ends: Vec<u32>,
+    used: Vec<bool>,
+    starts: Vec<usize>,
+}
+
 /// Appends to `fans` the one-ring edges (j → k) of one vertex chained into fans: first from
 /// every j that no edge ends at (boundaries), then around the remaining cycles. Each edge is
 /// used once; a fan of two or more edges that ends at its first neighbour drops that repeat
 /// and flags its new last entry [`FAN_CLOSE`]. Sorting by j makes finding the edge that
 /// continues a fan a binary search.
-fn chain_edges(edges: &mut [(u32, u32)], fans: &mut Vec<u32>) {
+fn chain_edges(row: &[(u32, u32)], fans: &mut Vec<u32>, scratch: &mut ChainScratch) {
+    let ChainScratch { edges, ends, used, starts } = scratch;
+    edges.clear();
+    edges.extend_from_slice(row);
     edges.sort_unstable();
-    let mut ends: Vec<u32> = edges.iter().map(|&(_, k)| k).collect();
+    ends.clear();
+    ends.extend(edges.iter().map(|&(_, k)| k));
     ends.sort_unstable();
-    let mut used = vec![false; edges.len()];
+    used.clear();
+    used.resize(edges.len(), false);
+    let edges = &edges[..];
     let next_unused = |used: &[bool], j: u32| {
         let first = edges.partition_point(|&(a, _)| a < j);
         (first..edges.len()).take_while(|&e| edges[e].0 == j).find(|&e| !used[e])
     };
-    let boundary_starts: Vec<usize> = (0..edges.len()).filter(|&e| ends.binary_search(&edges[e].0).is_err()).collect();
-    for start in boundary_starts.into_iter().chain(0..edges.len()) {
+    starts.clear();
+    starts.extend((0..edges.len()).filter(|&e| ends.binary_search(&edges[e].0).is_err()));
+    for start in starts.iter().copied().chain(0..edges.len()) {
         if used[start] {
             continue;
         }
@@ -125,7 +186,7 @@ fn chain_edges(edges: &mut [(u32, u32)], fans: &mut Vec<u32>) {
         let first = fans.len();
         fans.push(j | FAN_START);
         fans.push(k);
-        while let Some(e) = next_unused(&used, k) {
+        while let Some(e) = next_unused(used, k) {
             used[e] = true;
             k = edges[e].1;
             fans.push(k);

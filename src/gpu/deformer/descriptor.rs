@@ -151,10 +151,10 @@ impl<'a> DeformerDescriptor<'a> {
     /// itself: each such vertex's binding is read once and its position and normal written
     /// once, with no gather over its triangles. It covers the vertices whose whole one-ring one
     /// sweep moves ([`crate::normals::jacobian_reach`]) and whose Jacobian normals match their
-    /// facets under a probe pose ([`crate::deform::jacobian_normal_vertices`], checked once
-    /// here, binding the mesh on the CPU in f64); the others (falloff bands, hard seams between
-    /// sweeps, unbound vertices beside moving ones, rings too coarse for the deformation) keep
-    /// the triangle normals. Needs triangles; the falloff bands are then fixed
+    /// facets under a probe pose (checked once here, on the GPU, which creation then waits for;
+    /// [`crate::deform::jacobian_normal_vertices`] is the f64 twin); the others (falloff bands,
+    /// hard seams between sweeps, unbound vertices beside moving ones, rings too coarse for the
+    /// deformation) keep the triangle normals. Needs triangles; the falloff bands are then fixed
     /// ([`set_bands`](crate::gpu::GpuDeformer::set_bands) refuses).
     pub fn with_jacobian_normals(self) -> DeformerDescriptor<'a> {
         DeformerDescriptor { jacobian_normals: true, ..self }

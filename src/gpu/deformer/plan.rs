@@ -14,10 +14,8 @@ use super::descriptor::triangle_faces;
 use super::instances::{Numbering, PositionTargets};
 use super::{BindingSource, DeformerDescriptor, STORAGE_BUFFERS_NEEDED};
 use crate::coeffs::{SweepCoefficients, UNOWNED};
-use crate::deform::jacobian_normal_vertices;
 use crate::gpu::buffers::{BINDING_STRIDE, check_fits};
-use crate::mesh::Faces;
-use crate::normals::NormalAdjacency;
+use crate::normals::{NormalAdjacency, jacobian_reach};
 
 /// The deform kernel a deformer runs, and how its invocations are numbered.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -71,13 +69,15 @@ pub(super) struct DeformerPlan {
     pub kernel: KernelChoice,
     /// The vertices in a falloff band, increasing.
     pub band_vertices: Vec<u32>,
-    /// The triangles as faces, if there are triangles.
-    pub faces: Option<Faces>,
-    /// With Jacobian normals, the vertices whose normals the deform kernel writes: their
-    /// one-ring is moved whole by one sweep ([`crate::normals::jacobian_reach`]) and their
-    /// Jacobian predicts their facets ([`jacobian_normal_vertices`]); the normals pass computes
-    /// the others, after it.
-    pub by_deform: Option<Vec<bool>>,
+    /// The triangles' fans, if there are triangles.
+    pub adjacency: Option<NormalAdjacency>,
+    /// With Jacobian normals, the vertices whose one-ring one sweep moves whole
+    /// ([`crate::normals::jacobian_reach`]): the deform kernel writes the normals of those
+    /// whose Jacobian predicts their facets under a probe pose (decided on the GPU,
+    /// [`super::jacobian_probe`]); the normals pass computes the others, after it.
+    pub reach: Option<Vec<bool>>,
+    /// With Jacobian normals, the sweep moving each vertex whole, or [`UNOWNED`].
+    pub influence: Option<Vec<u32>>,
 }
 
 impl DeformerPlan {
@@ -116,8 +116,9 @@ impl DeformerPlan {
             BindingSource::Bind { bands, .. } => bands.iter().map(|b| b.vertex).collect(),
             BindingSource::Precomputed { bands, .. } => bands.iter().map(|b| b.vertex).collect(),
         };
-        let faces = descriptor.triangles.map(triangle_faces);
-        let by_deform = jacobian_reach(descriptor, faces.as_ref(), &coefficients, &band_vertices);
+        let adjacency = descriptor.triangles.map(|t| NormalAdjacency::new(&triangle_faces(t), vertex_count as usize));
+        let influence = jacobian_influence(descriptor, &coefficients, &band_vertices);
+        let reach = influence.as_ref().zip(descriptor.triangles).map(|(influence, t)| jacobian_reach(t, influence));
         let plan = DeformerPlan {
             limits,
             vertex_count,
@@ -128,8 +129,9 @@ impl DeformerPlan {
             variant,
             kernel,
             band_vertices,
-            faces,
-            by_deform,
+            adjacency,
+            reach,
+            influence,
         };
         Ok(plan)
     }
@@ -161,17 +163,16 @@ fn check_output(
     Ok(())
 }
 
-/// With Jacobian normals (and triangles), whether the deform kernel writes each vertex's
-/// normal: band vertices, blending two influences, never.
-fn jacobian_reach(
+/// With Jacobian normals (and triangles), the sweep moving each vertex whole: its own, or
+/// [`UNOWNED`] for unbound vertices and band vertices, which blend two influences.
+fn jacobian_influence(
     descriptor: &DeformerDescriptor,
-    faces: Option<&Faces>,
     coefficients: &SweepCoefficients,
     band_vertices: &[u32],
-) -> Option<Vec<bool>> {
-    let (true, Some(triangles), Some(faces)) = (descriptor.jacobian_normals, descriptor.triangles, faces) else {
+) -> Option<Vec<u32>> {
+    if !descriptor.jacobian_normals || descriptor.triangles.is_none() {
         return None;
-    };
+    }
     let mut influence: Vec<u32> = match descriptor.bindings {
         BindingSource::Bind { owners, .. } => owners.to_vec(),
         BindingSource::Precomputed { bindings, .. } => {
@@ -181,8 +182,7 @@ fn jacobian_reach(
     for &v in band_vertices {
         influence[v as usize] = UNOWNED;
     }
-    let adjacency = NormalAdjacency::new(faces, descriptor.positions.len());
-    Some(jacobian_normal_vertices(descriptor.rest, descriptor.positions, &adjacency, triangles, &influence))
+    Some(influence)
 }
 
 #[cfg(test)]
@@ -210,7 +210,7 @@ mod tests {
         let dispatched: u32 = plan.ranges.iter().map(|r| r.len() as u32).sum();
         assert!(dispatched < plan.vertex_count - 2000, "{dispatched} of {} vertices dispatched", plan.vertex_count);
         assert_eq!(plan.kernel, KernelChoice::new(false, false, 1));
-        assert!(plan.by_deform.is_none() && plan.faces.is_none() && plan.band_vertices.is_empty());
+        assert!(plan.reach.is_none() && plan.adjacency.is_none() && plan.band_vertices.is_empty());
         let cpu = DeformerPlan::new(&descriptor, &limits, wgpu::DeviceType::Cpu).unwrap();
         assert!(cpu.kernel.cell_groups, "CPU adapters deform over cell groups");
         let vertices = descriptor.with_deform_order(DeformOrder::Vertices);
