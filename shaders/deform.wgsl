@@ -75,12 +75,60 @@ fn deform_bound_vertex(i: u32, z: u32, binding: GpuBinding) {
     deform_in_cell(i, z, binding, cells[(params.first_instance + z) * params.cells_per_instance + binding.cell]);
 }
 
-// Vertex i of the dispatch's instance z, bound by `binding` in `cell` (its cell's record).
-fn deform_in_cell(i: u32, z: u32, binding: GpuBinding, cell: CellCoeffs) {
+// The deformed position of a vertex bound by `binding` in `cell` (its cell's record).
+fn position_in_cell(binding: GpuBinding, cell: CellCoeffs) -> vec3<f32> {
     let rho = radius_at(cell, binding.s, binding.phi) + binding.d;
     let direction = direction_at(cell, binding.phi);
     let local = vec3<f32>(rho * direction.x, rho * direction.y, binding.h);
-    let p = curve_at(cell, binding.s) + rotate(quat_at(cell, binding.s), local);
+    return curve_at(cell, binding.s) + rotate(quat_at(cell, binding.s), local);
+}
+
+// One workgroup's positions, staged by deform_staged_main to be stored as whole words.
+var<workgroup> staged: array<f32, 3u * WORKGROUP_SIZE>;
+
+// deform_main with the workgroup's positions stored whole: each invocation deforms its vertex
+// into workgroup memory (an unbound or band vertex reads its current position there, which the
+// band kernel, dispatched after, overwrites in a band), then the workgroup stores its
+// 3 * WORKGROUP_SIZE consecutive floats in three runs of consecutive words, so that a warp's
+// stores fill whole cache lines rather than every third word of three lines (12-byte stride).
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn deform_staged_main(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    let first = invocation_index(group, groups, 0u);
+    if (first >= params.vertex_count) {
+        return;
+    }
+    let count = min(WORKGROUP_SIZE, params.vertex_count - first);
+    let base = group.z * params.instance_stride + 3u * first;
+    if (lane < count) {
+        let packed = bindings[first + lane];
+        var p: vec3<f32>;
+        if (is_plain(packed.x)) {
+            let binding = unpack_plain(packed);
+            p = position_in_cell(binding, cells[(params.first_instance + group.z) * params.cells_per_instance + binding.cell]);
+        } else {
+            let o = base + 3u * lane;
+            p = vec3<f32>(positions[o], positions[o + 1u], positions[o + 2u]);
+        }
+        staged[3u * lane] = p.x;
+        staged[3u * lane + 1u] = p.y;
+        staged[3u * lane + 2u] = p.z;
+    }
+    workgroupBarrier();
+    for (var k = 0u; k < 3u; k++) {
+        let e = k * WORKGROUP_SIZE + lane;
+        if (e < 3u * count) {
+            positions[base + e] = staged[e];
+        }
+    }
+}
+
+// Vertex i of the dispatch's instance z, bound by `binding` in `cell` (its cell's record).
+fn deform_in_cell(i: u32, z: u32, binding: GpuBinding, cell: CellCoeffs) {
+    let p = position_in_cell(binding, cell);
     let o = z * params.instance_stride + 3u * i;
     positions[o] = p.x;
     positions[o + 1u] = p.y;

@@ -110,8 +110,10 @@ impl CpuBench {
             normals_angle_p99_deg: None,
             falloff: self.falloff_reports(&rounds),
             runs,
+            alternatives: Vec::new(),
             creation: None,
             memory: None,
+            repeats: 1,
             timestamps: false,
         }
     }
@@ -151,6 +153,7 @@ impl CpuBench {
                 fused: 0.0,
                 wide_copy: 1.0,
                 buffer_copy: 0.0,
+                alternatives: Vec::new(),
                 deform: time(&mut || cpu_fast::deform::deform(&posed.cells, &self.bound.bindings, &mut out_f32)),
                 falloff: self
                     .falloff

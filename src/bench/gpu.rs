@@ -5,6 +5,7 @@ use std::time::Instant;
 
 use wgpu::util::DeviceExt;
 
+use super::alternatives::Alternatives;
 use super::creation::{CreationReport, timed_deformer};
 use super::engine::EngineComparisons;
 use super::fused::{FusedComparison, RECORD_STRIDE};
@@ -45,6 +46,8 @@ pub struct GpuBench {
     fused: FusedComparison,
     /// The whole-buffer copy, the memory ceiling of the copy engine.
     buffer_copy: BufferCopy,
+    /// The deform pass as the adapter did not choose it.
+    alternatives: Alternatives,
     creation: CreationReport,
 }
 
@@ -75,6 +78,7 @@ impl GpuBench {
         });
         let copy = copy_baseline(device, &deformer, &scratch);
         let buffer_copy = BufferCopy::new(context, n as u64 * BINDING_STRIDE);
+        let alternatives = Alternatives::new(context, &scene, &deformer)?;
         let creation = CreationReport {
             ms: creation_ms,
             host_ms: creation_host_ms,
@@ -95,6 +99,7 @@ impl GpuBench {
             engine: EngineComparisons::new(context, n as usize)?,
             fused,
             buffer_copy,
+            alternatives,
             creation,
         })
     }
@@ -221,6 +226,7 @@ impl GpuBench {
                 fused: best_of(BEST_OF, || self.time_fused())?,
                 wide_copy: best_of(BEST_OF, || self.time_wide_copy())?,
                 buffer_copy: best_of(BEST_OF, || self.buffer_copy.seconds(&self.context, self.timer.as_ref()))?,
+                alternatives: self.alternatives.time(&self.context, self.timer.as_ref())?,
             };
             if round >= WARMUP {
                 rounds.push(times);
@@ -272,9 +278,13 @@ impl GpuBench {
             fused_over_copy: Some(column(|r| r.fused / r.wide_copy)),
             fused_over_separate: Some(column(|r| r.fused / (r.deform + r.normals))),
             normals_angle_p99_deg: Some(self.fused.angle_p99_deg),
+            alternatives: self
+                .alternatives
+                .reports(n, &rounds.iter().map(|r| (r.alternatives.clone(), r.deform)).collect::<Vec<_>>()),
             creation: Some(self.creation),
             memory: Some(self.memory_report(&rounds, bind)),
             runs,
+            repeats: super::repeats(&self.context),
             timestamps: self.timer.is_some(),
         })
     }

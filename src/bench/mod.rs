@@ -4,9 +4,10 @@
 //! skinning (what real-time applications use today).
 //!
 //! Every figure is the median of several runs after warm-up; GPU kernel times come from
-//! timestamp queries over [`REPEATS`] passes back to back where the device supports them,
-//! wall-clock otherwise.
+//! timestamp queries over [`REPEATS`] passes back to back (one on a CPU adapter) where the
+//! device supports them, wall-clock otherwise.
 
+mod alternatives;
 mod cpu;
 mod creation;
 mod engine;
@@ -22,12 +23,13 @@ mod traffic;
 
 use serde::Serialize;
 
+pub use alternatives::AlternativeReport;
 pub use cpu::CpuBench;
 pub use creation::CreationReport;
 pub use engine::{INSTANCES, PARTIAL_SHARE};
 pub use frame::{FRAME_CPU_FRAMES, FRAME_WARMUP, FrameBench, host_frame_seconds, median_host_frame_ms};
 pub use gpu::GpuBench;
-pub use passes::REPEATS;
+pub use passes::{REPEATS, repeats};
 pub use scene::{BAND_FRACTION, BenchScene, FalloffKind};
 pub use size::{BenchSizeError, MIN_BENCH_VERTICES, check_runs, gpu_vertex_limit, tube_vertex_count};
 pub use skinning::{skinning_influences, skinning_joints};
@@ -97,6 +99,9 @@ pub struct BenchReport {
     /// of the posed scene, over the vertices whose normals the fused kernel writes, degrees
     /// (`null` on the CPU).
     pub normals_angle_p99_deg: Option<f64>,
+    /// The deform pass in the orders and with the cell records the adapter did not choose, same
+    /// rounds (empty on the CPU).
+    pub alternatives: Vec<AlternativeReport>,
     /// Creating the deformers, milliseconds (`null` on the CPU).
     pub creation: Option<CreationReport>,
     /// Bytes a vertex and rates of the GPU passes against the copy kernel and a whole-buffer
@@ -104,6 +109,8 @@ pub struct BenchReport {
     pub memory: Option<MemoryReport>,
     /// Runs each median is taken over.
     pub runs: usize,
+    /// Passes each GPU time is taken over, back to back (1 on the CPU backend).
+    pub repeats: usize,
     /// Whether GPU times come from timestamp queries.
     pub timestamps: bool,
 }
@@ -156,6 +163,8 @@ struct Round {
     wide_copy: f64,
     /// A whole-buffer copy (GPU only).
     buffer_copy: f64,
+    /// The alternatives' deform passes (GPU only).
+    alternatives: Vec<f64>,
 }
 
 /// The median of `samples` (which it sorts).

@@ -1,8 +1,8 @@
-//! Timing GPU passes for the bench: a figure's passes recorded [`REPEATS`] times back to back in
+//! Timing GPU passes for the bench: a figure's passes recorded [`repeats`] times back to back in
 //! one command buffer, submitted, and timed from the start of the first to the end of the last
-//! with timestamp queries where the device has them (wall-clock otherwise), divided by
-//! [`REPEATS`]: one dispatch of a 1M-vertex mesh lasts tens of microseconds on a discrete GPU,
-//! as long as the gaps between passes.
+//! with timestamp queries where the device has them (wall-clock otherwise), divided by the
+//! repeats: one dispatch of a 1M-vertex mesh lasts tens of microseconds on a discrete GPU, as
+//! long as the gaps between passes.
 
 use std::ops::Range;
 use std::time::Instant;
@@ -16,8 +16,15 @@ use crate::gpu::{GpuContext, GpuError, wait};
 /// A pipeline's dispatches, one per chunk.
 pub(super) type Dispatches = (kernels::Kernel, Vec<(wgpu::BindGroup, (u32, u32))>);
 
-/// Times each figure's passes are recorded in one timed command buffer.
+/// Times each figure's passes are recorded in one timed command buffer on a GPU.
 pub const REPEATS: usize = 10;
+
+/// Times each figure's passes are recorded in one timed command buffer on `context`'s adapter:
+/// [`REPEATS`], or once on a CPU adapter, where one pass over the smallest bench mesh lasts
+/// milliseconds.
+pub fn repeats(context: &GpuContext) -> usize {
+    if context.info.device_type == wgpu::DeviceType::Cpu { 1 } else { REPEATS }
+}
 
 /// The timestamp writes one repetition of a figure's passes may make: the first repetition's
 /// first pass writes the start, the last repetition's last pass the end.
@@ -45,7 +52,7 @@ impl<'a> Stamps<'a> {
     }
 }
 
-/// Records `record` [`REPEATS`] times, submits, waits, and returns the timestamped seconds of
+/// Records `record` [`repeats`] times, submits, waits, and returns the timestamped seconds of
 /// one repetition (wall-clock without timestamp queries).
 pub(super) fn time(
     context: &GpuContext,
@@ -55,8 +62,9 @@ pub(super) fn time(
     let device = &context.device;
     let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sweepffd bench") });
     let start = Instant::now();
-    for k in 0..REPEATS {
-        record(&mut encoder, Stamps { timer, first: k == 0, last: k == REPEATS - 1 });
+    let repeats = repeats(context);
+    for k in 0..repeats {
+        record(&mut encoder, Stamps { timer, first: k == 0, last: k == repeats - 1 });
     }
     if let Some(timer) = timer {
         timer.resolve(&mut encoder);
@@ -68,7 +76,7 @@ pub(super) fn time(
         Some(timer) => timer.seconds(context)?,
         None => wall,
     };
-    Ok(seconds / REPEATS as f64)
+    Ok(seconds / repeats as f64)
 }
 
 /// An empty compute pass writing the timestamps of `stamps` (around copies, which make none).

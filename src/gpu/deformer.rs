@@ -102,8 +102,8 @@ pub struct GpuDeformer {
     uploads: PoseUploads,
     coefficients: SweepCoefficients,
     variant: DeformVariant,
-    /// Whether the deform kernel runs over cell groups.
-    cell_groups: bool,
+    /// The order the deform kernel runs in.
+    order: DeformOrder,
     /// The rest rig's cell records, which binding and the band kernel read.
     rest_cells: wgpu::Buffer,
     chunks: Vec<DeformChunk>,
@@ -319,7 +319,7 @@ impl GpuDeformer {
             uploads,
             coefficients: plan.coefficients,
             variant: plan.variant,
-            cell_groups: plan.kernel.cell_groups,
+            order: plan.kernel.order(),
             rest_cells,
             chunks,
             bands,
@@ -448,14 +448,11 @@ impl GpuDeformer {
         self.variant
     }
 
-    /// Which vertices an invocation of the deform kernel deforms, as
-    /// [`DeformOrder`] chose for this adapter: [`DeformOrder::Vertices`] or
-    /// [`DeformOrder::CellGroups`].
+    /// Which vertices an invocation of the deform kernel deforms, as [`DeformOrder`] chose for
+    /// this adapter and descriptor: [`DeformOrder::Vertices`], [`DeformOrder::StagedVertices`]
+    /// or [`DeformOrder::CellGroups`].
     pub fn deform_order(&self) -> DeformOrder {
-        match self.cell_groups {
-            true => DeformOrder::CellGroups,
-            false => DeformOrder::Vertices,
-        }
+        self.order
     }
 
     /// Number of staging buffers the pose uploads have made so far: as many as encodes were

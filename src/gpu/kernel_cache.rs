@@ -16,6 +16,7 @@ pub(crate) struct KernelCache {
     bind: Slot,
     deform: [Slot; 2],
     deform_instances: [Slot; 2],
+    deform_staged: [Slot; 2],
     /// Over cell groups, one workgroup layer per instance, then numbered flat.
     deform_groups: [[Slot; 2]; 2],
     cell_order: OnceLock<Arc<[Kernel; 7]>>,
@@ -123,6 +124,11 @@ impl KernelCache {
     /// `shaders/bounds_finalize.wgsl`.
     pub(crate) fn bounds_finalize(&self, device: &wgpu::Device) -> Arc<Kernel> {
         self.get(&self.bounds_finalize, || kernels::bounds_finalize(device))
+    }
+
+    /// `shaders/deform.wgsl`'s staged entry point for cell records of `variant`.
+    pub(crate) fn deform_staged(&self, device: &wgpu::Device, variant: DeformVariant) -> Arc<Kernel> {
+        self.get(&self.deform_staged[variant_index(variant)], || kernels::deform_staged(device, variant))
     }
 
     /// `shaders/tangents.wgsl`.

@@ -185,6 +185,16 @@ pub fn deform_instances(device: &wgpu::Device, variant: DeformVariant) -> Kernel
     )
 }
 
+/// `shaders/deform.wgsl`'s `deform_staged_main`: [`deform`] with a workgroup's positions
+/// staged in workgroup memory and stored as whole words, the same bindings.
+pub fn deform_staged(device: &wgpu::Device, variant: DeformVariant) -> Kernel {
+    let (source, cells) = match variant {
+        DeformVariant::Uniform => (shaders::DEFORM_UNIFORM, Uniform),
+        DeformVariant::Storage => (shaders::DEFORM_STORAGE, Read),
+    };
+    Kernel::new(device, "sweepffd deform staged", source, "deform_staged_main", &[Uniform, cells, Read, ReadWrite])
+}
+
 /// `shaders/deform_groups.wgsl`'s `deform_groups_main` (one workgroup layer per instance) or, with
 /// `flat`, `deform_groups_instances_main` (instances numbered flat): the deform kernel over the
 /// cell groups of `cell_groups.rs`, with [`deform`]'s bindings and the groups after them.

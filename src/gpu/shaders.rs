@@ -6,8 +6,8 @@
 pub const BIND: &str = include_str!(concat!(env!("OUT_DIR"), "/bind.wgsl"));
 /// Eq. 2 for every bound vertex, cell records in a uniform buffer: `shaders/deform.wgsl` after
 /// `shaders/cells_uniform.wgsl` and before `shaders/deform_groups.wgsl`, entry points
-/// `deform_main` (one workgroup layer per instance), `deform_instances_main` (instances numbered
-/// flat), and over cell groups `deform_groups_main` and `deform_groups_instances_main`.
+/// `deform_main` (one workgroup layer per instance), `deform_staged_main` (the same, a
+/// workgroup's positions stored whole), `deform_instances_main` (instances numbered flat), and over cell groups `deform_groups_main` and `deform_groups_instances_main`.
 pub const DEFORM_UNIFORM: &str = include_str!(concat!(env!("OUT_DIR"), "/deform_uniform.wgsl"));
 /// Eq. 2 for every bound vertex, cell records in a storage buffer: `shaders/deform.wgsl` after
 /// `shaders/cells_storage.wgsl` and before `shaders/deform_groups.wgsl`, the same entry points.
@@ -71,11 +71,13 @@ pub const TANGENTS: &str = include_str!(concat!(env!("OUT_DIR"), "/tangents.wgsl
 pub const JACOBIAN_PROBE: &str = include_str!(concat!(env!("OUT_DIR"), "/jacobian_probe.wgsl"));
 
 /// Every kernel as (name, composed source, entry point).
-pub const ALL: [(&str, &str, &str); 35] = [
+pub const ALL: [(&str, &str, &str); 37] = [
     ("bind", BIND, "bind_main"),
     ("deform_uniform", DEFORM_UNIFORM, "deform_main"),
     ("deform_storage", DEFORM_STORAGE, "deform_main"),
     ("deform_instances_uniform", DEFORM_UNIFORM, "deform_instances_main"),
+    ("deform_staged_uniform", DEFORM_UNIFORM, "deform_staged_main"),
+    ("deform_staged_storage", DEFORM_STORAGE, "deform_staged_main"),
     ("deform_instances_storage", DEFORM_STORAGE, "deform_instances_main"),
     ("deform_groups_uniform", DEFORM_UNIFORM, "deform_groups_main"),
     ("deform_groups_storage", DEFORM_STORAGE, "deform_groups_main"),

@@ -25,7 +25,7 @@ pub fn run() -> CliResult {
         DeformVariant::Uniform => format!("uniform (rigs of up to {UNIFORM_CELL_CAPACITY} cells), storage beyond"),
         DeformVariant::Storage => "storage".to_string(),
     };
-    let order = if DeformOrder::Auto.groups_on(info) { "cell groups" } else { "vertices" };
+    let order = DeformOrder::Auto.on_type(info.device_type).name();
     println!("cell records (auto):               {records}");
     println!("deform order (auto):               {order}");
     Ok(())

@@ -13,7 +13,8 @@
 //! so the bindings are read and the positions written close to where they were a moment before.
 //! On a discrete GPU the records sit in the L1 cache however many lanes read them, while the
 //! groups add a 4-byte index a vertex and leave the vertex order within each block, so
-//! [`DeformOrder::Auto`] keeps the per-vertex kernel there.
+//! [`DeformOrder::Auto`] keeps one vertex an invocation there, its positions stored whole
+//! ([`DeformOrder::StagedVertices`]).
 
 use std::sync::Arc;
 
@@ -30,38 +31,47 @@ use crate::cpu::cell_order::{block_size, bucket_count, group_slots};
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum DeformOrder {
     /// [`CellGroups`](DeformOrder::CellGroups) on a CPU adapter (lavapipe, llvmpipe, SwiftShader),
-    /// [`Vertices`](DeformOrder::Vertices) on any other.
+    /// [`StagedVertices`](DeformOrder::StagedVertices) on any other.
     #[default]
     Auto,
-    /// One vertex, in the mesh's order.
+    /// One vertex, in the mesh's order, its position stored by the invocation.
     Vertices,
+    /// One vertex, in the mesh's order, a workgroup's positions staged in workgroup memory and
+    /// stored as whole words: a warp's stores then fill whole cache lines, where storing each
+    /// vertex's 12 bytes fills every third word of three (`shaders/deform.wgsl`,
+    /// `deform_staged_main`). The single-instance deform kernel only; several instances and
+    /// the fused Jacobian normals store each vertex's own ([`Vertices`](DeformOrder::Vertices)).
+    StagedVertices,
     /// [`CELL_GROUP`] vertices bound in one cell, reading its record once: the groups are made
     /// at creation (a counting sort on the GPU, 4 bytes a slot).
     CellGroups,
 }
 
 impl DeformOrder {
-    /// `"auto"`, `"vertices"` or `"cell groups"`, as `sweepffd info` and the bench name it.
+    /// `"auto"`, `"vertices"`, `"staged vertices"` or `"cell groups"`, as `sweepffd info` and
+    /// the bench name it.
     pub fn name(self) -> &'static str {
         match self {
             DeformOrder::Auto => "auto",
             DeformOrder::Vertices => "vertices",
+            DeformOrder::StagedVertices => "staged vertices",
             DeformOrder::CellGroups => "cell groups",
+        }
+    }
+
+    /// The order this asks for on an adapter of `device_type`: itself, or for
+    /// [`Auto`](DeformOrder::Auto) the adapter's.
+    pub fn on_type(self, device_type: wgpu::DeviceType) -> DeformOrder {
+        match (self, device_type) {
+            (DeformOrder::Auto, wgpu::DeviceType::Cpu) => DeformOrder::CellGroups,
+            (DeformOrder::Auto, _) => DeformOrder::StagedVertices,
+            (order, _) => order,
         }
     }
 
     /// Whether the deform kernel runs over cell groups on the adapter `info` describes.
     pub fn groups_on(self, info: &wgpu::AdapterInfo) -> bool {
-        self.groups_on_type(info.device_type)
-    }
-
-    /// Whether the deform kernel runs over cell groups on an adapter of `device_type`.
-    pub(crate) fn groups_on_type(self, device_type: wgpu::DeviceType) -> bool {
-        match self {
-            DeformOrder::Auto => device_type == wgpu::DeviceType::Cpu,
-            DeformOrder::Vertices => false,
-            DeformOrder::CellGroups => true,
-        }
+        self.on_type(info.device_type) == DeformOrder::CellGroups
     }
 }
 
@@ -94,7 +104,7 @@ impl CellGroups {
     ) -> CellGroups {
         let device = &context.device;
         let kernels = context.kernels().cell_order(device);
-        // At most CELL_GROUP slots a vertex, 16 bytes to the binding's 20: the chunk's
+        // At most CELL_GROUP slots a vertex, 16 bytes as the binding's 16: the chunk's
         // bindings fit one storage binding, so do its groups.
         let slots = group_slots(vertices, cells) as u32;
         let storage = wgpu::BufferUsages::STORAGE;

@@ -10,6 +10,7 @@ use super::super::chunks::{ChunkLimits, bound_chunks, uniform_chunks};
 use super::super::kernel_cache::KernelCache;
 use super::super::kernels::{DeformVariant, Kernel};
 use super::super::{GpuError, InputError};
+use super::cell_groups::DeformOrder;
 use super::descriptor::triangle_faces;
 use super::instances::{Numbering, PositionTargets};
 use super::{BindingSource, DeformerDescriptor, STORAGE_BUFFERS_NEEDED};
@@ -24,17 +25,30 @@ pub(super) struct KernelChoice {
     pub jacobian_normals: bool,
     /// One invocation a cell group of vertices rather than one a vertex.
     pub cell_groups: bool,
+    /// A workgroup's positions staged and stored whole (the single-instance deform kernel).
+    pub staged: bool,
     pub numbering: Numbering,
 }
 
 impl KernelChoice {
-    /// The kernel for `jacobian_normals`, `cell_groups` and `instances`. Several instances of
-    /// the plain kernel are numbered flat: with one workgroup layer per instance, a small mesh's
-    /// last workgroup of every instance runs nearly empty.
-    pub fn new(jacobian_normals: bool, cell_groups: bool, instances: u32) -> KernelChoice {
+    /// The kernel for `jacobian_normals`, the deform `order` (not [`DeformOrder::Auto`]) and
+    /// `instances`. Several instances of the plain kernel are numbered flat: with one workgroup
+    /// layer per instance, a small mesh's last workgroup of every instance runs nearly empty.
+    pub fn new(jacobian_normals: bool, order: DeformOrder, instances: u32) -> KernelChoice {
         let flat = !jacobian_normals && instances > 1;
         let numbering = if flat { Numbering::Flat } else { Numbering::Layered };
-        KernelChoice { jacobian_normals, cell_groups, numbering }
+        let cell_groups = order == DeformOrder::CellGroups;
+        let staged = order == DeformOrder::StagedVertices && !jacobian_normals && !flat;
+        KernelChoice { jacobian_normals, cell_groups, staged, numbering }
+    }
+
+    /// The order the kernel runs in.
+    pub fn order(&self) -> DeformOrder {
+        match (self.cell_groups, self.staged) {
+            (true, _) => DeformOrder::CellGroups,
+            (false, true) => DeformOrder::StagedVertices,
+            (false, false) => DeformOrder::Vertices,
+        }
     }
 
     /// The compiled kernel, from the context's cache.
@@ -44,6 +58,7 @@ impl KernelChoice {
             (true, false) => kernels.deform_normals(device, variant),
             (true, true) => kernels.deform_normals_groups(device, variant),
             (false, false) if flat => kernels.deform_instances(device, variant),
+            (false, false) if self.staged => kernels.deform_staged(device, variant),
             (false, false) => kernels.deform(device, variant),
             (false, true) => kernels.deform_groups(device, variant, flat),
         }
@@ -110,8 +125,8 @@ impl DeformerPlan {
         let coefficients = SweepCoefficients::new(descriptor.rest);
         let total_cells = coefficients.cells.len() * descriptor.instances as usize;
         let variant = descriptor.cell_records.variant(total_cells, device_limits, device_type);
-        let cell_groups = descriptor.deform_order.groups_on_type(device_type);
-        let kernel = KernelChoice::new(descriptor.jacobian_normals, cell_groups, descriptor.instances);
+        let order = descriptor.deform_order.on_type(device_type);
+        let kernel = KernelChoice::new(descriptor.jacobian_normals, order, descriptor.instances);
         let band_vertices: Vec<u32> = match descriptor.bindings {
             BindingSource::Bind { bands, .. } => bands.iter().map(|b| b.vertex).collect(),
             BindingSource::Precomputed { bands, .. } => bands.iter().map(|b| b.vertex).collect(),
@@ -209,7 +224,8 @@ mod tests {
         assert!((8000..plan.vertex_count).all(covered), "{:?}", plan.ranges);
         let dispatched: u32 = plan.ranges.iter().map(|r| r.len() as u32).sum();
         assert!(dispatched < plan.vertex_count - 2000, "{dispatched} of {} vertices dispatched", plan.vertex_count);
-        assert_eq!(plan.kernel, KernelChoice::new(false, false, 1));
+        assert_eq!(plan.kernel, KernelChoice::new(false, DeformOrder::StagedVertices, 1));
+        assert!(plan.kernel.staged, "GPUs store a workgroup's positions whole");
         assert!(plan.reach.is_none() && plan.adjacency.is_none() && plan.band_vertices.is_empty());
         let cpu = DeformerPlan::new(&descriptor, &limits, wgpu::DeviceType::Cpu).unwrap();
         assert!(cpu.kernel.cell_groups, "CPU adapters deform over cell groups");
@@ -219,10 +235,15 @@ mod tests {
 
     #[test]
     fn instances_are_numbered_flat_unless_the_kernel_writes_normals() {
-        assert_eq!(KernelChoice::new(false, false, 4).numbering, Numbering::Flat);
-        assert_eq!(KernelChoice::new(false, true, 4).numbering, Numbering::Flat);
-        assert_eq!(KernelChoice::new(true, false, 4).numbering, Numbering::Layered);
-        assert_eq!(KernelChoice::new(false, false, 1).numbering, Numbering::Layered);
+        use DeformOrder::{CellGroups, StagedVertices, Vertices};
+        assert_eq!(KernelChoice::new(false, Vertices, 4).numbering, Numbering::Flat);
+        assert_eq!(KernelChoice::new(false, CellGroups, 4).numbering, Numbering::Flat);
+        assert_eq!(KernelChoice::new(true, Vertices, 4).numbering, Numbering::Layered);
+        assert_eq!(KernelChoice::new(false, Vertices, 1).numbering, Numbering::Layered);
+        // Staging serves the single-instance plain kernel only.
+        assert_eq!(KernelChoice::new(false, StagedVertices, 1).order(), StagedVertices);
+        assert_eq!(KernelChoice::new(false, StagedVertices, 4).order(), Vertices);
+        assert_eq!(KernelChoice::new(true, StagedVertices, 1).order(), Vertices);
     }
 
     #[test]

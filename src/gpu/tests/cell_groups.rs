@@ -113,10 +113,15 @@ fn groups_and_positions_match_the_per_vertex_kernel() {
         ("storage cell records", tube.mesh(), tube_rig(&tube, 30, 16), 1),
         ("arm with a band to rest", attached_arm(1.2).0, attached_arm(1.2).1, 3),
         ("split tube with bands", split_tube(0.8).0, split_tube(0.8).1, 1),
+        // Unbound vertices and a band, one instance: the staged kernel reads both back.
+        ("arm, one instance", attached_arm(1.2).0, attached_arm(1.2).1, 1),
     ];
     for (name, mesh, rig, instances) in cases {
         let (mut grouped, _) = deformer(context, &mesh, &rig, instances, DeformOrder::CellGroups);
         let (mut by_vertex, _) = deformer(context, &mesh, &rig, instances, DeformOrder::Vertices);
+        let (mut staged, _) = deformer(context, &mesh, &rig, instances, DeformOrder::StagedVertices);
+        let staged_order = if instances == 1 { DeformOrder::StagedVertices } else { DeformOrder::Vertices };
+        assert_eq!(staged.deform_order(), staged_order, "{name}");
         assert_eq!(by_vertex.read_cell_groups().unwrap(), None);
         let cells = SweepCoefficients::new(rig.rest()).cells.len() as u32;
         let used = assert_groups_match_the_twin(name, &grouped, cells);
@@ -126,6 +131,8 @@ fn groups_and_positions_match_the_per_vertex_kernel() {
         let poses: Vec<Vec<Sweep>> = (0..instances as usize).map(|i| pose(&rig, i, instances as usize)).collect();
         let (ours, theirs) = (deformed(context, &mut grouped, &poses), deformed(context, &mut by_vertex, &poses));
         assert_same_positions(name, &ours, &theirs);
+        // Positions stored whole by the workgroup equal those stored vertex by vertex.
+        assert_same_positions(name, &deformed(context, &mut staged, &poses), &theirs);
         let rest = sweepffd::cpu::packed(&mesh.positions);
         let moved = (0..mesh.positions.len()).filter(|&v| ours[3 * v..3 * v + 3] != rest[3 * v..3 * v + 3]).count();
         // Both deformed (a vertex at the sweep's fixed root may stay).
@@ -179,7 +186,7 @@ fn precomputed_bindings_deform_over_groups_too() {
 }
 
 #[test]
-fn auto_groups_on_cpu_adapters_only() {
+fn auto_groups_on_cpu_adapters_only_and_stages_stores_elsewhere() {
     let Some(context) = common::gpu() else { return };
     let mut info = context.info.clone();
     for (device_type, groups) in [
@@ -189,6 +196,8 @@ fn auto_groups_on_cpu_adapters_only() {
     ] {
         info.device_type = device_type;
         assert_eq!(DeformOrder::Auto.groups_on(&info), groups, "{device_type:?}");
+        let auto = if groups { DeformOrder::CellGroups } else { DeformOrder::StagedVertices };
+        assert_eq!(DeformOrder::Auto.on_type(device_type), auto);
         assert!(DeformOrder::CellGroups.groups_on(&info));
         assert!(!DeformOrder::Vertices.groups_on(&info));
     }
