@@ -22,20 +22,28 @@ export SWEEPFFD_REQUIRE_GPU=1
 export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-$(mktemp -d)}"
 
 # The release test binaries of the engine's unit tests (src/gpu/tests among them) and of
-# tests/gpu, then the command-line tool, built by cargo; prints "name path" lines.
+# tests/gpu, the example tests/gpu runs, and the command-line tool, built by cargo; prints
+# "name path" lines.
 build() {
     cargo build --release -p sweepffd-cli >&2 || return 1
     cargo test --release -p sweepffd --lib --test gpu --no-run 2>&1 >/dev/null \
         | sed -n 's/.*Executable \(unittests src\/lib.rs\|tests\/gpu\/main.rs\) (\(.*\))/\1 \2/p' \
         | sed 's/^unittests src\/lib.rs/engine/; s/^tests\/gpu\/main.rs/gpu/'
+    echo "embed target/release/examples/embed"
     echo "sweepffd target/release/sweepffd"
 }
 
 if [ "${1:-}" = "--package" ]; then
     dir=${2:?"--package needs a folder"}
-    mkdir -p "$dir"
+    # Cargo's layout: a test finds the example it runs at ../examples from its own folder.
+    mkdir -p "$dir/deps" "$dir/examples"
     build | while read -r name path; do
-        cp "$path" "$dir/$name" && strip "$dir/$name" && echo "$dir/$name"
+        case $name in
+            engine | gpu) target=$dir/deps/$name ;;
+            embed) target=$dir/examples/embed ;;
+            *) target=$dir/$name ;;
+        esac
+        cp "$path" "$target" && strip "$target" && echo "$target"
     done
     exit 0
 fi
@@ -43,8 +51,8 @@ fi
 if [ "${1:-}" = "--from" ]; then
     bin=${2:?"--from needs the folder of --package"}
     out=${3:-gpu-check}
-    binaries="engine $bin/engine
-gpu $bin/gpu
+    binaries="engine $bin/deps/engine
+gpu $bin/deps/gpu
 sweepffd $bin/sweepffd"
 else
     out=${1:-gpu-check}
