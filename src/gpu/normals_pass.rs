@@ -9,6 +9,7 @@
 //! out one after another in the position and normal buffers: instance k's vertex v is at
 //! `k · vertex_count + v`.
 
+use std::borrow::Cow;
 use std::ops::Range;
 
 use wgpu::util::DeviceExt;
@@ -296,29 +297,7 @@ impl NormalsPlan<'_> {
             .iter()
             .map(|chunk| {
                 let list = &vertices[chunk.items.clone()];
-                // Row starts only: each row ends with the entry carrying FAN_END.
-                let mut offsets = Vec::with_capacity(list.len());
-                let mut start = 0u32;
-                for &g in list {
-                    offsets.push(start);
-                    start += self.adjacency.fans_of((g % n) as usize).len() as u32;
-                }
-                // The rows are copied in blocks of vertices in parallel, then joined in order.
-                let blocks: Vec<Vec<u32>> = list
-                    .par_chunks(LIST_BLOCK)
-                    .map(|block| {
-                        let mut fans = Vec::new();
-                        for &g in block {
-                            // Instance k's copy of a fan entry is the same neighbour in instance k.
-                            let base = g / n * n;
-                            let entries = self.adjacency.fans_of((g % n) as usize);
-                            debug_assert!(!entries.is_empty(), "vertex {g} has no row for the kernel to end");
-                            fans.extend(entries.iter().map(|&e| ((e & FAN_INDEX) + base) | (e & !FAN_INDEX)));
-                        }
-                        fans
-                    })
-                    .collect();
-                let fans = blocks.concat();
+                let (offsets, fans) = self.rows(list);
                 list_bytes += 4 * (list.len() + offsets.len() + fans.len()) as u64;
                 let params = params_buffer(
                     device,
@@ -346,6 +325,44 @@ impl NormalsPlan<'_> {
             })
             .collect();
         Ok((dispatches, list_bytes))
+    }
+
+    /// The row starts and fan entries of the vertices `list` (ascending, over all instances):
+    /// each row ends with the entry carrying FAN_END, so only its start is listed. A run of
+    /// consecutive vertices of the first instance takes its rows from the adjacency as they are.
+    fn rows<'b>(&'b self, list: &[u32]) -> (Vec<u32>, Cow<'b, [u32]>) {
+        let n = self.stride;
+        let adjacency = self.adjacency;
+        if let (Some(&first), Some(&last)) = (list.first(), list.last())
+            && last < n
+            && (last - first) as usize + 1 == list.len()
+        {
+            let rows = &adjacency.offsets[first as usize..last as usize + 2];
+            let offsets = rows[..list.len()].iter().map(|&start| start - rows[0]).collect();
+            return (offsets, Cow::Borrowed(&adjacency.fans[rows[0] as usize..rows[list.len()] as usize]));
+        }
+        let mut offsets = Vec::with_capacity(list.len());
+        let mut start = 0u32;
+        for &g in list {
+            offsets.push(start);
+            start += self.adjacency.fans_of((g % n) as usize).len() as u32;
+        }
+        // The rows are copied in blocks of vertices in parallel, then joined in order.
+        let blocks: Vec<Vec<u32>> = list
+            .par_chunks(LIST_BLOCK)
+            .map(|block| {
+                let mut fans = Vec::new();
+                for &g in block {
+                    // Instance k's copy of a fan entry is the same neighbour in instance k.
+                    let base = g / n * n;
+                    let entries = self.adjacency.fans_of((g % n) as usize);
+                    debug_assert!(!entries.is_empty(), "vertex {g} has no row for the kernel to end");
+                    fans.extend(entries.iter().map(|&e| ((e & FAN_INDEX) + base) | (e & !FAN_INDEX)));
+                }
+                fans
+            })
+            .collect();
+        (offsets, Cow::Owned(blocks.concat()))
     }
 }
 

@@ -72,7 +72,7 @@ impl NormalAdjacency {
             }
         };
         // Few ranges (each reads every triangle), enough for every thread and to balance them.
-        let ranges = (4 * crate::parallel::thread_count()).clamp(1, vertex_count.max(1));
+        let ranges = (crate::parallel::thread_count()).clamp(1, vertex_count.max(1));
         let span = vertex_count.div_ceil(ranges).max(1);
         let blocks: Vec<(Vec<u32>, Vec<u32>)> = (0..vertex_count.div_ceil(span))
             .into_par_iter()
@@ -145,6 +145,9 @@ fn chain_range(triangles: &[[u32; 3]], range: std::ops::Range<usize>) -> (Vec<u3
     (fans, lengths)
 }
 
+/// Edges of a row that [`chain_edges`] scans rather than bisects.
+const SMALL_ROW: usize = 16;
+
 /// The working lists of [`chain_edges`], kept from one vertex to the next so that chaining a
 /// mesh allocates once a block, not once a vertex.
 #[derive(Default)]
@@ -165,18 +168,30 @@ fn chain_edges(row: &[(u32, u32)], fans: &mut Vec<u32>, scratch: &mut ChainScrat
     edges.clear();
     edges.extend_from_slice(row);
     edges.sort_unstable();
+    // A row of a few edges (a vertex of a regular mesh has six) is searched by scanning it, a
+    // larger one by bisection: the same edges found either way.
+    let small = edges.len() <= SMALL_ROW;
     ends.clear();
-    ends.extend(edges.iter().map(|&(_, k)| k));
-    ends.sort_unstable();
+    if !small {
+        ends.extend(edges.iter().map(|&(_, k)| k));
+        ends.sort_unstable();
+    }
     used.clear();
     used.resize(edges.len(), false);
     let edges = &edges[..];
-    let next_unused = |used: &[bool], j: u32| {
-        let first = edges.partition_point(|&(a, _)| a < j);
-        (first..edges.len()).take_while(|&e| edges[e].0 == j).find(|&e| !used[e])
+    let next_unused = |used: &[bool], j: u32| match small {
+        true => (0..edges.len()).find(|&e| edges[e].0 == j && !used[e]),
+        false => {
+            let first = edges.partition_point(|&(a, _)| a < j);
+            (first..edges.len()).take_while(|&e| edges[e].0 == j).find(|&e| !used[e])
+        }
+    };
+    let is_end = |j: u32| match small {
+        true => edges.iter().any(|&(_, k)| k == j),
+        false => ends.binary_search(&j).is_ok(),
     };
     starts.clear();
-    starts.extend((0..edges.len()).filter(|&e| ends.binary_search(&edges[e].0).is_err()));
+    starts.extend((0..edges.len()).filter(|&e| !is_end(edges[e].0)));
     for start in starts.iter().copied().chain(0..edges.len()) {
         if used[start] {
             continue;
