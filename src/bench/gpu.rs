@@ -6,7 +6,7 @@ use std::time::Instant;
 use wgpu::util::DeviceExt;
 
 use super::alternatives::Alternatives;
-use super::creation::{CreationReport, timed_deformer};
+use super::creation::{CreationReport, compile_kernels, timed_deformer};
 use super::engine::EngineComparisons;
 use super::fused::{FusedComparison, RECORD_STRIDE};
 use super::passes::{Dispatches, Stamps, chunk_params, encode, time};
@@ -61,6 +61,7 @@ impl GpuBench {
         let positions = crate::gpu::rest_positions(&scene.mesh.positions);
         let triangles: Vec<u32> = scene.mesh.faces.triangles().flatten().collect();
         let descriptor = DeformerDescriptor::new(rest, &positions, source).with_triangles(&triangles);
+        compile_kernels(context, &descriptor)?;
         let (mut deformer, creation_ms, creation_host_ms) = timed_deformer(context, &descriptor)?;
         let fused = FusedComparison::new(context, descriptor, &mut deformer, &scene.posed)?;
         let mut flagged_owners = scene.owners.clone();
