@@ -11,4 +11,5 @@ mod normal_fans;
 mod outputs;
 mod partial_normals;
 mod shader_layout;
+mod small_limits;
 mod tangents;
