@@ -98,10 +98,11 @@ use Slot::{Read, ReadWrite, Uniform};
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum CellRecords {
     /// [`Uniform`](CellRecords::Uniform) on a CPU adapter (lavapipe, llvmpipe, SwiftShader),
-    /// [`Storage`](CellRecords::Storage) on any other. On lavapipe the uniform records halve the
-    /// deform pass; on an NVIDIA H200 they cost 1.5× at 10M vertices (2.5× at 1M) and 2.5× in
-    /// the falloff bands: lanes of a warp reading records at different indices from a uniform
-    /// buffer serialize there (docs/performance.md).
+    /// [`Storage`](CellRecords::Storage) on any other. On lavapipe the storage records take 2.4×
+    /// the uniform ones' deform time; on an NVIDIA H200 the uniform records took 1.5× the storage
+    /// ones' at 10M vertices (2.5× at 1M), and the falloff bands over the plain pass 3.87 rather
+    /// than 1.55: lanes of a warp reading records at different indices from a uniform buffer
+    /// serialize there (docs/performance.md).
     #[default]
     Auto,
     /// A uniform buffer, where the rig fits one ([`DeformVariant::Uniform`]); storage otherwise.
