@@ -1,6 +1,6 @@
 // Benchmark baseline: four-influence linear-blend skinning, what real-time applications run
-// today. Reads a 12-byte rest position and 8 bytes of packed joints and weights (20 bytes, as
-// deform reads), writes 12 bytes: p' = sum_k w_k M_k (p, 1).
+// today. Reads a 12-byte rest position and 8 bytes of packed joints and weights (20 bytes; deform
+// reads a 16-byte binding), writes 12 bytes: p' = sum_k w_k M_k (p, 1).
 // Joint matrices in a uniform buffer, as engines keep them. Composed after layout.wgsl.
 // Twin: src/cpu/skinning.rs.
 
