@@ -72,7 +72,12 @@ fn deform_vertex(i: u32, z: u32) {
 
 // Vertex i of the dispatch's instance z, bound by `binding` (no falloff band).
 fn deform_bound_vertex(i: u32, z: u32, binding: GpuBinding) {
-    deform_in_cell(i, z, binding, cells[(params.first_instance + z) * params.cells_per_instance + binding.cell]);
+    deform_in_cell(i, z, binding, posed_cell(z, binding.cell));
+}
+
+// The record of `cell` in the pose of the dispatch's instance z.
+fn posed_cell(z: u32, cell: u32) -> CellCoeffs {
+    return cells[(params.first_instance + z) * params.cells_per_instance + cell];
 }
 
 // The deformed position of a vertex bound by `binding` in `cell` (its cell's record).
@@ -108,7 +113,7 @@ fn deform_staged_main(
         var p: vec3<f32>;
         if (is_plain(packed.x)) {
             let binding = unpack_plain(packed);
-            p = position_in_cell(binding, cells[(params.first_instance + group.z) * params.cells_per_instance + binding.cell]);
+            p = position_in_cell(binding, posed_cell(group.z, binding.cell));
         } else {
             let o = base + 3u * lane;
             p = vec3<f32>(positions[o], positions[o + 1u], positions[o + 2u]);

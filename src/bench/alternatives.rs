@@ -7,6 +7,7 @@ use serde::Serialize;
 
 use super::passes::time;
 use super::{BenchScene, GpuTimer};
+use crate::coeffs::SweepCoefficients;
 use crate::gpu::{
     BindingSource, CellRecords, DeformOrder, DeformVariant, DeformerDescriptor, GpuContext, GpuDeformer, GpuError,
     rest_positions,
@@ -41,18 +42,16 @@ impl Alternatives {
         chosen: &GpuDeformer,
     ) -> Result<Alternatives, GpuError> {
         let (order, records) = (chosen.deform_order(), chosen.cell_records());
-        let other_records = match records {
-            DeformVariant::Uniform => CellRecords::Storage,
-            DeformVariant::Storage => CellRecords::Uniform,
-        };
-        let mut choices = vec![(order, other_records)];
-        let same_records = match records {
-            DeformVariant::Uniform => CellRecords::Uniform,
-            DeformVariant::Storage => CellRecords::Storage,
-        };
+        // A rig too large for a uniform buffer keeps storage records: no other records to time.
+        let cells = SweepCoefficients::new(scene.rig.rest()).cells.len();
+        let limits = context.device.limits();
+        let mut choices = Vec::new();
+        if CellRecords::Uniform.variant(cells, &limits, context.info.device_type) == DeformVariant::Uniform {
+            choices.push((order, CellRecords::from(records.other())));
+        }
         for other in [DeformOrder::Vertices, DeformOrder::StagedVertices, DeformOrder::CellGroups] {
             if other != order {
-                choices.push((other, same_records));
+                choices.push((other, CellRecords::from(records)));
             }
         }
         let positions = rest_positions(&scene.mesh.positions);
@@ -63,10 +62,6 @@ impl Alternatives {
                 .with_deform_order(order)
                 .with_cell_records(records);
             let mut deformer = GpuDeformer::new(context, &descriptor)?;
-            // The rig too large for a uniform buffer keeps storage records: nothing to compare.
-            if (deformer.deform_order(), deformer.cell_records()) == (chosen.deform_order(), chosen.cell_records()) {
-                continue;
-            }
             deformer.set_pose(0, &scene.posed)?;
             deformers.push(deformer);
         }

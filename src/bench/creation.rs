@@ -10,8 +10,7 @@ use serde::Serialize;
 
 use crate::coeffs::SweepCoefficients;
 use crate::gpu::{
-    BindingSource, CellRecords, DeformVariant, DeformerDescriptor, GpuContext, GpuDeformer, GpuError, rest_positions,
-    wait,
+    BindingSource, CellRecords, DeformerDescriptor, GpuContext, GpuDeformer, GpuError, rest_positions, wait,
 };
 use crate::synthetic::{Tube, tube_rig};
 
@@ -33,10 +32,8 @@ pub struct CreationReport {
 /// building a small tube's with the same cell records.
 pub(super) fn compile_kernels(context: &GpuContext, descriptor: &DeformerDescriptor) -> Result<(), GpuError> {
     let cells = SweepCoefficients::new(descriptor.rest).cells.len() * descriptor.instances as usize;
-    let records = match CellRecords::Auto.variant(cells, &context.device.limits(), context.info.device_type) {
-        DeformVariant::Uniform => CellRecords::Uniform,
-        DeformVariant::Storage => CellRecords::Storage,
-    };
+    let records =
+        CellRecords::from(CellRecords::Auto.variant(cells, &context.device.limits(), context.info.device_type));
     let tube = Tube::with_vertex_count(super::MIN_BENCH_VERTICES, 4.0, 0.5);
     let (mesh, rig) = (tube.mesh(), tube_rig(&tube, 4, 8));
     let owners = rig.owners(&mesh, "tube").expect("the tube rig owns the tube");

@@ -300,7 +300,7 @@ impl GpuBench {
         let copy = times("copy kernel", plain, column(&|r| r.copy));
         let mut passes = vec![
             times("deform", plain, column(&|r| r.deform)),
-            times("copy kernel", plain, column(&|r| r.copy)),
+            copy.clone(),
             times("lbs", (2 * POSITION_STRIDE + 8) as f64, column(&|r| r.lbs)),
         ];
         for (i, (kind, deformer)) in self.falloff.iter().enumerate() {

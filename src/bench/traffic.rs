@@ -43,6 +43,7 @@ pub struct MemoryReport {
 
 /// A pass's bytes a vertex and its time in each round, with the ceilings' times in the same
 /// rounds.
+#[derive(Clone)]
 pub(super) struct PassTimes {
     pub pass: &'static str,
     pub bytes_per_vertex: f64,

@@ -124,6 +124,16 @@ impl CellRecords {
     }
 }
 
+impl From<DeformVariant> for CellRecords {
+    /// The choice that forces `variant` (where the rig fits it).
+    fn from(variant: DeformVariant) -> CellRecords {
+        match variant {
+            DeformVariant::Uniform => CellRecords::Uniform,
+            DeformVariant::Storage => CellRecords::Storage,
+        }
+    }
+}
+
 /// Where the deform kernel reads the cell records from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum DeformVariant {
@@ -141,6 +151,14 @@ impl DeformVariant {
     pub fn uniform_fits(cells: usize, limits: &wgpu::Limits) -> bool {
         let bytes = UNIFORM_CELL_CAPACITY as u64 * size_of::<CellCoeffs>() as u64;
         cells <= UNIFORM_CELL_CAPACITY as usize && limits.max_uniform_buffer_binding_size >= bytes
+    }
+
+    /// The other variant.
+    pub fn other(self) -> DeformVariant {
+        match self {
+            DeformVariant::Uniform => DeformVariant::Storage,
+            DeformVariant::Storage => DeformVariant::Uniform,
+        }
     }
 
     /// `"uniform"` or `"storage"`, as `sweepffd info` and the bench name it.
