@@ -1,18 +1,25 @@
-//! Rigging a whole mesh in one call: its protrusions (`super::protrusions`) each get one
-//! fitted sweep ([`super::fit`]), key 0 at the part's attachment (its rim), with the fit's
-//! falloff; the rest of the mesh (the body) stays unowned. The fits run on the mesh with its
-//! bit-identical vertices joined (a patch mesh's unwelded seams), so a part's sections close;
-//! a part whose fit with the radii of its sections misses its surface by more than [`MAX_RMS`]
-//! (a lid's flange, a ring) is no limb and is left out, and reported in [`Autorig::rejected`].
+//! Rigging a whole mesh in one call: the mesh's body (`super::body`: seams welded, small
+//! touching components joined) is searched for protrusions (`super::protrusions`), longest
+//! first; a protrusion mostly inside a longer one (a finger of a hand) stays in it. Each limb
+//! gets one fitted sweep ([`super::fit`]), key 0 at the part's attachment (its rim), with the
+//! fit's falloff, or where one sweep fits it more loosely than [`TARGET`] and it ends in a
+//! widening (a hand, a foot, a hoof), a chain of two (`super::chain`): the limb, and its end as
+//! a branch child (§5) so that turning the limb carries it. The rest of the mesh (the body)
+//! stays unowned. The fits run on the welded mesh, so a part's sections close; a part whose
+//! fit with the radii of its sections misses its surface by more than [`MAX_RMS`] (a lid's
+//! flange, a ring) is no limb and is left out, and reported in [`Autorig::rejected`].
 //!
-//! Data flow: mesh → protrusions → **fit** per part → rig document.
+//! Data flow: mesh → body → protrusions → **fit** per limb (or chain) → rig document.
 
 use std::time::Instant;
 
+use super::body::Body;
+use super::chain::split_at_widening;
 use super::protrusions::protrusions;
 use super::{Fit, FitError, FitOptions, OptionError, fit};
 use crate::mesh::Mesh;
-use crate::rig::{FORMAT, RigDocument, VERSION, VertexSelection};
+use crate::rig::{FORMAT, KeyBinding, LinkKind, ParentLink, RigDocument, VERSION, VertexSelection};
+use crate::sweep::Sweep;
 
 /// How to rig a mesh.
 #[derive(Clone, Debug, PartialEq)]
@@ -37,13 +44,17 @@ impl Default for AutorigOptions {
 /// One part found and fitted.
 #[derive(Clone, Debug)]
 pub struct RiggedPart {
-    /// `part0`, `part1`, …, longest first.
+    /// `limb0`, `limb1`, …, longest first; the links of a limb's chain after it, from the body
+    /// out: `limb0.1`, `limb0.2`, ….
     pub name: String,
+    /// The sweep this one is a branch child of (the previous link of its chain), if any.
+    pub parent: Option<String>,
     /// The part's vertices, increasing.
     pub vertices: Vec<u32>,
-    /// Its tip (the vertex farthest from the body's center).
+    /// Its tip: the limb's tip (the vertex farthest from the body's center) in its last link,
+    /// else the link's vertex farthest from its first key.
     pub tip: u32,
-    /// Its length (persistence), mesh units.
+    /// Its length: the chord length of its key centers, mesh units.
     pub length: f64,
     /// The fitted sweep.
     pub fit: Fit,
@@ -68,7 +79,10 @@ impl Autorig {
         let sweeps = self
             .parts
             .iter()
-            .map(|p| p.fit.sweep_document(p.name.clone(), VertexSelection::Indices(p.vertices.clone()), None))
+            .map(|p| {
+                let parent = p.parent.clone().map(|sweep| ParentLink { sweep, kind: LinkKind::Branch });
+                p.fit.sweep_document(p.name.clone(), VertexSelection::Indices(p.vertices.clone()), parent)
+            })
             .collect();
         RigDocument { format: FORMAT.to_string(), version: VERSION, sweeps }
     }
@@ -87,38 +101,123 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
     }
     super::beyond_rig(mesh, 0..mesh.positions.len() as u32)?;
     let started = Instant::now();
-    let (lo, hi) = mesh
-        .positions
-        .iter()
-        .fold((glam::DVec3::INFINITY, glam::DVec3::NEG_INFINITY), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
-    let diagonal = (hi - lo).length();
-    let found = protrusions(mesh, options.min_length * diagonal, options.max_parts);
+    let body = Body::new(mesh);
+    let found = protrusions(mesh, &body, options.min_length * body.diagonal, options.max_parts);
     let search_seconds = started.elapsed().as_secs_f64();
     let fit_options = FitOptions { falloff: options.falloff, ..FitOptions::default() };
-    // Fitted across unwelded seams (a patch mesh's), so that a part's sections close.
-    let welded = welded(mesh);
+    // Fitted across welded seams, so that a part's sections close.
+    let welded = body.welded_mesh(mesh);
     let fitted_on = welded.as_ref().unwrap_or(mesh);
-    let mut parts = Vec::new();
+    let mut parts: Vec<RiggedPart> = Vec::new();
     let mut rejected = Vec::new();
+    let mut taken = vec![false; mesh.positions.len()];
+    let mut limbs = 0;
     for protrusion in found {
-        let started = Instant::now();
-        let Ok(fitted) = fit(fitted_on, &protrusion.vertices, &fit_options) else { continue };
-        let sections = fitted.sections_quality();
-        if sections.rms_d > MAX_RMS {
-            rejected.push(Rejected { tip: protrusion.tip, vertices: protrusion.vertices.len(), rms_d: sections.rms_d });
+        if limbs == options.max_parts {
+            break;
+        }
+        // A part mostly inside a longer one (a finger of a hand) stays in it.
+        let inside = protrusion.vertices.iter().filter(|&&v| taken[v as usize]).count();
+        if inside * 2 > protrusion.vertices.len() {
             continue;
         }
-        parts.push(RiggedPart {
-            name: format!("part{}", parts.len()),
-            vertices: protrusion.vertices,
-            tip: protrusion.tip,
-            length: protrusion.length,
-            fit: fitted,
-            seconds: started.elapsed().as_secs_f64(),
-        });
+        let vertices: Vec<u32> = protrusion.vertices.iter().copied().filter(|&v| !taken[v as usize]).collect();
+        if vertices.len() < 4 {
+            continue;
+        }
+        let chain = match rig_limb(fitted_on, &vertices, &fit_options) {
+            Ok(chain) => chain,
+            Err(rms_d) => {
+                rejected.push(Rejected { tip: protrusion.tip, vertices: vertices.len(), rms_d });
+                continue;
+            }
+        };
+        let name = format!("limb{limbs}");
+        let mut parent: Option<String> = None;
+        for (link, (vertices, fitted, seconds)) in chain.into_iter().enumerate() {
+            for &v in &vertices {
+                taken[v as usize] = true;
+            }
+            let this = if link == 0 { name.clone() } else { format!("{name}.{link}") };
+            let tip = if vertices.binary_search(&protrusion.tip).is_ok() {
+                protrusion.tip
+            } else {
+                farthest_from_first_key(fitted_on, &vertices, &fitted)
+            };
+            parts.push(RiggedPart {
+                name: this.clone(),
+                parent: parent.replace(this),
+                tip,
+                length: chord_length(&fitted),
+                vertices,
+                fit: fitted,
+                seconds,
+            });
+        }
+        limbs += 1;
     }
     Ok(Autorig { parts, rejected, search_seconds })
 }
+
+/// One link of a limb's chain: its vertices, its fit and the seconds the fit took.
+type Link = (Vec<u32>, Fit, f64);
+
+/// Fits the limb made of `vertices` (increasing): one sweep where it fits within [`TARGET`],
+/// otherwise the chain split at its widening (`super::chain`) where each link fits within
+/// [`MAX_RMS`], the loosest fits better than the one sweep and the end's first key binds to
+/// the limb (a cross-section of the limb passes through it), otherwise the one sweep within
+/// [`MAX_RMS`]; `Err` with the one sweep's sections' RMS |d| where none is.
+fn rig_limb(mesh: &Mesh, vertices: &[u32], options: &FitOptions) -> Result<Vec<Link>, f64> {
+    let timed = |vertices: &[u32]| {
+        let started = Instant::now();
+        let fitted = fit(mesh, vertices, options).ok()?;
+        Some((vertices.to_vec(), fitted, started.elapsed().as_secs_f64()))
+    };
+    let loose = |link: &Link| link.1.sections_quality().rms_d;
+    let whole = timed(vertices);
+    let whole_rms = whole.as_ref().map_or(f64::INFINITY, loose);
+    if whole_rms <= TARGET {
+        return Ok(whole.into_iter().collect());
+    }
+    if let Some([near, far]) = split_at_widening(mesh, vertices) {
+        let chain: Option<Vec<Link>> = [near, far].iter().map(|v| timed(v)).collect();
+        if let Some(chain) = chain {
+            let worst = chain.iter().map(loose).fold(0.0, f64::max);
+            // The end's first key must lie on a cross-section of the limb (§5's branch link).
+            let parent = Sweep::try_new(&chain[0].1.keys, None).ok();
+            let linked = parent.is_some_and(|parent| KeyBinding::new(&parent, &chain[1].1.keys[0]).is_some());
+            if linked && worst <= MAX_RMS && worst < whole_rms {
+                return Ok(chain);
+            }
+        }
+    }
+    match whole {
+        Some(link) if whole_rms <= MAX_RMS => Ok(vec![link]),
+        _ => Err(whole_rms),
+    }
+}
+
+/// The chord length of a fit's key centers.
+fn chord_length(fitted: &Fit) -> f64 {
+    fitted.keys.windows(2).map(|w| w[0].center.distance(w[1].center)).sum()
+}
+
+/// The vertex of `vertices` farthest along the fitted sweep from its first key.
+fn farthest_from_first_key(mesh: &Mesh, vertices: &[u32], fitted: &Fit) -> u32 {
+    let first = fitted.keys[0].center;
+    vertices
+        .iter()
+        .copied()
+        .max_by(|&a, &b| {
+            let (da, db) = (mesh.positions[a as usize].distance(first), mesh.positions[b as usize].distance(first));
+            da.total_cmp(&db).then(b.cmp(&a))
+        })
+        .unwrap_or(vertices[0])
+}
+
+/// A fit within this RMS |d| (over the mean radius), its sections' radii, is kept as one sweep
+/// without trying a chain.
+pub const TARGET: f64 = 0.10;
 
 /// A part found whose fit is looser than [`MAX_RMS`]: a flange, a ring or a flat panel, no
 /// limb.
@@ -137,21 +236,3 @@ pub struct Rejected {
 /// radius) is no limb and is left out of the rig: its sections are not those of a tube, though
 /// radii fitted to its vertices by least squares may follow them more closely.
 pub const MAX_RMS: f64 = 0.35;
-
-/// `mesh` with the vertices at bit-identical positions joined in its faces (the vertices stay,
-/// those joined away left without faces); `None` when no two are.
-fn welded(mesh: &Mesh) -> Option<Mesh> {
-    let weld = crate::mesh::weld::weld(&mesh.positions);
-    if weld.iter().enumerate().all(|(v, &w)| w as usize == v) {
-        return None;
-    }
-    let mut faces = crate::mesh::Faces::new();
-    for face in mesh.faces.iter() {
-        let joined: Vec<u32> = face.iter().map(|&v| weld[v as usize]).collect();
-        let distinct = joined.iter().enumerate().all(|(i, v)| !joined[..i].contains(v));
-        if distinct {
-            faces.push(&joined);
-        }
-    }
-    Mesh::from_parts(mesh.positions.clone(), faces, Vec::new()).ok()
-}

@@ -22,7 +22,19 @@ pub struct EdgeGraph {
 impl EdgeGraph {
     /// The edges of `triangles` (indices into `positions`), each once per direction.
     pub fn new(positions: &[DVec3], triangles: &[[u32; 3]]) -> EdgeGraph {
-        let mut edges: Vec<(u32, u32)> = Vec::with_capacity(6 * triangles.len());
+        EdgeGraph::with_bridges(positions, triangles, &[])
+    }
+
+    /// The edges of `triangles` and the `bridges` (edges that no triangle has, such as those
+    /// between components that touch), each once per direction.
+    pub fn with_bridges(positions: &[DVec3], triangles: &[[u32; 3]], bridges: &[[u32; 2]]) -> EdgeGraph {
+        let mut edges: Vec<(u32, u32)> = Vec::with_capacity(6 * triangles.len() + 2 * bridges.len());
+        for &[a, b] in bridges {
+            if a != b {
+                edges.push((a, b));
+                edges.push((b, a));
+            }
+        }
         for t in triangles {
             for k in 0..3 {
                 let (a, b) = (t[k], t[(k + 1) % 3]);

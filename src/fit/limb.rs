@@ -153,7 +153,7 @@ pub fn limb(
 
 /// P(k·h) for k = 0 … `levels` − 1: the length of the level set d = k·h over the triangles
 /// whose three distances are at most `limit`.
-fn perimeters(positions: &[DVec3], triangles: &[[u32; 3]], d: &[f64], h: f64, levels: usize, limit: f64) -> Vec<f64> {
+pub fn perimeters(positions: &[DVec3], triangles: &[[u32; 3]], d: &[f64], h: f64, levels: usize, limit: f64) -> Vec<f64> {
     let mut perimeter = vec![0.0; levels];
     for t in triangles {
         let g = t.map(|v| d[v as usize]);

@@ -79,6 +79,8 @@ mod refine;
 internal_mod! {
     attached;
     axis;
+    body;
+    chain;
     frames;
     geodesic;
     hidden;

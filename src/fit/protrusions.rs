@@ -7,9 +7,10 @@
 //! (a local maximum of the distance) starts a branch, which ends where its superlevel set
 //! meets the set of a farther tip; its persistence is the drop in distance between the two.
 //!
-//! 1. **Connectivity.** Vertices at bit-identical positions are joined (unwelded patch seams,
-//!    as in the Newell teapot), then the mesh splits into edge-connected components; each is
-//!    searched alone.
+//! 1. **Connectivity.** The search runs on the mesh's [`Body`]: vertices within a small reach
+//!    welded (unwelded patch seams, as in the Newell teapot; a game mesh's open seams), small
+//!    components joined to those they touch (a blocky limb's box, a tuft on a tail); then the
+//!    body splits into its connected components; each is searched alone.
 //! 2. **Distance.** g = edge-path geodesic distance ([`EdgeGraph::distances`]) from the
 //!    component's vertex nearest its centroid, a center inside the body for a star-shaped
 //!    body.
@@ -21,8 +22,7 @@
 //!    at most `max_parts`; each part is its tip's limb ([`super::limb`]): the vertices nearer
 //!    the tip than where the level sets of distance from it open onto the body, the tip moved
 //!    to the limb's end along its skeleton so the cut is normal to the limb. A branch whose
-//!    level sets never open (a bump, the body's far side) gives no part; a part more than
-//!    half inside a longer one (a finger of a hand) stays in it; a part holding more than a
+//!    level sets never open (a bump, the body's far side) gives no part; a part holding more than a
 //!    quarter of its component, unless it is the whole component (a spout that is a mesh
 //!    component of its own), is the body's far side and is dropped.
 //!
@@ -33,15 +33,16 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 
+use super::body::Body;
 use super::geodesic::EdgeGraph;
 use super::limb::aligned_limb;
 use crate::mesh::Mesh;
-use crate::mesh::weld::weld;
 
 /// A protrusion: a tip and the vertices of its branch.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Protrusion {
-    /// The mesh vertices of the part, increasing.
+    /// The mesh vertices of the part, increasing, a vertex welded for the search
+    /// ([`Body::weld`]) with every vertex welded to it; it may overlap a longer part.
     pub vertices: Vec<u32>,
     /// The tip: the part's vertex farthest from the body's center.
     pub tip: u32,
@@ -61,17 +62,10 @@ struct Branch {
 }
 
 /// The protrusions of `mesh` (see the module docs), longest first.
-pub fn protrusions(mesh: &Mesh, min_length: f64, max_parts: usize) -> Vec<Protrusion> {
-    let welded = weld(&mesh.positions);
-    let triangles: Vec<[u32; 3]> = mesh
-        .faces
-        .triangles()
-        .map(|t| t.map(|v| welded[v as usize]))
-        .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
-        .collect();
-    let graph = EdgeGraph::new(&mesh.positions, &triangles);
+pub fn protrusions(mesh: &Mesh, body: &Body, min_length: f64, max_parts: usize) -> Vec<Protrusion> {
+    let (graph, triangles) = (&body.graph, &body.triangles[..]);
     let mut used = vec![false; mesh.positions.len()];
-    for t in &triangles {
+    for t in triangles {
         for &v in t {
             used[v as usize] = true;
         }
@@ -82,11 +76,11 @@ pub fn protrusions(mesh: &Mesh, min_length: f64, max_parts: usize) -> Vec<Protru
         if !used[start] || seen[start] {
             continue;
         }
-        let component = flood(&graph, start as u32, |_| true);
+        let component = flood(graph, start as u32, |_| true);
         for &v in &component {
             seen[v as usize] = true;
         }
-        found.extend(component_protrusions(mesh, &graph, &triangles, &component, min_length));
+        found.extend(component_protrusions(mesh, graph, triangles, &component, min_length));
     }
     // Longest first; lengths within rounding of each other (mirror twins, such as a pair of
     // legs, whose lengths a rigid motion perturbs in the last bits) by tip index, so that a
@@ -95,28 +89,10 @@ pub fn protrusions(mesh: &Mesh, min_length: f64, max_parts: usize) -> Vec<Protru
     let rounded = |p: &Protrusion| if quantum > 0.0 { (p.length / quantum).round() as i64 } else { 0 };
     found.sort_by(|a, b| rounded(b).cmp(&rounded(a)).then(a.tip.cmp(&b.tip)));
     found.truncate(max_parts);
-    // Each welded vertex stands for every vertex at its position.
-    let mut members: HashMap<u32, Vec<u32>> = HashMap::new();
-    for (v, &w) in welded.iter().enumerate() {
-        if w as usize != v {
-            members.entry(w).or_default().push(v as u32);
-        }
-    }
-    let mut taken = vec![false; mesh.positions.len()];
     for part in &mut found {
-        let mut vertices: Vec<u32> =
-            part.vertices.iter().flat_map(|v| members.get(v).into_iter().flatten().chain([v])).copied().collect();
-        let before = vertices.len();
-        // A part mostly inside a longer one (a finger of a hand) stays in it.
-        if vertices.iter().filter(|&&v| taken[v as usize]).count() * 2 > before {
-            part.vertices.clear();
-            continue;
-        }
-        vertices.retain(|&v| !std::mem::replace(&mut taken[v as usize], true));
-        vertices.sort_unstable();
-        part.vertices = vertices;
+        // Each welded vertex stands for every vertex welded to it.
+        part.vertices = body.unwelded(&part.vertices);
     }
-    found.retain(|p| p.vertices.len() >= 4);
     found
 }
 

@@ -56,6 +56,8 @@ struct LeftOut {
 #[derive(Serialize)]
 struct PartReport {
     name: String,
+    /// The sweep it hangs from (the previous link of its limb's chain), if any.
+    parent: Option<String>,
     vertices: usize,
     tip: u32,
     length: f64,
@@ -88,6 +90,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
         .iter()
         .map(|p| PartReport {
             name: p.name.clone(),
+            parent: p.parent.clone(),
             vertices: p.vertices.len(),
             tip: p.tip,
             length: p.length,
@@ -126,8 +129,9 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
         _ => {}
     }
     for p in &parts {
+        let parent = p.parent.as_ref().map(|parent| format!(" (child of {parent})")).unwrap_or_default();
         println!(
-            "{}: {} vertices, tip vertex {}, length {:.4}, {} keys, RMS |d| {:.2}%, max {:.1}% of the mean radius, {:.3} s",
+            "{}{parent}: {} vertices, tip vertex {}, length {:.4}, {} keys, RMS |d| {:.2}%, max {:.1}% of the mean radius, {:.3} s",
             p.name,
             p.vertices,
             p.tip,

@@ -1,0 +1,415 @@
+//! The body [`super::autorig`] searches, as one surface even where the file is not: game meshes
+//! ship characters as several components (a head sitting on a neck, boxes for limbs) with
+//! seams left open where their texture coordinates part.
+//!
+//! 1. **Welding.** Vertices within [`WELD`] × the bounding-box diagonal of each other are one
+//!    vertex of the search (each joins the lowest-indexed vertex within reach that joined none,
+//!    in vertex order), so open seams close; the mesh keeps its own vertices.
+//! 2. **Contacts.** Edge-connected components of the welded mesh whose surfaces come within
+//!    [`CONTACT`] × the diagonal of each other touch: each vertex that near another component's
+//!    triangle is bridged to that triangle's nearest corner by an edge of the search graph.
+//! 3. **One body.** Contacts are taken closest first, and only between components not yet
+//!    joined (Kruskal's spanning tree over the contact graph), so joining never closes a loop
+//!    that the mesh itself does not have (a hand pressed to a hip, its arm already joined at the
+//!    shoulder, stays a hand).
+//!
+//! Everything depends on distances and vertex order only, so a rigidly moved mesh gives the
+//! same body (up to rounding at the reach itself).
+
+use std::collections::HashMap;
+
+use glam::DVec3;
+
+use super::disjoint_sets::DisjointSets;
+use super::geodesic::EdgeGraph;
+use crate::mesh::{Faces, Mesh};
+
+/// Vertices nearer each other than this fraction of the bounding-box diagonal are welded.
+pub const WELD: f64 = 1e-5;
+/// Components nearer each other than this fraction of the bounding-box diagonal touch.
+pub const CONTACT: f64 = 0.015;
+
+/// A component with fewer vertices than this (a box of a blocky limb) joins any it touches…
+pub const SMALL_COMPONENT: usize = 16;
+/// …as does one with at most this share of the other's vertices (a hand on a body).
+pub const SMALL_SHARE: f64 = 0.125;
+/// A component touches another with at most this share of its vertices.
+pub const MAX_TOUCHING: f64 = 0.5;
+
+/// The searched body of a mesh (see the module docs). Indices are the mesh's; a welded vertex
+/// stands for every vertex joined to it.
+#[derive(Clone, Debug)]
+pub struct Body {
+    /// For each mesh vertex, the vertex it is welded to (itself for a representative).
+    pub weld: Vec<u32>,
+    /// The mesh's fan triangles on welded vertices, those that welding collapsed left out.
+    pub triangles: Vec<[u32; 3]>,
+    /// The edges added between touching components, each once, in the order they were found.
+    pub bridges: Vec<[u32; 2]>,
+    /// The edges of `triangles` and the bridges.
+    pub graph: EdgeGraph,
+    /// The mesh's bounding-box diagonal.
+    pub diagonal: f64,
+}
+
+impl Body {
+    /// The body of `mesh`.
+    pub fn new(mesh: &Mesh) -> Body {
+        let (lo, hi) = mesh
+            .positions
+            .iter()
+            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
+        let diagonal = if mesh.positions.is_empty() { 0.0 } else { (hi - lo).length() };
+        let weld = weld_within(&mesh.positions, WELD * diagonal);
+        let triangles: Vec<[u32; 3]> = mesh
+            .faces
+            .triangles()
+            .map(|t| t.map(|v| weld[v as usize]))
+            .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+            .collect();
+        let bridges = bridges(&mesh.positions, &triangles, CONTACT * diagonal);
+        let graph = EdgeGraph::with_bridges(&mesh.positions, &triangles, &bridges);
+        Body { weld, triangles, bridges, graph, diagonal }
+    }
+
+    /// The mesh with its faces on welded vertices (those that welding collapsed dropped), the
+    /// positions and groups kept; `None` when welding joined nothing.
+    pub fn welded_mesh(&self, mesh: &Mesh) -> Option<Mesh> {
+        if self.weld.iter().enumerate().all(|(v, &w)| w as usize == v) {
+            return None;
+        }
+        let mut faces = Faces::new();
+        for face in mesh.faces.iter() {
+            let joined: Vec<u32> = face.iter().map(|&v| self.weld[v as usize]).collect();
+            let distinct = joined.iter().enumerate().all(|(i, v)| !joined[..i].contains(v));
+            if distinct {
+                faces.push(&joined);
+            }
+        }
+        Mesh::from_parts(mesh.positions.clone(), faces, Vec::new()).ok()
+    }
+
+    /// `vertices` (welded representatives) with every mesh vertex welded to them, increasing.
+    pub fn unwelded(&self, vertices: &[u32]) -> Vec<u32> {
+        let mut chosen = vec![false; self.weld.len()];
+        for &v in vertices {
+            chosen[v as usize] = true;
+        }
+        (0..self.weld.len() as u32).filter(|&v| chosen[self.weld[v as usize] as usize]).collect()
+    }
+}
+
+/// For each position, the lowest-indexed earlier representative within `reach` (itself when
+/// none): a grid of cells `reach` wide finds the candidates.
+fn weld_within(positions: &[DVec3], reach: f64) -> Vec<u32> {
+    if !(reach > 0.0 && reach.is_finite()) {
+        return crate::mesh::weld::weld(positions);
+    }
+    let cell = |p: DVec3| (p / reach).floor().as_i64vec3().to_array();
+    let mut grid: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
+    let mut weld = Vec::with_capacity(positions.len());
+    for (v, &p) in positions.iter().enumerate() {
+        let c = cell(p);
+        let mut best: Option<u32> = None;
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                for dz in -1..=1 {
+                    let Some(list) = grid.get(&[c[0] + dx, c[1] + dy, c[2] + dz]) else { continue };
+                    for &r in list {
+                        if positions[r as usize].distance(p) <= reach && best.is_none_or(|b| r < b) {
+                            best = Some(r);
+                        }
+                    }
+                }
+            }
+        }
+        match best {
+            Some(r) => weld.push(r),
+            None => {
+                weld.push(v as u32);
+                grid.entry(c).or_default().push(v as u32);
+            }
+        }
+    }
+    weld
+}
+
+/// A contact between two components: a vertex of one and the nearest corner of the other's
+/// triangle it lies within reach of, and the distance to that triangle.
+#[derive(Clone, Copy, Debug)]
+struct Contact {
+    gap: f64,
+    components: [u32; 2],
+    edge: [u32; 2],
+}
+
+/// The bridges between the components of `triangles` within `reach` of each other, joined as a
+/// spanning tree closest first (see the module docs).
+fn bridges(positions: &[DVec3], triangles: &[[u32; 3]], reach: f64) -> Vec<[u32; 2]> {
+    let mut sets = DisjointSets::new(positions.len());
+    for t in triangles {
+        for k in 1..3 {
+            let (a, b) = (sets.root(t[0]), sets.root(t[k]));
+            if a != b {
+                sets.attach(b, a);
+            }
+        }
+    }
+    let component: Vec<u32> = (0..positions.len() as u32).map(|v| sets.root(v)).collect();
+    let mut used = vec![false; positions.len()];
+    for &v in triangles.iter().flatten() {
+        used[v as usize] = true;
+    }
+    let first = triangles.first().map(|t| component[t[0] as usize]);
+    if !(reach > 0.0 && reach.is_finite()) || triangles.iter().all(|t| Some(component[t[0] as usize]) == first) {
+        return Vec::new();
+    }
+    let contacts = contacts(positions, triangles, &component, &used, reach);
+    let mut sizes: HashMap<u32, usize> = HashMap::new();
+    for v in (0..positions.len()).filter(|&v| used[v]) {
+        *sizes.entry(component[v]).or_default() += 1;
+    }
+    // Kruskal over the components: each pair's contacts join them if they are not yet one.
+    let mut joined = DisjointSets::new(positions.len());
+    let mut by_pair: HashMap<[u32; 2], (f64, Vec<[u32; 2]>)> = HashMap::new();
+    for c in &contacts {
+        let key = [c.components[0].min(c.components[1]), c.components[0].max(c.components[1])];
+        let entry = by_pair.entry(key).or_insert((f64::INFINITY, Vec::new()));
+        entry.0 = entry.0.min(c.gap);
+        entry.1.push(c.edge);
+    }
+    // A piece on a body, not two bodies: the smaller component has fewer than
+    // [`SMALL_COMPONENT`] vertices or at most [`SMALL_SHARE`] of the other's (a lid on its pot
+    // is a body of its own). A touch, not a shell: it meets the other with at most
+    // [`MAX_TOUCHING`] of its vertices (a hollow wall's two sides lie along each other).
+    by_pair.retain(|key, (_, edges)| {
+        let (smaller, larger) = if sizes[&key[0]] <= sizes[&key[1]] { (key[0], key[1]) } else { (key[1], key[0]) };
+        let piece = sizes[&smaller] < SMALL_COMPONENT || sizes[&smaller] as f64 <= SMALL_SHARE * sizes[&larger] as f64;
+        let mut touching: Vec<u32> =
+            edges.iter().flat_map(|e| e.iter().copied()).filter(|&v| component[v as usize] == smaller).collect();
+        touching.sort_unstable();
+        touching.dedup();
+        piece && touching.len() as f64 <= MAX_TOUCHING * sizes[&smaller] as f64
+    });
+    let mut pairs: Vec<([u32; 2], f64)> = by_pair.iter().map(|(&key, &(gap, _))| (key, gap)).collect();
+    pairs.sort_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
+    let mut bridges = Vec::new();
+    for (key, _) in pairs {
+        let (a, b) = (joined.root(key[0]), joined.root(key[1]));
+        if a == b {
+            continue;
+        }
+        joined.attach(b, a);
+        let mut edges = by_pair.remove(&key).map(|(_, edges)| edges).unwrap_or_default();
+        edges.sort_unstable();
+        edges.dedup();
+        bridges.extend(edges);
+    }
+    bridges
+}
+
+/// Every vertex within `reach` of a triangle of another component, with the triangle's corner
+/// nearest it; triangles are found through a grid of cells at least `reach` wide.
+fn contacts(
+    positions: &[DVec3],
+    triangles: &[[u32; 3]],
+    component: &[u32],
+    used: &[bool],
+    reach: f64,
+) -> Vec<Contact> {
+    let (lo, hi) =
+        positions.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
+    // Cells no smaller than 1/64 of the extent, and coarser while the triangles would fill more
+    // than a bounded number of cell entries (large panels on a small mesh).
+    let mut size = reach.max((hi - lo).max_element() / 64.0);
+    let cells_of = |t: &[u32; 3], size: f64| {
+        let (a, b) = t.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &v| {
+            (lo.min(positions[v as usize]), hi.max(positions[v as usize]))
+        });
+        let (a, b) = (((a - reach - lo) / size).floor(), ((b + reach - lo) / size).floor());
+        (a.as_i64vec3(), b.as_i64vec3())
+    };
+    let budget = 16 * triangles.len() + (1 << 20);
+    loop {
+        let entries: usize = triangles
+            .iter()
+            .map(|t| {
+                let (a, b) = cells_of(t, size);
+                ((b - a).as_uvec3() + 1).element_product() as usize
+            })
+            .sum();
+        if entries <= budget {
+            break;
+        }
+        size *= 2.0;
+    }
+    let mut grid: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
+    for (i, t) in triangles.iter().enumerate() {
+        let (a, b) = cells_of(t, size);
+        for x in a.x..=b.x {
+            for y in a.y..=b.y {
+                for z in a.z..=b.z {
+                    grid.entry([x, y, z]).or_default().push(i as u32);
+                }
+            }
+        }
+    }
+    let mut found = Vec::new();
+    for (v, &p) in positions.iter().enumerate() {
+        if !used[v] {
+            continue;
+        }
+        let c = ((p - lo) / size).floor().as_i64vec3().to_array();
+        let Some(list) = grid.get(&c) else { continue };
+        // The nearest triangle of each other component.
+        let mut nearest: Vec<(u32, f64, u32)> = Vec::new();
+        for &i in list {
+            let t = triangles[i as usize];
+            let other = component[t[0] as usize];
+            if other == component[v] {
+                continue;
+            }
+            let corners = t.map(|w| positions[w as usize]);
+            let gap = closest_on_triangle(p, corners).distance(p);
+            if gap > reach {
+                continue;
+            }
+            let corner = *t
+                .iter()
+                .min_by(|&&a, &&b| positions[a as usize].distance(p).total_cmp(&positions[b as usize].distance(p)))
+                .unwrap_or(&t[0]);
+            match nearest.iter_mut().find(|(c, _, _)| *c == other) {
+                Some(entry) if gap < entry.1 => *entry = (other, gap, corner),
+                Some(_) => {}
+                None => nearest.push((other, gap, corner)),
+            }
+        }
+        for (other, gap, corner) in nearest {
+            found.push(Contact { gap, components: [component[v], other], edge: [v as u32, corner] });
+        }
+    }
+    found
+}
+
+/// The point of the triangle `t` nearest `p` (Ericson, "Real-Time Collision Detection", §5.1.5).
+pub fn closest_on_triangle(p: DVec3, t: [DVec3; 3]) -> DVec3 {
+    let [a, b, c] = t;
+    let (ab, ac, ap) = (b - a, c - a, p - a);
+    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return a;
+    }
+    let bp = p - b;
+    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return b;
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        return a + ab * (d1 / (d1 - d3));
+    }
+    let cp = p - c;
+    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return c;
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        return a + ac * (d2 / (d2 - d6));
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    }
+    let denominator = va + vb + vc;
+    if denominator.abs() <= f64::MIN_POSITIVE {
+        return a;
+    }
+    let (v, w) = (vb / denominator, vc / denominator);
+    a + ab * v + ac * w
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An axis-aligned box from `lo` to `hi` as 6 quads, its vertices from `first`.
+    fn boxed(positions: &mut Vec<DVec3>, faces: &mut Faces, lo: DVec3, hi: DVec3) {
+        let first = positions.len() as u32;
+        for i in 0..8 {
+            positions.push(DVec3::new(
+                if i & 1 == 0 { lo.x } else { hi.x },
+                if i & 2 == 0 { lo.y } else { hi.y },
+                if i & 4 == 0 { lo.z } else { hi.z },
+            ));
+        }
+        for quad in [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]] {
+            faces.push(&quad.map(|v| first + v));
+        }
+    }
+
+    #[test]
+    fn boxes_that_nearly_touch_are_one_body_and_far_ones_are_not() {
+        let (mut positions, mut faces) = (Vec::new(), Faces::new());
+        boxed(&mut positions, &mut faces, DVec3::ZERO, DVec3::new(1.0, 4.0, 1.0));
+        // 0.05 above the first: within 1.5% of the diagonal (about 9.1).
+        boxed(&mut positions, &mut faces, DVec3::new(0.0, 4.05, 0.0), DVec3::new(1.0, 8.0, 1.0));
+        // 0.5 beside the first: apart.
+        boxed(&mut positions, &mut faces, DVec3::new(1.5, 0.0, 0.0), DVec3::new(2.5, 1.0, 1.0));
+        let mesh = Mesh::from_parts(positions, faces, Vec::new()).unwrap();
+        let body = Body::new(&mesh);
+        assert!(!body.bridges.is_empty());
+        assert!(body.bridges.iter().all(|e| e.iter().all(|&v| v < 16)), "{:?}", body.bridges);
+        let d = body.graph.distances(&[0]);
+        assert!(d[8..16].iter().all(|d| d.is_finite()), "{d:?}");
+        assert!(d[16..].iter().all(|d| d.is_infinite()), "{d:?}");
+    }
+
+    #[test]
+    fn a_seam_within_the_weld_reach_closes_and_the_mesh_keeps_its_vertices() {
+        // Two triangles sharing an edge whose copies differ by 1e-6 of the diagonal.
+        let positions = vec![
+            DVec3::ZERO,
+            DVec3::X,
+            DVec3::Y,
+            DVec3::new(1.0 + 1e-6, 0.0, 0.0),
+            DVec3::new(0.0, 1.0 - 1e-6, 0.0),
+            DVec3::ONE,
+        ];
+        let mut faces = Faces::new();
+        faces.push(&[0, 1, 2]);
+        faces.push(&[3, 5, 4]);
+        let mesh = Mesh::from_parts(positions, faces, Vec::new()).unwrap();
+        let body = Body::new(&mesh);
+        assert_eq!(body.weld, [0, 1, 2, 1, 2, 5]);
+        assert!(body.bridges.is_empty());
+        assert_eq!(body.unwelded(&[1]), [1, 3]);
+        let welded = body.welded_mesh(&mesh).unwrap();
+        assert_eq!(welded.positions, mesh.positions);
+        assert_eq!(welded.faces.iter().nth(1).unwrap(), [1, 5, 2]);
+    }
+
+    #[test]
+    fn a_spanning_tree_joins_each_pair_of_components_once() {
+        // Three boxes in a row, each touching the next, and the first touching the last at a
+        // corner: the third contact would close a loop and is not taken.
+        let (mut positions, mut faces) = (Vec::new(), Faces::new());
+        boxed(&mut positions, &mut faces, DVec3::ZERO, DVec3::ONE);
+        boxed(&mut positions, &mut faces, DVec3::new(1.01, 0.0, 0.0), DVec3::new(2.0, 1.0, 1.0));
+        boxed(&mut positions, &mut faces, DVec3::new(0.0, 1.02, 0.0), DVec3::new(2.0, 2.0, 1.0));
+        let mesh = Mesh::from_parts(positions, faces, Vec::new()).unwrap();
+        let body = Body::new(&mesh);
+        let pairs: std::collections::BTreeSet<[u32; 2]> =
+            body.bridges.iter().map(|e| [e[0] / 8, e[1] / 8]).map(|[a, b]| [a.min(b), a.max(b)]).collect();
+        assert_eq!(pairs.len(), 2, "{pairs:?}");
+    }
+
+    #[test]
+    fn the_closest_point_of_a_triangle() {
+        let t = [DVec3::ZERO, DVec3::X, DVec3::Y];
+        assert!(closest_on_triangle(DVec3::new(0.2, 0.2, 3.0), t).distance(DVec3::new(0.2, 0.2, 0.0)) < 1e-15);
+        assert_eq!(closest_on_triangle(DVec3::new(-1.0, -1.0, 0.0), t), DVec3::ZERO);
+        assert_eq!(closest_on_triangle(DVec3::new(0.5, -2.0, 1.0), t), DVec3::new(0.5, 0.0, 0.0));
+        assert_eq!(closest_on_triangle(DVec3::new(1.0, 1.0, 0.0), t), DVec3::new(0.5, 0.5, 0.0));
+    }
+}
