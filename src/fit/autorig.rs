@@ -122,10 +122,11 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
             continue;
         }
         let vertices: Vec<u32> = protrusion.vertices.iter().copied().filter(|&v| !taken[v as usize]).collect();
-        if vertices.len() < 4 {
+        if vertices.len() < MIN_VERTICES {
             continue;
         }
-        let chain = match rig_limb(fitted_on, &vertices, &fit_options) {
+        let options = FitOptions { axis: protrusion.axis.clone(), ..fit_options.clone() };
+        let chain = match rig_limb(fitted_on, &vertices, &options) {
             Ok(chain) => chain,
             Err(rms_d) => {
                 rejected.push(Rejected { tip: protrusion.tip, vertices: vertices.len(), rms_d });
@@ -214,6 +215,9 @@ fn farthest_from_first_key(mesh: &Mesh, vertices: &[u32], fitted: &Fit) -> u32 {
         })
         .unwrap_or(vertices[0])
 }
+
+/// A part of fewer vertices (a quad of a game mesh's face) is no limb.
+pub const MIN_VERTICES: usize = 8;
 
 /// A fit within this RMS |d| (over the mean radius), its sections' radii, is kept as one sweep
 /// without trying a chain.

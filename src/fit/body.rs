@@ -8,10 +8,16 @@
 //! 2. **Contacts.** Edge-connected components of the welded mesh whose surfaces come within
 //!    [`CONTACT`] × the diagonal of each other touch: each vertex that near another component's
 //!    triangle is bridged to that triangle's nearest corner by an edge of the search graph.
-//! 3. **One body.** Contacts are taken closest first, and only between components not yet
-//!    joined (Kruskal's spanning tree over the contact graph), so joining never closes a loop
-//!    that the mesh itself does not have (a hand pressed to a hip, its arm already joined at the
-//!    shoulder, stays a hand).
+//! 3. **One body.** A component joins another only as a piece of it: it has fewer than
+//!    [`SMALL_COMPONENT`] vertices or at most [`SMALL_SHARE`] of the other's (a lid on its pot
+//!    is a body of its own), and it touches with at most [`MAX_TOUCHING`] of its vertices (a
+//!    hollow wall's two sides lie along each other). Contacts are taken by the larger
+//!    component's surface area, largest first, then closest first, and only between
+//!    components not yet joined (Kruskal's spanning tree over the contact graph), so a piece
+//!    hangs from the largest component it touches (an arm from its torso, not from the leg
+//!    its hand passes) and joining never closes a loop that the mesh itself does not have.
+//!    A piece joined to one larger component only is a *leaf*: a blocky limb's box on its
+//!    torso.
 //!
 //! Everything depends on distances and vertex order only, so a rigidly moved mesh gives the
 //! same body (up to rounding at the reach itself).
@@ -46,6 +52,10 @@ pub struct Body {
     pub triangles: Vec<[u32; 3]>,
     /// The edges added between touching components, each once, in the order they were found.
     pub bridges: Vec<[u32; 2]>,
+    /// The joined components that hang from exactly one larger one (by surface area), with
+    /// their vertices that touch it (a box of a blocky limb on its torso; smaller pieces may
+    /// hang from it in turn).
+    pub leaves: Vec<Leaf>,
     /// The edges of `triangles` and the bridges.
     pub graph: EdgeGraph,
     /// The mesh's bounding-box diagonal.
@@ -67,9 +77,9 @@ impl Body {
             .map(|t| t.map(|v| weld[v as usize]))
             .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
             .collect();
-        let bridges = bridges(&mesh.positions, &triangles, CONTACT * diagonal);
+        let (bridges, leaves) = bridges(&mesh.positions, &triangles, CONTACT * diagonal);
         let graph = EdgeGraph::with_bridges(&mesh.positions, &triangles, &bridges);
-        Body { weld, triangles, bridges, graph, diagonal }
+        Body { weld, triangles, bridges, leaves, graph, diagonal }
     }
 
     /// The mesh with its faces on welded vertices (those that welding collapsed dropped), the
@@ -134,6 +144,15 @@ fn weld_within(positions: &[DVec3], reach: f64) -> Vec<u32> {
     weld
 }
 
+/// A component joined to exactly one larger one (see [`Body::leaves`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Leaf {
+    /// Its vertices (welded representatives), increasing.
+    pub vertices: Vec<u32>,
+    /// Its vertices that touch the other component, increasing.
+    pub touching: Vec<u32>,
+}
+
 /// A contact between two components: a vertex of one and the nearest corner of the other's
 /// triangle it lies within reach of, and the distance to that triangle.
 #[derive(Clone, Copy, Debug)]
@@ -144,8 +163,9 @@ struct Contact {
 }
 
 /// The bridges between the components of `triangles` within `reach` of each other, joined as a
-/// spanning tree closest first (see the module docs).
-fn bridges(positions: &[DVec3], triangles: &[[u32; 3]], reach: f64) -> Vec<[u32; 2]> {
+/// spanning tree closest first (see the module docs), and the components each joined to only
+/// one other.
+fn bridges(positions: &[DVec3], triangles: &[[u32; 3]], reach: f64) -> (Vec<[u32; 2]>, Vec<Leaf>) {
     let mut sets = DisjointSets::new(positions.len());
     for t in triangles {
         for k in 1..3 {
@@ -162,7 +182,7 @@ fn bridges(positions: &[DVec3], triangles: &[[u32; 3]], reach: f64) -> Vec<[u32;
     }
     let first = triangles.first().map(|t| component[t[0] as usize]);
     if !(reach > 0.0 && reach.is_finite()) || triangles.iter().all(|t| Some(component[t[0] as usize]) == first) {
-        return Vec::new();
+        return (Vec::new(), Vec::new());
     }
     let contacts = contacts(positions, triangles, &component, &used, reach);
     let mut sizes: HashMap<u32, usize> = HashMap::new();
@@ -192,8 +212,17 @@ fn bridges(positions: &[DVec3], triangles: &[[u32; 3]], reach: f64) -> Vec<[u32;
         piece && touching.len() as f64 <= MAX_TOUCHING * sizes[&smaller] as f64
     });
     let mut pairs: Vec<([u32; 2], f64)> = by_pair.iter().map(|(&key, &(gap, _))| (key, gap)).collect();
-    pairs.sort_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
+    // A piece hangs from the largest component it touches (an arm from the torso, not from
+    // the leg its hand passes): pairs by the larger surface area first, then closest first.
+    let mut area: HashMap<u32, f64> = HashMap::new();
+    for t in triangles {
+        let [a, b, c] = t.map(|v| positions[v as usize]);
+        *area.entry(component[t[0] as usize]).or_default() += (b - a).cross(c - a).length() / 2.0;
+    }
+    let larger = |key: [u32; 2]| area[&key[0]].max(area[&key[1]]);
+    pairs.sort_by(|a, b| larger(b.0).total_cmp(&larger(a.0)).then(a.1.total_cmp(&b.1)).then(a.0.cmp(&b.0)));
     let mut bridges = Vec::new();
+    let mut joins: HashMap<u32, Vec<usize>> = HashMap::new();
     for (key, _) in pairs {
         let (a, b) = (joined.root(key[0]), joined.root(key[1]));
         if a == b {
@@ -203,9 +232,39 @@ fn bridges(positions: &[DVec3], triangles: &[[u32; 3]], reach: f64) -> Vec<[u32;
         let mut edges = by_pair.remove(&key).map(|(_, edges)| edges).unwrap_or_default();
         edges.sort_unstable();
         edges.dedup();
+        let first = bridges.len();
         bridges.extend(edges);
+        for side in key {
+            joins.entry(side).or_default().extend(first..bridges.len());
+        }
     }
-    bridges
+    // A leaf hangs from exactly one larger component; smaller ones (a tuft) may hang from it.
+    let mut leaves: Vec<Leaf> = Vec::new();
+    for (&piece, edges) in &joins {
+        let mut larger: Vec<u32> = edges
+            .iter()
+            .flat_map(|&e| bridges[e])
+            .map(|v| component[v as usize])
+            .filter(|&c| c != piece && area[&c] > area[&piece])
+            .collect();
+        larger.sort_unstable();
+        larger.dedup();
+        let [parent] = larger[..] else { continue };
+        let side = |v: u32| component[v as usize];
+        let mut touching: Vec<u32> = edges
+            .iter()
+            .map(|&e| bridges[e])
+            .filter(|e| e.iter().any(|&v| side(v) == parent))
+            .flatten()
+            .filter(|&v| side(v) == piece)
+            .collect();
+        touching.sort_unstable();
+        touching.dedup();
+        let vertices = (0..positions.len() as u32).filter(|&v| used[v as usize] && side(v) == piece).collect();
+        leaves.push(Leaf { vertices, touching });
+    }
+    leaves.sort_by(|a, b| a.vertices.cmp(&b.vertices));
+    (bridges, leaves)
 }
 
 /// Every vertex within `reach` of a triangle of another component, with the triangle's corner

@@ -47,8 +47,11 @@ pub struct Protrusion {
     /// The tip: the part's vertex farthest from the body's center.
     pub tip: u32,
     /// The persistence: the drop in geodesic distance from the tip to where the part meets
-    /// the body, mesh units.
+    /// the body, mesh units (for a joined piece, the reach of its axis).
     pub length: f64,
+    /// For a piece joined to the body at one end ([`Body::leaves`]): its axis, from the end
+    /// where it touches the body to its tip, as the fit's first guess.
+    pub axis: Option<Vec<DVec3>>,
 }
 
 /// A branch of the merge tree.
@@ -89,12 +92,76 @@ pub fn protrusions(mesh: &Mesh, body: &Body, min_length: f64, max_parts: usize) 
     let rounded = |p: &Protrusion| if quantum > 0.0 { (p.length / quantum).round() as i64 } else { 0 };
     found.sort_by(|a, b| rounded(b).cmp(&rounded(a)).then(a.tip.cmp(&b.tip)));
     found.truncate(max_parts);
+    // Pieces joined at one end come first: their ends are known.
+    let mut pieces = joined_pieces(mesh, body, min_length, &component_sizes(graph, &used));
+    pieces.append(&mut found);
+    let mut found = pieces;
+    found.truncate(max_parts);
     for part in &mut found {
         // Each welded vertex stands for every vertex welded to it.
         part.vertices = body.unwelded(&part.vertices);
     }
     found
 }
+
+/// For each vertex, the number of vertices of its connected component of `graph` among those
+/// `used` (0 where unused).
+fn component_sizes(graph: &EdgeGraph, used: &[bool]) -> Vec<usize> {
+    let mut size = vec![0; used.len()];
+    for start in 0..used.len() {
+        if used[start] && size[start] == 0 {
+            let component = flood(graph, start as u32, |_| true);
+            for &v in &component {
+                size[v as usize] = component.len();
+            }
+        }
+    }
+    size
+}
+
+/// The body's pieces joined to it at one end ([`Body::leaves`]) that are limbs: elongated
+/// (their extent along their principal axis at least [`ELONGATED`] times across it), at
+/// least `min_length` long and at most [`MAX_SHARE`] of their joined component (whose size
+/// at each vertex is `sizes`). Each runs along its principal axis from the end nearer where
+/// it touches to its tip.
+fn joined_pieces(mesh: &Mesh, body: &Body, min_length: f64, sizes: &[usize]) -> Vec<Protrusion> {
+    let mut found = Vec::new();
+    for leaf in &body.leaves {
+        let points: Vec<DVec3> = leaf.vertices.iter().map(|&v| mesh.positions[v as usize]).collect();
+        if points.len() < 4 || leaf.touching.is_empty() {
+            continue;
+        }
+        let (centroid, axis) = super::axis::principal_axis(&points);
+        let along = |p: DVec3| (p - centroid).dot(axis);
+        let (lo, hi) = points.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &p| {
+            (lo.min(along(p)), hi.max(along(p)))
+        });
+        let across = points.iter().map(|&p| (p - centroid - axis * along(p)).length()).fold(0.0, f64::max);
+        let share = leaf.vertices.len() as f64 / sizes[leaf.vertices[0] as usize].max(1) as f64;
+        if hi - lo < min_length || hi - lo < ELONGATED * 2.0 * across || share > MAX_SHARE {
+            continue;
+        }
+        let touch = leaf.touching.iter().map(|&v| mesh.positions[v as usize]).sum::<DVec3>()
+            / leaf.touching.len() as f64;
+        let (start, end) = if along(touch) <= (lo + hi) / 2.0 { (lo, hi) } else { (hi, lo) };
+        let tip = leaf.vertices.iter().copied().max_by(|&a, &b| {
+            let (pa, pb) = (mesh.positions[a as usize], mesh.positions[b as usize]);
+            ((along(pa) - start).abs()).total_cmp(&(along(pb) - start).abs()).then(b.cmp(&a))
+        });
+        let Some(tip) = tip else { continue };
+        found.push(Protrusion {
+            vertices: leaf.vertices.clone(),
+            tip,
+            length: hi - lo,
+            axis: Some(vec![centroid + axis * start, centroid + axis * end]),
+        });
+    }
+    found.sort_by(|a, b| b.length.total_cmp(&a.length).then(a.tip.cmp(&b.tip)));
+    found
+}
+
+/// A joined piece is a limb when it is at least this many times as long as it is wide.
+const ELONGATED: f64 = 2.5;
 
 /// The vertices reachable from `start` through vertices that `keep` accepts, increasing.
 fn flood(graph: &EdgeGraph, start: u32, keep: impl Fn(u32) -> bool) -> Vec<u32> {
@@ -151,7 +218,7 @@ fn component_protrusions(
         .filter_map(|(tip, end)| {
             let length = g[tip as usize] - end;
             let (vertices, tip) = aligned_limb(mesh, graph, triangles, tip, length, component.len())?;
-            Some(Protrusion { vertices, tip, length })
+            Some(Protrusion { vertices, tip, length, axis: None })
         })
         .filter(|p| {
             p.vertices.len() as f64 <= MAX_SHARE * component.len() as f64 || p.vertices.len() == component.len()
