@@ -20,7 +20,9 @@ cp "$work/chair/chair.png" docs/chair.png
 # Each shared mesh rigged by autorig, its sweeps drawn.
 mkdir -p docs/autorig
 for spec in spot_triangulated.obj:spot:110,10 bunny_closed.obj:bunny:20,15 chair.off:chair:30,20 \
-  teapot_newell.obj:teapot-newell:30,20 teapot_mcguire/teapot.obj:teapot-mcguire:30,20 dino.off:dino:150,-30; do
+  teapot_newell.obj:teapot-newell:30,20 teapot_mcguire/teapot.obj:teapot-mcguire:30,20 dino.off:dino:150,-30 \
+  characters/blocky_man.obj:blocky-man:30,10 characters/wuson.obj:wuson:60,15 characters/at-at.obj:at-at:30,20 \
+  characters/faerie.obj:faerie:90,10; do
   IFS=: read -r mesh name view <<< "$spec"
   ./target/release/sweepffd autorig --mesh "../shared/meshes/$mesh" --out "$work/$name-rig.json" --quiet > /dev/null
   ./target/release/sweepffd render --mesh "../shared/meshes/$mesh" --rig "$work/$name-rig.json" --show-sweeps \

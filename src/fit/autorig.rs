@@ -122,14 +122,19 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
             continue;
         }
         let vertices: Vec<u32> = protrusion.vertices.iter().copied().filter(|&v| !taken[v as usize]).collect();
+        // Fewer than a tetrahedron's: not even a part.
+        if vertices.len() < 4 {
+            continue;
+        }
         if vertices.len() < MIN_VERTICES {
+            rejected.push(Rejected { tip: protrusion.tip, vertices: vertices.len(), rms_d: None });
             continue;
         }
         let options = FitOptions { axis: protrusion.axis.clone(), ..fit_options.clone() };
         let chain = match rig_limb(fitted_on, &vertices, &options) {
             Ok(chain) => chain,
             Err(rms_d) => {
-                rejected.push(Rejected { tip: protrusion.tip, vertices: vertices.len(), rms_d });
+                rejected.push(Rejected { tip: protrusion.tip, vertices: vertices.len(), rms_d: Some(rms_d) });
                 continue;
             }
         };
@@ -223,16 +228,17 @@ pub const MIN_VERTICES: usize = 8;
 /// without trying a chain.
 pub const TARGET: f64 = 0.10;
 
-/// A part found whose fit is looser than [`MAX_RMS`]: a flange, a ring or a flat panel, no
-/// limb.
+/// A part found whose fit is looser than [`MAX_RMS`] (a flange, a ring or a flat panel), or
+/// that has fewer than [`MIN_VERTICES`] (a quad or two of a game mesh's face): no limb.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Rejected {
     /// Its tip.
     pub tip: u32,
     /// Its vertex count.
     pub vertices: usize,
-    /// Its fit's RMS |d| over the mean radius, with the radii sampled from its key sections.
-    pub rms_d: f64,
+    /// Its fit's RMS |d| over the mean radius, with the radii sampled from its key sections;
+    /// `None` for a part of fewer than [`MIN_VERTICES`], which is not fitted.
+    pub rms_d: Option<f64>,
 }
 
 /// A found part whose fitted sweep, with the radii sampled from its key sections

@@ -94,6 +94,8 @@ fn bend_every_part(name: &str, mesh: &Mesh, expected_parts: usize) -> f64 {
     );
     if let Ok(dir) = std::env::var("SWEEPFFD_PICTURES_DIR") {
         let dir = PathBuf::from(dir);
+        // A shared mesh in a folder is written beside the others.
+        let name = name.replace('/', "-");
         LoadedMesh::from(mesh.clone()).save(&dir.join(format!("{name}.obj")), &mesh.positions).unwrap();
         std::fs::write(dir.join(format!("{name}-rig.json")), document.to_json()).unwrap();
         std::fs::write(dir.join(format!("{name}-pose.json")), rig.pose_document(&keys).to_json()).unwrap();
@@ -123,7 +125,9 @@ fn the_armadillo_bends_every_limb_without_tearing() {
 
 /// The shared meshes no fitting constant was chosen on: spot (coarse legs), the chair, the
 /// Newell teapot (unwelded patch seams: a seam's two copies of a vertex must move together),
-/// the McGuire teapot (welded, hollow) and the dino, each with what autorig finds on it.
+/// the McGuire teapot (welded, hollow), the dino, the blocky man (limbs that are boxes of their
+/// own) and wuson (a leg that is a chain of two sweeps, the hoof a child of the leg, both
+/// bent), each with what autorig finds on it.
 #[test]
 fn meshes_no_constant_was_tuned_on_bend_without_tearing() {
     for (file, expected_parts) in [
@@ -132,6 +136,8 @@ fn meshes_no_constant_was_tuned_on_bend_without_tearing() {
         ("teapot_newell.obj", 2),
         ("teapot_mcguire/teapot.obj", 1),
         ("dino.off", 3),
+        ("characters/blocky_man.obj", 4),
+        ("characters/wuson.obj", 5),
     ] {
         let Some(path) = common::shared_mesh(file) else { return };
         let stretch = bend_every_part(file, &Mesh::load(&path).unwrap(), expected_parts);

@@ -11,7 +11,7 @@ use super::CliResult;
 use super::args::MeshArg;
 use super::flags::fit_error;
 use sweepffd::atomic_file::write_atomically;
-use sweepffd::fit::autorig::{AutorigOptions, autorig};
+use sweepffd::fit::autorig::{AutorigOptions, MIN_VERTICES, autorig};
 use sweepffd::mesh::Mesh;
 
 /// The arguments of `sweepffd autorig`.
@@ -49,8 +49,9 @@ struct Report {
 struct LeftOut {
     vertices: usize,
     tip: u32,
-    /// RMS |d| over the mean radius with the radii sampled from its sections.
-    sections_rms_d: f64,
+    /// RMS |d| over the mean radius with the radii sampled from its sections; null for a part
+    /// too small to be a limb, which is not fitted.
+    sections_rms_d: Option<f64>,
 }
 
 #[derive(Serialize)]
@@ -111,12 +112,14 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
         return Ok(());
     }
     for r in &rigged.rejected {
-        eprintln!(
-            "notice: {file}: left out a part of {} vertices at tip vertex {}: its sections are no tube's (RMS |d| {:.0}% of the mean radius with their radii)",
-            r.vertices,
-            r.tip,
-            100.0 * r.rms_d
-        );
+        let why = match r.rms_d {
+            Some(rms_d) => format!(
+                "its sections are no tube's (RMS |d| {:.0}% of the mean radius with their radii)",
+                100.0 * rms_d
+            ),
+            None => format!("a limb has at least {MIN_VERTICES} vertices"),
+        };
+        eprintln!("notice: {file}: left out a part of {} vertices at tip vertex {}: {why}", r.vertices, r.tip);
     }
     match (parts.is_empty(), rigged.rejected.len()) {
         (true, 0) => eprintln!(

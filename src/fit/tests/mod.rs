@@ -1,4 +1,5 @@
 mod autorig;
+mod autorig_characters;
 mod autorig_star;
 mod falloff;
 mod falloff_meshes;

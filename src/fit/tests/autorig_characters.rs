@@ -1,0 +1,140 @@
+//! `fit::autorig` on game characters (`../shared/meshes/characters`): meshes built of several
+//! components with open seams. The blocky man's limbs are boxes of their own that touch the
+//! torso; wuson's front legs end in hooves, which a chain of two sweeps takes; the AT-AT's
+//! legs are components of their own.
+
+use crate::common;
+
+use glam::{DQuat, DVec3};
+use sweepffd::edit::{Edit, KeyMode, Posing};
+use sweepffd::fit::autorig::{Autorig, AutorigOptions, MAX_RMS, RiggedPart, TARGET, autorig};
+use sweepffd::mesh::Mesh;
+use sweepffd::rig::{LinkKind, Rig};
+
+use common::autorig_report::print_parts;
+
+fn rigged(file: &str) -> Option<(Mesh, Autorig)> {
+    let path = common::shared_mesh(&format!("characters/{file}"))?;
+    let mesh = Mesh::load(&path).unwrap();
+    let rigged = autorig(&mesh, &AutorigOptions::default()).unwrap();
+    print_parts(file, &mesh, &rigged);
+    Some((mesh, rigged))
+}
+
+/// The extent of `part`'s vertices along `axis`.
+fn extent(mesh: &Mesh, part: &RiggedPart, axis: DVec3) -> f64 {
+    let along = part.vertices.iter().map(|&v| mesh.positions[v as usize].dot(axis));
+    let (lo, hi) = along.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| (lo.min(x), hi.max(x)));
+    hi - lo
+}
+
+/// The blocky man (boxes: a torso, two arms, two legs, a head of three pieces, 1–8% of its
+/// size apart): each limb is a box that touches the torso, found as a limb of the body and
+/// fitted from where it touches to its end. Four limbs, each spanning over a quarter of the
+/// body's height, with distinct tips, each fitting within the target, key 0 at the top (arms
+/// and legs hang from the torso); the head, a cube, is no limb.
+#[test]
+fn the_blocky_man_gets_two_arms_and_two_legs() {
+    let Some((mesh, rigged)) = rigged("blocky_man.obj") else { return };
+    let height = mesh.positions.iter().map(|p| p.y).fold(f64::NEG_INFINITY, f64::max)
+        - mesh.positions.iter().map(|p| p.y).fold(f64::INFINITY, f64::min);
+    assert_eq!(rigged.parts.len(), 4, "{:?}", rigged.parts.iter().map(|p| &p.name).collect::<Vec<_>>());
+    let mut tips: Vec<u32> = rigged.parts.iter().map(|p| p.tip).collect();
+    tips.sort_unstable();
+    tips.dedup();
+    assert_eq!(tips.len(), 4, "distinct tips");
+    let (mut arms, mut legs) = (0, 0);
+    for part in &rigged.parts {
+        let span = extent(&mesh, part, DVec3::Y);
+        assert!(span >= 0.25 * height, "{}: spans {span} of {height}", part.name);
+        assert!(part.fit.quality.rms_d <= TARGET, "{}: {:?}", part.name, part.fit.quality);
+        assert_eq!(part.fit.quality.without_root, 0, "{}", part.name);
+        let (first, last) = (part.fit.keys[0].center, part.fit.keys.last().unwrap().center);
+        assert!(first.y > last.y, "{}: key 0 at {first}, the last at {last}", part.name);
+        let tip = mesh.positions[part.tip as usize];
+        if tip.y < 0.1 * height { legs += 1 } else { arms += 1 }
+    }
+    assert_eq!((arms, legs), (2, 2));
+}
+
+/// Wuson, a cartoon bull (51 components; tufts of 6 vertices on its tail): four legs, each
+/// holding a hoof's lowest vertex, and its tail. A front leg whose one sweep fits loosely past
+/// its fetlock is a chain: the leg and its hoof, the hoof a branch child of the leg.
+#[test]
+fn wuson_gets_four_legs_and_its_tail() {
+    let Some((mesh, rigged)) = rigged("wuson.obj") else { return };
+    for part in &rigged.parts {
+        assert!(part.fit.sections_quality().rms_d <= MAX_RMS, "{}", part.name);
+        assert_eq!(part.fit.quality.without_root, 0, "{}", part.name);
+    }
+    // Its head is towards −z; the legs stand at z ≈ ±0.65, x ≈ ±0.2.
+    let mut limbs = Vec::new();
+    for (leg, sx, sz) in
+        [("front +x", 1.0, -1.0), ("front −x", -1.0, -1.0), ("hind +x", 1.0, 1.0), ("hind −x", -1.0, 1.0)]
+    {
+        let hoof = (0..mesh.positions.len() as u32)
+            .filter(|&v| mesh.positions[v as usize].x * sx > 0.05 && mesh.positions[v as usize].z * sz > 0.3)
+            .min_by(|&a, &b| mesh.positions[a as usize].y.total_cmp(&mesh.positions[b as usize].y))
+            .unwrap();
+        let part = rigged.parts.iter().find(|p| p.vertices.binary_search(&hoof).is_ok());
+        let part = part.unwrap_or_else(|| panic!("wuson {leg} leg: no part holds its hoof, vertex {hoof}"));
+        eprintln!("wuson {leg} leg: {} ({} vertices)", part.name, part.vertices.len());
+        limbs.push(part.name.split('.').next().unwrap().to_string());
+    }
+    let tail = (0..mesh.positions.len() as u32)
+        .max_by(|&a, &b| mesh.positions[a as usize].z.total_cmp(&mesh.positions[b as usize].z))
+        .unwrap();
+    let tail = rigged.parts.iter().find(|p| p.vertices.binary_search(&tail).is_ok()).expect("a part holds the tail");
+    limbs.push(tail.name.clone());
+    limbs.sort();
+    limbs.dedup();
+    assert_eq!(limbs.len(), 5, "four legs and a tail, each its own limb: {limbs:?}");
+    // The chains: each child hangs from the link before it, and the rig binds its first key.
+    let children: Vec<&RiggedPart> = rigged.parts.iter().filter(|p| p.parent.is_some()).collect();
+    assert!(!children.is_empty(), "a leg ending in a hoof is a chain");
+    let document = rigged.document();
+    let rig = Rig::from_document(&document, None).unwrap();
+    for child in children {
+        let parent = child.parent.as_deref().unwrap();
+        assert_eq!(child.name.rsplit_once('.').map(|(limb, _)| limb), Some(parent));
+        let sweep = document.sweeps.iter().find(|s| s.name == child.name).unwrap();
+        assert_eq!(sweep.parent.as_ref().map(|p| (p.sweep.as_str(), p.kind)), Some((parent, LinkKind::Branch)));
+        // Turning the leg's middle key carries the hoof's first key with it (§5).
+        let mut posing = Posing::new(&rig);
+        let leg = rig.sweeps().iter().find(|s| s.name == parent).unwrap();
+        let (c, middle) = (rig.sweeps().iter().position(|s| s.name == child.name).unwrap(), leg.keys.len() / 2);
+        posing
+            .apply(&Edit::MoveKey {
+                sweep: parent.to_string(),
+                key: middle,
+                translate: [0.0; 3],
+                rotate: DQuat::from_rotation_x(0.5).to_array(),
+                mode: KeyMode::Local,
+            })
+            .unwrap();
+        let moved = posing.keys()[c][0].center.distance(rig.sweeps()[c].keys[0].center);
+        eprintln!("wuson {}: its first key moved {moved:.4} with {parent}", child.name);
+        assert!(moved > 1e-3, "{}: the child did not follow {parent}", child.name);
+    }
+}
+
+/// The AT-AT walker (133 components): its four lower legs, each a component of its own.
+#[test]
+fn the_at_at_gets_its_legs() {
+    let Some((mesh, rigged)) = rigged("at-at.obj") else { return };
+    let mut legs = Vec::new();
+    for (sx, sy) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)] {
+        let leg = rigged.parts.iter().find(|p| {
+            p.vertices.iter().all(|&v| {
+                let q = mesh.positions[v as usize];
+                q.x * sx > 150.0 && q.y * sy > 250.0 && q.z < 800.0
+            })
+        });
+        let leg = leg.unwrap_or_else(|| panic!("no part is the lower leg at x·{sx} > 0, y·{sy} > 0"));
+        assert!(leg.fit.sections_quality().rms_d <= MAX_RMS, "{}", leg.name);
+        legs.push(leg.name.clone());
+    }
+    legs.sort();
+    legs.dedup();
+    assert_eq!(legs.len(), 4);
+}
