@@ -15,9 +15,10 @@ use std::time::Instant;
 
 use super::body::Body;
 use super::chain::split_at_widening;
-use super::protrusions::protrusions;
+use super::protrusions::{Protrusion, protrusions};
 use super::{Fit, FitError, FitOptions, OptionError, fit};
 use crate::mesh::Mesh;
+use crate::parallel::prelude::*;
 use crate::rig::{FORMAT, KeyBinding, LinkKind, ParentLink, RigDocument, VERSION, VertexSelection};
 use crate::sweep::Sweep;
 
@@ -108,35 +109,56 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
     // Fitted across welded seams, so that a part's sections close.
     let welded = body.welded_mesh(mesh);
     let fitted_on = welded.as_ref().unwrap_or(mesh);
+    let fitted = |protrusion: &Protrusion, selection: &Selection| match selection {
+        Selection::Fit(vertices) => {
+            let options = FitOptions { axis: protrusion.axis.clone(), ..fit_options.clone() };
+            Some(rig_limb(fitted_on, vertices, &options))
+        }
+        _ => None,
+    };
+    // The limbs are fitted at once, on every core, each as if the longer ones were all kept;
+    // one whose vertices that assumption got wrong (a longer one was left out) is fitted
+    // again below, so the rig is the one of fitting them in turn.
+    let mut assumed_taken = vec![false; mesh.positions.len()];
+    let assumed: Vec<Selection> = found
+        .iter()
+        .map(|protrusion| {
+            let selection = Selection::of(protrusion, &assumed_taken);
+            if let Selection::Fit(vertices) = &selection {
+                for &v in vertices {
+                    assumed_taken[v as usize] = true;
+                }
+            }
+            selection
+        })
+        .collect();
+    let mut speculative: Vec<Option<Result<Vec<Link>, f64>>> =
+        (0..found.len()).into_par_iter().map(|i| fitted(&found[i], &assumed[i])).collect();
     let mut parts: Vec<RiggedPart> = Vec::new();
     let mut rejected = Vec::new();
     let mut taken = vec![false; mesh.positions.len()];
     let mut limbs = 0;
-    for protrusion in found {
+    for (i, protrusion) in found.iter().enumerate() {
         if limbs == options.max_parts {
             break;
         }
-        // A part mostly inside a longer one (a finger of a hand) stays in it.
-        let inside = protrusion.vertices.iter().filter(|&&v| taken[v as usize]).count();
-        if inside * 2 > protrusion.vertices.len() {
-            continue;
-        }
-        let vertices: Vec<u32> = protrusion.vertices.iter().copied().filter(|&v| !taken[v as usize]).collect();
-        // Fewer than a tetrahedron's: not even a part.
-        if vertices.len() < 4 {
-            continue;
-        }
-        if vertices.len() < MIN_VERTICES {
-            rejected.push(Rejected { tip: protrusion.tip, vertices: vertices.len(), rms_d: None });
-            continue;
-        }
-        let options = FitOptions { axis: protrusion.axis.clone(), ..fit_options.clone() };
-        let chain = match rig_limb(fitted_on, &vertices, &options) {
-            Ok(chain) => chain,
-            Err(rms_d) => {
+        let selection = Selection::of(protrusion, &taken);
+        let result = if selection == assumed[i] { speculative[i].take() } else { fitted(protrusion, &selection) };
+        let vertices = match selection {
+            Selection::Skip => continue,
+            Selection::TooSmall(count) => {
+                rejected.push(Rejected { tip: protrusion.tip, vertices: count, rms_d: None });
+                continue;
+            }
+            Selection::Fit(vertices) => vertices,
+        };
+        let chain = match result {
+            Some(Ok(chain)) => chain,
+            Some(Err(rms_d)) => {
                 rejected.push(Rejected { tip: protrusion.tip, vertices: vertices.len(), rms_d: Some(rms_d) });
                 continue;
             }
+            None => continue,
         };
         let name = format!("limb{limbs}");
         let mut parent: Option<String> = None;
@@ -165,6 +187,33 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
     Ok(Autorig { parts, rejected, search_seconds })
 }
 
+/// What becomes of a protrusion, given the vertices the longer limbs kept have taken.
+#[derive(Clone, Debug, PartialEq)]
+enum Selection {
+    /// Mostly inside a longer limb (a finger of a hand), or fewer vertices than a
+    /// tetrahedron's: no part.
+    Skip,
+    /// A part of this many vertices, fewer than [`MIN_VERTICES`]: left out.
+    TooSmall(usize),
+    /// The vertices to fit, those not taken.
+    Fit(Vec<u32>),
+}
+
+impl Selection {
+    fn of(protrusion: &Protrusion, taken: &[bool]) -> Selection {
+        let inside = protrusion.vertices.iter().filter(|&&v| taken[v as usize]).count();
+        if inside * 2 > protrusion.vertices.len() {
+            return Selection::Skip;
+        }
+        let vertices: Vec<u32> = protrusion.vertices.iter().copied().filter(|&v| !taken[v as usize]).collect();
+        match vertices.len() {
+            0..4 => Selection::Skip,
+            count if count < MIN_VERTICES => Selection::TooSmall(count),
+            _ => Selection::Fit(vertices),
+        }
+    }
+}
+
 /// One link of a limb's chain: its vertices, its fit and the seconds the fit took.
 type Link = (Vec<u32>, Fit, f64);
 
@@ -180,21 +229,28 @@ fn rig_limb(mesh: &Mesh, vertices: &[u32], options: &FitOptions) -> Result<Vec<L
         Some((vertices.to_vec(), fitted, started.elapsed().as_secs_f64()))
     };
     let loose = |link: &Link| link.1.sections_quality().rms_d;
-    let whole = timed(vertices);
+    // The chain is fitted beside the one sweep, on another core where there is one: the
+    // one sweep's time is the limb's unless it is loose.
+    let split = split_at_widening(mesh, vertices);
+    let (whole, chain) = crate::parallel::join(
+        || timed(vertices),
+        || -> Option<Vec<Link>> {
+            let [near, far] = split.as_ref()?;
+            let (near, far) = crate::parallel::join(|| timed(near), || timed(far));
+            Some(vec![near?, far?])
+        },
+    );
     let whole_rms = whole.as_ref().map_or(f64::INFINITY, loose);
     if whole_rms <= TARGET {
         return Ok(whole.into_iter().collect());
     }
-    if let Some([near, far]) = split_at_widening(mesh, vertices) {
-        let chain: Option<Vec<Link>> = [near, far].iter().map(|v| timed(v)).collect();
-        if let Some(chain) = chain {
-            let worst = chain.iter().map(loose).fold(0.0, f64::max);
-            // The end's first key must lie on a cross-section of the limb (§5's branch link).
-            let parent = Sweep::try_new(&chain[0].1.keys, None).ok();
-            let linked = parent.is_some_and(|parent| KeyBinding::new(&parent, &chain[1].1.keys[0]).is_some());
-            if linked && worst <= MAX_RMS && worst < whole_rms {
-                return Ok(chain);
-            }
+    if let Some(chain) = chain {
+        let worst = chain.iter().map(loose).fold(0.0, f64::max);
+        // The end's first key must lie on a cross-section of the limb (§5's branch link).
+        let parent = Sweep::try_new(&chain[0].1.keys, None).ok();
+        let linked = parent.is_some_and(|parent| KeyBinding::new(&parent, &chain[1].1.keys[0]).is_some());
+        if linked && worst <= MAX_RMS && worst < whole_rms {
+            return Ok(chain);
         }
     }
     match whole {
