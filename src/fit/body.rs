@@ -449,9 +449,45 @@ mod tests {
     }
 
     #[test]
+    fn two_bodies_that_touch_stay_apart() {
+        // Boxes of 8 vertices, 0.01 apart, are pieces and join.
+        let (mut positions, mut faces) = (Vec::new(), Faces::new());
+        for (lo, hi) in [(0.0, 1.0), (1.01, 2.0)] {
+            boxed(&mut positions, &mut faces, DVec3::new(0.0, lo, 0.0), DVec3::new(1.0, hi, 1.0));
+        }
+        let mesh = Mesh::from_parts(positions, faces, Vec::new()).unwrap();
+        assert!(!Body::new(&mesh).bridges.is_empty(), "boxes of 8 vertices are pieces");
+        // The same boxes with 20 vertices each (rings of 4 around y): neither has fewer than 16
+        // vertices nor 1/8 of the other's, so they are two bodies (a lid on its pot).
+        let mut positions = Vec::new();
+        let mut faces = Faces::new();
+        for (lo, hi) in [(0.0, 1.0), (1.01, 2.0)] {
+            let first = positions.len() as u32;
+            for k in 0..5 {
+                let y = lo + (hi - lo) * k as f64 / 4.0;
+                for (x, z) in [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)] {
+                    positions.push(DVec3::new(x, y, z));
+                }
+            }
+            for k in 0..4u32 {
+                for a in 0..4u32 {
+                    let b = (a + 1) % 4;
+                    faces.push(&[first + 4 * k + a, first + 4 * k + b, first + 4 * k + 4 + b, first + 4 * k + 4 + a]);
+                }
+            }
+            faces.push(&[first, first + 3, first + 2, first + 1]);
+            faces.push(&[first + 16, first + 17, first + 18, first + 19]);
+        }
+        let mesh = Mesh::from_parts(positions, faces, Vec::new()).unwrap();
+        let body = Body::new(&mesh);
+        assert!(body.bridges.is_empty(), "{:?}", body.bridges);
+        assert!(body.leaves.is_empty());
+    }
+
+    #[test]
     fn a_spanning_tree_joins_each_pair_of_components_once() {
-        // Three boxes in a row, each touching the next, and the first touching the last at a
-        // corner: the third contact would close a loop and is not taken.
+        // Two boxes side by side and a third lying on both: of the three contacts, the last
+        // would close a loop and is not taken.
         let (mut positions, mut faces) = (Vec::new(), Faces::new());
         boxed(&mut positions, &mut faces, DVec3::ZERO, DVec3::ONE);
         boxed(&mut positions, &mut faces, DVec3::new(1.01, 0.0, 0.0), DVec3::new(2.0, 1.0, 1.0));
