@@ -132,7 +132,7 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
             selection
         })
         .collect();
-    let mut speculative: Vec<Option<Result<Vec<Link>, f64>>> =
+    let mut speculative: Vec<Option<Result<Vec<Link>, Option<f64>>>> =
         (0..found.len()).into_par_iter().map(|i| fitted(&found[i], &assumed[i])).collect();
     let mut parts: Vec<RiggedPart> = Vec::new();
     let mut rejected = Vec::new();
@@ -154,11 +154,12 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
         };
         let chain = match result {
             Some(Ok(chain)) => chain,
-            Some(Err(rms_d)) => {
+            Some(Err(Some(rms_d))) => {
                 rejected.push(Rejected { tip: protrusion.tip, vertices: vertices.len(), rms_d: Some(rms_d) });
                 continue;
             }
-            None => continue,
+            // A part the fit refuses (too flat for an axis) is no limb, as before fitting.
+            Some(Err(None)) | None => continue,
         };
         let name = format!("limb{limbs}");
         let mut parent: Option<String> = None;
@@ -221,8 +222,9 @@ type Link = (Vec<u32>, Fit, f64);
 /// otherwise the chain split at its widening (`super::chain`) where each link fits within
 /// [`MAX_RMS`], the loosest fits better than the one sweep and the end's first key binds to
 /// the limb (a cross-section of the limb passes through it), otherwise the one sweep within
-/// [`MAX_RMS`]; `Err` with the one sweep's sections' RMS |d| where none is.
-fn rig_limb(mesh: &Mesh, vertices: &[u32], options: &FitOptions) -> Result<Vec<Link>, f64> {
+/// [`MAX_RMS`]; `Err` with the one sweep's sections' RMS |d| where none is, `Err(None)` where
+/// the fit refuses the part.
+fn rig_limb(mesh: &Mesh, vertices: &[u32], options: &FitOptions) -> Result<Vec<Link>, Option<f64>> {
     let timed = |vertices: &[u32]| {
         let started = Instant::now();
         let fitted = fit(mesh, vertices, options).ok()?;
@@ -255,7 +257,8 @@ fn rig_limb(mesh: &Mesh, vertices: &[u32], options: &FitOptions) -> Result<Vec<L
     }
     match whole {
         Some(link) if whole_rms <= MAX_RMS => Ok(vec![link]),
-        _ => Err(whole_rms),
+        Some(_) if whole_rms.is_finite() => Err(Some(whole_rms)),
+        _ => Err(None),
     }
 }
 
