@@ -53,7 +53,7 @@ pub fn distance(p: DVec3) -> f64 {
 }
 
 /// The polynomial smooth minimum of `a` and `b` over width [`BLEND`].
-fn smooth_min(a: f64, b: f64) -> f64 {
+pub fn smooth_min(a: f64, b: f64) -> f64 {
     let h = (0.5 + 0.5 * (b - a) / BLEND).clamp(0.0, 1.0);
     b + (a - b) * h - BLEND * h * (1.0 - h)
 }
@@ -65,7 +65,12 @@ pub fn off_axis(tube: &Tube, p: DVec3) -> f64 {
 
 /// The star meshed on a grid of spacing `step` (0.04 gives about 25k vertices).
 pub fn star_mesh(step: f64) -> Mesh {
-    let bound = 2.7;
+    implicit_mesh(&distance, 2.7, step)
+}
+
+/// The zero set of the signed distance `distance` within the cube of half-width `bound`,
+/// meshed on a grid of spacing `step` as the star is.
+pub fn implicit_mesh(distance: &dyn Fn(DVec3) -> f64, bound: f64, step: f64) -> Mesh {
     let n = (2.0 * bound / step).ceil() as usize + 1;
     let point = |i: usize, j: usize, k: usize| DVec3::new(i as f64, j as f64, k as f64) * step - DVec3::splat(bound);
     let index = |i: usize, j: usize, k: usize| (i * n + j) * n + k;
@@ -102,7 +107,7 @@ pub fn star_mesh(step: f64) -> Mesh {
         }
     }
     let mut mesh = Mesh::from_parts(positions, faces, Vec::new()).unwrap();
-    relax(&mut mesh, step);
+    relax(&mut mesh, distance, step);
     mesh
 }
 
@@ -149,8 +154,8 @@ fn tetrahedron(
 }
 
 /// Five passes of: each vertex to its neighbours' mean, then two Newton steps onto the zero set
-/// of [`distance`] (its gradient by central differences of `step` / 100).
-fn relax(mesh: &mut Mesh, step: f64) {
+/// of `distance` (its gradient by central differences of `step` / 100).
+fn relax(mesh: &mut Mesh, distance: &dyn Fn(DVec3) -> f64, step: f64) {
     let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); mesh.positions.len()];
     for [a, b, c] in mesh.faces.triangles() {
         for (x, y) in [(a, b), (b, c), (c, a)] {

@@ -1,5 +1,6 @@
 mod autorig;
 mod autorig_characters;
+mod autorig_hand;
 mod autorig_star;
 mod falloff;
 mod falloff_meshes;
