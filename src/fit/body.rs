@@ -82,8 +82,9 @@ impl Body {
         Body { weld, triangles, bridges, leaves, graph, diagonal }
     }
 
-    /// The mesh with its faces on welded vertices (those that welding collapsed dropped), the
-    /// positions and groups kept; `None` when welding joined nothing.
+    /// The mesh with its faces on welded vertices (those that welding collapsed dropped), its
+    /// positions kept and its groups not (fitting reads none); `None` when welding joined
+    /// nothing.
     pub fn welded_mesh(&self, mesh: &Mesh) -> Option<Mesh> {
         if self.weld.iter().enumerate().all(|(v, &w)| w as usize == v) {
             return None;
