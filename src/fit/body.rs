@@ -164,8 +164,8 @@ struct Contact {
 }
 
 /// The bridges between the components of `triangles` within `reach` of each other, joined as a
-/// spanning tree closest first (see the module docs), and the components each joined to only
-/// one other.
+/// spanning tree (see the module docs), and the joined components that hang from exactly one
+/// larger one ([`Body::leaves`]).
 fn bridges(positions: &[DVec3], triangles: &[[u32; 3]], reach: f64) -> (Vec<[u32; 2]>, Vec<Leaf>) {
     let mut sets = DisjointSets::new(positions.len());
     for t in triangles {

@@ -91,11 +91,13 @@ pub fn protrusions(mesh: &Mesh, body: &Body, min_length: f64, max_parts: usize) 
     let quantum = 1e-9 * found.iter().map(|p| p.length).fold(0.0, f64::max);
     let rounded = |p: &Protrusion| if quantum > 0.0 { (p.length / quantum).round() as i64 } else { 0 };
     found.sort_by(|a, b| rounded(b).cmp(&rounded(a)).then(a.tip.cmp(&b.tip)));
-    found.truncate(max_parts);
     // Pieces joined at one end come first: their ends are known.
     let mut pieces = joined_pieces(mesh, body, min_length, &component_sizes(graph, &used));
     pieces.append(&mut found);
     let mut found = pieces;
+    // Two branches whose limbs were found again from the same aligned tip are one part.
+    let mut seen = std::collections::HashSet::new();
+    found.retain(|part| seen.insert(part.vertices.clone()));
     found.truncate(max_parts);
     for part in &mut found {
         // Each welded vertex stands for every vertex welded to it.

@@ -118,25 +118,28 @@ fn wuson_gets_four_legs_and_its_tail() {
     }
 }
 
-/// The AT-AT walker (133 components): its four lower legs, each a component of its own.
+/// The AT-AT walker (133 components, z up): its four lower legs and four upper legs, each a
+/// component of its own.
 #[test]
 fn the_at_at_gets_its_legs() {
     let Some((mesh, rigged)) = rigged("at-at.obj") else { return };
-    let mut legs = Vec::new();
-    for (sx, sy) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)] {
-        let leg = rigged.parts.iter().find(|p| {
-            p.vertices.iter().all(|&v| {
-                let q = mesh.positions[v as usize];
-                q.x * sx > 150.0 && q.y * sy > 250.0 && q.z < 800.0
-            })
-        });
-        let leg = leg.unwrap_or_else(|| panic!("no part is the lower leg at x·{sx} > 0, y·{sy} > 0"));
-        assert!(leg.fit.sections_quality().rms_d <= MAX_RMS, "{}", leg.name);
-        legs.push(leg.name.clone());
+    for (segment, below, above) in [("lower", 0.0, 800.0), ("upper", 600.0, 1300.0)] {
+        let mut legs = Vec::new();
+        for (sx, sy) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)] {
+            let leg = rigged.parts.iter().find(|p| {
+                p.vertices.iter().all(|&v| {
+                    let q = mesh.positions[v as usize];
+                    q.x * sx > 150.0 && q.y * sy > 250.0 && q.z > below && q.z < above
+                })
+            });
+            let leg = leg.unwrap_or_else(|| panic!("no part is the {segment} leg at x·{sx} > 0, y·{sy} > 0"));
+            assert!(leg.fit.sections_quality().rms_d <= MAX_RMS, "{}", leg.name);
+            legs.push(leg.name.clone());
+        }
+        legs.sort();
+        legs.dedup();
+        assert_eq!(legs.len(), 4, "{segment} legs");
     }
-    legs.sort();
-    legs.dedup();
-    assert_eq!(legs.len(), 4);
 }
 
 /// The body (welded seams, joined pieces) depends on distances only: a rigidly moved wuson (its
