@@ -92,7 +92,8 @@ pub fn protrusions(mesh: &Mesh, body: &Body, min_length: f64, max_parts: usize) 
     let rounded = |p: &Protrusion| if quantum > 0.0 { (p.length / quantum).round() as i64 } else { 0 };
     found.sort_by(|a, b| rounded(b).cmp(&rounded(a)).then(a.tip.cmp(&b.tip)));
     // Pieces joined at one end come first: their ends are known.
-    let mut pieces = joined_pieces(mesh, body, min_length, &component_sizes(graph, &used));
+    let sizes = if body.leaves.is_empty() { Vec::new() } else { component_sizes(graph, &used) };
+    let mut pieces = joined_pieces(mesh, body, min_length, &sizes);
     pieces.append(&mut found);
     let mut found = pieces;
     // Two branches whose limbs were found again from the same aligned tip are one part.
@@ -158,7 +159,10 @@ fn joined_pieces(mesh: &Mesh, body: &Body, min_length: f64, sizes: &[usize]) -> 
             axis: Some(vec![centroid + axis * start, centroid + axis * end]),
         });
     }
-    found.sort_by(|a, b| b.length.total_cmp(&a.length).then(a.tip.cmp(&b.tip)));
+    // Longest first, mirror twins by tip index (as the branches are).
+    let quantum = 1e-9 * found.iter().map(|p| p.length).fold(0.0, f64::max);
+    let rounded = |p: &Protrusion| if quantum > 0.0 { (p.length / quantum).round() as i64 } else { 0 };
+    found.sort_by(|a, b| rounded(b).cmp(&rounded(a)).then(a.tip.cmp(&b.tip)));
     found
 }
 
