@@ -28,7 +28,7 @@ use glam::DVec3;
 
 use super::disjoint_sets::DisjointSets;
 use super::geodesic::EdgeGraph;
-use crate::mesh::{Faces, Mesh};
+use crate::mesh::{Faces, Mesh, bounds_of};
 
 /// Vertices nearer each other than this fraction of the bounding-box diagonal are welded.
 pub const WELD: f64 = 1e-5;
@@ -65,11 +65,7 @@ pub struct Body {
 impl Body {
     /// The body of `mesh`.
     pub fn new(mesh: &Mesh) -> Body {
-        let (lo, hi) = mesh
-            .positions
-            .iter()
-            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
-        let diagonal = if mesh.positions.is_empty() { 0.0 } else { (hi - lo).length() };
+        let diagonal = mesh.diagonal();
         let weld = weld_within(&mesh.positions, WELD * diagonal);
         let triangles: Vec<[u32; 3]> = mesh
             .faces
@@ -277,8 +273,7 @@ fn contacts(
     used: &[bool],
     reach: f64,
 ) -> Vec<Contact> {
-    let (lo, hi) =
-        positions.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
+    let (lo, hi) = bounds_of(positions);
     // Cells no smaller than 1/64 of the extent, and coarser while the triangles would fill more
     // than a bounded number of cell entries (large panels on a small mesh).
     let mut size = reach.max((hi - lo).max_element() / 64.0);

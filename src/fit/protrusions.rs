@@ -73,26 +73,21 @@ pub fn protrusions(mesh: &Mesh, body: &Body, min_length: f64, max_parts: usize) 
             used[v as usize] = true;
         }
     }
-    let mut seen = vec![false; mesh.positions.len()];
+    // Each searched vertex's component size (0: not yet searched).
+    let mut sizes = vec![0; mesh.positions.len()];
     let mut found: Vec<Protrusion> = Vec::new();
     for start in 0..mesh.positions.len() {
-        if !used[start] || seen[start] {
+        if !used[start] || sizes[start] > 0 {
             continue;
         }
         let component = flood(graph, start as u32, |_| true);
         for &v in &component {
-            seen[v as usize] = true;
+            sizes[v as usize] = component.len();
         }
         found.extend(component_protrusions(mesh, graph, triangles, &component, min_length));
     }
-    // Longest first; lengths within rounding of each other (mirror twins, such as a pair of
-    // legs, whose lengths a rigid motion perturbs in the last bits) by tip index, so that a
-    // moved mesh names its parts alike.
-    let quantum = 1e-9 * found.iter().map(|p| p.length).fold(0.0, f64::max);
-    let rounded = |p: &Protrusion| if quantum > 0.0 { (p.length / quantum).round() as i64 } else { 0 };
-    found.sort_by(|a, b| rounded(b).cmp(&rounded(a)).then(a.tip.cmp(&b.tip)));
+    longest_first(&mut found);
     // Pieces joined at one end come first: their ends are known.
-    let sizes = if body.leaves.is_empty() { Vec::new() } else { component_sizes(graph, &used) };
     let mut pieces = joined_pieces(mesh, body, min_length, &sizes);
     pieces.append(&mut found);
     let mut found = pieces;
@@ -107,25 +102,19 @@ pub fn protrusions(mesh: &Mesh, body: &Body, min_length: f64, max_parts: usize) 
     found
 }
 
-/// For each vertex, the number of vertices of its connected component of `graph` among those
-/// `used` (0 where unused).
-fn component_sizes(graph: &EdgeGraph, used: &[bool]) -> Vec<usize> {
-    let mut size = vec![0; used.len()];
-    for start in 0..used.len() {
-        if used[start] && size[start] == 0 {
-            let component = flood(graph, start as u32, |_| true);
-            for &v in &component {
-                size[v as usize] = component.len();
-            }
-        }
-    }
-    size
+/// Sorts `found` longest first; lengths within rounding of each other (mirror twins, such as a
+/// pair of legs, whose lengths a rigid motion perturbs in the last bits) by tip index, so that
+/// a moved mesh names its parts alike.
+fn longest_first(found: &mut [Protrusion]) {
+    let quantum = 1e-9 * found.iter().map(|p| p.length).fold(0.0, f64::max);
+    let rounded = |p: &Protrusion| if quantum > 0.0 { (p.length / quantum).round() as i64 } else { 0 };
+    found.sort_by(|a, b| rounded(b).cmp(&rounded(a)).then(a.tip.cmp(&b.tip)));
 }
 
 /// The body's pieces joined to it at one end ([`Body::leaves`]) that are limbs: elongated
 /// (their extent along their principal axis at least [`ELONGATED`] times across it), at
 /// least `min_length` long and at most [`MAX_SHARE`] of their joined component (whose size
-/// at each vertex is `sizes`). Each runs along its principal axis from the end nearer where
+/// at each searched vertex is `sizes`). Each runs along its principal axis from the end nearer where
 /// it touches to its tip.
 fn joined_pieces(mesh: &Mesh, body: &Body, min_length: f64, sizes: &[usize]) -> Vec<Protrusion> {
     let mut found = Vec::new();
@@ -159,10 +148,7 @@ fn joined_pieces(mesh: &Mesh, body: &Body, min_length: f64, sizes: &[usize]) -> 
             axis: Some(vec![centroid + axis * start, centroid + axis * end]),
         });
     }
-    // Longest first, mirror twins by tip index (as the branches are).
-    let quantum = 1e-9 * found.iter().map(|p| p.length).fold(0.0, f64::max);
-    let rounded = |p: &Protrusion| if quantum > 0.0 { (p.length / quantum).round() as i64 } else { 0 };
-    found.sort_by(|a, b| rounded(b).cmp(&rounded(a)).then(a.tip.cmp(&b.tip)));
+    longest_first(&mut found);
     found
 }
 
