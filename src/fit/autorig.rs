@@ -15,7 +15,7 @@ use std::time::Instant;
 
 use super::body::Body;
 use super::chain::split_at_widening;
-use super::protrusions::{Protrusion, protrusions};
+use super::protrusions::{Protrusion, length_classes, protrusions};
 use super::{Fit, FitError, FitOptions, OptionError, fit};
 use crate::mesh::Mesh;
 use crate::parallel::prelude::*;
@@ -103,7 +103,7 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
     super::beyond_rig(mesh, 0..mesh.positions.len() as u32)?;
     let started = Instant::now();
     let body = Body::new(mesh);
-    let found = protrusions(mesh, &body, options.min_length * body.diagonal, options.max_parts);
+    let found = protrusions(mesh, &body, options.min_length * body.diagonal, 2 * options.max_parts);
     let search_seconds = started.elapsed().as_secs_f64();
     let fit_options = FitOptions { falloff: options.falloff, ..FitOptions::default() };
     // Fitted across welded seams, so that a part's sections close.
@@ -138,11 +138,23 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
     let mut rejected = Vec::new();
     let mut taken = vec![false; mesh.positions.len()];
     let mut limbs = 0;
+    // Per limb rigged: its protrusion's length class and its first part.
+    let class = length_classes(&found);
+    let mut rigged: Vec<(i64, usize)> = Vec::new();
     for (i, protrusion) in found.iter().enumerate() {
+        let selection = Selection::of(protrusion, &taken);
         if limbs == options.max_parts {
+            // Mirror twins are kept or left out together: where the next limb is a twin of
+            // the last ones, they are all left out.
+            let twin = |&(c, _): &(i64, usize)| c == class(protrusion);
+            if matches!(selection, Selection::Fit(_)) && rigged.last().is_some_and(twin) {
+                while let Some(&(_, first)) = rigged.last().filter(|l| twin(l)) {
+                    parts.truncate(first);
+                    rigged.pop();
+                }
+            }
             break;
         }
-        let selection = Selection::of(protrusion, &taken);
         let result = if selection == assumed[i] { speculative[i].take() } else { fitted(protrusion, &selection) };
         let vertices = match selection {
             Selection::Skip => continue,
@@ -161,6 +173,7 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
             // A part the fit refuses (too flat for an axis) is no limb, as before fitting.
             Some(Err(None)) | None => continue,
         };
+        rigged.push((class(protrusion), parts.len()));
         let name = format!("limb{limbs}");
         let mut parent: Option<String> = None;
         for (link, (vertices, fitted, seconds)) in chain.into_iter().enumerate() {

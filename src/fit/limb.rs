@@ -30,6 +30,7 @@ use std::f64::consts::TAU;
 
 use glam::DVec3;
 
+use super::disjoint_sets::DisjointSets;
 use super::geodesic::EdgeGraph;
 use super::part::Part;
 use super::skeleton::skeleton;
@@ -55,6 +56,18 @@ pub const KEEPS: f64 = 0.85;
 /// A component that is a limb of its own is at least this many times as long as its widest
 /// level radius.
 pub const WHOLE_TUBE: f64 = 5.0;
+/// A fork ends a limb where each of its two pieces reaches at least this fraction of the
+/// limb's length (its persistence) beyond it.
+pub const FORK_REACH: f64 = 0.5;
+/// A limb of fewer vertices than this is coarse (fewer than the 6 × 32 radii the fit's first
+/// keys sample): its level sets may cut it obliquely, one triangle deep ([`squared_off`]).
+pub const COARSE: usize = 192;
+/// A coarse limb's rim is oblique where it spreads along the limb's skeleton over at least this
+/// many times its mean radius (a cut at 45° or more off the plane normal to the limb).
+pub const OBLIQUE: f64 = 2.0;
+/// A limb holds at most this share of its component's vertices: more is the body's far side
+/// (the eldest branch of a body with short protrusions, such as the bunny's back), not a limb.
+pub const MAX_SHARE: f64 = 0.25;
 /// A limb is at least this many times as long as the radius of its cut.
 pub const TUBULAR: f64 = 1.5;
 
@@ -66,6 +79,22 @@ pub const TUBULAR: f64 = 1.5;
 /// from there, so that its rim is normal to it. Indices are the mesh's; `graph` and
 /// `triangles` may join vertices `mesh` keeps apart (welded seams).
 pub fn aligned_limb(
+    mesh: &Mesh,
+    graph: &EdgeGraph,
+    triangles: &[[u32; 3]],
+    tip: u32,
+    length: f64,
+    component_size: usize,
+) -> Option<(Vec<u32>, u32)> {
+    let (vertices, tip) = aligned(mesh, graph, triangles, tip, length, component_size)?;
+    if vertices.len() >= COARSE {
+        return Some((vertices, tip));
+    }
+    Some((squared_off(mesh, triangles, vertices, tip), tip))
+}
+
+/// The limb found again from its aligned tip (see [`aligned_limb`]), not yet squared off.
+fn aligned(
     mesh: &Mesh,
     graph: &EdgeGraph,
     triangles: &[[u32; 3]],
@@ -89,6 +118,75 @@ pub fn aligned_limb(
         Some(second) => Some((second, end)),
         None => Some((first, tip)),
     }
+}
+
+/// The coarse limb `vertices` without what lies before its rim's deepest point along its
+/// skeleton, where its rim is [`OBLIQUE`]: where a coarse limb's level sets cut it obliquely (an arm's from the shoulder's top down to
+/// the armpit), the cap beyond the first complete section is the body's, and no section
+/// normal to the limb could hold it. What is kept is the piece the tip's triangles reach, without
+/// the vertices of its cut on one of its triangles only. The limb is kept whole where that would cut off its tip
+/// `tip` or more than half of its skeleton's length.
+fn squared_off(mesh: &Mesh, triangles: &[[u32; 3]], vertices: Vec<u32>, tip: u32) -> Vec<u32> {
+    let mut inside = vec![false; mesh.positions.len()];
+    for &v in &vertices {
+        inside[v as usize] = true;
+    }
+    let Some(axis) = skeleton(&Part::new(mesh, &vertices)).map(|s| s.axis) else { return vertices };
+    let position = |v: u32| mesh.positions[v as usize];
+    let mut rim: Vec<u32> = triangles
+        .iter()
+        .filter(|t| t.iter().any(|&v| !inside[v as usize]))
+        .flatten()
+        .copied()
+        .filter(|&v| inside[v as usize])
+        .collect();
+    rim.sort_unstable();
+    rim.dedup();
+    let along: Vec<f64> = rim.iter().map(|&v| axis.project(position(v))).collect();
+    let deepest = along.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let shallowest = along.iter().copied().fold(f64::INFINITY, f64::min);
+    let centroid = rim.iter().map(|&v| position(v)).sum::<DVec3>() / rim.len().max(1) as f64;
+    let radius = rim.iter().map(|&v| position(v).distance(centroid)).sum::<f64>() / rim.len().max(1) as f64;
+    let oblique = deepest - shallowest >= OBLIQUE * radius;
+    if !(oblique && deepest > 0.0 && deepest <= 0.5 * axis.length()) {
+        return vertices;
+    }
+    let mut beyond = vec![false; mesh.positions.len()];
+    for &v in &vertices {
+        beyond[v as usize] = axis.project(position(v)) >= deepest;
+    }
+    // No vertex left on a triangle of its own (a spike up the oblique rim of a coarse limb).
+    let (mut triangles_at, mut on_cut) = (vec![0u8; mesh.positions.len()], vec![false; mesh.positions.len()]);
+    for t in triangles {
+        let kept = t.iter().all(|&v| beyond[v as usize]);
+        for &v in t {
+            if kept {
+                triangles_at[v as usize] = triangles_at[v as usize].saturating_add(1);
+            } else {
+                on_cut[v as usize] = true;
+            }
+        }
+    }
+    for &v in &vertices {
+        beyond[v as usize] &= !on_cut[v as usize] || triangles_at[v as usize] >= 2;
+    }
+    // The piece of it that the tip's triangles reach.
+    let mut pieces = DisjointSets::new(mesh.positions.len());
+    for t in triangles.iter().filter(|t| t.iter().all(|&v| beyond[v as usize])) {
+        for pair in [[t[0], t[1]], [t[1], t[2]]] {
+            let (a, b) = (pieces.root(pair[0]), pieces.root(pair[1]));
+            if a != b {
+                pieces.attach(a, b);
+            }
+        }
+    }
+    let reached = pieces.root(tip);
+    let squared: Vec<u32> =
+        vertices.iter().copied().filter(|&v| beyond[v as usize] && pieces.root(v) == reached).collect();
+    if !beyond[tip as usize] || squared.len() < 4 {
+        return vertices;
+    }
+    squared
 }
 
 /// The vertices (increasing) of the limb whose tip is `tip` and whose length (persistence) is
@@ -132,11 +230,24 @@ pub fn limb(
         v.sort_unstable();
         v
     };
+    let cut = |k: usize| {
+        let level = k as f64 * h;
+        (level >= TUBULAR * perimeter[k] / TAU).then(|| within(level))
+    };
     match opening {
         Some(k) => {
-            let cut = (k - WINDOW) as f64 * h;
-            let tubular = cut >= TUBULAR * perimeter[k - WINDOW] / TAU;
-            tubular.then(|| within(cut))
+            let limb = cut(k - WINDOW)?;
+            if limb.len() as f64 <= MAX_SHARE * component_size as f64 {
+                return Some(limb);
+            }
+            // More than a limb's share: the opening lies past where the region beyond the limb
+            // falls apart into two long pieces (a coarse crotch seen from a foot: the body above
+            // and the other leg below, reached before the level sets open). Cut at that fork.
+            let opened = (k - WINDOW) as f64 * h;
+            match fork_level(graph, &d, limit, START * length) {
+                Some(level) if level >= START * length && level < opened => cut((level / h).floor() as usize),
+                _ => Some(limb),
+            }
         }
         None => {
             let reached = d.iter().filter(|&&x| x <= limit).count();
@@ -149,6 +260,42 @@ pub fn limb(
             (whole && far >= WHOLE_TUBE * widest).then(|| within(f64::INFINITY))
         }
     }
+}
+
+/// The lowest level of `d` (distance from a limb's tip, reached out to `limit`) at which the
+/// vertices farther from the tip fall apart into two pieces that each reach at least
+/// `significant` beyond it: the saddles of the merge tree of `d`'s superlevel sets whose
+/// younger branch persists that long (a crotch seen from a foot: the other leg below it,
+/// the body above; a finger beside the one holding the tip is too short to count). A piece
+/// that runs past `limit` reaches on without end. `None` where the region never forks.
+pub fn fork_level(graph: &EdgeGraph, d: &[f64], limit: f64, significant: f64) -> Option<f64> {
+    let mut order: Vec<u32> = (0..d.len() as u32).filter(|&v| d[v as usize] <= limit).collect();
+    order.sort_by(|&a, &b| d[b as usize].total_cmp(&d[a as usize]).then(a.cmp(&b)));
+    let mut sets = DisjointSets::new(d.len());
+    // Per root, the farthest its piece reaches.
+    let mut reach = vec![f64::NAN; d.len()];
+    let mut fork = None;
+    for &v in &order {
+        let runs_on = graph.neighbours(v).iter().any(|&(n, _)| d[n as usize] > limit);
+        reach[v as usize] = if runs_on { f64::INFINITY } else { d[v as usize] };
+        for &(n, _) in graph.neighbours(v) {
+            // Only the neighbours already taken: those farther, or as far and earlier.
+            if reach[n as usize].is_nan() {
+                continue;
+            }
+            let (rv, rn) = (sets.root(v), sets.root(n));
+            if rv == rn {
+                continue;
+            }
+            let level = d[v as usize];
+            if reach[rv as usize] - level >= significant && reach[rn as usize] - level >= significant {
+                fork = Some(level);
+            }
+            reach[rv as usize] = reach[rv as usize].max(reach[rn as usize]);
+            sets.attach(rn, rv);
+        }
+    }
+    fork
 }
 
 /// P(k·h) for k = 0 … `levels` − 1: the length of the level set d = k·h over the triangles

@@ -35,7 +35,7 @@ use glam::DVec3;
 
 use super::body::Body;
 use super::geodesic::EdgeGraph;
-use super::limb::aligned_limb;
+use super::limb::{MAX_SHARE, aligned_limb};
 use crate::mesh::Mesh;
 
 /// A protrusion: a tip and the vertices of its branch.
@@ -106,9 +106,14 @@ pub fn protrusions(mesh: &Mesh, body: &Body, min_length: f64, max_parts: usize) 
 /// pair of legs, whose lengths a rigid motion perturbs in the last bits) by tip index, so that
 /// a moved mesh names its parts alike.
 fn longest_first(found: &mut [Protrusion]) {
-    let quantum = 1e-9 * found.iter().map(|p| p.length).fold(0.0, f64::max);
-    let rounded = |p: &Protrusion| if quantum > 0.0 { (p.length / quantum).round() as i64 } else { 0 };
+    let rounded = length_classes(found);
     found.sort_by(|a, b| rounded(b).cmp(&rounded(a)).then(a.tip.cmp(&b.tip)));
+}
+
+/// A protrusion's length rounded to 10⁻⁹ of the longest of `found`: mirror twins share theirs.
+pub fn length_classes(found: &[Protrusion]) -> impl Fn(&Protrusion) -> i64 + use<> {
+    let quantum = 1e-9 * found.iter().map(|p| p.length).fold(0.0, f64::max);
+    move |p: &Protrusion| if quantum > 0.0 { (p.length / quantum).round() as i64 } else { 0 }
 }
 
 /// The body's pieces joined to it at one end ([`Body::leaves`]) that are limbs: elongated
@@ -218,9 +223,6 @@ fn component_protrusions(
         .collect()
 }
 
-/// A part holds at most this share of its component's vertices: more is the body's far side
-/// (the eldest branch of a body with short protrusions, such as the bunny's back), not a limb.
-const MAX_SHARE: f64 = 0.25;
 /// The branches of the merge tree of superlevel sets of `g` over `component` and the
 /// eldest tip (the farthest vertex).
 fn merge_tree(graph: &EdgeGraph, component: &[u32], g: &[f64]) -> (Vec<Branch>, u32) {
