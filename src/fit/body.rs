@@ -67,9 +67,9 @@ impl Body {
     pub fn new(mesh: &Mesh) -> Body {
         let diagonal = mesh.diagonal();
         let weld = weld_within(&mesh.positions, WELD * diagonal);
-        let triangles: Vec<[u32; 3]> = mesh
-            .faces
-            .triangles()
+        // Membranes are the file's own: welding may make edges of a seam's twins non-manifold.
+        let triangles: Vec<[u32; 3]> = without_membranes(mesh.faces.triangles().collect())
+            .into_iter()
             .map(|t| t.map(|v| weld[v as usize]))
             .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
             .collect();
@@ -78,20 +78,17 @@ impl Body {
         Body { weld, triangles, bridges, leaves, graph, diagonal }
     }
 
-    /// The mesh with its faces on welded vertices (those that welding collapsed dropped), its
-    /// positions kept and its groups not (fitting reads none); `None` when welding joined
-    /// nothing.
+    /// The mesh as the body sees it: its triangles on welded vertices (those that welding
+    /// collapsed dropped) without membranes, its positions kept and its groups not (fitting
+    /// reads none); `None` when welding joined nothing and no membrane was dropped.
     pub fn welded_mesh(&self, mesh: &Mesh) -> Option<Mesh> {
-        if self.weld.iter().enumerate().all(|(v, &w)| w as usize == v) {
+        let welded = self.weld.iter().enumerate().any(|(v, &w)| w as usize != v);
+        if !welded && self.triangles.len() == mesh.faces.triangles().count() {
             return None;
         }
         let mut faces = Faces::new();
-        for face in mesh.faces.iter() {
-            let joined: Vec<u32> = face.iter().map(|&v| self.weld[v as usize]).collect();
-            let distinct = joined.iter().enumerate().all(|(i, v)| !joined[..i].contains(v));
-            if distinct {
-                faces.push(&joined);
-            }
+        for t in &self.triangles {
+            faces.push(t);
         }
         Mesh::from_parts(mesh.positions.clone(), faces, Vec::new()).ok()
     }
@@ -104,6 +101,34 @@ impl Body {
         }
         (0..self.weld.len() as u32).filter(|&v| chosen[self.weld[v as usize] as usize]).collect()
     }
+}
+
+/// `triangles` without membranes: triangles whose corners all lie on non-manifold edges (edges
+/// of three or more triangles) and that have such an edge. A game mesh may close a limb with a
+/// cap and glue the next piece onto the cap's ring (the faerie's forearms are capped at the
+/// wrist, the hands glued on): the cap is a wall inside the surface, which would cut every
+/// level set and section across the wrist.
+fn without_membranes(triangles: Vec<[u32; 3]>) -> Vec<[u32; 3]> {
+    let edge = |a: u32, b: u32| (a.min(b), a.max(b));
+    let edges_of = |t: &[u32; 3]| [edge(t[0], t[1]), edge(t[1], t[2]), edge(t[2], t[0])];
+    let mut uses: HashMap<(u32, u32), u32> = HashMap::with_capacity(3 * triangles.len() / 2);
+    for t in &triangles {
+        for e in edges_of(t) {
+            *uses.entry(e).or_default() += 1;
+        }
+    }
+    let non_manifold: std::collections::HashSet<u32> =
+        uses.iter().filter(|&(_, &n)| n > 2).flat_map(|(&(a, b), _)| [a, b]).collect();
+    if non_manifold.is_empty() {
+        return triangles;
+    }
+    triangles
+        .into_iter()
+        .filter(|t| {
+            let on_ring = t.iter().all(|v| non_manifold.contains(v));
+            !(on_ring && edges_of(t).iter().any(|e| uses[e] > 2))
+        })
+        .collect()
 }
 
 /// For each position, the lowest-indexed earlier representative within `reach` (itself when
@@ -418,6 +443,35 @@ mod tests {
         let d = body.graph.distances(&[0]);
         assert!(d[8..16].iter().all(|d| d.is_finite()), "{d:?}");
         assert!(d[16..].iter().all(|d| d.is_infinite()), "{d:?}");
+    }
+
+    /// A closed box with a second glued onto its top face's ring (no bottom of its own, as a
+    /// game mesh glues a hand onto a capped forearm): the top face is a wall inside the
+    /// surface, and the body drops it; everything else stays.
+    #[test]
+    fn a_cap_inside_the_surface_is_dropped() {
+        let (mut positions, mut faces) = (Vec::new(), Faces::new());
+        boxed(&mut positions, &mut faces, DVec3::ZERO, DVec3::new(1.0, 4.0, 1.0));
+        // The top ring of the first box: vertices 2, 3, 6, 7 (y = 4).
+        for (x, z) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)] {
+            positions.push(DVec3::new(x, 8.0, z));
+        }
+        let (bottom, top) = ([2, 3, 7, 6], [8, 9, 11, 10]);
+        for k in 0..4 {
+            faces.push(&[bottom[k], bottom[(k + 1) % 4], top[(k + 1) % 4], top[k]]);
+        }
+        faces.push(&[8, 10, 11, 9]);
+        let mesh = Mesh::from_parts(positions, faces, Vec::new()).unwrap();
+        let cap: std::collections::HashSet<u32> = [2, 3, 6, 7].into();
+        let on_cap = |t: &[u32; 3]| t.iter().all(|v| cap.contains(v));
+        let raw: Vec<[u32; 3]> = mesh.faces.triangles().collect();
+        assert_eq!(raw.iter().filter(|t| on_cap(t)).count(), 2, "the input has its cap");
+        let body = Body::new(&mesh);
+        assert_eq!(body.triangles.len(), raw.len() - 2);
+        assert!(!body.triangles.iter().any(on_cap), "{:?}", body.triangles);
+        let welded = body.welded_mesh(&mesh).expect("a mesh without its cap");
+        assert_eq!(welded.faces.triangles().count(), raw.len() - 2);
+        assert_eq!(welded.positions, mesh.positions);
     }
 
     #[test]
