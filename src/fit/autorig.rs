@@ -13,6 +13,8 @@
 
 use std::time::Instant;
 
+use glam::DVec3;
+
 use super::body::Body;
 use super::chain::split_at_widening;
 use super::protrusions::{Protrusion, length_classes, protrusions};
@@ -20,7 +22,7 @@ use super::{Fit, FitError, FitOptions, OptionError, fit};
 use crate::mesh::Mesh;
 use crate::parallel::prelude::*;
 use crate::rig::{FORMAT, KeyBinding, LinkKind, ParentLink, RigDocument, VERSION, VertexSelection};
-use crate::sweep::Sweep;
+use crate::sweep::{Key, Sweep};
 
 /// How to rig a mesh.
 #[derive(Clone, Debug, PartialEq)]
@@ -132,7 +134,7 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
             selection
         })
         .collect();
-    let mut speculative: Vec<Option<Result<Vec<Link>, Option<f64>>>> =
+    let mut speculative: Vec<Option<Result<Vec<Link>, Option<LeftOut>>>> =
         (0..found.len()).into_par_iter().map(|i| fitted(&found[i], &assumed[i])).collect();
     let mut parts: Vec<RiggedPart> = Vec::new();
     let mut rejected = Vec::new();
@@ -159,15 +161,19 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
         let vertices = match selection {
             Selection::Skip => continue,
             Selection::TooSmall(count) => {
-                rejected.push(Rejected { tip: protrusion.tip, vertices: count, rms_d: None });
+                rejected.push(Rejected { tip: protrusion.tip, vertices: count, rms_d: None, folded: None });
                 continue;
             }
             Selection::Fit(vertices) => vertices,
         };
         let chain = match result {
             Some(Ok(chain)) => chain,
-            Some(Err(Some(rms_d))) => {
-                rejected.push(Rejected { tip: protrusion.tip, vertices: vertices.len(), rms_d: Some(rms_d) });
+            Some(Err(Some(why))) => {
+                let (rms_d, folded) = match why {
+                    LeftOut::Loose(rms_d) => (Some(rms_d), None),
+                    LeftOut::Folded(folds) => (None, Some(folds)),
+                };
+                rejected.push(Rejected { tip: protrusion.tip, vertices: vertices.len(), rms_d, folded });
                 continue;
             }
             // A part the fit refuses (too flat for an axis) is no limb, as before fitting.
@@ -235,15 +241,17 @@ type Link = (Vec<u32>, Fit, f64);
 /// otherwise the chain split at its widening (`super::chain`) where each link fits within
 /// [`MAX_RMS`], the loosest fits better than the one sweep and the end's first key binds to
 /// the limb (a cross-section of the limb passes through it), otherwise the one sweep within
-/// [`MAX_RMS`]; `Err` with the one sweep's sections' RMS |d| where none is, `Err(None)` where
-/// the fit refuses the part.
-fn rig_limb(mesh: &Mesh, vertices: &[u32], options: &FitOptions) -> Result<Vec<Link>, Option<f64>> {
+/// [`MAX_RMS`]; a sweep whose keys fold back ([`folds`]) fits no limb. `Err` with why the one
+/// sweep is no limb, `Err(None)` where the fit refuses the part.
+fn rig_limb(mesh: &Mesh, vertices: &[u32], options: &FitOptions) -> Result<Vec<Link>, Option<LeftOut>> {
     let timed = |vertices: &[u32]| {
         let started = Instant::now();
         let fitted = fit(mesh, vertices, options).ok()?;
         Some((vertices.to_vec(), fitted, started.elapsed().as_secs_f64()))
     };
-    let loose = |link: &Link| link.1.sections_quality().rms_d;
+    // A folded sweep fits no limb, however closely.
+    let loose =
+        |link: &Link| if folds(&link.1.keys).is_some() { f64::INFINITY } else { link.1.sections_quality().rms_d };
     // The chain is fitted beside the one sweep, on another core where there is one: the
     // one sweep's time is the limb's unless it is loose.
     let split = split_at_widening(mesh, vertices);
@@ -270,10 +278,56 @@ fn rig_limb(mesh: &Mesh, vertices: &[u32], options: &FitOptions) -> Result<Vec<L
     }
     match whole {
         Some(link) if whole_rms <= MAX_RMS => Ok(vec![link]),
-        Some(_) if whole_rms.is_finite() => Err(Some(whole_rms)),
-        _ => Err(None),
+        Some(link) => match folds(&link.1.keys) {
+            Some(folded) => Err(Some(LeftOut::Folded(folded))),
+            None if whole_rms.is_finite() => Err(Some(LeftOut::Loose(whole_rms))),
+            None => Err(None),
+        },
+        None => Err(None),
     }
 }
+
+/// Why a limb's one sweep is no limb.
+#[derive(Clone, Copy, Debug)]
+enum LeftOut {
+    /// Its sections' RMS |d| over the mean radius, over [`MAX_RMS`].
+    Loose(f64),
+    /// Its keys fold back.
+    Folded(Folds),
+}
+
+/// How a fitted sweep's keys fold back: the knot intervals whose end key's center lies behind
+/// the plane of their start key (the sweep runs backwards there), of all its intervals.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Folds {
+    /// Intervals that step backwards.
+    pub backwards: usize,
+    /// Intervals.
+    pub intervals: usize,
+}
+
+/// `keys`' folds where they fold the sweep: at least a third of the intervals step backwards
+/// and the centers travel back at least [`FOLDED`] of the way they travel forward (along each
+/// key's normal). A ball fitted as a limb (the faerie's head: 9 of 22 intervals, 39%) keys
+/// back and forth around its middle; a coarse limb's fit may step back now and then (wuson's
+/// front leg: 4 of 17, 36%; spot's: 4 of 14, 8%) and still follow it.
+fn folds(keys: &[Key]) -> Option<Folds> {
+    let (mut forward, mut back, mut backwards) = (0.0, 0.0, 0);
+    for pair in keys.windows(2) {
+        let step = (pair[1].center - pair[0].center).dot(pair[0].rotation.normalize() * DVec3::Z);
+        if step >= 0.0 {
+            forward += step;
+        } else {
+            back -= step;
+            backwards += 1;
+        }
+    }
+    let intervals = keys.len().saturating_sub(1);
+    (3 * backwards >= intervals && intervals > 0 && back >= FOLDED * forward).then_some(Folds { backwards, intervals })
+}
+
+/// See [`folds`].
+pub const FOLDED: f64 = 0.3;
 
 /// The chord length of a fit's key centers.
 fn chord_length(fitted: &Fit) -> f64 {
@@ -309,8 +363,11 @@ pub struct Rejected {
     /// Its vertex count.
     pub vertices: usize,
     /// Its fit's RMS |d| over the mean radius, with the radii sampled from its key sections;
-    /// `None` for a part of fewer than [`MIN_VERTICES`], which is not fitted.
+    /// `None` for a part of fewer than [`MIN_VERTICES`], which is not fitted, and for a folded
+    /// fit.
     pub rms_d: Option<f64>,
+    /// Its fit's folds, where its keys fold back ([`folds`]).
+    pub folded: Option<Folds>,
 }
 
 /// A found part whose fitted sweep, with the radii sampled from its key sections
@@ -318,3 +375,24 @@ pub struct Rejected {
 /// radius) is no limb and is left out of the rig: its sections are not those of a tube, though
 /// radii fitted to its vertices by least squares may follow them more closely.
 pub const MAX_RMS: f64 = 0.35;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DQuat;
+
+    /// Keys along +z, their planes normal to it, at `zs`.
+    fn keys_at(zs: &[f64]) -> Vec<Key> {
+        zs.iter().map(|&z| Key::circle(DVec3::new(0.0, 0.0, z), DQuat::IDENTITY, 1.0, 8)).collect()
+    }
+
+    #[test]
+    fn keys_that_march_on_do_not_fold_and_keys_that_turn_back_do() {
+        assert_eq!(folds(&keys_at(&[0.0, 1.0, 2.0, 3.0, 4.0])), None);
+        // One small step back in eight: a coarse fit's wobble.
+        assert_eq!(folds(&keys_at(&[0.0, 1.0, 2.0, 1.9, 3.0, 4.0, 5.0, 6.0, 7.0])), None);
+        // Back and forth around the middle: 3 of 6 intervals, back 2.5 for 4.5 forward.
+        let zigzag = keys_at(&[0.0, 2.0, 1.0, 2.0, 1.0, 2.5, 2.0]);
+        assert_eq!(folds(&zigzag), Some(Folds { backwards: 3, intervals: 6 }));
+    }
+}

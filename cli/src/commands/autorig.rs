@@ -50,8 +50,10 @@ struct LeftOut {
     vertices: usize,
     tip: u32,
     /// RMS |d| over the mean radius with the radii sampled from its sections; null for a part
-    /// too small to be a limb, which is not fitted.
+    /// too small to be a limb, which is not fitted, and for a folded fit.
     sections_rms_d: Option<f64>,
+    /// For a fit whose keys fold back: its knot intervals that step backwards, of all of them.
+    folded: Option<[usize; 2]>,
 }
 
 #[derive(Serialize)]
@@ -106,18 +108,27 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
         let left_out = rigged
             .rejected
             .iter()
-            .map(|r| LeftOut { vertices: r.vertices, tip: r.tip, sections_rms_d: r.rms_d })
+            .map(|r| LeftOut {
+                vertices: r.vertices,
+                tip: r.tip,
+                sections_rms_d: r.rms_d,
+                folded: r.folded.map(|f| [f.backwards, f.intervals]),
+            })
             .collect();
         println!("{}", serde_json::to_string(&Report { mesh: file.to_string(), parts, left_out, seconds })?);
         return Ok(());
     }
     for r in &rigged.rejected {
-        let why = match r.rms_d {
-            Some(rms_d) => format!(
+        let why = match (r.rms_d, r.folded) {
+            (Some(rms_d), _) => format!(
                 "its sections are no tube's (RMS |d| {:.0}% of the mean radius with their radii)",
                 100.0 * rms_d
             ),
-            None => format!("a limb has at least {MIN_VERTICES} vertices"),
+            (None, Some(folds)) => format!(
+                "its fitted keys fold back on each other ({} of {} knot intervals run backwards)",
+                folds.backwards, folds.intervals
+            ),
+            (None, None) => format!("a limb has at least {MIN_VERTICES} vertices"),
         };
         eprintln!("notice: {file}: left out a part of {} vertices at tip vertex {}: {why}", r.vertices, r.tip);
     }
