@@ -17,7 +17,7 @@ use glam::DVec3;
 
 use super::body::Body;
 use super::chain::split_at_widening;
-use super::protrusions::{Protrusion, length_classes, protrusions};
+use super::protrusions::{Protrusion, protrusions};
 use super::{Fit, FitError, FitOptions, OptionError, fit};
 use crate::mesh::Mesh;
 use crate::parallel::prelude::*;
@@ -74,6 +74,9 @@ pub struct Autorig {
     pub rejected: Vec<Rejected>,
     /// Seconds finding the parts took.
     pub search_seconds: f64,
+    /// Limbs rigged and then left out at the `max_parts` limit, being mirror twins of the next
+    /// limb found ([`TWINS`]): a pair is kept or left out together.
+    pub twins_left_out: usize,
 }
 
 impl Autorig {
@@ -140,19 +143,20 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
     let mut rejected = Vec::new();
     let mut taken = vec![false; mesh.positions.len()];
     let mut limbs = 0;
-    // Per limb rigged: its protrusion's length class and its first part.
-    let class = length_classes(&found);
-    let mut rigged: Vec<(i64, usize)> = Vec::new();
+    // Per limb rigged: its protrusion's length and its first part.
+    let mut rigged: Vec<(f64, usize)> = Vec::new();
+    let mut twins_left_out = 0;
     for (i, protrusion) in found.iter().enumerate() {
         let selection = Selection::of(protrusion, &taken);
         if limbs == options.max_parts {
             // Mirror twins are kept or left out together: where the next limb is a twin of
-            // the last ones, they are all left out.
-            let twin = |&(c, _): &(i64, usize)| c == class(protrusion);
+            // the last ones (as long within [`TWINS`]), they are all left out.
+            let twin = |&(length, _): &(f64, usize)| (length - protrusion.length).abs() <= TWINS * length;
             if matches!(selection, Selection::Fit(_)) && rigged.last().is_some_and(twin) {
                 while let Some(&(_, first)) = rigged.last().filter(|l| twin(l)) {
                     parts.truncate(first);
                     rigged.pop();
+                    twins_left_out += 1;
                 }
             }
             break;
@@ -179,7 +183,7 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
             // A part the fit refuses (too flat for an axis) is no limb, as before fitting.
             Some(Err(None)) | None => continue,
         };
-        rigged.push((class(protrusion), parts.len()));
+        rigged.push((protrusion.length, parts.len()));
         let name = format!("limb{limbs}");
         let mut parent: Option<String> = None;
         for (link, (vertices, fitted, seconds)) in chain.into_iter().enumerate() {
@@ -204,7 +208,7 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
         }
         limbs += 1;
     }
-    Ok(Autorig { parts, rejected, search_seconds })
+    Ok(Autorig { parts, rejected, search_seconds, twins_left_out })
 }
 
 /// What becomes of a protrusion, given the vertices the longer limbs kept have taken.
@@ -328,6 +332,10 @@ fn folds(keys: &[Key]) -> Option<Folds> {
 
 /// See [`folds`].
 pub const FOLDED: f64 = 0.3;
+
+/// Two protrusions whose lengths differ by at most this fraction are mirror twins, kept or
+/// left out together at the `max_parts` limit (the blocky man's legs differ by 0.02%).
+pub const TWINS: f64 = 1e-3;
 
 /// The chord length of a fit's key centers.
 fn chord_length(fitted: &Fit) -> f64 {

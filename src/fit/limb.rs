@@ -18,7 +18,12 @@
 //!    [`OPENING`] with w = [`WINDOW`], sustained (P does not fall back by more than
 //!    1 − [`KEEPS`] over the next [`SUSTAIN`] levels, as it does past a hand or a foot): the
 //!    limb is the vertices with d < d_{k−w}, where the opening began.
-//! 4. Tubularity: a limb shorter than [`TUBULAR`] × the radius P/2π of its cut is a bump,
+//! 4. **Forks.** A limb that would hold more than [`MAX_SHARE`] of its component is cut
+//!    instead at the lowest level below its opening where the region farther from the tip
+//!    falls apart into two pieces each reaching on at least [`START`] × the length
+//!    ([`fork_level`]): a coarse crotch seen from a foot, the body above and the other leg
+//!    below, reached before the level sets open.
+//! 5. Tubularity: a limb shorter than [`TUBULAR`] × the radius P/2π of its cut is a bump,
 //!    not a limb. Where no level opens and d reaches the whole component (a spout or a handle
 //!    that is a component of its own, a snake), the component is the limb if it is that
 //!    tubular.
@@ -56,9 +61,6 @@ pub const KEEPS: f64 = 0.85;
 /// A component that is a limb of its own is at least this many times as long as its widest
 /// level radius.
 pub const WHOLE_TUBE: f64 = 5.0;
-/// A fork ends a limb where each of its two pieces reaches at least this fraction of the
-/// limb's length (its persistence) beyond it.
-pub const FORK_REACH: f64 = 0.5;
 /// A limb of fewer vertices than this is coarse (fewer than the 6 × 32 radii the fit's first
 /// keys sample): its level sets may cut it obliquely, one triangle deep ([`squared_off`]).
 pub const COARSE: usize = 192;
@@ -76,8 +78,9 @@ pub const TUBULAR: f64 = 1.5;
 /// a round end, and the level sets of distance from it, the limb's rim among them, are
 /// oblique. The tip is moved to the limb's vertex farthest along the direction of its
 /// skeleton's end (from 60% to 90% of its length, [`skeleton`]), and the limb found again
-/// from there, so that its rim is normal to it. Indices are the mesh's; `graph` and
-/// `triangles` may join vertices `mesh` keeps apart (welded seams).
+/// from there, so that its rim is normal to it. A limb of fewer than [`COARSE`] vertices whose
+/// rim is still oblique is then squared off ([`squared_off`]). Indices are the mesh's; `graph`
+/// and `triangles` may join vertices `mesh` keeps apart (welded seams).
 pub fn aligned_limb(
     mesh: &Mesh,
     graph: &EdgeGraph,
@@ -121,11 +124,12 @@ fn aligned(
 }
 
 /// The coarse limb `vertices` without what lies before its rim's deepest point along its
-/// skeleton, where its rim is [`OBLIQUE`]: where a coarse limb's level sets cut it obliquely (an arm's from the shoulder's top down to
-/// the armpit), the cap beyond the first complete section is the body's, and no section
-/// normal to the limb could hold it. What is kept is the piece the tip's triangles reach, without
-/// the vertices of its cut on one of its triangles only. The limb is kept whole where that would cut off its tip
-/// `tip` or more than half of its skeleton's length.
+/// skeleton, where its rim is [`OBLIQUE`]: where a coarse limb's level sets cut it obliquely
+/// (an arm's from the shoulder's top down to the armpit), the cap beyond the first complete
+/// section is the body's, and no section normal to the limb could hold it. What is kept is the
+/// piece the tip's triangles reach, without the vertices of its cut on one of its triangles
+/// only. The limb is kept whole where that would cut off its tip `tip` or more than half of
+/// its skeleton's length.
 fn squared_off(mesh: &Mesh, triangles: &[[u32; 3]], vertices: Vec<u32>, tip: u32) -> Vec<u32> {
     let mut inside = vec![false; mesh.positions.len()];
     for &v in &vertices {

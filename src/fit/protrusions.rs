@@ -111,7 +111,7 @@ fn longest_first(found: &mut [Protrusion]) {
 }
 
 /// A protrusion's length rounded to 10⁻⁹ of the longest of `found`: mirror twins share theirs.
-pub fn length_classes(found: &[Protrusion]) -> impl Fn(&Protrusion) -> i64 + use<> {
+fn length_classes(found: &[Protrusion]) -> impl Fn(&Protrusion) -> i64 + use<> {
     let quantum = 1e-9 * found.iter().map(|p| p.length).fold(0.0, f64::max);
     move |p: &Protrusion| if quantum > 0.0 { (p.length / quantum).round() as i64 } else { 0 }
 }

@@ -42,6 +42,8 @@ struct Report {
     parts: Vec<PartReport>,
     /// The parts found whose sections are no tube's, left out of the rig.
     left_out: Vec<LeftOut>,
+    /// Limbs left out at `--max-parts` as mirror twins of the next limb found.
+    twins_left_out: usize,
     seconds: f64,
 }
 
@@ -115,7 +117,16 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
                 folded: r.folded.map(|f| [f.backwards, f.intervals]),
             })
             .collect();
-        println!("{}", serde_json::to_string(&Report { mesh: file.to_string(), parts, left_out, seconds })?);
+        println!(
+            "{}",
+            serde_json::to_string(&Report {
+                mesh: file.to_string(),
+                parts,
+                left_out,
+                twins_left_out: rigged.twins_left_out,
+                seconds
+            })?
+        );
         return Ok(());
     }
     for r in &rigged.rejected {
@@ -132,7 +143,14 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
         };
         eprintln!("notice: {file}: left out a part of {} vertices at tip vertex {}: {why}", r.vertices, r.tip);
     }
-    match (parts.is_empty(), rigged.rejected.len()) {
+    if rigged.twins_left_out > 0 {
+        eprintln!(
+            "notice: {file}: left out {} limb(s) at --max-parts {}: mirror twins of the next limb found, \
+             for which there was no room (a pair is kept or left out together)",
+            rigged.twins_left_out, args.max_parts
+        );
+    }
+    match (parts.is_empty() && rigged.twins_left_out == 0, rigged.rejected.len()) {
         (true, 0) => eprintln!(
             "notice: {file}: found no protrusion longer than --min-length {}; wrote an empty rig",
             args.min_length

@@ -232,7 +232,7 @@ impl App {
             (true, 0) => return Ok("auto-rig found no protrusion; the rig is unchanged".to_string()),
             (true, left_out) => {
                 return Ok(format!(
-                    "auto-rig left out every protrusion it found ({left_out}: their sections are no tube's, or they are too small); the rig is unchanged"
+                    "auto-rig left out every protrusion it found ({left_out}: no tube fits them, their fits fold back, or they are too small); the rig is unchanged"
                 ));
             }
             _ => {}

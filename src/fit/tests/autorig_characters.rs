@@ -57,6 +57,24 @@ fn the_blocky_man_gets_two_arms_and_two_legs() {
     assert_eq!((arms, legs), (2, 2));
 }
 
+/// Mirror twins are kept or left out together at the `max_parts` limit: with room for three
+/// parts, the blocky man gets its two arms (or its two legs), not a pair and one of the other.
+#[test]
+fn mirror_twins_are_kept_or_left_out_together() {
+    let Some(path) = common::shared_mesh("characters/blocky_man.obj") else { return };
+    let mesh = Mesh::load(&path).unwrap();
+    let lengths = |max_parts| {
+        let rigged = autorig(&mesh, &AutorigOptions { max_parts, ..AutorigOptions::default() }).unwrap();
+        rigged.parts.iter().map(|p| extent(&mesh, p, DVec3::Y)).collect::<Vec<f64>>()
+    };
+    assert_eq!(lengths(4).len(), 4);
+    for max_parts in [1, 3] {
+        let kept = lengths(max_parts);
+        assert_eq!(kept.len(), max_parts - 1, "max_parts {max_parts}: {kept:?}");
+        assert!(kept.iter().all(|l| (l - kept[0]).abs() <= 1e-3 * kept[0]), "a pair: {kept:?}");
+    }
+}
+
 /// Wuson, a cartoon bull (51 components; tufts of 6 vertices on its tail): four legs, each
 /// holding a hoof's lowest vertex, and its tail. A front leg whose one sweep fits loosely past
 /// its fetlock is a chain: the leg and its hoof, the hoof a branch child of the leg.
