@@ -7,7 +7,9 @@
 //! a branch child (§5) so that turning the limb carries it. The rest of the mesh (the body)
 //! stays unowned. The fits run on the welded mesh, so a part's sections close; a part whose
 //! fit with the radii of its sections misses its surface by more than [`MAX_RMS`] (a lid's
-//! flange, a ring) is no limb and is left out, and reported in [`Autorig::rejected`].
+//! flange, a ring) is no limb, nor is one whose fitted keys fold back (`folds`: a ball, such
+//! as the faerie's head); each is left out and reported in [`Autorig::rejected`]. At most
+//! `max_parts` limbs are rigged, mirror twins at that limit kept or left out together.
 //!
 //! Data flow: mesh → body → protrusions → **fit** per limb (or chain) → rig document.
 
