@@ -332,7 +332,8 @@ fn folds(keys: &[Key]) -> Option<Folds> {
     (3 * backwards >= intervals && intervals > 0 && back >= FOLDED * forward).then_some(Folds { backwards, intervals })
 }
 
-/// See [`folds`].
+/// A fit folds where its centers travel back at least this share of the way they travel forward
+/// (with a third of its knot intervals or more running backwards).
 pub const FOLDED: f64 = 0.3;
 
 /// Two protrusions whose lengths differ by at most this fraction are mirror twins, kept or
@@ -376,7 +377,7 @@ pub struct Rejected {
     /// `None` for a part of fewer than [`MIN_VERTICES`], which is not fitted, and for a folded
     /// fit.
     pub rms_d: Option<f64>,
-    /// Its fit's folds, where its keys fold back ([`folds`]).
+    /// Its fit's folds, where its keys fold back (see [`FOLDED`]).
     pub folded: Option<Folds>,
 }
 
