@@ -106,14 +106,9 @@ pub fn protrusions(mesh: &Mesh, body: &Body, min_length: f64, max_parts: usize) 
 /// pair of legs, whose lengths a rigid motion perturbs in the last bits) by tip index, so that
 /// a moved mesh names its parts alike.
 fn longest_first(found: &mut [Protrusion]) {
-    let rounded = length_classes(found);
-    found.sort_by(|a, b| rounded(b).cmp(&rounded(a)).then(a.tip.cmp(&b.tip)));
-}
-
-/// A protrusion's length rounded to 10⁻⁹ of the longest of `found`: mirror twins share theirs.
-fn length_classes(found: &[Protrusion]) -> impl Fn(&Protrusion) -> i64 + use<> {
     let quantum = 1e-9 * found.iter().map(|p| p.length).fold(0.0, f64::max);
-    move |p: &Protrusion| if quantum > 0.0 { (p.length / quantum).round() as i64 } else { 0 }
+    let rounded = |p: &Protrusion| if quantum > 0.0 { (p.length / quantum).round() as i64 } else { 0 };
+    found.sort_by(|a, b| rounded(b).cmp(&rounded(a)).then(a.tip.cmp(&b.tip)));
 }
 
 /// The body's pieces joined to it at one end ([`Body::leaves`]) that are limbs: elongated
