@@ -14,7 +14,7 @@ use glam::DQuat;
 use super::part::Part;
 use super::quality::measure;
 use super::refine::Fitted;
-use super::{FitError, FitStep};
+use super::{Fit, FitError, FitStep};
 use crate::bind::SweepBinder;
 use crate::sweep::{Key, Sweep};
 
@@ -74,6 +74,27 @@ pub(super) fn turned(part: &Part, fitted: &Fitted, steps: &mut [FitStep]) -> Res
         step.keys = reversed(&step.keys);
     }
     Ok(Fitted { keys, sections, sweep, measured })
+}
+
+impl Fit {
+    /// The same fit traversed from its other end ([`reversed`]): keys, sections and every
+    /// step's keys in reverse order, the rim lengths swapped. Its quality stays: every vertex's
+    /// |d| on the same surface is the same.
+    pub(super) fn reversed(&self) -> Fit {
+        let steps = self
+            .steps
+            .iter()
+            .map(|step| FitStep { keys: reversed(&step.keys), ..step.clone() })
+            .collect();
+        Fit {
+            keys: reversed(&self.keys),
+            quality: self.quality,
+            sections: self.sections.iter().rev().copied().collect(),
+            steps,
+            rim: [self.rim[1], self.rim[0]],
+            falloff: self.falloff,
+        }
+    }
 }
 
 #[cfg(test)]

@@ -2,9 +2,12 @@
 //! touching components joined) is searched for protrusions (`super::protrusions`), longest
 //! first; a protrusion mostly inside a longer one (a finger of a hand) stays in it. Each limb
 //! gets one fitted sweep ([`super::fit`]), key 0 at the part's attachment (its rim), with the
-//! fit's falloff, or where one sweep fits it more loosely than [`TARGET`] and it ends in a
-//! widening (a hand, a foot, a hoof), a chain of two (`super::chain`): the limb, and its end as
-//! a branch child (§5) so that turning the limb carries it. The rest of the mesh (the body)
+//! fit's falloff, or where one sweep fits it more loosely than [`TARGET`], a chain of sweeps
+//! (`super::chain`): the limb cut at its bends and widenings (upper arm, forearm, hand) and
+//! forked at its toes or fingers, each link a branch child (§5) of the one it hangs from, so
+//! that turning the limb carries its end, with [`LINK_FALLOFF_SHARE`] of the falloff; a part
+//! that is no tube as one sweep (the dino's legs, their toes splayed) is rigged where its
+//! chain's links are each within [`RESCUED_RMS`]. The rest of the mesh (the body)
 //! stays unowned. The fits run on the welded mesh, so a part's sections close; a part whose
 //! fit with the radii of its sections misses its surface by more than [`MAX_RMS`] (a lid's
 //! flange, a ring) is no limb, nor is one whose fitted keys fold back (`folds`: a ball, such
@@ -13,18 +16,20 @@
 //!
 //! Data flow: mesh → body → protrusions → **fit** per limb (or chain) → rig document.
 
+use std::collections::HashMap;
+use std::sync::Mutex;
 use std::time::Instant;
 
 use glam::DVec3;
 
 use super::body::Body;
-use super::chain::split_at_widening;
+use super::chain::{FittedLink, LinkFitter, Profile};
 use super::protrusions::{Protrusion, protrusions};
 use super::{Fit, FitError, FitOptions, OptionError, fit};
 use crate::mesh::Mesh;
 use crate::parallel::prelude::*;
-use crate::rig::{FORMAT, KeyBinding, LinkKind, ParentLink, RigDocument, VERSION, VertexSelection};
-use crate::sweep::{Key, Sweep};
+use crate::rig::{FORMAT, LinkKind, ParentLink, RigDocument, VERSION, VertexSelection};
+use crate::sweep::Key;
 
 /// How to rig a mesh.
 #[derive(Clone, Debug, PartialEq)]
@@ -139,7 +144,7 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
             selection
         })
         .collect();
-    let mut speculative: Vec<Option<Result<Vec<Link>, Option<LeftOut>>>> =
+    let mut speculative: Vec<Option<Result<Vec<FittedLink>, Option<LeftOut>>>> =
         (0..found.len()).into_par_iter().map(|i| fitted(&found[i], &assumed[i])).collect();
     let mut parts: Vec<RiggedPart> = Vec::new();
     let mut rejected = Vec::new();
@@ -187,12 +192,12 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
         };
         rigged.push((protrusion.length, parts.len()));
         let name = format!("limb{limbs}");
-        let mut parent: Option<String> = None;
-        for (link, (vertices, fitted, seconds)) in chain.into_iter().enumerate() {
+        let names: Vec<String> =
+            (0..chain.len()).map(|link| if link == 0 { name.clone() } else { format!("{name}.{link}") }).collect();
+        for (FittedLink { vertices, fit: fitted, seconds, parent }, this) in chain.into_iter().zip(&names) {
             for &v in &vertices {
                 taken[v as usize] = true;
             }
-            let this = if link == 0 { name.clone() } else { format!("{name}.{link}") };
             let tip = if vertices.binary_search(&protrusion.tip).is_ok() {
                 protrusion.tip
             } else {
@@ -200,7 +205,7 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
             };
             parts.push(RiggedPart {
                 name: this.clone(),
-                parent: parent.replace(this),
+                parent: parent.map(|p| names[p].clone()),
                 tip,
                 length: chord_length(&fitted),
                 vertices,
@@ -240,56 +245,70 @@ impl Selection {
     }
 }
 
-/// One link of a limb's chain: its vertices, its fit and the seconds the fit took.
-type Link = (Vec<u32>, Fit, f64);
-
 /// Fits the limb made of `vertices` (increasing): one sweep where it fits within [`TARGET`],
-/// otherwise the chain split at its widening (`super::chain`) where each link fits within
-/// [`MAX_RMS`], the loosest fits better than the one sweep and the end's first key binds to
-/// the limb (a cross-section of the limb passes through it), otherwise the one sweep within
-/// [`MAX_RMS`]; a sweep whose keys fold back ([`folds`]) fits no limb. `Err` with why the one
-/// sweep is no limb, `Err(None)` where the fit refuses the part.
-fn rig_limb(mesh: &Mesh, vertices: &[u32], options: &FitOptions) -> Result<Vec<Link>, Option<LeftOut>> {
-    let timed = |vertices: &[u32]| {
-        let started = Instant::now();
-        let fitted = fit(mesh, vertices, options).ok()?;
-        Some((vertices.to_vec(), fitted, started.elapsed().as_secs_f64()))
-    };
-    // A folded sweep fits no limb, however closely.
-    let loose =
-        |link: &Link| if folds(&link.1.keys).is_some() { f64::INFINITY } else { link.1.sections_quality().rms_d };
-    // The chain is fitted beside the one sweep, on another core where there is one: the
-    // one sweep's time is the limb's unless it is loose.
-    let split = split_at_widening(mesh, vertices);
-    let (whole, chain) = crate::parallel::join(
-        || timed(vertices),
-        || -> Option<Vec<Link>> {
-            let [near, far] = split.as_ref()?;
-            let (near, far) = crate::parallel::join(|| timed(near), || timed(far));
-            Some(vec![near?, far?])
-        },
-    );
-    let whole_rms = whole.as_ref().map_or(f64::INFINITY, loose);
-    if whole_rms <= TARGET {
-        return Ok(whole.into_iter().collect());
+/// otherwise its best chain (`super::chain`) where each link fits within [`MAX_RMS`] and the
+/// loosest better than the one sweep, otherwise the one sweep within [`MAX_RMS`]; a sweep whose
+/// keys fold back ([`folds`]) fits no link. `Err` with why the one sweep is no limb,
+/// `Err(None)` where the fit refuses the part.
+fn rig_limb(mesh: &Mesh, vertices: &[u32], options: &FitOptions) -> Result<Vec<FittedLink>, Option<LeftOut>> {
+    let fitter = Fitter { mesh, options, fitted: Default::default() };
+    let whole = fitter.fit(vertices);
+    let whole_rms = whole.as_ref().map_or(f64::INFINITY, |(fitted, _)| fitter.loose(fitted));
+    let one = |(fit, seconds): (Fit, f64)| vec![FittedLink { vertices: vertices.to_vec(), fit, seconds, parent: None }];
+    // Close enough as one sweep: its fitted radii within the target, its sections a tube's.
+    let close = whole.as_ref().is_some_and(|(fitted, _)| fitted.quality.rms_d <= TARGET) && whole_rms <= MAX_RMS;
+    if close {
+        return Ok(whole.map(one).unwrap_or_default());
     }
-    if let Some(chain) = chain {
-        let worst = chain.iter().map(loose).fold(0.0, f64::max);
-        // The end's first key must lie on a cross-section of the limb (§5's branch link).
-        let parent = Sweep::try_new(&chain[0].1.keys, None).ok();
-        let linked = parent.is_some_and(|parent| KeyBinding::new(&parent, &chain[1].1.keys[0]).is_some());
-        if linked && worst <= MAX_RMS && worst < whole_rms {
-            return Ok(chain);
+    let chain = Profile::new(mesh, vertices).and_then(|profile| profile.chain(&fitter, TARGET));
+    // A part that is no tube as one sweep becomes a limb only as a chain of tubes.
+    let most = if whole_rms <= MAX_RMS { MAX_RMS } else { RESCUED_RMS };
+    if let Some(chain) = chain.filter(|chain| chain.worst <= most && chain.worst < whole_rms) {
+        let mut links = chain.links;
+        if options.falloff.is_none() {
+            for link in &mut links {
+                link.fit.falloff *= LINK_FALLOFF_SHARE;
+            }
         }
+        return Ok(links);
     }
     match whole {
-        Some(link) if whole_rms <= MAX_RMS => Ok(vec![link]),
-        Some(link) => match folds(&link.1.keys) {
+        Some(whole) if whole_rms <= MAX_RMS => Ok(one(whole)),
+        Some((fitted, _)) => match folds(&fitted.keys) {
             Some(folded) => Err(Some(LeftOut::Folded(folded))),
             None if whole_rms.is_finite() => Err(Some(LeftOut::Loose(whole_rms))),
             None => Err(None),
         },
         None => Err(None),
+    }
+}
+
+/// A fit and the seconds it took.
+type TimedFit = (Fit, f64);
+
+/// Fits a limb's links with the rig's options, each set of vertices once (the chains tried
+/// share links).
+struct Fitter<'a> {
+    mesh: &'a Mesh,
+    options: &'a FitOptions,
+    fitted: Mutex<HashMap<Vec<u32>, Option<TimedFit>>>,
+}
+
+impl LinkFitter for Fitter<'_> {
+    fn fit(&self, vertices: &[u32]) -> Option<(Fit, f64)> {
+        if let Some(known) = self.fitted.lock().ok()?.get(vertices) {
+            return known.clone();
+        }
+        let started = Instant::now();
+        let fitted =
+            fit(self.mesh, vertices, self.options).ok().map(|fitted| (fitted, started.elapsed().as_secs_f64()));
+        self.fitted.lock().ok()?.insert(vertices.to_vec(), fitted.clone());
+        fitted
+    }
+
+    /// A folded sweep fits no link, however closely.
+    fn loose(&self, fitted: &Fit) -> f64 {
+        if folds(&fitted.keys).is_some() { f64::INFINITY } else { fitted.sections_quality().rms_d }
     }
 }
 
@@ -360,6 +379,18 @@ fn farthest_from_first_key(mesh: &Mesh, vertices: &[u32], fitted: &Fit) -> u32 {
 
 /// A part of fewer vertices (a quad of a game mesh's face) is no limb.
 pub const MIN_VERTICES: usize = 8;
+
+/// A chain's links get this share of the default falloff width (a fraction of each link's
+/// length): at a joint the bands of both links meet, each fading half way into the other, so
+/// the blend across it is as wide as a limb's into the body; and a link's neighbour, turned at
+/// the joint, reaches far into a wide band with its cross-sections (the dino's bent legs
+/// stretch an edge 2.2× with the whole width, 1.9× with half).
+pub const LINK_FALLOFF_SHARE: f64 = 0.5;
+
+/// A part whose one sweep is no limb (looser than [`MAX_RMS`]) is rigged as a chain only where
+/// each link's sections fit within this RMS |d| (the dino's legs, their toes splayed: 19%
+/// and 15% with 101% and 134% as one sweep).
+pub const RESCUED_RMS: f64 = 0.2;
 
 /// A fit within this RMS |d| (over the mean radius), its sections' radii, is kept as one sweep
 /// without trying a chain.

@@ -1,66 +1,555 @@
-//! A limb as a chain of sweeps (§5's hierarchy, a branch child on its parent): where a limb
-//! ends in a widening (a hand past its wrist, a foot past its ankle, a hoof), one tube's keys
-//! describe it poorly, so the limb is split at the narrowest place before the widening into
-//! the limb proper and its end, the end a child of the limb so that turning the limb carries
-//! it.
+//! A limb as a chain of sweeps (§5's hierarchy, branch children on their parents): where one
+//! tube's keys describe a limb poorly, it is cut into links, each a child of the link it hangs
+//! from, so that turning the limb carries its end.
 //!
-//! The place is found from the limb's own profile: the geodesic distance s from its rim (where
-//! it is attached to the body), cut at [`LEVELS`] levels whose perimeters give a radius
-//! r(s) = P(s)/2π (`super::limb::perimeters`). The wrist is the level of least radius between
-//! [`FIRST`] and [`LAST`] of the limb's length beyond which the radius grows to at least
-//! [`WIDENING`] times it. A limb with no rim (a whole component) or no such level stays one
-//! sweep.
+//! Cuts are found from the geodesic distance s from the limb's rim (where it is attached to
+//! the body), measured once over the whole limb. A stretch of the limb between two cuts is
+//! cut again where its one sweep fits more loosely than the target, at most [`DEPTH`] deep:
+//!
+//! - **Widening** ([`Profile::widening`]): a hand past its wrist, a foot past its ankle, a
+//!   hoof, a knee's bulge. The stretch's level sets, [`LEVELS`] of them, have perimeters P(s)
+//!   that give a radius r(s) = P(s)/2π (`super::limb::perimeters`); the wrist is the level of
+//!   least radius between [`FIRST`] and [`LAST`] of the stretch beyond which the radius grows
+//!   to at least [`WIDENING`] times it.
+//! - **Bend** ([`Profile::bend`]): an elbow, a knee, an ankle. The level sets' centroids
+//!   make a skeleton; the bend is the level between [`FIRST`] and [`LAST`] of the stretch
+//!   where it turns most, at least [`BEND_DEGREES`] over [`BEND_SPAN`] levels either side.
+//!
+//! A level set leans across a bend (its edge paths are shorter on the inside), so a cut is
+//! made near its level by the plane through the level set's centroid normal to the skeleton
+//! there ([`Cut`]). Each link's sweep is fitted to its vertices and [`OVERLAP`] of its
+//! radius beyond each of its cuts, so that the links overlap and a child's first key lies on
+//! a cross-section of its parent (§5's branch link binds it there).
+//!
+//! - **Fork** ([`Profile::fork`]): toes past a foot, fingers past a hand. The lowest level, at
+//!   least [`FIRST`] of the limb's length from the rim, where the vertices farther than it fall
+//!   apart into pieces that each reach at least [`BRANCH`] of the limb's length beyond it
+//!   (`super::limb::fork_level`: the saddles of the merge tree of s's superlevel sets). Each
+//!   such piece, squared off ([`Profile::squared_off`]), is a branch: one sweep, a child of
+//!   the stem's link it meets, fitted with a ring of that link's vertices around its base. A
+//!   shorter piece (a dewclaw) rides in the stem, which is cut as a limb is.
+//!
+//! Of the chains found, with a fork and without, the one whose loosest link fits best is kept;
+//! a chain whose child's first key does not bind to its parent is none. A limb with no rim (a
+//! whole component) has no profile and stays one sweep.
 
 use std::f64::consts::TAU;
 
+use glam::DVec3;
+
+use super::Fit;
+use super::disjoint_sets::DisjointSets;
 use super::geodesic::EdgeGraph;
-use super::limb::perimeters;
+use super::limb::{fork_levels, perimeters};
 use super::part::Part;
 use crate::mesh::Mesh;
+use crate::rig::KeyBinding;
+use crate::sweep::Sweep;
 
-/// Levels of the limb's profile.
+/// Levels of a stretch's profile.
 pub const LEVELS: usize = 32;
-/// The wrist lies at least this fraction of the limb's length from its rim…
+/// A cut lies at least this fraction of its stretch's length from the stretch's start…
 pub const FIRST: f64 = 0.3;
 /// …and at most this fraction.
 pub const LAST: f64 = 0.85;
 /// Past the wrist the radius grows to at least this many times the wrist's.
 pub const WIDENING: f64 = 1.3;
+/// A bend turns the skeleton by at least this many degrees…
+pub const BEND_DEGREES: f64 = 30.0;
+/// …between the directions this many levels before and after it.
+pub const BEND_SPAN: usize = 3;
+/// A branch past a fork reaches at least this fraction of the limb's length beyond it.
+pub const BRANCH: f64 = 0.1;
+/// A bend and a widening nearer each other than this fraction of their stretch are one cut.
+pub const SAME_CUT: f64 = 0.1;
+/// A link has at least this many vertices, as a limb has.
+pub const MIN_LINK: usize = super::autorig::MIN_VERTICES;
+/// Stretches are cut at most this many times deep (a limb of at most 2^DEPTH links before its
+/// branches)…
+pub const DEPTH: usize = 2;
+/// …and not at all in a limb of more vertices than this, whose links each take long to fit: a
+/// dense scan's limb is only forked (a hand from its fingers).
+pub const DENSE: usize = 2000;
+/// A link's sweep is fitted to the vertices within this many radii of the cut beyond each of
+/// its cuts too.
+pub const OVERLAP: f64 = 0.5;
+/// Near its level, within this many radii, a cut is a plane.
+pub const PLANE_REACH: f64 = 2.0;
 
-/// The limb of `mesh` made of `vertices` split at its widening (see the module docs): the part
-/// attached to the body first, then its end; `None` where it has none.
-pub fn split_at_widening(mesh: &Mesh, vertices: &[u32]) -> Option<[Vec<u32>; 2]> {
-    let part = Part::new(mesh, vertices);
-    if part.rim.is_empty() || part.triangles.len() < 8 {
-        return None;
+/// One link of a chain, fitted.
+#[derive(Clone, Debug)]
+pub struct FittedLink {
+    /// The link's vertices (the mesh's, increasing).
+    pub vertices: Vec<u32>,
+    /// Its sweep, key 0 where it is attached.
+    pub fit: Fit,
+    /// Seconds its fit took.
+    pub seconds: f64,
+    /// The link it hangs from (an index into the chain), `None` for the link on the body.
+    pub parent: Option<usize>,
+}
+
+/// A chain and its loosest link's RMS |d|.
+#[derive(Clone, Debug)]
+pub struct Chain {
+    /// The links, each after its parent.
+    pub links: Vec<FittedLink>,
+    /// The largest of the links' `loose`.
+    pub worst: f64,
+}
+
+/// How to fit a link: its fitted vertices (the mesh's, increasing) → its fit and seconds.
+pub trait LinkFitter: Sync {
+    /// Fits the sweep of `vertices`; `None` where the fit refuses them.
+    fn fit(&self, vertices: &[u32]) -> Option<(Fit, f64)>;
+    /// How loosely `fit` follows its part (RMS |d| over the mean radius; infinite for a sweep
+    /// that is no link).
+    fn loose(&self, fit: &Fit) -> f64;
+}
+
+/// Where a limb is cut at a level of s: within [`PLANE_REACH`] radii of the level by the
+/// plane through its level set's centroid normal to the limb there, farther off by the level.
+#[derive(Clone, Copy, Debug)]
+struct Cut {
+    level: f64,
+    center: DVec3,
+    normal: DVec3,
+    radius: f64,
+}
+
+impl Cut {
+    /// The same cut moved by `by` along the limb.
+    fn moved(&self, by: f64) -> Cut {
+        Cut { level: self.level + by, center: self.center + self.normal * by, ..*self }
     }
-    let graph = EdgeGraph::new(&part.positions, &part.triangles);
-    let mut sources: Vec<u32> = part.rim.iter().flatten().copied().collect();
-    sources.sort_unstable();
-    sources.dedup();
-    let s = graph.distances(&sources);
-    let length = s.iter().copied().filter(|d| d.is_finite()).fold(0.0, f64::max);
-    if length <= 0.0 {
-        return None;
+}
+
+/// A limb's distance from its rim, for cutting it into links.
+pub struct Profile {
+    part: Part,
+    graph: EdgeGraph,
+    /// Per local vertex, s: its geodesic distance from the rim.
+    s: Vec<f64>,
+    /// The largest finite s.
+    length: f64,
+    /// The centroid of the rim's vertices.
+    rim_center: DVec3,
+}
+
+impl Profile {
+    /// The profile of the limb of `mesh` made of `vertices`; `None` where it has no rim or too
+    /// few triangles to cut.
+    pub fn new(mesh: &Mesh, vertices: &[u32]) -> Option<Profile> {
+        let part = Part::new(mesh, vertices);
+        if part.rim.is_empty() || part.triangles.len() < 8 {
+            return None;
+        }
+        let graph = EdgeGraph::new(&part.positions, &part.triangles);
+        let mut sources: Vec<u32> = part.rim.iter().flatten().copied().collect();
+        sources.sort_unstable();
+        sources.dedup();
+        let s = graph.distances(&sources);
+        let length = s.iter().copied().filter(|d| d.is_finite()).fold(0.0, f64::max);
+        let rim_center = sources.iter().map(|&v| part.positions[v as usize]).sum::<DVec3>() / sources.len() as f64;
+        (length > 0.0).then_some(Profile { part, graph, s, length, rim_center })
     }
-    let h = length / LEVELS as f64;
-    let radius: Vec<f64> =
-        perimeters(&part.positions, &part.triangles, &s, h, LEVELS, length).iter().map(|p| p / TAU).collect();
-    let (first, last) = ((FIRST * LEVELS as f64).ceil() as usize, (LAST * LEVELS as f64).floor() as usize);
-    let wrist = (first..=last)
-        .filter(|&k| radius[k] > 0.0)
-        .filter(|&k| radius[k + 1..].iter().copied().fold(0.0, f64::max) >= WIDENING * radius[k])
-        .min_by(|&a, &b| radius[a].total_cmp(&radius[b]).then(a.cmp(&b)))?;
-    let cut = wrist as f64 * h;
-    let (mut near, mut far) = (Vec::new(), Vec::new());
-    for (local, &v) in part.vertices.iter().enumerate() {
-        if s[local] < cut {
-            near.push(v);
+
+    /// The level of the widening between levels `from` and `to` (see the module docs).
+    pub fn widening(&self, from: f64, to: f64) -> Option<f64> {
+        let h = (to - from) / LEVELS as f64;
+        if h.is_nan() || h <= 0.0 {
+            return None;
+        }
+        let shifted: Vec<f64> = self.s.iter().map(|&s| s - from).collect();
+        let perimeter = perimeters(&self.part.positions, &self.part.triangles, &shifted, h, LEVELS, to - from);
+        let radius: Vec<f64> = perimeter.iter().map(|p| p / TAU).collect();
+        let (first, last) = ((FIRST * LEVELS as f64).ceil() as usize, (LAST * LEVELS as f64).floor() as usize);
+        let wrist = (first..=last)
+            .filter(|&k| radius[k] > 0.0)
+            .filter(|&k| radius[k + 1..].iter().copied().fold(0.0, f64::max) >= WIDENING * radius[k])
+            .min_by(|&a, &b| radius[a].total_cmp(&radius[b]).then(a.cmp(&b)))?;
+        Some(from + wrist as f64 * h)
+    }
+
+    /// The level of the bend between levels `from` and `to` (see the module docs).
+    pub fn bend(&self, from: f64, to: f64) -> Option<f64> {
+        let h = (to - from) / LEVELS as f64;
+        if h.is_nan() || h <= 0.0 {
+            return None;
+        }
+        let centers: Vec<Option<DVec3>> =
+            (0..=LEVELS).map(|k| self.level_set(from + k as f64 * h).map(|(center, _)| center)).collect();
+        let (first, last) = ((FIRST * LEVELS as f64).ceil() as usize, (LAST * LEVELS as f64).floor() as usize);
+        let turn = |k: usize| -> Option<f64> {
+            let (before, here, after) = (centers[k - BEND_SPAN]?, centers[k]?, centers[k + BEND_SPAN]?);
+            let (a, b) = ((here - before).try_normalize()?, (after - here).try_normalize()?);
+            Some(a.dot(b).clamp(-1.0, 1.0).acos().to_degrees())
+        };
+        let (k, degrees) = (first.max(BEND_SPAN)..=last.min(LEVELS - BEND_SPAN))
+            .filter_map(|k| Some((k, turn(k)?)))
+            .max_by(|a, b| a.1.total_cmp(&b.1).then(b.0.cmp(&a.0)))?;
+        (degrees >= BEND_DEGREES).then_some(from + k as f64 * h)
+    }
+
+    /// The level set s = `level`: the centroid of its segments (their midpoints weighted by
+    /// their lengths) and its radius P/2π; `None` where it is empty.
+    fn level_set(&self, level: f64) -> Option<(DVec3, f64)> {
+        let (mut sum, mut perimeter) = (DVec3::ZERO, 0.0);
+        for t in &self.part.triangles {
+            let g = t.map(|v| self.s[v as usize]);
+            let mut ends = [DVec3::ZERO; 2];
+            let mut found = 0;
+            for e in 0..3 {
+                let (a, b) = (e, (e + 1) % 3);
+                if g[a].is_finite() && g[b].is_finite() && (g[a] < level) != (g[b] < level) && found < 2 {
+                    let (pa, pb) = (self.part.positions[t[a] as usize], self.part.positions[t[b] as usize]);
+                    ends[found] = pa + (pb - pa) * ((level - g[a]) / (g[b] - g[a]));
+                    found += 1;
+                }
+            }
+            if found == 2 {
+                let l = ends[0].distance(ends[1]);
+                sum += (ends[0] + ends[1]) * 0.5 * l;
+                perimeter += l;
+            }
+        }
+        (perimeter > 0.0).then(|| (sum / perimeter, perimeter / TAU))
+    }
+
+    /// The cut at `level` (see [`Cut`]); `None` where its level set is empty.
+    fn cut(&self, level: f64) -> Option<Cut> {
+        let (center, radius) = self.level_set(level)?;
+        let step = radius.max(self.length / LEVELS as f64);
+        let before = self.level_set(level - step).map_or(center, |l| l.0);
+        let after = self.level_set(level + step).map_or(center, |l| l.0);
+        let normal = (after - before).try_normalize().unwrap_or(DVec3::ZERO);
+        Some(Cut { level, center, normal, radius })
+    }
+
+    /// Whether local vertex `v` lies past `cut`.
+    fn beyond(&self, cut: &Cut, v: u32) -> bool {
+        let s = self.s[v as usize];
+        if (s - cut.level).abs() <= PLANE_REACH * cut.radius && cut.normal != DVec3::ZERO {
+            (self.part.positions[v as usize] - cut.center).dot(cut.normal) >= 0.0
         } else {
-            far.push(v);
+            s >= cut.level
         }
     }
-    (near.len() >= 4 && far.len() >= 4).then_some([near, far])
+
+    /// The limb's local vertices past `from` (all where `None`) and not past `to` (none where
+    /// `None`) that are in none of `excluded`.
+    fn stretch(&self, from: Option<&Cut>, to: Option<&Cut>, excluded: &[bool]) -> Vec<u32> {
+        (0..self.s.len() as u32)
+            .filter(|&v| !excluded[v as usize])
+            .filter(|&v| from.is_none_or(|cut| self.beyond(cut, v)) && to.is_none_or(|cut| !self.beyond(cut, v)))
+            .collect()
+    }
+
+    /// The levels where the limb forks (see the module docs), lowest first.
+    pub fn forks(&self) -> Vec<f64> {
+        let mut levels = fork_levels(&self.graph, &self.s, f64::INFINITY, BRANCH * self.length);
+        levels.retain(|&level| level >= FIRST * self.length);
+        levels.sort_by(f64::total_cmp);
+        levels.dedup();
+        levels
+    }
+
+    /// The branches of `region` (local vertices) at the lowest of `levels` where it has at
+    /// least two, each squared off, and the levels above it; `None` where it has none.
+    fn branches<'l>(&self, region: &[bool], levels: &'l [f64]) -> Option<(Vec<Vec<u32>>, &'l [f64])> {
+        let significant = BRANCH * self.length;
+        levels.iter().enumerate().find_map(|(i, &level)| {
+            let pieces: Vec<Vec<u32>> = self
+                .pieces_past(level, significant)
+                .into_iter()
+                .filter(|piece| piece.iter().all(|&v| region[v as usize]))
+                .collect();
+            (pieces.len() >= 2)
+                .then(|| (pieces.into_iter().map(|piece| self.squared_off(piece)).collect(), &levels[i + 1..]))
+        })
+    }
+
+    /// The pieces of the limb past `level` (s > level) that reach at least `significant` beyond
+    /// it and have at least [`MIN_LINK`] vertices, each as local vertices, increasing.
+    fn pieces_past(&self, level: f64, significant: f64) -> Vec<Vec<u32>> {
+        let count = self.s.len();
+        let mut sets = DisjointSets::new(count);
+        let beyond = |v: u32| self.s[v as usize] > level;
+        for v in (0..count as u32).filter(|&v| beyond(v)) {
+            for &(n, _) in self.graph.neighbours(v) {
+                if beyond(n) {
+                    let (a, b) = (sets.root(v), sets.root(n));
+                    if a != b {
+                        sets.attach(b, a);
+                    }
+                }
+            }
+        }
+        let mut pieces: std::collections::BTreeMap<u32, (Vec<u32>, f64)> = Default::default();
+        for v in (0..count as u32).filter(|&v| beyond(v)) {
+            let piece = pieces.entry(sets.root(v)).or_default();
+            piece.0.push(v);
+            piece.1 = piece.1.max(self.s[v as usize]);
+        }
+        pieces
+            .into_values()
+            .filter(|(vertices, reach)| reach - level >= significant && vertices.len() >= MIN_LINK)
+            .map(|(vertices, _)| vertices)
+            .collect()
+    }
+
+    /// The branch `vertices` (local) without what lies before its rim's deepest point along it
+    /// (from the rim's centroid to its farthest vertex): a fork's level set cuts a splayed toe
+    /// obliquely, from the crotch between it and the next out to the side of the foot, and no
+    /// section normal to the toe holds what lies before the crotch. That stays in the stem.
+    /// What is kept is the piece that holds the farthest vertex; the branch stays whole where
+    /// that would keep fewer than half its vertices.
+    fn squared_off(&self, vertices: Vec<u32>) -> Vec<u32> {
+        let mut inside = vec![false; self.s.len()];
+        for &v in &vertices {
+            inside[v as usize] = true;
+        }
+        let rim: Vec<u32> = vertices
+            .iter()
+            .copied()
+            .filter(|&v| self.graph.neighbours(v).iter().any(|&(n, _)| !inside[n as usize]))
+            .collect();
+        let position = |v: u32| self.part.positions[v as usize];
+        let Some(&tip) = vertices.iter().max_by(|&&a, &&b| self.s[a as usize].total_cmp(&self.s[b as usize])) else {
+            return vertices;
+        };
+        let centroid = rim.iter().map(|&v| position(v)).sum::<DVec3>() / rim.len().max(1) as f64;
+        let Some(direction) = (position(tip) - centroid).try_normalize() else { return vertices };
+        let along = |v: u32| (position(v) - centroid).dot(direction);
+        let deepest = rim.iter().map(|&v| along(v)).fold(f64::NEG_INFINITY, f64::max);
+        let mut kept = vec![false; self.s.len()];
+        for &v in &vertices {
+            kept[v as usize] = along(v) >= deepest;
+        }
+        // The piece that holds the tip.
+        let mut piece = vec![tip];
+        let mut reached = vec![false; self.s.len()];
+        reached[tip as usize] = true;
+        let mut next = 0;
+        while next < piece.len() {
+            for &(n, _) in self.graph.neighbours(piece[next]) {
+                if kept[n as usize] && !reached[n as usize] {
+                    reached[n as usize] = true;
+                    piece.push(n);
+                }
+            }
+            next += 1;
+        }
+        if 2 * piece.len() < vertices.len() {
+            return vertices;
+        }
+        piece.sort_unstable();
+        piece
+    }
+
+    /// The mesh's vertices of the local `vertices`, increasing.
+    fn mesh_vertices(&self, vertices: impl Iterator<Item = u32>) -> Vec<u32> {
+        let mut out: Vec<u32> = vertices.map(|v| self.part.vertices[v as usize]).collect();
+        out.sort_unstable();
+        out
+    }
+
+    /// The centroid of local `vertices`.
+    fn centroid(&self, vertices: &[u32]) -> DVec3 {
+        vertices.iter().map(|&v| self.part.positions[v as usize]).sum::<DVec3>() / vertices.len().max(1) as f64
+    }
+
+    /// The best chain of the limb (see the module docs), `None` where it has none whose links
+    /// all fit.
+    pub fn chain(&self, fitter: &impl LinkFitter, target: f64) -> Option<Chain> {
+        let everything = vec![true; self.s.len()];
+        let depth = if self.s.len() > DENSE { 0 } else { DEPTH };
+        let levels = self.forks();
+        let forked = self.branches(&everything, &levels).and_then(|(branches, higher)| {
+            let excluded: Vec<bool> = self.marked(&branches);
+            let mut chain = self.stretch_chain(None, None, &excluded, target, depth, fitter)?;
+            for branch in &branches {
+                self.add_branch(&mut chain, branch, higher, target, fitter)?;
+            }
+            Some(chain)
+        });
+        // A fork whose links all fit within the target is kept without trying the limb unforked.
+        if forked.as_ref().is_some_and(|chain| chain.worst <= target) {
+            return forked;
+        }
+        let none = vec![false; self.s.len()];
+        let plain = self.stretch_chain(None, None, &none, target, depth, fitter).filter(|chain| chain.links.len() > 1);
+        [forked, plain].into_iter().flatten().min_by(|a, b| a.worst.total_cmp(&b.worst).then(a.links.len().cmp(&b.links.len())))
+    }
+
+    /// Per local vertex, whether it is in one of `sets`.
+    fn marked(&self, sets: &[Vec<u32>]) -> Vec<bool> {
+        let mut marked = vec![false; self.s.len()];
+        for &v in sets.iter().flatten() {
+            marked[v as usize] = true;
+        }
+        marked
+    }
+
+    /// The best chain of the stretch between `from` and `to` without `excluded`: its one sweep
+    /// where that fits within `target` or `depth` is 0, else the best of it and its cuts at
+    /// its widening and at its bend, each side cut again.
+    fn stretch_chain(
+        &self,
+        from: Option<&Cut>,
+        to: Option<&Cut>,
+        excluded: &[bool],
+        target: f64,
+        depth: usize,
+        fitter: &impl LinkFitter,
+    ) -> Option<Chain> {
+        let single = self.fitted_stretch(from, to, excluded, fitter);
+        if depth == 0 || single.as_ref().is_some_and(|chain| chain.worst <= target) {
+            return single;
+        }
+        let (lo, hi) = (from.map_or(0.0, |cut| cut.level), to.map_or(self.length, |cut| cut.level));
+        let mut levels: Vec<f64> = [self.bend(lo, hi), self.widening(lo, hi)].into_iter().flatten().collect();
+        levels.dedup_by(|a, b| (*a - *b).abs() < SAME_CUT * (hi - lo));
+        let mut best = single;
+        for level in levels {
+            let Some(cut) = self.cut(level) else { continue };
+            let (near, far) = crate::parallel::join(
+                || self.stretch_chain(from, Some(&cut), excluded, target, depth - 1, fitter),
+                || self.stretch_chain(Some(&cut), to, excluded, target, depth - 1, fitter),
+            );
+            let Some(joined) = near.zip(far).and_then(|(near, far)| joined(near, far)) else { continue };
+            if best.as_ref().is_none_or(|best| joined.worst < best.worst) {
+                best = Some(joined);
+            }
+            // A cut whose links all fit within the target is kept without trying the next.
+            if best.as_ref().is_some_and(|best| best.worst <= target) {
+                break;
+            }
+        }
+        best
+    }
+
+    /// The stretch between `from` and `to` without `excluded` as one link, fitted with
+    /// [`OVERLAP`] of its neighbours; `None` where it has fewer than [`MIN_LINK`] vertices or
+    /// its fit is refused.
+    fn fitted_stretch(
+        &self,
+        from: Option<&Cut>,
+        to: Option<&Cut>,
+        excluded: &[bool],
+        fitter: &impl LinkFitter,
+    ) -> Option<Chain> {
+        let vertices = self.stretch(from, to, excluded);
+        if vertices.len() < MIN_LINK {
+            return None;
+        }
+        let (wider_from, wider_to) =
+            (from.map(|cut| cut.moved(-OVERLAP * cut.radius)), to.map(|cut| cut.moved(OVERLAP * cut.radius)));
+        let fitted = self.stretch(wider_from.as_ref(), wider_to.as_ref(), excluded);
+        let attached_at = from.map_or(self.rim_center, |cut| cut.center);
+        let link = self.fitted_link(&vertices, &fitted, attached_at, None, fitter)?;
+        let worst = fitter.loose(&link.fit);
+        Some(Chain { links: vec![link], worst })
+    }
+
+    /// The link of local `vertices` fitted to local `fitted`, turned so that key 0 is the end
+    /// nearer `attached_at`.
+    fn fitted_link(
+        &self,
+        vertices: &[u32],
+        fitted: &[u32],
+        attached_at: DVec3,
+        parent: Option<usize>,
+        fitter: &impl LinkFitter,
+    ) -> Option<FittedLink> {
+        let (fit, seconds) = fitter.fit(&self.mesh_vertices(fitted.iter().copied()))?;
+        let (first, last) = (fit.keys[0].center, fit.keys[fit.keys.len() - 1].center);
+        let fit = if last.distance(attached_at) < first.distance(attached_at) { fit.reversed() } else { fit };
+        Some(FittedLink { vertices: self.mesh_vertices(vertices.iter().copied()), fit, seconds, parent })
+    }
+
+    /// Adds the branch of local `vertices` to `chain` as a child of the link whose vertices it
+    /// meets most, fitted with a ring of that link's vertices around its base (its collar);
+    /// where it fits more loosely than `target` and forks again at one of `levels` (a hand's
+    /// two fingers past the third), as its stem with its own branches where that fits better.
+    /// `None` where a fit is refused or a first key does not bind to its parent.
+    fn add_branch(
+        &self,
+        chain: &mut Chain,
+        vertices: &[u32],
+        levels: &[f64],
+        target: f64,
+        fitter: &impl LinkFitter,
+    ) -> Option<()> {
+        let inside = self.marked(&[vertices.to_vec()]);
+        let mut collar: Vec<u32> = vertices
+            .iter()
+            .flat_map(|&v| self.graph.neighbours(v).iter().map(|&(n, _)| n))
+            .filter(|&n| !inside[n as usize])
+            .collect();
+        collar.sort_unstable();
+        collar.dedup();
+        let owner = |v: u32| {
+            let v = self.part.vertices[v as usize];
+            chain.links.iter().position(|link| link.vertices.binary_search(&v).is_ok())
+        };
+        let mut votes = vec![0usize; chain.links.len()];
+        for link in collar.iter().filter_map(|&v| owner(v)) {
+            votes[link] += 1;
+        }
+        let parent = (0..votes.len()).max_by_key(|&i| (votes[i], i))?;
+        let mut fitted = vertices.to_vec();
+        fitted.extend(&collar);
+        let attached_at = self.centroid(&collar);
+        let whole = self.fitted_link(vertices, &fitted, attached_at, Some(parent), fitter)?;
+        binds(&chain.links[parent].fit, &whole.fit)?;
+        let whole_rms = fitter.loose(&whole.fit);
+        if whole_rms > target
+            && let Some((branches, higher)) = self.branches(&inside, levels)
+        {
+            let mut forked = chain.clone();
+            let excluded = self.marked(&branches);
+            let stem: Vec<u32> = vertices.iter().copied().filter(|&v| !excluded[v as usize]).collect();
+            let mut fitted = stem.clone();
+            fitted.extend(&collar);
+            let stem_link = (stem.len() >= MIN_LINK)
+                .then(|| self.fitted_link(&stem, &fitted, attached_at, Some(parent), fitter))
+                .flatten()
+                .filter(|link| binds(&forked.links[parent].fit, &link.fit).is_some());
+            if let Some(stem_link) = stem_link {
+                forked.worst = forked.worst.max(fitter.loose(&stem_link.fit));
+                forked.links.push(stem_link);
+                let added = branches.iter().all(|branch| self.add_branch(&mut forked, branch, higher, target, fitter).is_some());
+                if added && forked.worst < chain.worst.max(whole_rms) {
+                    *chain = forked;
+                    return Some(());
+                }
+            }
+        }
+        chain.worst = chain.worst.max(whole_rms);
+        chain.links.push(whole);
+        Some(())
+    }
+}
+
+/// `Some` where the first key of `child` lies on a cross-section of `parent`.
+fn binds(parent: &Fit, child: &Fit) -> Option<()> {
+    let parent = Sweep::try_new(&parent.keys, None).ok()?;
+    KeyBinding::new(&parent, &child.keys[0]).map(|_| ())
+}
+
+/// The chain `near` followed by `far`, whose first link becomes a child of `near`'s last;
+/// `None` where its first key does not bind to it.
+fn joined(mut near: Chain, far: Chain) -> Option<Chain> {
+    let offset = near.links.len();
+    let last = offset - 1;
+    binds(&near.links[last].fit, &far.links[0].fit)?;
+    near.worst = near.worst.max(far.worst);
+    near.links.extend(far.links.into_iter().map(|link| {
+        let parent = Some(link.parent.map_or(last, |p| p + offset));
+        FittedLink { parent, ..link }
+    }));
+    Some(near)
 }
 
 #[cfg(test)]
@@ -106,13 +595,24 @@ mod tests {
         (mesh, (around..=cap).collect())
     }
 
+    /// The limb's vertices before and past the cut at `level`.
+    fn cut_at(profile: &Profile, level: f64) -> (Vec<u32>, Vec<u32>) {
+        let cut = profile.cut(level).expect("a level set");
+        let none = vec![false; profile.s.len()];
+        let near = profile.stretch(None, Some(&cut), &none);
+        let far = profile.stretch(Some(&cut), None, &none);
+        (profile.mesh_vertices(near.into_iter()), profile.mesh_vertices(far.into_iter()))
+    }
+
     #[test]
-    fn a_limb_ending_in_a_widening_splits_at_its_wrist() {
+    fn a_limb_ending_in_a_widening_is_cut_at_its_wrist() {
         // Radius 1 up to z = 6, a wrist of 0.8 at z = 6.5, a hand of radius 2 from z = 7.5 to 9.
         let mut profile: Vec<(f64, f64)> = (0..=12).map(|k| (0.5 * k as f64, 1.0)).collect();
         profile.extend([(6.5, 0.8), (7.0, 1.4), (7.5, 2.0), (8.0, 2.0), (8.5, 2.0), (9.0, 1.6)]);
         let (mesh, limb) = limb_on_a_flange(&profile, 16);
-        let [near, far] = split_at_widening(&mesh, &limb).expect("a wrist");
+        let limb_profile = Profile::new(&mesh, &limb).expect("a rim");
+        let wrist = limb_profile.widening(0.0, limb_profile.length).expect("a wrist");
+        let (near, far) = cut_at(&limb_profile, wrist);
         let top = |vertices: &[u32]| vertices.iter().map(|&v| mesh.positions[v as usize].z).fold(f64::MIN, f64::max);
         let bottom = |vertices: &[u32]| vertices.iter().map(|&v| mesh.positions[v as usize].z).fold(f64::MAX, f64::min);
         eprintln!("near up to z = {}, far from z = {}", top(&near), bottom(&far));
@@ -123,12 +623,87 @@ mod tests {
 
     #[test]
     fn a_tube_without_a_widening_stays_one_limb() {
-        // A tube tapering from radius 1 to 0.6: no level grows again.
+        // A tube tapering from radius 1 to 0.6: no level grows again, nor does it bend.
         let profile: Vec<(f64, f64)> = (0..=18).map(|k| (0.5 * k as f64, 1.0 - 0.4 * k as f64 / 18.0)).collect();
         let (mesh, limb) = limb_on_a_flange(&profile, 16);
-        assert!(split_at_widening(&mesh, &limb).is_none());
-        // Nor does a part with no rim (the whole mesh, attached nowhere).
+        let limb_profile = Profile::new(&mesh, &limb).expect("a rim");
+        assert_eq!(limb_profile.widening(0.0, limb_profile.length), None);
+        assert_eq!(limb_profile.bend(0.0, limb_profile.length), None);
+        assert!(limb_profile.forks().is_empty());
+        // Nor does a part with no rim (the whole mesh, attached nowhere) have a profile.
         let all: Vec<u32> = (0..mesh.positions.len() as u32).collect();
-        assert!(split_at_widening(&mesh, &all).is_none());
+        assert!(Profile::new(&mesh, &all).is_none());
+    }
+
+    /// A tube of radius 1 bent by a right angle: up z to (0, 0, 6), around a quarter circle of
+    /// radius 2 to (2, 0, 8), then along +x to (8, 0, 8); a flange at z = 0, a cap at the end.
+    fn elbow() -> (Mesh, Vec<u32>) {
+        let mut centers: Vec<(DVec3, DVec3)> = (0..=12).map(|k| (DVec3::new(0.0, 0.0, 0.5 * k as f64), DVec3::Z)).collect();
+        for k in 1..8 {
+            let angle = std::f64::consts::FRAC_PI_2 * k as f64 / 8.0;
+            let center = DVec3::new(2.0 - 2.0 * angle.cos(), 0.0, 6.0 + 2.0 * angle.sin());
+            centers.push((center, DVec3::new(angle.sin(), 0.0, angle.cos())));
+        }
+        centers.extend((0..=12).map(|k| (DVec3::new(2.0 + 0.5 * k as f64, 0.0, 8.0), DVec3::X)));
+        limb_along(&centers, 1.0, 16)
+    }
+
+    /// Rings of `around` vertices of radius `radius` about `centers` (each with the limb's
+    /// direction there), the first ring the rim of a flange of radius 4, the last capped.
+    fn limb_along(centers: &[(DVec3, DVec3)], radius: f64, around: u32) -> (Mesh, Vec<u32>) {
+        let mut positions = Vec::new();
+        let ring = |positions: &mut Vec<DVec3>, (center, normal): (DVec3, DVec3), r: f64| {
+            let first = positions.len() as u32;
+            let x = normal.cross(DVec3::Y).normalize();
+            let y = normal.cross(x);
+            for a in 0..around {
+                let angle = std::f64::consts::TAU * a as f64 / around as f64;
+                positions.push(center + (x * angle.cos() + y * angle.sin()) * r);
+            }
+            first
+        };
+        let mut faces = Faces::new();
+        let flange = ring(&mut positions, centers[0], 4.0);
+        let rings: Vec<u32> = centers.iter().map(|&c| ring(&mut positions, c, radius)).collect();
+        let cap = positions.len() as u32;
+        let (end, direction) = centers[centers.len() - 1];
+        positions.push(end + direction * 0.2);
+        for pair in std::iter::once(flange).chain(rings.iter().copied()).collect::<Vec<_>>().windows(2) {
+            for a in 0..around {
+                let b = (a + 1) % around;
+                faces.push(&[pair[0] + a, pair[0] + b, pair[1] + b, pair[1] + a]);
+            }
+        }
+        let last = *rings.last().unwrap();
+        for a in 0..around {
+            faces.push(&[last + a, last + (a + 1) % around, cap]);
+        }
+        let mesh = Mesh::from_parts(positions, faces, Vec::new()).unwrap();
+        (mesh, (around..=cap).collect())
+    }
+
+    #[test]
+    fn a_bent_limb_is_cut_at_its_elbow_by_a_plane_across_it() {
+        let (mesh, limb) = elbow();
+        let profile = Profile::new(&mesh, &limb).expect("a rim");
+        let level = profile.bend(0.0, profile.length).expect("a bend");
+        let cut = profile.cut(level).unwrap();
+        // The elbow's middle: the center (2 − √2, 0, 6 + √2), the limb's direction (1, 0, 1)/√2.
+        let middle = DVec3::new(2.0 - 2f64.sqrt(), 0.0, 6.0 + 2f64.sqrt());
+        let direction = DVec3::new(1.0, 0.0, 1.0).normalize();
+        eprintln!("bend at s = {level:.3}: center {:.3}, normal {:.3}", cut.center, cut.normal);
+        assert!(cut.center.distance(middle) < 1.0, "cut at {} for the elbow at {middle}", cut.center);
+        assert!(cut.normal.dot(direction) > 0.95, "cut normal {} across the limb {direction}", cut.normal);
+        // The plane keeps the two sides apart: no vertex before it on the arm along x, none past
+        // it on the upright, and every vertex on the side of the plane it is assigned to.
+        let (near, far) = cut_at(&profile, level);
+        let p = |v: u32| mesh.positions[v as usize];
+        assert!(near.iter().all(|&v| p(v).x < 2.0), "a vertex of the arm before the elbow");
+        assert!(far.iter().all(|&v| p(v).z > 6.0), "a vertex of the upright past the elbow");
+        let side = |v: u32| (p(v) - cut.center).dot(cut.normal);
+        assert!(near.iter().all(|&v| side(v) < 0.0) && far.iter().all(|&v| side(v) >= 0.0));
+        // A straight stretch has no bend.
+        let upright = profile.cut(0.4 * profile.length).unwrap().level;
+        assert_eq!(profile.bend(0.0, upright), None);
     }
 }

@@ -273,12 +273,18 @@ pub fn limb(
 /// the body above; a finger beside the one holding the tip is too short to count). A piece
 /// that runs past `limit` reaches on without end. `None` where the region never forks.
 pub fn fork_level(graph: &EdgeGraph, d: &[f64], limit: f64, significant: f64) -> Option<f64> {
+    fork_levels(graph, d, limit, significant).into_iter().reduce(f64::min)
+}
+
+/// Every level of `d` at which two pieces of the region farther than it meet that each reach
+/// at least `significant` beyond it (see [`fork_level`]), highest first.
+pub fn fork_levels(graph: &EdgeGraph, d: &[f64], limit: f64, significant: f64) -> Vec<f64> {
     let mut order: Vec<u32> = (0..d.len() as u32).filter(|&v| d[v as usize] <= limit).collect();
     order.sort_by(|&a, &b| d[b as usize].total_cmp(&d[a as usize]).then(a.cmp(&b)));
     let mut sets = DisjointSets::new(d.len());
     // Per root, the farthest its piece reaches.
     let mut reach = vec![f64::NAN; d.len()];
-    let mut fork = None;
+    let mut forks = Vec::new();
     for &v in &order {
         let runs_on = graph.neighbours(v).iter().any(|&(n, _)| d[n as usize] > limit);
         reach[v as usize] = if runs_on { f64::INFINITY } else { d[v as usize] };
@@ -293,13 +299,13 @@ pub fn fork_level(graph: &EdgeGraph, d: &[f64], limit: f64, significant: f64) ->
             }
             let level = d[v as usize];
             if reach[rv as usize] - level >= significant && reach[rn as usize] - level >= significant {
-                fork = Some(level);
+                forks.push(level);
             }
             reach[rv as usize] = reach[rv as usize].max(reach[rn as usize]);
             sets.attach(rn, rv);
         }
     }
-    fork
+    forks
 }
 
 /// P(k·h) for k = 0 … `levels` − 1: the length of the level set d = k·h over the triangles

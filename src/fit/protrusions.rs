@@ -17,7 +17,9 @@
 //! 3. **Merge tree.** Vertices in decreasing g join the components of their neighbours
 //!    already added (union-find); where two meet, the one with the lower tip ends there at
 //!    level g(v), with persistence g(tip) − g(v). The farthest tip's branch never ends: it
-//!    is closed at the highest level where a kept branch ends in it.
+//!    is closed at the highest level where a kept branch ends in it, and also at the next
+//!    level down where the limb found there holds at least [`ELDEST_GROWTH`] times the
+//!    vertices (the dino's farthest toe meets its other toe first, then its leg the body).
 //! 4. **Parts.** Branches with persistence at least `min_length` are kept, the longest first,
 //!    at most `max_parts`; each part is its tip's limb ([`super::limb`]): the vertices nearer
 //!    the tip than where the level sets of distance from it open onto the body, the tip moved
@@ -155,6 +157,7 @@ fn joined_pieces(mesh: &Mesh, body: &Body, min_length: f64, sizes: &[usize]) -> 
 /// A joined piece is a limb when it is at least this many times as long as it is wide.
 const ELONGATED: f64 = 2.5;
 
+
 /// The vertices reachable from `start` through vertices that `keep` accepts, increasing.
 fn flood(graph: &EdgeGraph, start: u32, keep: impl Fn(u32) -> bool) -> Vec<u32> {
     let mut reached = vec![start];
@@ -195,28 +198,41 @@ fn component_protrusions(
         .unwrap_or(component[0]);
     let g = graph.distances(&[center]);
     let (branches, eldest) = merge_tree(graph, component, &g);
-    let mut kept: Vec<(u32, f64)> =
-        branches.iter().filter(|b| g[b.tip as usize] - b.end >= min_length).map(|b| (b.tip, b.end)).collect();
-    // The eldest branch ends at the highest level where a kept branch ends in it.
-    let eldest_end = branches
+    let kept = branches.iter().filter(|b| g[b.tip as usize] - b.end >= min_length).map(|b| (b.tip, b.end));
+    let limb_of = |(tip, end): (u32, f64)| {
+        let length = g[tip as usize] - end;
+        let (vertices, tip) = aligned_limb(mesh, graph, triangles, tip, length, component.len())?;
+        Some(Protrusion { vertices, tip, length, axis: None })
+    };
+    let mut found: Vec<Protrusion> = kept.filter_map(limb_of).collect();
+    // The eldest branch ends at the highest level where a kept branch ends in it; where it
+    // reaches on to the next such level as a limb of at least [`ELDEST_GROWTH`] times the
+    // vertices, that one too (a leg whose farthest toe meets its other toe first).
+    let mut ends: Vec<f64> = branches
         .iter()
         .filter(|b| b.into == eldest && g[b.tip as usize] - b.end >= min_length)
         .map(|b| b.end)
-        .fold(f64::NEG_INFINITY, f64::max);
-    if eldest_end.is_finite() && g[eldest as usize] - eldest_end >= min_length {
-        kept.push((eldest, eldest_end));
-    }
-    kept.into_iter()
-        .filter_map(|(tip, end)| {
-            let length = g[tip as usize] - end;
-            let (vertices, tip) = aligned_limb(mesh, graph, triangles, tip, length, component.len())?;
-            Some(Protrusion { vertices, tip, length, axis: None })
-        })
-        .filter(|p| {
-            p.vertices.len() as f64 <= MAX_SHARE * component.len() as f64 || p.vertices.len() == component.len()
-        })
-        .collect()
+        .collect();
+    ends.sort_by(|a, b| b.total_cmp(a));
+    ends.dedup();
+    let ends: Vec<f64> = ends.into_iter().filter(|&end| g[eldest as usize] - end >= min_length).take(2).collect();
+    let first = ends.first().and_then(|&end| limb_of((eldest, end)));
+    let second = ends.get(1).and_then(|&end| limb_of((eldest, end)));
+    let grown = |second: &Protrusion| {
+        first.as_ref().is_none_or(|first| second.vertices.len() as f64 >= ELDEST_GROWTH * first.vertices.len() as f64)
+    };
+    let second = second.filter(grown);
+    found.extend(first);
+    found.extend(second);
+    found.retain(|p| {
+        p.vertices.len() as f64 <= MAX_SHARE * component.len() as f64 || p.vertices.len() == component.len()
+    });
+    found
 }
+
+/// See [`component_protrusions`]: the eldest branch reaching on to the next level where a
+/// branch ends in it is a limb of its own where it holds this many times the vertices.
+pub const ELDEST_GROWTH: f64 = 2.0;
 
 /// The branches of the merge tree of superlevel sets of `g` over `component` and the
 /// eldest tip (the farthest vertex).
