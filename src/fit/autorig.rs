@@ -7,7 +7,7 @@
 //! forked at its toes or fingers, each link a branch child (§5) of the one it hangs from, so
 //! that turning the limb carries its end, with [`LINK_FALLOFF_SHARE`] of the falloff; a part
 //! that is no tube as one sweep (the dino's legs, their toes splayed) is rigged where its
-//! chain's links are each within [`RESCUED_RMS`]. The rest of the mesh (the body)
+//! chain fits much better ([`RESCUED_SHARE`]). The rest of the mesh (the body)
 //! stays unowned. The fits run on the welded mesh, so a part's sections close; a part whose
 //! fit with the radii of its sections misses its surface by more than [`MAX_RMS`] (a lid's
 //! flange, a ring) is no limb, nor is one whose fitted keys fold back (`folds`: a ball, such
@@ -262,7 +262,7 @@ fn rig_limb(mesh: &Mesh, vertices: &[u32], options: &FitOptions) -> Result<Vec<F
     }
     let chain = Profile::new(mesh, vertices).and_then(|profile| profile.chain(&fitter, TARGET));
     // A part that is no tube as one sweep becomes a limb only as a chain of tubes.
-    let most = if whole_rms <= MAX_RMS { MAX_RMS } else { RESCUED_RMS };
+    let most = if whole_rms <= MAX_RMS { MAX_RMS } else { MAX_RMS.min(RESCUED_SHARE * whole_rms) };
     if let Some(chain) = chain.filter(|chain| chain.worst <= most && chain.worst < whole_rms) {
         let mut links = chain.links;
         if options.falloff.is_none() {
@@ -388,9 +388,10 @@ pub const MIN_VERTICES: usize = 8;
 pub const LINK_FALLOFF_SHARE: f64 = 0.5;
 
 /// A part whose one sweep is no limb (looser than [`MAX_RMS`]) is rigged as a chain only where
-/// each link's sections fit within this RMS |d| (the dino's legs, their toes splayed: 19%
-/// and 15% with 101% and 134% as one sweep).
-pub const RESCUED_RMS: f64 = 0.2;
+/// each link's sections fit within this share of the one sweep's RMS |d| (and [`MAX_RMS`]): the
+/// dino's legs, their toes splayed (19% and 15% against 101% and 134%), and arms (22% against
+/// 56%) are; a teapot handle's junction (25% against 39%) is not.
+pub const RESCUED_SHARE: f64 = 0.5;
 
 /// A fit within this RMS |d| (over the mean radius), its sections' radii, is kept as one sweep
 /// without trying a chain.

@@ -246,7 +246,7 @@ impl Profile {
     }
 
     /// The levels where the limb forks (see the module docs), lowest first.
-    pub fn forks(&self) -> Vec<f64> {
+    fn forks(&self) -> Vec<f64> {
         let mut levels = fork_levels(&self.graph, &self.s, f64::INFINITY, BRANCH * self.length);
         levels.retain(|&level| level >= FIRST * self.length);
         levels.sort_by(f64::total_cmp);
@@ -254,19 +254,25 @@ impl Profile {
         levels
     }
 
-    /// The branches of `region` (local vertices) at the lowest of `levels` where it has at
-    /// least two, each squared off, and the levels above it; `None` where it has none.
-    fn branches<'l>(&self, region: &[bool], levels: &'l [f64]) -> Option<(Vec<Vec<u32>>, &'l [f64])> {
+    /// The limb's branches (see the module docs), each squared off: from the highest fork
+    /// down, the pieces past it that hold no branch already taken (a hand's two fingers that
+    /// part last, then the third where it parts from them; the palm between, which holds the
+    /// two, stays in the stem). `None` where there are fewer than two.
+    fn branches(&self) -> Option<Vec<Vec<u32>>> {
         let significant = BRANCH * self.length;
-        levels.iter().enumerate().find_map(|(i, &level)| {
-            let pieces: Vec<Vec<u32>> = self
-                .pieces_past(level, significant)
-                .into_iter()
-                .filter(|piece| piece.iter().all(|&v| region[v as usize]))
-                .collect();
-            (pieces.len() >= 2)
-                .then(|| (pieces.into_iter().map(|piece| self.squared_off(piece)).collect(), &levels[i + 1..]))
-        })
+        let mut taken = vec![false; self.s.len()];
+        let mut branches = Vec::new();
+        for level in self.forks().into_iter().rev() {
+            for piece in self.pieces_past(level, significant) {
+                if piece.iter().all(|&v| !taken[v as usize]) {
+                    for &v in &piece {
+                        taken[v as usize] = true;
+                    }
+                    branches.push(piece);
+                }
+            }
+        }
+        (branches.len() >= 2).then(|| branches.into_iter().map(|piece| self.squared_off(piece)).collect())
     }
 
     /// The pieces of the limb past `level` (s > level) that reach at least `significant` beyond
@@ -362,24 +368,22 @@ impl Profile {
     /// The best chain of the limb (see the module docs), `None` where it has none whose links
     /// all fit.
     pub fn chain(&self, fitter: &impl LinkFitter, target: f64) -> Option<Chain> {
-        let everything = vec![true; self.s.len()];
         let depth = if self.s.len() > DENSE { 0 } else { DEPTH };
-        let levels = self.forks();
-        let forked = self.branches(&everything, &levels).and_then(|(branches, higher)| {
+        let forked = self.branches().and_then(|branches| {
             let excluded: Vec<bool> = self.marked(&branches);
             let mut chain = self.stretch_chain(None, None, &excluded, target, depth, fitter)?;
             for branch in &branches {
-                self.add_branch(&mut chain, branch, higher, target, fitter)?;
+                self.add_branch(&mut chain, branch, fitter)?;
             }
             Some(chain)
         });
-        // A fork whose links all fit within the target is kept without trying the limb unforked.
-        if forked.as_ref().is_some_and(|chain| chain.worst <= target) {
+        // A limb that forks is kept forked where its branches fit and bind: unforked, its last
+        // link would hold its toes or fingers.
+        if forked.is_some() {
             return forked;
         }
         let none = vec![false; self.s.len()];
-        let plain = self.stretch_chain(None, None, &none, target, depth, fitter).filter(|chain| chain.links.len() > 1);
-        [forked, plain].into_iter().flatten().min_by(|a, b| a.worst.total_cmp(&b.worst).then(a.links.len().cmp(&b.links.len())))
+        self.stretch_chain(None, None, &none, target, depth, fitter).filter(|chain| chain.links.len() > 1)
     }
 
     /// Per local vertex, whether it is in one of `sets`.
@@ -470,17 +474,8 @@ impl Profile {
 
     /// Adds the branch of local `vertices` to `chain` as a child of the link whose vertices it
     /// meets most, fitted with a ring of that link's vertices around its base (its collar);
-    /// where it fits more loosely than `target` and forks again at one of `levels` (a hand's
-    /// two fingers past the third), as its stem with its own branches where that fits better.
-    /// `None` where a fit is refused or a first key does not bind to its parent.
-    fn add_branch(
-        &self,
-        chain: &mut Chain,
-        vertices: &[u32],
-        levels: &[f64],
-        target: f64,
-        fitter: &impl LinkFitter,
-    ) -> Option<()> {
+    /// `None` where its fit is refused or its first key does not bind to that link.
+    fn add_branch(&self, chain: &mut Chain, vertices: &[u32], fitter: &impl LinkFitter) -> Option<()> {
         let inside = self.marked(&[vertices.to_vec()]);
         let mut collar: Vec<u32> = vertices
             .iter()
@@ -500,34 +495,10 @@ impl Profile {
         let parent = (0..votes.len()).max_by_key(|&i| (votes[i], i))?;
         let mut fitted = vertices.to_vec();
         fitted.extend(&collar);
-        let attached_at = self.centroid(&collar);
-        let whole = self.fitted_link(vertices, &fitted, attached_at, Some(parent), fitter)?;
-        binds(&chain.links[parent].fit, &whole.fit)?;
-        let whole_rms = fitter.loose(&whole.fit);
-        if whole_rms > target
-            && let Some((branches, higher)) = self.branches(&inside, levels)
-        {
-            let mut forked = chain.clone();
-            let excluded = self.marked(&branches);
-            let stem: Vec<u32> = vertices.iter().copied().filter(|&v| !excluded[v as usize]).collect();
-            let mut fitted = stem.clone();
-            fitted.extend(&collar);
-            let stem_link = (stem.len() >= MIN_LINK)
-                .then(|| self.fitted_link(&stem, &fitted, attached_at, Some(parent), fitter))
-                .flatten()
-                .filter(|link| binds(&forked.links[parent].fit, &link.fit).is_some());
-            if let Some(stem_link) = stem_link {
-                forked.worst = forked.worst.max(fitter.loose(&stem_link.fit));
-                forked.links.push(stem_link);
-                let added = branches.iter().all(|branch| self.add_branch(&mut forked, branch, higher, target, fitter).is_some());
-                if added && forked.worst < chain.worst.max(whole_rms) {
-                    *chain = forked;
-                    return Some(());
-                }
-            }
-        }
-        chain.worst = chain.worst.max(whole_rms);
-        chain.links.push(whole);
+        let link = self.fitted_link(vertices, &fitted, self.centroid(&collar), Some(parent), fitter)?;
+        binds(&chain.links[parent].fit, &link.fit)?;
+        chain.worst = chain.worst.max(fitter.loose(&link.fit));
+        chain.links.push(link);
         Some(())
     }
 }

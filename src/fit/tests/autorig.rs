@@ -261,9 +261,10 @@ fn the_armadillo_gets_its_limbs_ears_and_tail() {
 /// The dino's legs, whose splayed toes no one sweep follows (101% and 134% RMS |d| with the
 /// sections' radii): each is a chain from the hip to its toes, the toes branch children of the
 /// link before them (§5), every link within the fit target, and turning the leg at its hip
-/// carries its toes. Its arms, ending in hands of three fingers, are not yet rigged.
+/// carries its toes. Its arms (56% as one sweep) are chains too, their three fingers children
+/// of the arm, mirror arms alike (the same links, the same keys).
 #[test]
-fn the_dinos_legs_are_chains_with_their_toes_as_children() {
+fn the_dinos_legs_and_arms_are_chains_their_toes_and_fingers_children() {
     let Some(path) = common::shared_mesh("dino.off") else { return };
     let mesh = Mesh::load(&path).unwrap();
     let rigged = autorig(&mesh, &AutorigOptions::default()).unwrap();
@@ -309,6 +310,25 @@ fn the_dinos_legs_are_chains_with_their_toes_as_children() {
         legs.push(limb);
     }
     assert_ne!(legs[0], legs[1], "two legs");
+    let mut arms = Vec::new();
+    for side in [-1.0, 1.0] {
+        // A fingertip: the arms reach towards −y, their hands at |x| ≈ 0.9, z ≈ −0.5.
+        let fingertip = extreme(&mesh, |p| p.x * side > 0.6 && p.z > -0.8, |p| -p.y);
+        let part = rigged.parts.iter().find(|p| p.vertices.binary_search(&fingertip).is_ok());
+        let part = part.unwrap_or_else(|| panic!("dino arm x {side}: no part holds its fingertip"));
+        let limb = part.name.split('.').next().unwrap();
+        let links: Vec<&RiggedPart> = rigged.parts.iter().filter(|p| p.name.split('.').next() == Some(limb)).collect();
+        let fingers = links.iter().filter(|p| p.parent.as_deref() == Some(limb)).count();
+        eprintln!("dino arm x {side}: {limb}, {} links, {fingers} fingers", links.len());
+        assert!(fingers >= 3, "the arm at x {side} has its three fingers as children");
+        for link in &links {
+            assert!(link.fit.sections_quality().rms_d <= sweepffd::fit::autorig::MAX_RMS, "{}", link.name);
+        }
+        let mut keys: Vec<usize> = links.iter().map(|p| p.fit.keys.len()).collect();
+        keys.sort_unstable();
+        arms.push(keys);
+    }
+    assert_eq!(arms[0], arms[1], "mirror arms get the same links and keys");
 }
 
 /// The Newell teapot (patches, unwelded seams; the spout a component of its own, the handle
