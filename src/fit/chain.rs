@@ -17,21 +17,25 @@
 //!
 //! A level set leans across a bend (its edge paths are shorter on the inside), so a cut is
 //! made near its level by the plane through the level set's centroid normal to the skeleton
-//! there ([`Cut`]). Each link's sweep is fitted to its vertices and [`OVERLAP`] of its
+//! there (`Cut`). Each link's sweep is fitted to its vertices and [`OVERLAP`] of its
 //! radius beyond each of its cuts, so that the links overlap and a child's first key lies on
 //! a cross-section of its parent (§5's branch link binds it there).
 //!
-//! - **Fork** ([`Profile::fork`]): toes past a foot, fingers past a hand. The lowest level, at
-//!   least [`FIRST`] of the limb's length from the rim, where the vertices farther than it fall
-//!   apart into pieces that each reach at least [`BRANCH`] of the limb's length beyond it
-//!   (`super::limb::fork_level`: the saddles of the merge tree of s's superlevel sets). Each
-//!   such piece, squared off ([`Profile::squared_off`]), is a branch: one sweep, a child of
-//!   the stem's link it meets, fitted with a ring of that link's vertices around its base. A
-//!   shorter piece (a dewclaw) rides in the stem, which is cut as a limb is.
+//! - **Forks** (`Profile::branches`): toes past a foot, fingers past a hand. The levels, at
+//!   least [`FIRST`] of the limb's length from the rim, where the vertices farther than them fall
+//!   apart into pieces that each reach at least [`BRANCH`] of the limb's length beyond
+//!   (`super::limb::fork_levels`: the saddles of the merge tree of s's superlevel sets). From
+//!   the highest down, each piece past a fork that holds no branch yet is a branch (a hand's two
+//!   fingers that part last, then the third where it parts from them), one that holds one
+//!   branch is that branch grown (a finger below a fork at its claw), squared off
+//!   (`Profile::squared_off`): one sweep, a child of the stem's link it meets most, fitted with
+//!   a ring of that link's vertices around its base. A shorter piece (a dewclaw) and the palm
+//!   between two forks ride in the stem, which is cut as a limb is.
 //!
-//! Of the chains found, with a fork and without, the one whose loosest link fits best is kept;
-//! a chain whose child's first key does not bind to its parent is none. A limb with no rim (a
-//! whole component) has no profile and stays one sweep.
+//! A limb that forks is kept forked where every branch fits and binds (unforked, its last link
+//! would hold its toes); otherwise its best chain unforked, the one whose loosest link fits
+//! best. A chain whose child's first key does not bind to its parent is none. A limb with no
+//! rim (a whole component) has no profile and stays one sweep.
 
 use std::f64::consts::TAU;
 
@@ -59,7 +63,7 @@ pub const BEND_DEGREES: f64 = 30.0;
 /// …between the directions this many levels before and after it.
 pub const BEND_SPAN: usize = 3;
 /// A branch past a fork reaches at least this fraction of the limb's length beyond it.
-pub const BRANCH: f64 = 0.1;
+pub const BRANCH: f64 = 0.05;
 /// A bend and a widening nearer each other than this fraction of their stretch are one cut.
 pub const SAME_CUT: f64 = 0.1;
 /// A link has at least this many vertices, as a limb has.
@@ -255,32 +259,42 @@ impl Profile {
     }
 
     /// The limb's branches (see the module docs), each squared off: from the highest fork
-    /// down, the pieces past it that hold no branch already taken (a hand's two fingers that
-    /// part last, then the third where it parts from them; the palm between, which holds the
-    /// two, stays in the stem). `None` where there are fewer than two.
+    /// down, each piece past it that holds no branch yet is a branch, and one that holds one
+    /// branch is that branch, grown (a finger below a fork at its claw); one that holds more
+    /// (the palm under two fingers) stays in the stem. `None` where there are fewer than two.
     fn branches(&self) -> Option<Vec<Vec<u32>>> {
         let significant = BRANCH * self.length;
-        let mut taken = vec![false; self.s.len()];
-        let mut branches = Vec::new();
+        let mut owner = vec![usize::MAX; self.s.len()];
+        let mut branches: Vec<Vec<u32>> = Vec::new();
         for level in self.forks().into_iter().rev() {
             for piece in self.pieces_past(level, significant) {
-                if piece.iter().all(|&v| !taken[v as usize]) {
-                    for &v in &piece {
-                        taken[v as usize] = true;
+                let mut holds: Vec<usize> = piece.iter().map(|&v| owner[v as usize]).filter(|&b| b != usize::MAX).collect();
+                holds.sort_unstable();
+                holds.dedup();
+                let branch = match holds[..] {
+                    [] => {
+                        branches.push(Vec::new());
+                        branches.len() - 1
                     }
-                    branches.push(piece);
+                    [one] => one,
+                    _ => continue,
+                };
+                for &v in &piece {
+                    owner[v as usize] = branch;
                 }
+                branches[branch] = piece;
             }
         }
         (branches.len() >= 2).then(|| branches.into_iter().map(|piece| self.squared_off(piece)).collect())
     }
 
-    /// The pieces of the limb past `level` (s > level) that reach at least `significant` beyond
-    /// it and have at least [`MIN_LINK`] vertices, each as local vertices, increasing.
+    /// The pieces of the limb past `level` (s > level, finite: a stray piece the distance does
+    /// not reach is none) that reach at least `significant` beyond it and have at least
+    /// [`MIN_LINK`] vertices, each as local vertices, increasing.
     fn pieces_past(&self, level: f64, significant: f64) -> Vec<Vec<u32>> {
         let count = self.s.len();
         let mut sets = DisjointSets::new(count);
-        let beyond = |v: u32| self.s[v as usize] > level;
+        let beyond = |v: u32| self.s[v as usize] > level && self.s[v as usize].is_finite();
         for v in (0..count as u32).filter(|&v| beyond(v)) {
             for &(n, _) in self.graph.neighbours(v) {
                 if beyond(n) {
