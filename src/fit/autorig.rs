@@ -245,8 +245,8 @@ impl Selection {
     }
 }
 
-/// Fits the limb made of `vertices` (increasing): one sweep where it fits within [`TARGET`],
-/// otherwise its best chain (`super::chain`) where each link fits within [`MAX_RMS`] and the
+/// Fits the limb made of `vertices` (increasing): one sweep where its fitted radii miss it by
+/// at most [`TARGET`] and its sections' radii by at most [`MAX_RMS`], otherwise its best chain (`super::chain`) where each link fits within [`MAX_RMS`] and the
 /// loosest better than the one sweep, otherwise the one sweep within [`MAX_RMS`]; a sweep whose
 /// keys fold back ([`folds`]) fits no link. `Err` with why the one sweep is no limb,
 /// `Err(None)` where the fit refuses the part.
@@ -393,8 +393,9 @@ pub const LINK_FALLOFF_SHARE: f64 = 0.5;
 /// 56%) are; a teapot handle's junction (25% against 39%) is not.
 pub const RESCUED_SHARE: f64 = 0.5;
 
-/// A fit within this RMS |d| (over the mean radius), its sections' radii, is kept as one sweep
-/// without trying a chain.
+/// A limb's one sweep within this RMS |d| (over the mean radius) with its fitted radii, and
+/// within [`MAX_RMS`] with its sections', is kept without trying a chain; a stretch of a chain
+/// within it with its sections' radii is not cut further.
 pub const TARGET: f64 = 0.10;
 
 /// A part found whose fit is looser than [`MAX_RMS`] (a flange, a ring or a flat panel), or

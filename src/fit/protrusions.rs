@@ -157,7 +157,6 @@ fn joined_pieces(mesh: &Mesh, body: &Body, min_length: f64, sizes: &[usize]) -> 
 /// A joined piece is a limb when it is at least this many times as long as it is wide.
 const ELONGATED: f64 = 2.5;
 
-
 /// The vertices reachable from `start` through vertices that `keep` accepts, increasing.
 fn flood(graph: &EdgeGraph, start: u32, keep: impl Fn(u32) -> bool) -> Vec<u32> {
     let mut reached = vec![start];
