@@ -44,8 +44,9 @@ use glam::DVec3;
 use super::Fit;
 use super::disjoint_sets::DisjointSets;
 use super::geodesic::EdgeGraph;
-use super::limb::{fork_levels, perimeters};
+use super::limb::{fork_levels, level_segment, perimeters};
 use super::part::Part;
+use super::protrusions::flood;
 use crate::mesh::Mesh;
 use crate::rig::KeyBinding;
 use crate::sweep::Sweep;
@@ -201,19 +202,11 @@ impl Profile {
         let (mut sum, mut perimeter) = (DVec3::ZERO, 0.0);
         for t in &self.part.triangles {
             let g = t.map(|v| self.s[v as usize]);
-            let mut ends = [DVec3::ZERO; 2];
-            let mut found = 0;
-            for e in 0..3 {
-                let (a, b) = (e, (e + 1) % 3);
-                if g[a].is_finite() && g[b].is_finite() && (g[a] < level) != (g[b] < level) && found < 2 {
-                    let (pa, pb) = (self.part.positions[t[a] as usize], self.part.positions[t[b] as usize]);
-                    ends[found] = pa + (pb - pa) * ((level - g[a]) / (g[b] - g[a]));
-                    found += 1;
-                }
-            }
-            if found == 2 {
-                let l = ends[0].distance(ends[1]);
-                sum += (ends[0] + ends[1]) * 0.5 * l;
+            if g.iter().all(|d| d.is_finite())
+                && let Some([a, b]) = level_segment(&self.part.positions, *t, g, level)
+            {
+                let l = a.distance(b);
+                sum += (a + b) * 0.5 * l;
                 perimeter += l;
             }
         }
@@ -325,10 +318,7 @@ impl Profile {
     /// What is kept is the piece that holds the farthest vertex; the branch stays whole where
     /// that would keep fewer than half its vertices.
     fn squared_off(&self, vertices: Vec<u32>) -> Vec<u32> {
-        let mut inside = vec![false; self.s.len()];
-        for &v in &vertices {
-            inside[v as usize] = true;
-        }
+        let inside = self.marked(std::slice::from_ref(&vertices));
         let rim: Vec<u32> = vertices
             .iter()
             .copied()
@@ -347,23 +337,10 @@ impl Profile {
             kept[v as usize] = along(v) >= deepest;
         }
         // The piece that holds the tip.
-        let mut piece = vec![tip];
-        let mut reached = vec![false; self.s.len()];
-        reached[tip as usize] = true;
-        let mut next = 0;
-        while next < piece.len() {
-            for &(n, _) in self.graph.neighbours(piece[next]) {
-                if kept[n as usize] && !reached[n as usize] {
-                    reached[n as usize] = true;
-                    piece.push(n);
-                }
-            }
-            next += 1;
-        }
+        let piece = flood(&self.graph, tip, |v| kept[v as usize]);
         if 2 * piece.len() < vertices.len() {
             return vertices;
         }
-        piece.sort_unstable();
         piece
     }
 

@@ -308,6 +308,23 @@ pub fn fork_levels(graph: &EdgeGraph, d: &[f64], limit: f64, significant: f64) -
     forks
 }
 
+/// Where the level set d = `level` crosses triangle `t`, whose corners have the finite
+/// distances `g`: the segment between the points where it cuts two of its edges (d linear on
+/// each), `None` where it does not cut two.
+pub fn level_segment(positions: &[DVec3], t: [u32; 3], g: [f64; 3], level: f64) -> Option<[DVec3; 2]> {
+    let mut ends = [DVec3::ZERO; 2];
+    let mut found = 0;
+    for e in 0..3 {
+        let (a, b) = (e, (e + 1) % 3);
+        if (g[a] < level) != (g[b] < level) && found < 2 {
+            let (pa, pb) = (positions[t[a] as usize], positions[t[b] as usize]);
+            ends[found] = pa + (pb - pa) * ((level - g[a]) / (g[b] - g[a]));
+            found += 1;
+        }
+    }
+    (found == 2).then_some(ends)
+}
+
 /// P(k·h) for k = 0 … `levels` − 1: the length of the level set d = k·h over the triangles
 /// whose three distances are at most `limit`.
 pub fn perimeters(positions: &[DVec3], triangles: &[[u32; 3]], d: &[f64], h: f64, levels: usize, limit: f64) -> Vec<f64> {
@@ -321,19 +338,8 @@ pub fn perimeters(positions: &[DVec3], triangles: &[[u32; 3]], d: &[f64], h: f64
         let first = (lo / h).floor() as usize + 1;
         let last = ((hi / h).ceil() as usize).min(levels);
         for (k, sum) in perimeter.iter_mut().enumerate().take(last).skip(first) {
-            let level = k as f64 * h;
-            let mut ends = [DVec3::ZERO; 2];
-            let mut found = 0;
-            for e in 0..3 {
-                let (a, b) = (e, (e + 1) % 3);
-                if (g[a] < level) != (g[b] < level) && found < 2 {
-                    let (pa, pb) = (positions[t[a] as usize], positions[t[b] as usize]);
-                    ends[found] = pa + (pb - pa) * ((level - g[a]) / (g[b] - g[a]));
-                    found += 1;
-                }
-            }
-            if found == 2 {
-                *sum += ends[0].distance(ends[1]);
+            if let Some([a, b]) = level_segment(positions, *t, g, k as f64 * h) {
+                *sum += a.distance(b);
             }
         }
     }

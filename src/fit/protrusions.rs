@@ -158,7 +158,7 @@ fn joined_pieces(mesh: &Mesh, body: &Body, min_length: f64, sizes: &[usize]) -> 
 const ELONGATED: f64 = 2.5;
 
 /// The vertices reachable from `start` through vertices that `keep` accepts, increasing.
-fn flood(graph: &EdgeGraph, start: u32, keep: impl Fn(u32) -> bool) -> Vec<u32> {
+pub(super) fn flood(graph: &EdgeGraph, start: u32, keep: impl Fn(u32) -> bool) -> Vec<u32> {
     let mut reached = vec![start];
     let mut visited = std::collections::HashSet::from([start]);
     let mut i = 0;

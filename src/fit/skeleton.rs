@@ -45,6 +45,7 @@ use glam::{DMat3, DVec2, DVec3};
 use super::axis::Polyline;
 use super::disjoint_sets::DisjointSets;
 use super::geodesic::EdgeGraph;
+use super::limb::level_segment;
 use super::part::Part;
 use super::section::{Plane, around, center, cut};
 
@@ -235,20 +236,9 @@ fn level_centroids(part: &Part, distance: &[f64], g_max: f64) -> Vec<Option<DVec
         let first = ((lo / step).floor() as usize + 1).max(1);
         let last = ((hi / step).ceil() as usize).min(LEVELS);
         for (k, sum) in sums.iter_mut().enumerate().take(last).skip(first) {
-            let level = k as f64 * step;
-            let mut ends = [DVec3::ZERO; 2];
-            let mut found = 0;
-            for e in 0..3 {
-                let (a, b) = (e, (e + 1) % 3);
-                if (g[a] < level) != (g[b] < level) && found < 2 {
-                    let (pa, pb) = (part.positions[t[a] as usize], part.positions[t[b] as usize]);
-                    ends[found] = pa + (pb - pa) * ((level - g[a]) / (g[b] - g[a]));
-                    found += 1;
-                }
-            }
-            if found == 2 {
-                let l = ends[0].distance(ends[1]);
-                sum.0 += (ends[0] + ends[1]) * 0.5 * l;
+            if let Some([a, b]) = level_segment(&part.positions, *t, g, k as f64 * step) {
+                let l = a.distance(b);
+                sum.0 += (a + b) * 0.5 * l;
                 sum.1 += l;
             }
         }
