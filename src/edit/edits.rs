@@ -4,7 +4,8 @@
 //! [{"op": "move_key", "sweep": "neck", "key": 2, "translate": [0, 0.5, 0], "rotate": [0, 0, 0.2588, 0.9659], "mode": "local"},
 //!  {"op": "scale_radii", "sweep": "neck", "key": 1, "factor": 1.5, "theta_range": [0, 3.1416]},
 //!  {"op": "drag_point", "sweep": "neck", "theta": 1.57, "t": 0.8, "to": [0.2, 1.0, 3.1], "mode": "both", "keys": 2},
-//!  {"op": "move_section", "sweep": "neck", "t": 0.5, "translate": [0.1, 0, 0], "rotate": [0, 0, 0, 1]}]
+//!  {"op": "move_section", "sweep": "neck", "t": 0.5, "translate": [0.1, 0, 0], "rotate": [0, 0, 0, 1]},
+//!  {"op": "bend", "sweep": "neck", "t": 0.5, "span": 0.2, "axis": [1, 0, 0], "angle_deg": 60}]
 //! ```
 
 #[cfg(feature = "json")]
@@ -64,6 +65,11 @@ pub enum Edit {
         #[cfg_attr(feature = "json", serde(default = "identity"))]
         rotate: [f64; 4],
     },
+    /// Turns the sweep by `angle_deg` degrees about `axis` at t, spread smoothly over the span
+    /// of width `span` in t centred on t ([`super::bend`]). The axis is in the frame of the
+    /// cross-section at t: x and y in its plane, z along the spine, as a `move_key` rotation in
+    /// `local` mode.
+    Bend { sweep: String, t: f64, span: f64, axis: [f64; 3], angle_deg: f64 },
 }
 
 #[cfg(feature = "json")]
@@ -83,7 +89,8 @@ impl Edit {
             Edit::MoveKey { sweep, .. }
             | Edit::ScaleRadii { sweep, .. }
             | Edit::DragPoint { sweep, .. }
-            | Edit::MoveSection { sweep, .. } => sweep,
+            | Edit::MoveSection { sweep, .. }
+            | Edit::Bend { sweep, .. } => sweep,
         }
     }
 
@@ -94,6 +101,7 @@ impl Edit {
             Edit::ScaleRadii { .. } => "scale_radii",
             Edit::DragPoint { .. } => "drag_point",
             Edit::MoveSection { .. } => "move_section",
+            Edit::Bend { .. } => "bend",
         }
     }
 }
@@ -141,6 +149,12 @@ impl Edit {
             Edit::DragPoint { theta, t, d, h, to, .. } => {
                 let mut numbers = vec![("theta".into(), *theta), ("t".into(), *t), ("d".into(), *d), ("h".into(), *h)];
                 numbers.extend(named("to", to));
+                numbers
+            }
+            Edit::Bend { t, span, axis, angle_deg, .. } => {
+                let mut numbers = vec![("t".into(), *t), ("span".into(), *span)];
+                numbers.extend(named("axis", axis));
+                numbers.push(("angle_deg".into(), *angle_deg));
                 numbers
             }
         }

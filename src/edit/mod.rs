@@ -6,6 +6,7 @@
 //! Data flow: **rig** (edited into a pose here) → sweep → sweep coefficients → bind → deform →
 //! normals → output.
 
+mod bend;
 mod controls;
 mod drag;
 mod edits;
@@ -19,6 +20,7 @@ mod section;
 mod shapes;
 mod volume;
 
+pub use bend::{TAPER as BEND_TAPER, bend, bend_share};
 pub use controls::Controls;
 pub use drag::{DEFAULT_DRAG_KEYS, DragMode, drag_point};
 pub use edits::Edit;

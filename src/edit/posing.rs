@@ -4,6 +4,7 @@
 use glam::{DQuat, DVec3};
 
 use super::EditError;
+use super::bend::bend;
 use super::controls::Controls;
 use super::drag::drag_point_kept;
 use super::edits::Edit;
@@ -207,6 +208,21 @@ fn apply_edit(
                 rotation: (rotation(rotate)? * sweep.orientation(t)).normalize(),
             };
             move_sections_kept(keys, knots, &[target], controls, shape)
+        }
+        Edit::Bend { t, span, axis, angle_deg, .. } => {
+            let t = parameter(*t)?;
+            if !(span.is_finite() && *span > 0.0) {
+                return Err(EditError::Invalid(format!("\"span\" must be a positive width in t, found {span}")));
+            }
+            if !angle_deg.is_finite() {
+                return Err(EditError::Invalid(format!("\"angle_deg\" must be a finite angle, found {angle_deg}")));
+            }
+            let axis = vector(axis, "axis")?
+                .try_normalize()
+                .ok_or_else(|| EditError::Invalid("\"axis\" must be a non-zero direction".into()))?;
+            let turned_axis = shape.sweep(keys, knots)?.orientation(t) * axis;
+            bend(keys, knots, t, *span, turned_axis, angle_deg.to_radians());
+            Ok(0)
         }
     }
 }

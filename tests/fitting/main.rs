@@ -5,4 +5,5 @@
 mod common;
 
 mod autorig_pipeline;
+mod bend_limbs;
 mod fit;

@@ -92,6 +92,32 @@ fn pose_writes_a_pose_that_deform_takes() {
     assert!(dir.path().join("out.obj").exists());
 }
 
+/// A `bend` in an edits file: the tube (5 keys, along z) turned 90° about its cross-section's x
+/// axis at its middle over half its length: its last key has turned by exactly 90° about x
+/// (the rest frames are the identity), its first has not moved, and the keys between share the
+/// turn.
+#[test]
+fn pose_applies_a_bend() {
+    let dir = tempfile::tempdir().unwrap();
+    scene(dir.path());
+    let edits = r#"[{"op": "bend", "sweep": "tube", "t": 0.5, "span": 0.5, "axis": [1, 0, 0], "angle_deg": 90}]"#;
+    let output = pose(dir.path(), "rig.json", edits, &[]);
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let rig = Rig::load(&dir.path().join("rig.json")).unwrap();
+    let document = RigDocument::parse(&fs::read_to_string(dir.path().join("pose.json")).unwrap()).unwrap();
+    let posed = rig.pose_from_document(&document, None).unwrap();
+    let (rest, posed) = (&rig.rest()[0], &posed[0]);
+    let knots = rest.knots();
+    assert_eq!(posed.center(0.0), rest.center(0.0));
+    assert!(posed.orientation(0.0).angle_between(rest.orientation(0.0)) < 1e-12);
+    let turned = posed.orientation(1.0) * rest.orientation(1.0).inverse();
+    assert!(turned.angle_between(DQuat::from_rotation_x(std::f64::consts::FRAC_PI_2)) < 1e-9, "{turned}");
+    let steps: Vec<f64> = (1..5)
+        .map(|i| posed.orientation(knots[i]).angle_between(posed.orientation(knots[i - 1])).to_degrees())
+        .collect();
+    assert!(steps.iter().all(|&s| s < 60.0), "no key takes most of the turn: {steps:?}");
+}
+
 #[test]
 fn pose_with_the_total_rule_keeps_the_volume() {
     let dir = tempfile::tempdir().unwrap();
@@ -168,6 +194,25 @@ fn malformed_edits_are_errors() {
         "rig.json",
         r#"[{"op": "move_section", "sweep": "tube", "t": 1.5}]"#,
         "error: edits.json: edit 0 (move_section on \"tube\"): \"t\" must lie in [0, 1], found 1.5",
+    );
+    let bend = |fields: &str| format!(r#"[{{"op": "bend", "sweep": "tube", {fields}}}]"#);
+    for (fields, expected) in [
+        (
+            r#""t": 0.5, "span": 0, "axis": [1, 0, 0], "angle_deg": 60"#,
+            "\"span\" must be a positive width in t, found 0",
+        ),
+        (r#""t": 1.2, "span": 0.2, "axis": [1, 0, 0], "angle_deg": 60"#, "\"t\" must lie in [0, 1], found 1.2"),
+        (r#""t": 0.5, "span": 0.2, "axis": [0, 0, 0], "angle_deg": 60"#, "\"axis\" must be a non-zero direction"),
+        (r#""t": 0.5, "span": 0.2, "axis": [1, 0, 0], "angle_deg": 1e400"#, "not a valid edits file"),
+    ] {
+        let on = if expected.starts_with("not") { String::new() } else { " edit 0 (bend on \"tube\"):".into() };
+        fails(dir.path(), "rig.json", &bend(fields), &format!("error: edits.json:{on} {expected}"));
+    }
+    fails(
+        dir.path(),
+        "rig.json",
+        r#"[{"op": "bend", "sweep": "leg", "t": 0.5, "span": 0.2, "axis": [1, 0, 0], "angle_deg": 60}]"#,
+        "error: edits.json: edit 0 (bend on \"leg\"): the rig has no sweep \"leg\"",
     );
 }
 

@@ -1,0 +1,172 @@
+//! The `bend` edit on limbs that `autorig` fits (the bunny's ears, spot's legs, the
+//! armadillo's limbs): a 60° bend spread over a fifth of the limb, beside the same turn given
+//! to the one key nearest the bend, measured by the edge lengths over the whole mesh (the CPU
+//! reference; `tests/gpu` checks the GPU's deformation of the same bends).
+//!
+//! A bend whose cross-sections stay rigid and normal to the spine stretches its outer side by
+//! 1 + w·κ and shortens its inner side by 1 − w·κ, where w is the surface's distance from the
+//! bend's axis in the bend's plane and κ the spine's curvature: turned by α within a span s of
+//! a limb of length L, κ is at least α / (s·L), and [`BEND_TAPER`]'s window makes its peak
+//! 1 / (1 − taper) times that. That is the least stretch any bend within the span can have, and
+//! the bend is held to it (within [`SLACK`] for the vertices' offsets from the fitted surface);
+//! a key turned alone bends over its two knot intervals and misses it.
+
+use crate::common;
+
+use glam::{DQuat, DVec3};
+use sweepffd::deform::deform_vertices;
+use sweepffd::edit::{BEND_TAPER, Edit, KeyMode, Posing};
+use sweepffd::fit::autorig::{AutorigOptions, autorig};
+use sweepffd::mesh::Mesh;
+use sweepffd::rig::Rig;
+use sweepffd::sweep::Key;
+
+use common::bends::edges;
+
+/// The bend: 60° at t = 0.5 over a fifth of the limb.
+const ANGLE_DEGREES: f64 = 60.0;
+const SPAN: f64 = 0.2;
+/// The measured stretch may exceed the bound of the fitted surface by this factor: a vertex
+/// lies off the surface by its d.
+const SLACK: f64 = 1.1;
+
+/// The largest and the smallest deformed / rest edge length over the whole mesh.
+fn stretch_range(mesh: &Mesh, posed: &[DVec3]) -> (f64, f64) {
+    let rest = &mesh.positions;
+    edges(mesh)
+        .into_iter()
+        .filter(|&(a, b)| rest[a as usize] != rest[b as usize])
+        .map(|(a, b)| posed[a as usize].distance(posed[b as usize]) / rest[a as usize].distance(rest[b as usize]))
+        .fold((0.0, f64::INFINITY), |(hi, lo), s| (hi.max(s), lo.min(s)))
+}
+
+/// The axis to bend the limb about, in the frame of the cross-section at t = 0.5, and the
+/// limb's reach w across it: the direction φ in the sections' plane across which the limb is
+/// thinnest over the span (the least, over φ, of the largest distance r(θ, t)·|sin(θ − φ)| of
+/// its surface from the line through the center along φ), as a knee bends across a leg's
+/// thin side.
+fn thinnest_axis(rig: &Rig, sweep: usize) -> (DVec3, f64) {
+    let rest = &rig.rest()[sweep];
+    let reach = |phi: f64| {
+        let mut largest: f64 = 0.0;
+        for i in 0..=20 {
+            let t = 0.5 + SPAN * (i as f64 / 20.0 - 0.5);
+            for j in 0..64 {
+                let theta = std::f64::consts::TAU * j as f64 / 64.0;
+                largest = largest.max(rest.radius(theta, t) * (theta - phi).sin().abs());
+            }
+        }
+        largest
+    };
+    let phi = (0..180)
+        .map(|k| std::f64::consts::PI * k as f64 / 180.0)
+        .min_by(|&a, &b| reach(a).total_cmp(&reach(b)))
+        .unwrap();
+    (DVec3::new(phi.cos(), phi.sin(), 0.0), reach(phi))
+}
+
+/// One limb bent both ways: the stretch ranges (largest, smallest) of the bend and of the
+/// key turned alone, the least largest stretch of any bend within the span, and the keys.
+struct Bent {
+    limb: String,
+    bend: (f64, f64),
+    one_key: (f64, f64),
+    least: f64,
+    keys: usize,
+}
+
+/// Bends each of `limbs` (part names) of `mesh`'s autorig by [`ANGLE_DEGREES`] over
+/// [`SPAN`] at t = 0.5, and apart turns the key nearest t = 0.5 by as much.
+fn bend_limbs(name: &str, mesh: &Mesh, limbs: &[&str]) -> Vec<Bent> {
+    let rigged = autorig(mesh, &AutorigOptions::default()).unwrap();
+    let rig = Rig::from_document(&rigged.document(), None).unwrap();
+    let owners = rig.owners(mesh, name).unwrap();
+    let bindings = rig.bind_mesh(mesh, &owners, &|_| {});
+    let stretch_of = |keys: &[Vec<Key>]| {
+        let posed = rig.pose(keys).unwrap();
+        let mut out = vec![DVec3::ZERO; mesh.positions.len()];
+        deform_vertices(rig.rest(), &posed, &bindings, &mesh.positions, &mut out);
+        assert!(out.iter().all(|p| p.is_finite()), "{name}: a non-finite vertex");
+        stretch_range(mesh, &out)
+    };
+    limbs
+        .iter()
+        .map(|&limb| {
+            let sweep = rig.sweep_index(limb).unwrap_or_else(|| panic!("{name}: no part {limb}"));
+            let (axis, reach) = thinnest_axis(&rig, sweep);
+            let mut bent = Posing::new(&rig);
+            let bend = Edit::Bend { sweep: limb.into(), t: 0.5, span: SPAN, axis: axis.to_array(), angle_deg: ANGLE_DEGREES };
+            bent.apply(&bend).unwrap();
+            let knots = rig.rest()[sweep].knots();
+            let key = (0..knots.len()).min_by(|&a, &b| (knots[a] - 0.5).abs().total_cmp(&(knots[b] - 0.5).abs())).unwrap();
+            let world = rig.rest()[sweep].orientation(0.5) * axis;
+            let mut turned = Posing::new(&rig);
+            turned
+                .apply(&Edit::MoveKey {
+                    sweep: limb.into(),
+                    key,
+                    translate: [0.0; 3],
+                    rotate: DQuat::from_axis_angle(world, ANGLE_DEGREES.to_radians()).to_array(),
+                    mode: KeyMode::Local,
+                })
+                .unwrap();
+            let keys = &rig.sweeps()[sweep].keys;
+            let length: f64 = keys.windows(2).map(|w| w[0].center.distance(w[1].center)).sum();
+            let curvature = ANGLE_DEGREES.to_radians() / (SPAN * length) / (1.0 - BEND_TAPER);
+            let bent = Bent {
+                limb: limb.into(),
+                bend: stretch_of(bent.keys()),
+                one_key: stretch_of(turned.keys()),
+                least: 1.0 + reach * curvature,
+                keys: keys.len(),
+            };
+            eprintln!(
+                "{name} {limb} ({} keys, w/L {:.3}): 60° bend over a fifth: edges {:.3}–{:.3} of rest (1 + w·κ = {:.3}); key \
+                 {key} turned 60° alone: {:.3}–{:.3}",
+                bent.keys,
+                reach / length,
+                bent.bend.1,
+                bent.bend.0,
+                bent.least,
+                bent.one_key.1,
+                bent.one_key.0
+            );
+            bent
+        })
+        .collect()
+}
+
+/// Each limb's bend stretches its mesh no more than a bend within its span must (within
+/// [`SLACK`]), and less than the key turned alone; on the limbs of at least 15 keys thin enough
+/// not to fold (w·κ < 1: not spot's legs), the key turned alone stretches past that bound (the
+/// crease the bend removes).
+#[test]
+fn a_bend_over_a_fifth_of_a_limb_stretches_it_no_more_than_the_bend_must() {
+    for (file, limbs) in [
+        ("bunny_stanford_zipper.obj", &["limb0", "limb1"][..]),
+        ("spot_triangulated.obj", &["limb0", "limb1", "limb2", "limb3"][..]),
+        ("armadillo_50k.obj", &["limb0", "limb1", "limb2", "limb3", "limb4", "limb5"][..]),
+    ] {
+        let Some(path) = common::shared_mesh(file) else { return };
+        let mesh = Mesh::load(&path).unwrap();
+        for bent in bend_limbs(file, &mesh, limbs) {
+            let limb = &bent.limb;
+            assert!(
+                bent.bend.0 <= SLACK * bent.least,
+                "{file} {limb}: stretch {:.3}, bound {:.3}",
+                bent.bend.0,
+                bent.least
+            );
+            assert!(
+                bent.bend.0 < bent.one_key.0,
+                "{file} {limb}: bend {:.3}, one key {:.3}",
+                bent.bend.0,
+                bent.one_key.0
+            );
+            // Where w·κ < 1 (a bend that does not fold its inside over) on a dense fit.
+            if bent.keys >= 15 && bent.least < 2.0 {
+                assert!(bent.one_key.0 > SLACK * bent.least, "{file} {limb}: the key turned alone meets the bound");
+            }
+        }
+    }
+}
