@@ -10,6 +10,7 @@ use super::drag::drag_point_kept;
 use super::edits::Edit;
 use super::hierarchy::propagate_kept;
 use super::journal::Journal;
+use super::keep_length::keep_chord_lengths;
 use super::keys::{move_key, scale_radii};
 use super::section::{SectionTarget, move_sections_kept};
 use super::shapes::{Shape, Shapes};
@@ -28,6 +29,10 @@ pub struct Posing<'a> {
     pub hierarchy: bool,
     /// The volume rule applied after each edit.
     pub volume: VolumeRule,
+    /// Whether each edit keeps its sweep's length: the chords between its keys' centers are
+    /// put back to the rest's after the edit ([`super::keep_chord_lengths`]), before the
+    /// hierarchy and the volume rule. Off by default: an edit stretches the spine.
+    pub keep_length: bool,
     /// Iteration limits and tolerances.
     pub controls: Controls,
     mesh: Option<BoundMesh<'a>>,
@@ -49,6 +54,7 @@ impl<'a> Posing<'a> {
             keys,
             hierarchy: true,
             volume: VolumeRule::None,
+            keep_length: false,
             controls: Controls::default(),
             mesh: None,
             shapes,
@@ -97,6 +103,11 @@ impl<'a> Posing<'a> {
             .collect()
     }
 
+    /// The folds of the current pose that the rest rig does not have ([`super::pose_warnings`]).
+    pub fn warnings(&self) -> Result<Vec<super::PoseWarning>, EditError> {
+        Ok(super::pose_warnings(self.rig, &self.sweeps()?))
+    }
+
     /// Applies `edit`, then the hierarchy and the volume rule. Returns the rounds the edit's own
     /// iteration took (0 for the direct edits). On error nothing changes.
     pub fn apply(&mut self, edit: &Edit) -> Result<usize, EditError> {
@@ -134,6 +145,9 @@ impl<'a> Posing<'a> {
         }
         let knots = rig.rest()[sweep].knots();
         let rounds = apply_edit(edit, &mut keys[sweep], knots, &self.controls, &mut shapes[sweep])?;
+        if self.keep_length {
+            keep_chord_lengths(&mut keys[sweep], &rig.sweeps()[sweep].keys);
+        }
         shapes[sweep].sweep(&keys[sweep], knots)?;
         if self.hierarchy {
             propagate_kept(rig, keys, sweep, &self.controls, shapes)?;

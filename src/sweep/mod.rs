@@ -13,6 +13,7 @@
 //! radii (`radius`). Its volume is Eq. 1 ([`Sweep::volume`]).
 
 mod error;
+mod folds;
 mod key;
 
 internal_mod! {
@@ -35,6 +36,7 @@ use std::sync::Arc;
 use glam::{DQuat, DVec3};
 
 pub use error::SweepError;
+pub use folds::{FLIP_DEGREES, Fold, FoldKind};
 pub use key::Key;
 pub(crate) use rebuild::{RebuildScratch, SweepSystems};
 

@@ -8,4 +8,6 @@ mod common;
 mod bunny_ears_scene;
 mod edit_controls;
 mod hierarchy;
+mod keep_length;
 mod pose_into;
+mod pose_warnings;

@@ -54,6 +54,10 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
         loaded => loaded?,
     };
     let posed = inputs.rig.load_pose(&args.pose.pose)?;
+    // Folds are warnings: the mesh is still deformed and written.
+    for warning in sweepffd::edit::pose_warnings(&inputs.rig, &posed) {
+        eprintln!("warning: {}: {warning}", args.pose.pose.display());
+    }
     let saved = match &args.bindings {
         Some(path) => {
             let file = BindingsFile::load(path)?;

@@ -29,6 +29,10 @@ pub struct Args {
     /// The closed mesh whose enclosed volume `--volume mesh` keeps.
     #[arg(long)]
     pub mesh: Option<PathBuf>,
+    /// Keep each edited sweep's length: after every edit its keys are moved along its new spine
+    /// so that the chords between them have their rest lengths (default: edits stretch).
+    #[arg(long)]
+    pub keep_length: bool,
 }
 
 pub fn run(args: &Args, quiet: bool) -> CliResult {
@@ -57,6 +61,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     let bindings;
     let mut posing = Posing::new(&rig);
     posing.volume = args.volume.into();
+    posing.keep_length = args.keep_length;
     if let Some((mesh, path)) = &mesh {
         let owners = rig.owners(mesh, &path.display().to_string())?;
         bindings = rig.bind_mesh(mesh, &owners, &|_| {});
@@ -74,6 +79,10 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     }
     let text = rig.pose_document(posing.keys()).try_to_json(&args.out)?;
     write_pose(&args.out, &text)?;
+    // Folds are warnings, not errors: the pose is written, and the user told where it folds.
+    for warning in posing.warnings().map_err(|e| format!("{}: {e}", args.out.display()))? {
+        eprintln!("warning: {}: {warning}", args.out.display());
+    }
     if !quiet {
         println!("applied {} edits -> {}", edits.len(), args.out.display());
     }

@@ -118,6 +118,35 @@ fn pose_applies_a_bend() {
     assert!(steps.iter().all(|&s| s < 60.0), "no key takes most of the turn: {steps:?}");
 }
 
+/// A pose that folds its sweep is written, with a warning naming the sweep and where it folds;
+/// `deform` warns of the same pose and writes the mesh; a gentle pose warns of nothing.
+#[test]
+fn a_folding_pose_is_written_with_a_warning() {
+    let dir = tempfile::tempdir().unwrap();
+    scene(dir.path());
+    let tight = r#"[{"op": "move_key", "sweep": "tube", "key": 2, "rotate": [0.9063, 0, 0, 0.4226], "mode": "local"}]"#;
+    let output = pose(dir.path(), "rig.json", tight, &[]);
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.contains("warning: pose.json: sweep \"tube\" folds: its cross-sections cross for t in [0."),
+        "{stderr}"
+    );
+    assert!(dir.path().join("pose.json").exists());
+    let deformed = common::sweepffd(dir.path())
+        .args(["deform", "--mesh", "tube.obj", "--rig", "rig.json", "--pose", "pose.json", "--out", "out.obj"])
+        .args(["--backend", "cpu", "--quiet"])
+        .output()
+        .unwrap();
+    assert!(deformed.status.success(), "{}", String::from_utf8_lossy(&deformed.stderr));
+    assert!(String::from_utf8_lossy(&deformed.stderr).contains("warning: pose.json: sweep \"tube\" folds"));
+    assert!(dir.path().join("out.obj").exists());
+    let gentle = r#"[{"op": "bend", "sweep": "tube", "t": 0.5, "span": 0.5, "axis": [1, 0, 0], "angle_deg": 45}]"#;
+    let output = pose(dir.path(), "rig.json", gentle, &[]);
+    assert!(output.status.success());
+    assert_eq!(String::from_utf8_lossy(&output.stderr), "");
+}
+
 #[test]
 fn pose_with_the_total_rule_keeps_the_volume() {
     let dir = tempfile::tempdir().unwrap();
