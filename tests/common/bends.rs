@@ -62,3 +62,38 @@ pub fn largest_stretch(mesh: &Mesh, posed: &[DVec3], counts: impl Fn((u32, u32))
         })
         .fold((0.0, (0, 0)), |best, next| if next.0 > best.0 { next } else { best })
 }
+
+/// The largest and the smallest deformed / rest edge length over the whole mesh.
+pub fn stretch_range(mesh: &Mesh, posed: &[DVec3]) -> (f64, f64) {
+    let rest = &mesh.positions;
+    edges(mesh)
+        .into_iter()
+        .filter(|&(a, b)| rest[a as usize] != rest[b as usize])
+        .map(|(a, b)| posed[a as usize].distance(posed[b as usize]) / rest[a as usize].distance(rest[b as usize]))
+        .fold((0.0, f64::INFINITY), |(hi, lo), s| (hi.max(s), lo.min(s)))
+}
+
+/// The axis to bend sweep `sweep` of `rig` about over the span of width `span` centred on `t`, in
+/// the frame of the cross-section at t, and the sweep's reach w across it: the direction φ in
+/// the sections' plane across which the sweep is thinnest over the span (the least, over φ, of
+/// the largest distance r(θ, t)·|sin(θ − φ)| of its surface from the line through the center
+/// along φ), as a knee bends across a leg's thin side.
+pub fn thinnest_axis(rig: &Rig, sweep: usize, t: f64, span: f64) -> (DVec3, f64) {
+    let rest = &rig.rest()[sweep];
+    let reach = |phi: f64| {
+        let mut largest: f64 = 0.0;
+        for i in 0..=20 {
+            let at = (t + span * (i as f64 / 20.0 - 0.5)).clamp(0.0, 1.0);
+            for j in 0..64 {
+                let theta = std::f64::consts::TAU * j as f64 / 64.0;
+                largest = largest.max(rest.radius(theta, at) * (theta - phi).sin().abs());
+            }
+        }
+        largest
+    };
+    let phi = (0..180)
+        .map(|k| std::f64::consts::PI * k as f64 / 180.0)
+        .min_by(|&a, &b| reach(a).total_cmp(&reach(b)))
+        .unwrap_or(0.0);
+    (DVec3::new(phi.cos(), phi.sin(), 0.0), reach(phi))
+}

@@ -21,7 +21,7 @@ use sweepffd::mesh::Mesh;
 use sweepffd::rig::Rig;
 use sweepffd::sweep::Key;
 
-use common::bends::edges;
+use common::bends::{stretch_range, thinnest_axis};
 
 /// The bend: 60° at t = 0.5 over a fifth of the limb.
 const ANGLE_DEGREES: f64 = 60.0;
@@ -29,41 +29,6 @@ const SPAN: f64 = 0.2;
 /// The measured stretch may exceed the bound of the fitted surface by this factor: a vertex
 /// lies off the surface by its d.
 const SLACK: f64 = 1.1;
-
-/// The largest and the smallest deformed / rest edge length over the whole mesh.
-fn stretch_range(mesh: &Mesh, posed: &[DVec3]) -> (f64, f64) {
-    let rest = &mesh.positions;
-    edges(mesh)
-        .into_iter()
-        .filter(|&(a, b)| rest[a as usize] != rest[b as usize])
-        .map(|(a, b)| posed[a as usize].distance(posed[b as usize]) / rest[a as usize].distance(rest[b as usize]))
-        .fold((0.0, f64::INFINITY), |(hi, lo), s| (hi.max(s), lo.min(s)))
-}
-
-/// The axis to bend the limb about, in the frame of the cross-section at t = 0.5, and the
-/// limb's reach w across it: the direction φ in the sections' plane across which the limb is
-/// thinnest over the span (the least, over φ, of the largest distance r(θ, t)·|sin(θ − φ)| of
-/// its surface from the line through the center along φ), as a knee bends across a leg's
-/// thin side.
-fn thinnest_axis(rig: &Rig, sweep: usize) -> (DVec3, f64) {
-    let rest = &rig.rest()[sweep];
-    let reach = |phi: f64| {
-        let mut largest: f64 = 0.0;
-        for i in 0..=20 {
-            let t = 0.5 + SPAN * (i as f64 / 20.0 - 0.5);
-            for j in 0..64 {
-                let theta = std::f64::consts::TAU * j as f64 / 64.0;
-                largest = largest.max(rest.radius(theta, t) * (theta - phi).sin().abs());
-            }
-        }
-        largest
-    };
-    let phi = (0..180)
-        .map(|k| std::f64::consts::PI * k as f64 / 180.0)
-        .min_by(|&a, &b| reach(a).total_cmp(&reach(b)))
-        .unwrap();
-    (DVec3::new(phi.cos(), phi.sin(), 0.0), reach(phi))
-}
 
 /// One limb bent both ways: the stretch ranges (largest, smallest) of the bend and of the
 /// key turned alone, the least largest stretch of any bend within the span, and the keys.
@@ -93,7 +58,7 @@ fn bend_limbs(name: &str, mesh: &Mesh, limbs: &[&str]) -> Vec<Bent> {
         .iter()
         .map(|&limb| {
             let sweep = rig.sweep_index(limb).unwrap_or_else(|| panic!("{name}: no part {limb}"));
-            let (axis, reach) = thinnest_axis(&rig, sweep);
+            let (axis, reach) = thinnest_axis(&rig, sweep, 0.5, SPAN);
             let mut bent = Posing::new(&rig);
             let bend = Edit::Bend { sweep: limb.into(), t: 0.5, span: SPAN, axis: axis.to_array(), angle_deg: ANGLE_DEGREES };
             bent.apply(&bend).unwrap();

@@ -4,6 +4,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod bend_limbs;
 mod construction;
 mod embed_example;
 mod engine_inputs;

@@ -79,6 +79,8 @@ pub(super) struct App {
     pub edits_not_applied: usize,
     /// Each sweep's name, volume now and at rest, measured when the pose changes.
     pub sweep_volumes: Vec<(String, f64, f64)>,
+    /// Where the pose folds its sweeps, drawn in red and listed in the panel.
+    pub fold_warnings: Vec<sweepffd::edit::PoseWarning>,
     pub fatal: Option<ViewError>,
 }
 
@@ -132,6 +134,7 @@ impl App {
             errors: Vec::new(),
             edits_not_applied: 0,
             sweep_volumes: Vec::new(),
+            fold_warnings: Vec::new(),
             fatal: None,
         };
         app.measure_rest_volumes();

@@ -48,6 +48,8 @@ impl App {
                 }
             }
             Command::ToggleHierarchy => settings.hierarchy = !settings.hierarchy,
+            Command::ToggleBend => settings.bend = !settings.bend,
+            Command::ToggleKeepLength => settings.keep_length = !settings.keep_length,
             Command::ToggleWeights => self.panel.paint_weights = !self.panel.paint_weights,
             Command::CycleVolume => {
                 settings.volume = match settings.volume {

@@ -19,6 +19,12 @@ use sweepffd::rig::Rig;
 pub const SELECTED_PART: [f32; 4] = [0.12, 0.55, 0.25, 1.0];
 /// Colour of the selected key's ring (linear RGBA).
 pub const SELECTED_RING: [f32; 4] = [0.95, 0.55, 0.02, 1.0];
+/// Colour of the rings at the ends of a bend drag's span (linear RGBA).
+pub const BEND_SPAN_RING: [f32; 4] = [0.95, 0.75, 0.02, 1.0];
+/// Colour of the rings across a stretch of a sweep that folds (linear RGBA).
+pub const FOLD_RING: [f32; 4] = [0.9, 0.02, 0.02, 1.0];
+/// Rings drawn across each stretch that folds.
+pub const FOLD_RINGS: usize = 7;
 
 /// Where the mesh's vertices come from.
 pub enum MeshSource {

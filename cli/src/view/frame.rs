@@ -8,7 +8,8 @@ use winit::event_loop::ActiveEventLoop;
 
 use super::ViewError;
 use super::app::App;
-use super::draw::SELECTED_RING;
+use super::draw::{BEND_SPAN_RING, FOLD_RING, FOLD_RINGS, SELECTED_RING};
+use super::gesture::Gesture;
 use super::panel::{PanelAction, PanelFacts, SweepDisplay, panel};
 use super::script::Action;
 use super::stats::FrameTimes;
@@ -76,6 +77,12 @@ impl App {
         if let Some(deformer) = running.mesh.deformer().filter(|_| self.pose_changed) {
             deformer.set_pose(0, &posed).map_err(|e| ViewError::Gpu(e.to_string()))?;
         }
+        if self.pose_changed {
+            self.fold_warnings = match &self.model.rig {
+                Some(rig) => sweepffd::edit::pose_warnings(rig, &posed),
+                None => Vec::new(),
+            };
+        }
         let mut scene = Scene::new();
         if self.panel.sweeps != SweepDisplay::Hidden {
             let style = SweepStyle::for_diagonal(self.model.mesh.diagonal());
@@ -86,6 +93,25 @@ impl App {
                 for (k, &u) in sweep.knots().iter().enumerate() {
                     let colour = if self.selected_key == Some((s, k)) { SELECTED_RING } else { RING };
                     add_key_ring(&mut scene, sweep, u, &style, colour);
+                }
+            }
+            // A bend drag's span, between two rings.
+            if let (Some(Gesture::Bend { sweep, t, span, .. }), Some(rig)) = (&self.gesture, &self.model.rig)
+                && let Some(sweep) = rig.sweep_index(sweep).and_then(|s| posed.get(s))
+            {
+                for end in [t - 0.5 * span, t + 0.5 * span] {
+                    add_key_ring(&mut scene, sweep, end.clamp(0.0, 1.0), &style, BEND_SPAN_RING);
+                }
+            }
+            // Each stretch that folds, in red rings across it.
+            for warning in &self.fold_warnings {
+                let Some(sweep) = self.model.rig.as_ref().and_then(|rig| rig.sweep_index(&warning.sweep)) else {
+                    continue;
+                };
+                let [t0, t1] = warning.fold.t;
+                for i in 0..FOLD_RINGS {
+                    let t = t0 + (t1 - t0) * i as f64 / (FOLD_RINGS - 1) as f64;
+                    add_key_ring(&mut scene, &posed[sweep], t, &style, FOLD_RING);
                 }
             }
         }
@@ -233,6 +259,7 @@ impl App {
             triangles: self.model.triangles.len(),
             times: self.stats.recent_medians(),
             sweep_volumes: self.sweep_volumes.clone(),
+            folds: self.fold_warnings.iter().map(ToString::to_string).collect(),
             mesh_volume: self.model.closed.then_some((self.mesh_volume, self.rest_mesh_volume)),
             history: self.model.session.as_ref().map_or((0, 0), |s| s.history()),
             has_rig: rig.is_some(),

@@ -2,7 +2,7 @@
 //! the plane facing the camera through where it was grabbed; a key ring is moved on that plane,
 //! turned about the view direction or has its radii scaled.
 
-use glam::{DQuat, Vec2, Vec3};
+use glam::{DQuat, DVec3, Vec2, Vec3};
 
 use super::orbit::Orbit;
 use super::session::Settings;
@@ -40,6 +40,25 @@ pub enum Gesture {
         below: usize,
         /// See `below`.
         pivot: Vec3,
+    },
+    /// Bending the sweep that owns a grabbed mesh point over a span around the point's t: the
+    /// sweep's end C(1) follows the pointer's moves on the plane facing the camera through it,
+    /// and the sweep past the span turns about C(t) by the turn that takes the end there.
+    Bend {
+        /// The sweep's name.
+        sweep: String,
+        /// Where the grabbed point is bound, the span's middle.
+        t: f64,
+        /// The span's width in t.
+        span: f64,
+        /// Where the pointer was pressed.
+        start: Vec2,
+        /// The sweep's end C(1) when grabbed.
+        end: Vec3,
+        /// C(t) and R(t) of the sweep when grabbed.
+        pivot: Vec3,
+        /// See `pivot`.
+        frame: DQuat,
     },
     /// Dragging a key ring.
     Key {
@@ -94,6 +113,22 @@ impl Gesture {
                     to: to.to_array(),
                     mode: settings.drag_mode,
                     keys: settings.drag_keys,
+                })
+            }
+            Gesture::Bend { sweep, t, span, start, end, pivot, frame } => {
+                // The turn about C(t) that takes the sweep's end to where the pointer's move
+                // takes it, its axis in the frame of the cross-section at t.
+                let moved = camera.on_view_plane(pointer, size, *end) - camera.on_view_plane(*start, size, *end);
+                let (from, to) = ((*end - *pivot).as_dvec3(), (*end + moved - *pivot).as_dvec3());
+                let axis = from.cross(to);
+                let angle = axis.length().atan2(from.dot(to));
+                let local = frame.inverse() * axis.try_normalize().unwrap_or(DVec3::X);
+                Some(Edit::Bend {
+                    sweep: sweep.clone(),
+                    t: *t,
+                    span: *span,
+                    axis: local.to_array(),
+                    angle_deg: angle.to_degrees(),
                 })
             }
             Gesture::Key { sweep, key, tool, start, center, center_pixel } => {
@@ -190,6 +225,31 @@ mod tests {
         assert!((far.length() - 0.5).abs() < 1e-5);
         let nearest = origin + (pivot - origin).dot(direction) * direction;
         assert!((far - pivot).normalize().dot((nearest - pivot).normalize()) > 0.9999);
+    }
+
+    /// A bend drag turns the sweep about C(t) so that its end heads where the pointer's move
+    /// takes it; the axis is given in the frame of the cross-section at t.
+    #[test]
+    fn bend_drag_turns_the_end_towards_the_pointer() {
+        let (camera, size) = setup();
+        let (end, pivot) = (Vec3::new(0.5, 0.0, 0.0), Vec3::ZERO);
+        let frame = DQuat::from_rotation_y(0.7);
+        let start = camera.project(Vec3::new(0.1, 0.0, 0.0), size).unwrap();
+        let gesture = Gesture::Bend { sweep: "arm".into(), t: 0.4, span: 0.2, start, end, pivot, frame };
+        let pointer = start + Vec2::new(-20.0, -60.0);
+        let Some(Edit::Bend { t, span, axis, angle_deg, .. }) =
+            gesture.edit(pointer, &camera, size, &Settings::default())
+        else {
+            panic!("a bend drag makes a bend edit");
+        };
+        assert_eq!((t, span), (0.4, 0.2));
+        let moved = camera.on_view_plane(pointer, size, end) - camera.on_view_plane(start, size, end);
+        let to = (end + moved).as_dvec3();
+        let world = frame * DVec3::from_array(axis);
+        let turned = DQuat::from_axis_angle(world, angle_deg.to_radians()) * end.as_dvec3();
+        assert!(turned.normalize().dot(to.normalize()) > 1.0 - 1e-9, "{turned} towards {to}");
+        assert!(angle_deg > 5.0, "{angle_deg}");
+        assert!((DVec3::from_array(axis).length() - 1.0).abs() < 1e-12);
     }
 
     #[test]

@@ -51,6 +51,10 @@ pub enum Command {
     ToggleKeyMode,
     /// H: toggle hierarchy propagation.
     ToggleHierarchy,
+    /// B: toggle whether drags on the mesh bend its sweep.
+    ToggleBend,
+    /// N: toggle keep-length.
+    ToggleKeepLength,
     /// V: cycle the volume rule.
     CycleVolume,
     /// K: toggle the weight paint (each vertex coloured by its falloff weight).
@@ -87,6 +91,8 @@ impl Command {
             ("d", ..) => Command::CycleDragMode,
             ("l", ..) => Command::ToggleKeyMode,
             ("h", ..) => Command::ToggleHierarchy,
+            ("b", ..) => Command::ToggleBend,
+            ("n", ..) => Command::ToggleKeepLength,
             ("v", ..) => Command::CycleVolume,
             ("k", ..) => Command::ToggleWeights,
             ("g", ..) => Command::MoveTool,
@@ -121,6 +127,8 @@ pub const CONTROLS: &[(&str, &str)] = &[
     ("right drag", "pan"),
     ("wheel", "zoom"),
     ("D", "point drag mode: both, translate, rotate"),
+    ("B", "drags on the mesh bend its sweep over the panel's span (orange rings) or drag the point"),
+    ("N", "keep length on / off: edits keep each sweep's length"),
     ("L", "key moves: local or independent"),
     ("H", "hierarchy propagation on / off"),
     ("V", "volume rule: none, total, ratio, mesh"),
@@ -148,5 +156,7 @@ mod tests {
         assert_eq!(Command::parse("alt+s"), None);
         assert_eq!(Command::parse("ctrl+q"), None);
         assert_eq!(Command::parse("x"), None);
+        assert_eq!(Command::parse("b"), Some(Command::ToggleBend));
+        assert_eq!(Command::parse("N"), Some(Command::ToggleKeepLength));
     }
 }

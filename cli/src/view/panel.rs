@@ -70,6 +70,8 @@ pub struct PanelFacts {
     pub times: FrameTimes,
     /// Each sweep's name, volume now and at rest (Eq. 1).
     pub sweep_volumes: Vec<(String, f64, f64)>,
+    /// Where the pose folds its sweeps (drawn in red rings).
+    pub folds: Vec<String>,
     /// The mesh's enclosed volume after the last committed edit and at rest, if it is closed.
     pub mesh_volume: Option<(f64, f64)>,
     /// Committed and redoable edits.
@@ -116,6 +118,7 @@ pub fn panel(
             ui.label(format!("{} vertices, {} triangles", facts.vertices, facts.triangles));
             ui.label(&facts.adapter);
             ui.separator();
+            folds(ui, facts);
             volumes(ui, facts);
             ui.separator();
             if facts.has_rig {
@@ -163,6 +166,12 @@ pub fn panel(
     actions
 }
 
+fn folds(ui: &mut egui::Ui, facts: &PanelFacts) {
+    for fold in &facts.folds {
+        ui.colored_label(egui::Color32::from_rgb(220, 30, 30), format!("warning: {fold}"));
+    }
+}
+
 fn volumes(ui: &mut egui::Ui, facts: &PanelFacts) {
     ui.label("volumes (Eq. 1), now / rest");
     for (name, now, rest) in &facts.sweep_volumes {
@@ -198,6 +207,11 @@ fn edit_settings(ui: &mut egui::Ui, state: &mut PanelState, settings: &mut Setti
         ui.selectable_value(&mut settings.key_mode, KeyMode::Independent, "independent");
     });
     ui.checkbox(&mut settings.hierarchy, "hierarchy propagation (H)");
+    ui.checkbox(&mut settings.keep_length, "keep length (N)");
+    ui.horizontal_wrapped(|ui| {
+        ui.checkbox(&mut settings.bend, "mesh drags bend (B), span");
+        ui.add(egui::Slider::new(&mut settings.bend_span, 0.02..=1.0).fixed_decimals(2));
+    });
     ui.horizontal_wrapped(|ui| {
         ui.label("volume rule (V)");
         for (rule, name) in [(VolumeRule::None, "none"), (VolumeRule::Total, "total"), (VolumeRule::Ratio, "ratio")] {

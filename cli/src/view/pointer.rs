@@ -56,9 +56,17 @@ impl App {
             let sweep = owner as usize;
             let binding = SweepBinder::new(&rig.rest()[sweep]).bind(self.model.mesh.positions[vertex as usize]);
             let anchor = posed[sweep].point(binding.theta, binding.t, binding.d, binding.h).as_vec3();
+            let name = rig.sweeps()[sweep].name.clone();
+            if self.model.settings.bend {
+                let (t, span) = (binding.t, self.model.settings.bend_span);
+                let (pivot, frame) = (posed[sweep].center(t).as_vec3(), posed[sweep].orientation(t));
+                let end = posed[sweep].center(1.0).as_vec3();
+                self.overlay_changed = true; // the span's rings
+                return Gesture::Bend { sweep: name, t, span, start: at, end, pivot, frame };
+            }
             let below = posed[sweep].locate(binding.t).segment;
             let pivot = self.model.session.as_ref().map_or(anchor, |s| s.keys()[sweep][below].center.as_vec3());
-            return Gesture::Point { sweep: rig.sweeps()[sweep].name.clone(), binding, anchor, below, pivot };
+            return Gesture::Point { sweep: name, binding, anchor, below, pivot };
         }
         self.select_part(vertex, hit.triangle);
         Gesture::Orbit { last: at }
@@ -100,6 +108,9 @@ impl App {
     }
 
     pub(super) fn release(&mut self, _button: Button) {
+        if matches!(self.gesture, Some(Gesture::Bend { .. })) {
+            self.overlay_changed = true; // the span's rings go
+        }
         self.gesture = None;
         if let Some(session) = &mut self.model.session
             && session.commit()

@@ -8,6 +8,9 @@ use sweepffd::edit::{BoundMesh, DragMode, Edit, EditError, KeyMode, Posing, Volu
 use sweepffd::rig::Rig;
 use sweepffd::sweep::Key;
 
+/// A bend drag's span at first: a fifth of the sweep.
+pub const DEFAULT_BEND_SPAN: f64 = 0.2;
+
 /// How edits are made, as the panel and the keyboard set it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {
@@ -21,6 +24,13 @@ pub struct Settings {
     pub volume: VolumeRule,
     /// Whether edits propagate through the hierarchy (§5).
     pub hierarchy: bool,
+    /// Whether each edit keeps its sweep's length (the chords between its keys).
+    pub keep_length: bool,
+    /// Whether a drag on the mesh bends its sweep (a `bend` edit over `bend_span`) instead of
+    /// dragging the point.
+    pub bend: bool,
+    /// The width in t of a bend drag's span, centred where the mesh was grabbed.
+    pub bend_span: f64,
 }
 
 impl Default for Settings {
@@ -31,6 +41,9 @@ impl Default for Settings {
             key_mode: KeyMode::Local,
             volume: VolumeRule::None,
             hierarchy: true,
+            keep_length: false,
+            bend: false,
+            bend_span: DEFAULT_BEND_SPAN,
         }
     }
 }
@@ -79,6 +92,7 @@ impl Session {
         let mut posing = Posing::new(rig).with_keys(self.committed().to_vec())?;
         posing.hierarchy = settings.hierarchy;
         posing.volume = settings.volume;
+        posing.keep_length = settings.keep_length;
         if let Some(mesh) = mesh {
             posing = posing.with_mesh(mesh);
         }

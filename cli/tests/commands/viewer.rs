@@ -228,6 +228,65 @@ fn the_auto_rig_key_rigs_the_loaded_mesh_as_the_command_does() {
     assert_eq!(saved, command);
 }
 
+/// Pixels drawn in the fold rings' red.
+fn red_pixels(picture: &RgbaImage) -> usize {
+    picture.pixels().filter(|p| p[0] > 180 && p[1] < 60 && p[2] < 60).count()
+}
+
+/// B turns drags on the mesh into bends: one drag on the tube's middle is one `bend` edit of the
+/// tube over the panel's span (0.2) around the grabbed point's t, which `sweepffd pose` applies
+/// to the same pose, byte for byte. A pose that folds the tube is drawn with red rings across
+/// the stretch that folds (and its warning in the panel); the rest pose has none.
+#[test]
+fn bend_drags_make_bend_edits_and_folds_are_drawn_in_red() {
+    let Some(display) = display() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    demo_tube(dir.path());
+    let (from, to) = ([SCENE_WIDTH / 2, WINDOW.1 / 2], [SCENE_WIDTH / 2 - 60, 140]);
+    write(
+        &dir.path().join("bend.json"),
+        &format!(
+            r#"[{{"wait": 0.2}}, {{"screenshot": "rest"}}, {{"key": "b"}},
+                {{"drag": {{"from": {from:?}, "to": {to:?}, "seconds": 0.5}}}},
+                {{"save_pose": "pose.json"}}, {{"save_edits": "edits.json"}}]"#
+        ),
+    );
+    let args = ["--mesh", "demo/rest.obj", "--rig", "demo/rig.json", "--script", "bend.json"];
+    let Some(report) = view(&display, dir.path(), &args) else { return };
+    assert_eq!(report["errors"], Value::Array(vec![]), "{report}");
+    let edits: Value = serde_json::from_str(&std::fs::read_to_string(dir.path().join("edits.json")).unwrap()).unwrap();
+    let edits = edits.as_array().unwrap();
+    assert_eq!(edits.len(), 1, "{edits:?}");
+    assert_eq!((edits[0]["op"].as_str(), edits[0]["sweep"].as_str()), (Some("bend"), Some("tube")), "{edits:?}");
+    assert_eq!(edits[0]["span"], 0.2);
+    assert!(edits[0]["angle_deg"].as_f64().unwrap() > 10.0, "{edits:?}");
+    let status = sweepffd(dir.path())
+        .args(["--quiet", "pose", "--rig", "demo/rig.json", "--edits", "edits.json", "--out", "cli-pose.json"])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let read = |name: &str| std::fs::read_to_string(dir.path().join(name)).unwrap();
+    assert_eq!(read("pose.json"), read("cli-pose.json"));
+    assert_eq!(red_pixels(&picture(&dir.path().join("rest.png"))), 0, "the rest pose folds nothing");
+
+    // Key 2 turned 130°: the tube folds beside it.
+    write(
+        &dir.path().join("fold.json"),
+        r#"[{"op": "move_key", "sweep": "tube", "key": 2, "rotate": [0.9063, 0, 0, 0.4226], "mode": "local"}]"#,
+    );
+    let status = sweepffd(dir.path())
+        .args(["--quiet", "pose", "--rig", "demo/rig.json", "--edits", "fold.json", "--out", "folded.json"])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    write(&dir.path().join("look.json"), r#"[{"wait": 0.2}, {"screenshot": "folded"}]"#);
+    let args = ["--mesh", "demo/rest.obj", "--rig", "demo/rig.json", "--pose", "folded.json", "--script", "look.json"];
+    let Some(report) = view(&display, dir.path(), &args) else { return };
+    assert_eq!(report["errors"], Value::Array(vec![]), "{report}");
+    let red = red_pixels(&picture(&dir.path().join("folded.png")));
+    assert!(red > 200, "only {red} red pixels: the folding stretch is not drawn in red");
+}
+
 #[test]
 fn a_pose_given_or_loaded_is_the_pose_saved() {
     let Some(display) = display() else { return };
