@@ -36,4 +36,4 @@ pub use posing::Posing;
 pub use rigid::{Motion, angle_between, chord_length};
 pub use section::{SectionTarget, move_sections};
 pub use volume::{BoundMesh, VolumeRule, Volumes};
-pub use warnings::{PoseWarning, pose_warnings};
+pub use warnings::{PoseWarning, WORSE, pose_warnings};

@@ -36,7 +36,7 @@ use std::sync::Arc;
 use glam::{DQuat, DVec3};
 
 pub use error::SweepError;
-pub use folds::{FLIP_DEGREES, Fold, FoldKind};
+pub use folds::{FLIP_DEGREES, Fold, FoldKind, SAMPLES_PER_INTERVAL};
 pub use key::Key;
 pub(crate) use rebuild::{RebuildScratch, SweepSystems};
 

@@ -19,7 +19,7 @@ use sweepffd::edit::{BEND_TAPER, Edit, KeyMode, Posing};
 use sweepffd::fit::autorig::{AutorigOptions, autorig};
 use sweepffd::mesh::Mesh;
 use sweepffd::rig::Rig;
-use sweepffd::sweep::Key;
+use sweepffd::sweep::{FoldKind, Key};
 
 use common::bends::{stretch_range, thinnest_axis};
 
@@ -38,6 +38,8 @@ struct Bent {
     one_key: (f64, f64),
     least: f64,
     keys: usize,
+    /// Whether the bend's pose is warned of as folding its cross-sections.
+    folds: bool,
 }
 
 /// Bends each of `limbs` (part names) of `mesh`'s autorig by [`ANGLE_DEGREES`] over
@@ -59,9 +61,14 @@ fn bend_limbs(name: &str, mesh: &Mesh, limbs: &[&str]) -> Vec<Bent> {
         .map(|&limb| {
             let sweep = rig.sweep_index(limb).unwrap_or_else(|| panic!("{name}: no part {limb}"));
             let (axis, reach) = thinnest_axis(&rig, sweep, 0.5, SPAN);
-            let mut bent = Posing::new(&rig);
+            let mut posing = Posing::new(&rig);
             let bend = Edit::Bend { sweep: limb.into(), t: 0.5, span: SPAN, axis: axis.to_array(), angle_deg: ANGLE_DEGREES };
-            bent.apply(&bend).unwrap();
+            posing.apply(&bend).unwrap();
+            let warnings = posing.warnings().unwrap();
+            for warning in &warnings {
+                eprintln!("  warning: {warning}");
+            }
+            let folds = warnings.iter().any(|w| w.sweep == limb && w.fold.kind == FoldKind::SectionsCross);
             let knots = rig.rest()[sweep].knots();
             let key = (0..knots.len()).min_by(|&a, &b| (knots[a] - 0.5).abs().total_cmp(&(knots[b] - 0.5).abs())).unwrap();
             let world = rig.rest()[sweep].orientation(0.5) * axis;
@@ -80,21 +87,23 @@ fn bend_limbs(name: &str, mesh: &Mesh, limbs: &[&str]) -> Vec<Bent> {
             let curvature = ANGLE_DEGREES.to_radians() / (SPAN * length) / (1.0 - BEND_TAPER);
             let bent = Bent {
                 limb: limb.into(),
-                bend: stretch_of(bent.keys()),
+                bend: stretch_of(posing.keys()),
                 one_key: stretch_of(turned.keys()),
                 least: 1.0 + reach * curvature,
                 keys: keys.len(),
+                folds,
             };
             eprintln!(
                 "{name} {limb} ({} keys, w/L {:.3}): 60° bend over a fifth: edges {:.3}–{:.3} of rest (1 + w·κ = {:.3}); key \
-                 {key} turned 60° alone: {:.3}–{:.3}",
+                 {key} turned 60° alone: {:.3}–{:.3}; warned of a fold: {}",
                 bent.keys,
                 reach / length,
                 bent.bend.1,
                 bent.bend.0,
                 bent.least,
                 bent.one_key.1,
-                bent.one_key.0
+                bent.one_key.0,
+                bent.folds
             );
             bent
         })
@@ -102,7 +111,8 @@ fn bend_limbs(name: &str, mesh: &Mesh, limbs: &[&str]) -> Vec<Bent> {
 }
 
 /// Each limb's bend stretches its mesh no more than a bend within its span must (within
-/// [`SLACK`]), and less than the key turned alone; on the limbs of at least 15 keys thin enough
+/// [`SLACK`]), and less than the key turned alone; it is warned of as folding where w·κ ≥ 1
+/// (spot's legs, the armadillo's thickest limb) and not where w·κ ≤ 0.7; on the limbs of at least 15 keys thin enough
 /// not to fold (w·κ < 1: not spot's legs), the key turned alone stretches past that bound (the
 /// crease the bend removes).
 #[test]
@@ -128,6 +138,12 @@ fn a_bend_over_a_fifth_of_a_limb_stretches_it_no_more_than_the_bend_must() {
                 bent.bend.0,
                 bent.one_key.0
             );
+            // A bend whose inside folds over (w·κ ≥ 1) is warned of; one well short of it is not.
+            if bent.least >= 2.0 {
+                assert!(bent.folds, "{file} {limb}: w·κ = {:.2} and no warning", bent.least - 1.0);
+            } else if bent.least <= 1.7 {
+                assert!(!bent.folds, "{file} {limb}: w·κ = {:.2} and a warning", bent.least - 1.0);
+            }
             // Where w·κ < 1 (a bend that does not fold its inside over) on a dense fit.
             if bent.keys >= 15 && bent.least < 2.0 {
                 assert!(bent.one_key.0 > SLACK * bent.least, "{file} {limb}: the key turned alone meets the bound");
