@@ -82,6 +82,16 @@ fn bend_limbs(name: &str, mesh: &Mesh, limbs: &[&str]) -> Vec<Bent> {
                     mode: KeyMode::Local,
                 })
                 .unwrap();
+            if let Ok(dir) = std::env::var("SWEEPFFD_PICTURES_DIR") {
+                // For `sweepffd render --mesh M --rig NAME-rig.json --pose NAME-LIMB-bend.json`.
+                let dir = std::path::PathBuf::from(dir);
+                let stem = name.trim_end_matches(".obj");
+                std::fs::write(dir.join(format!("{stem}-rig.json")), rig.to_document().to_json()).unwrap();
+                for (pose, keys) in [("bend", posing.keys()), ("one-key", turned.keys())] {
+                    let path = dir.join(format!("{stem}-{limb}-{pose}.json"));
+                    std::fs::write(path, rig.pose_document(keys).to_json()).unwrap();
+                }
+            }
             let keys = &rig.sweeps()[sweep].keys;
             let length: f64 = keys.windows(2).map(|w| w[0].center.distance(w[1].center)).sum();
             let curvature = ANGLE_DEGREES.to_radians() / (SPAN * length) / (1.0 - BEND_TAPER);

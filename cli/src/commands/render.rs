@@ -39,6 +39,14 @@ pub struct Args {
     /// Draw rest (left) and pose (right) side by side, one camera, picture width 2×WIDTH.
     #[arg(long)]
     pub compare: bool,
+    /// Frame a box this many times smaller than the mesh's (at least 1), centred on --look-at:
+    /// a close-up.
+    #[arg(long, default_value_t = 1.0)]
+    pub zoom: f64,
+    /// The point X,Y,Z (mesh coordinates) the close-up of --zoom is centred on (default: the
+    /// middle of the mesh's bounds).
+    #[arg(long, value_parser = parse_point, allow_hyphen_values = true)]
+    pub look_at: Option<DVec3>,
     /// Where to write the picture (.png).
     #[arg(long)]
     pub out: PathBuf,
@@ -75,6 +83,17 @@ pub fn parse_view(text: &str) -> Result<ViewAngles, String> {
     ViewAngles::try_new(a, e).map_err(|e| e.to_string())
 }
 
+/// Parses `--look-at X,Y,Z`.
+pub fn parse_point(text: &str) -> Result<DVec3, String> {
+    let invalid = || format!("expected X,Y,Z, three finite numbers, such as 0,1.5,-2, not {text:?}");
+    let values: Vec<f64> =
+        text.split(',').map(|v| v.trim().parse::<f64>().map_err(|_| invalid())).collect::<Result<_, _>>()?;
+    match values[..] {
+        [x, y, z] if values.iter().all(|v| v.is_finite()) => Ok(DVec3::new(x, y, z)),
+        _ => Err(invalid()),
+    }
+}
+
 /// The option combinations the contract refuses, checked before anything is read.
 fn check_options(args: &Args) -> CliResult {
     if args.pose.is_some() && args.rig.is_none() {
@@ -86,6 +105,12 @@ fn check_options(args: &Args) -> CliResult {
     if args.compare && args.pose.is_none() {
         return Err("--compare needs --pose (it draws rest and pose side by side)".into());
     }
+    if !(args.zoom.is_finite() && args.zoom >= 1.0) {
+        return Err(format!("--zoom must be a finite number of at least 1, not {}", args.zoom).into());
+    }
+    if args.look_at.is_some() && args.zoom == 1.0 {
+        return Err("--look-at centres the close-up of --zoom; give --zoom too".into());
+    }
     if !args.out.extension().is_some_and(|e| e.eq_ignore_ascii_case("png")) {
         return Err(format!("{}: the picture is written as PNG; name it .png", args.out.display()).into());
     }
@@ -94,11 +119,18 @@ fn check_options(args: &Args) -> CliResult {
 
 pub fn run(args: &Args, quiet: bool) -> CliResult {
     check_options(args)?;
-    let scenes = build_scenes(args)?;
+    let (scenes, frame) = build_scenes(args)?;
     let renderer = Renderer::new()?;
     let start = Instant::now();
     let (width, height) = args.size;
-    let picture = renderer.render_panels(&scenes, args.view, width, height)?;
+    let zoom = (args.zoom > 1.0).then(|| {
+        let center = match args.look_at {
+            Some(point) => frame.to_local(point).as_vec3(),
+            None => union_bounds(&scenes).map_or(glam::Vec3::ZERO, |(lo, hi)| 0.5 * (lo + hi)),
+        };
+        (center, args.zoom as f32)
+    });
+    let picture = renderer.render_panels_zoomed(&scenes, args.view, width, height, zoom)?;
     let seconds = start.elapsed().as_secs_f64();
     save_png(&picture, &args.out)?;
     if !quiet {
@@ -117,15 +149,16 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
 /// Everything is drawn in the frame of the rest mesh ([`Frame`]), so that a mesh far from the
 /// origin or at a tiny scale draws as it would near the origin at unit size (the renderer is
 /// f32).
-fn build_scenes(args: &Args) -> Result<Vec<Scene>, Box<dyn std::error::Error>> {
+/// Returns the scenes and the frame they are drawn in.
+fn build_scenes(args: &Args) -> Result<(Vec<Scene>, Frame), Box<dyn std::error::Error>> {
     let Some(rig_path) = &args.rig else {
-        return Ok(vec![mesh_alone(&Mesh::load(&args.mesh.mesh)?)]);
+        return Ok(mesh_alone(&Mesh::load(&args.mesh.mesh)?));
     };
     let inputs = match load_inputs(&args.mesh.mesh, rig_path) {
         Err(error) if is_empty_rig(&*error) => {
             // A rig of no sweeps moves nothing and has no sweeps to show: the mesh alone.
             eprintln!("notice: {error}; drawing the mesh as it is");
-            return Ok(vec![mesh_alone(&Mesh::load(&args.mesh.mesh)?)]);
+            return Ok(mesh_alone(&Mesh::load(&args.mesh.mesh)?));
         }
         loaded => loaded?,
     };
@@ -135,7 +168,7 @@ fn build_scenes(args: &Args) -> Result<Vec<Scene>, Box<dyn std::error::Error>> {
     let Some(pose_path) = &args.pose else {
         let mut scenes = vec![mesh_scene(mesh, &rest_positions)];
         add_sweeps_if(args.show_sweeps, &mut scenes, &[&rest]);
-        return Ok(scenes);
+        return Ok((scenes, frame));
     };
     let posed = inputs.rig.load_pose(pose_path)?;
     let bindings = inputs.rig.bind_mesh(mesh, &inputs.owners, &|_| {});
@@ -150,12 +183,13 @@ fn build_scenes(args: &Args) -> Result<Vec<Scene>, Box<dyn std::error::Error>> {
         if args.compare { vec![mesh_scene(mesh, &rest_positions), posed_scene] } else { vec![posed_scene] };
     let sweeps: Vec<&[Sweep]> = if args.compare { vec![&rest, &posed] } else { vec![&posed] };
     add_sweeps_if(args.show_sweeps, &mut scenes, &sweeps);
-    Ok(scenes)
+    Ok((scenes, frame))
 }
 
-/// The mesh at rest, in its frame, in clay.
-fn mesh_alone(mesh: &Mesh) -> Scene {
-    mesh_scene(mesh, &Frame::of_points(&mesh.positions).local_positions(&mesh.positions))
+/// The mesh at rest, in its frame, in clay, and the frame.
+fn mesh_alone(mesh: &Mesh) -> (Vec<Scene>, Frame) {
+    let frame = Frame::of_points(&mesh.positions);
+    (vec![mesh_scene(mesh, &frame.local_positions(&mesh.positions))], frame)
 }
 
 /// The mesh at `positions` in clay.

@@ -87,9 +87,30 @@ impl Renderer {
         width: u32,
         height: u32,
     ) -> Result<RgbaImage, RenderError> {
+        self.render_panels_zoomed(scenes, angles, width, height, None)
+    }
+
+    /// [`Renderer::render_panels`] with the camera framing, where `zoom` is `Some((center,
+    /// factor))`, the box centred on `center` (scene coordinates) whose sides are the scenes'
+    /// bounds divided by `factor` (at least 1): a close-up of one place, the same in every panel.
+    pub fn render_panels_zoomed(
+        &self,
+        scenes: &[Scene],
+        angles: ViewAngles,
+        width: u32,
+        height: u32,
+        zoom: Option<(glam::Vec3, f32)>,
+    ) -> Result<RgbaImage, RenderError> {
         let panels = scenes.len().max(1) as u32;
         self.check_size(width.saturating_mul(panels), height)?;
         let (min, max) = union_bounds(scenes).ok_or_else(|| RenderError::EmptyScene("the scene is empty".into()))?;
+        let (min, max) = match zoom {
+            Some((center, factor)) => {
+                let half = 0.5 * (max - min) / factor.max(1.0);
+                (center - half, center + half)
+            }
+            None => (min, max),
+        };
         let aspect = width as f32 / height as f32;
         let camera = Camera::framing(min, max, angles, aspect);
         let mut picture = RgbaImage::new(width * panels, height);

@@ -238,6 +238,33 @@ fn malformed_size_and_view_are_errors() {
 }
 
 #[test]
+fn bad_zoom_and_look_at_are_errors() {
+    refused(&["--mesh", "tube.obj", "--zoom", "0.5"], "--zoom must be a finite number of at least 1");
+    refused(&["--mesh", "tube.obj", "--look-at", "0,0,1"], "give --zoom too");
+    refused(&["--mesh", "tube.obj", "--zoom", "2", "--look-at", "0,nan,1"], "expected X,Y,Z");
+    refused(&["--mesh", "tube.obj", "--zoom", "2", "--look-at", "0,1"], "expected X,Y,Z");
+}
+
+/// A close-up: `--zoom 4 --look-at` the tube's top (z = 4) covers more of the picture than the
+/// whole tube does, and is centred there: the top's half fills the picture's middle, while a
+/// close-up of the bottom (z = 0) differs from it.
+#[test]
+fn zoom_draws_a_close_up_of_the_point_looked_at() {
+    let Some(_) = common::gpu() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    write_tube_scene(dir.path());
+    let whole = render_ok(dir.path(), &["--mesh", "tube.obj", "--size", "200x150"], "whole.png");
+    let top = ["--mesh", "tube.obj", "--size", "200x150", "--zoom", "4", "--look-at", "0,0,4"];
+    let top = render_ok(dir.path(), &top, "top.png");
+    let bottom = ["--mesh", "tube.obj", "--size", "200x150", "--zoom", "4", "--look-at", "0,0,0"];
+    let bottom = render_ok(dir.path(), &bottom, "bottom.png");
+    assert!(foreground(&top) > 2 * foreground(&whole), "{} against {}", foreground(&top), foreground(&whole));
+    let background = image::Rgba(sweepffd_cli::render::BACKGROUND);
+    assert_ne!(*top.get_pixel(100, 75), background, "the point looked at is drawn in the middle");
+    assert_ne!(top, bottom);
+}
+
+#[test]
 fn picture_that_is_not_png_is_an_error() {
     let dir = tempfile::tempdir().unwrap();
     write_tube_scene(dir.path());
