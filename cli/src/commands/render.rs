@@ -251,6 +251,8 @@ mod tests {
             size: (1, 1),
             view: ViewAngles::default(),
             compare: false,
+            zoom: 1.0,
+            look_at: None,
             out: "x.jpg".into(),
         };
         assert!(check_options(&args).is_err());
