@@ -16,7 +16,7 @@ use sweepffd::coeffs::SweepCoefficients;
 use sweepffd::cpu_fast::FastMesh;
 use sweepffd::deform::deform_vertices;
 use sweepffd::formats::{Format, LoadedMesh};
-use sweepffd::gpu::{BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, GpuError};
+use sweepffd::gpu::{BindingSource, DeformerDescriptor, GpuDeformer, GpuError};
 use sweepffd::sweep::Sweep;
 
 /// The arguments of `sweepffd deform`.
@@ -74,16 +74,8 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     };
     let context = resolve(args.backend, quiet)?;
     let start = Instant::now();
-    let (positions, owners) = match &context {
-        Device::Gpu(context) => deform_on_gpu(context, &inputs, &Local::new(&inputs, &posed, saved.as_ref()))?,
-        Device::Cpu => deform_on_cpu(&inputs, &Local::new(&inputs, &posed, saved.as_ref())),
-        Device::Reference => {
-            let bindings = saved.clone().unwrap_or_else(|| bind_with_progress(&inputs, quiet));
-            let mut positions = vec![DVec3::ZERO; inputs.file.mesh.positions.len()];
-            deform_vertices(inputs.rig.rest(), &posed, &bindings, &inputs.file.mesh.positions, &mut positions);
-            (positions, bindings.vertices.iter().map(|b| b.sweep).collect())
-        }
-    };
+    let mut bound = BoundMesh::new(&inputs, &context, saved.as_ref(), quiet)?;
+    let (positions, owners) = bound.deform(&posed)?;
     let seconds = start.elapsed().as_secs_f64();
     if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
         let sweep = &inputs.rig.sweeps()[owners[i] as usize].name;
@@ -106,67 +98,108 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     Ok(())
 }
 
-/// What the f32 paths compute with: the rest sweeps and the mesh's positions ([`InFrame`]), the
-/// posed sweeps and the saved bindings, all in the frame of the mesh.
-struct Local {
+/// A mesh bound to its rig on one backend, deformed pose after pose: the binding, the costly
+/// part, is done once (`deform` deforms one pose, `batch` every pose of a mesh and rig). The
+/// f32 paths work in the frame of the mesh ([`InFrame`]).
+pub struct BoundMesh<'a> {
+    inputs: &'a Inputs,
     framed: InFrame,
-    posed: Vec<Sweep>,
+    /// The saved bindings in the frame of the mesh, if the mesh was not bound anew.
     saved: Option<MeshBindings>,
+    engine: Engine,
 }
 
-impl Local {
-    fn new(inputs: &Inputs, posed: &[Sweep], saved: Option<&MeshBindings>) -> Local {
+/// Where a [`BoundMesh`] deforms.
+enum Engine {
+    Gpu { deformer: Box<GpuDeformer>, weights: Vec<BandWeight> },
+    Cpu { fast: FastMesh, weights: Vec<BandWeight>, rest: Vec<f32> },
+    Reference { bindings: MeshBindings },
+}
+
+impl<'a> BoundMesh<'a> {
+    /// Binds `inputs` on `device`, or takes the `saved` bindings.
+    pub fn new(
+        inputs: &'a Inputs,
+        device: &Device,
+        saved: Option<&MeshBindings>,
+        quiet: bool,
+    ) -> Result<BoundMesh<'a>, GpuError> {
         let framed = InFrame::of(inputs);
-        let frame = framed.frame;
-        Local { framed, posed: frame.local_sweeps(posed), saved: saved.map(|saved| frame.local_bindings(saved)) }
+        let local_saved = saved.map(|saved| framed.frame.local_bindings(saved));
+        let rest = &framed.rest[..];
+        let weights = || match saved {
+            Some(_) => Vec::new(),
+            None => inputs.rig.band_weights(&inputs.file.mesh, &inputs.owners),
+        };
+        let engine = match device {
+            Device::Gpu(context) => {
+                let weights = weights();
+                let converted =
+                    local_saved.as_ref().map(|saved| SweepCoefficients::new(rest).gpu_mesh_bindings(rest, saved));
+                let source = match &converted {
+                    Some((bindings, bands)) => BindingSource::Precomputed { bindings, bands },
+                    None => BindingSource::Bind { owners: &inputs.owners, bands: &weights },
+                };
+                let positions = sweepffd::gpu::rest_positions(&framed.positions);
+                let deformer = GpuDeformer::new(context, &DeformerDescriptor::new(rest, &positions, source))?;
+                Engine::Gpu { deformer: Box::new(deformer), weights }
+            }
+            Device::Cpu => {
+                let positions = sweepffd::cpu_fast::packed(&framed.positions);
+                let weights = weights();
+                let fast = match &local_saved {
+                    Some(saved) => {
+                        let (bindings, bands) = SweepCoefficients::new(rest).gpu_mesh_bindings(rest, saved);
+                        FastMesh::with_bindings(rest, bindings, bands)
+                    }
+                    None => FastMesh::bind(rest, &inputs.owners, &weights, &positions),
+                };
+                Engine::Cpu { fast, weights, rest: positions }
+            }
+            Device::Reference => {
+                let bindings = saved.cloned().unwrap_or_else(|| bind_with_progress(inputs, quiet));
+                Engine::Reference { bindings }
+            }
+        };
+        Ok(BoundMesh { inputs, framed, saved: local_saved, engine })
     }
-}
 
-/// Binds (or uploads the saved bindings), deforms on the GPU and reads the positions back; the
-/// vertices no sweep moves (unowned, or at weight 0 against the rest position) keep their exact
-/// rest positions. Returns the positions and owners.
-fn deform_on_gpu(context: &GpuContext, inputs: &Inputs, local: &Local) -> Result<(Vec<DVec3>, Vec<u32>), GpuError> {
-    let (rest, saved) = (&local.framed.rest[..], local.saved.as_ref());
-    let coefficients = SweepCoefficients::new(rest);
-    let converted = saved.map(|saved| coefficients.gpu_mesh_bindings(rest, saved));
-    let weights = match saved {
-        Some(_) => Vec::new(),
-        None => inputs.rig.band_weights(&inputs.file.mesh, &inputs.owners),
-    };
-    let source = match &converted {
-        Some((bindings, bands)) => BindingSource::Precomputed { bindings, bands },
-        None => BindingSource::Bind { owners: &inputs.owners, bands: &weights },
-    };
-    let positions = sweepffd::gpu::rest_positions(&local.framed.positions);
-    let mut deformer = GpuDeformer::new(context, &DeformerDescriptor::new(rest, &positions, source))?;
-    deformer.deform(&local.posed)?;
-    Ok(f32_result(inputs, local, &weights, &deformer.read_positions()?))
-}
-
-/// Binds (or converts `saved` bindings) and deforms on the fast CPU path, as on the GPU.
-/// Returns the positions and owners.
-fn deform_on_cpu(inputs: &Inputs, local: &Local) -> (Vec<DVec3>, Vec<u32>) {
-    let (rest, saved) = (&local.framed.rest[..], local.saved.as_ref());
-    let mut positions = sweepffd::cpu_fast::packed(&local.framed.positions);
-    let (mut fast, weights) = match saved {
-        Some(saved) => {
-            let (bindings, bands) = SweepCoefficients::new(rest).gpu_mesh_bindings(rest, saved);
-            (FastMesh::with_bindings(rest, bindings, bands), Vec::new())
+    /// The mesh deformed by `posed` (world positions, f64) and each vertex's owner. On the
+    /// f32 paths the vertices no sweep moves (unowned, or at weight 0 against the rest
+    /// position) keep their exact rest positions.
+    pub fn deform(&mut self, posed: &[Sweep]) -> Result<(Vec<DVec3>, Vec<u32>), GpuError> {
+        let local_posed = || self.framed.frame.local_sweeps(posed);
+        match &mut self.engine {
+            Engine::Gpu { deformer, weights } => {
+                deformer.deform(&local_posed())?;
+                let deformed = deformer.read_positions()?;
+                Ok(f32_result(self.inputs, &self.framed, self.saved.as_ref(), weights, &deformed))
+            }
+            Engine::Cpu { fast, weights, rest } => {
+                let mut positions = rest.clone();
+                fast.deform(&local_posed(), &mut positions).expect("a pose loaded for this rig fits it");
+                Ok(f32_result(self.inputs, &self.framed, self.saved.as_ref(), weights, &positions))
+            }
+            Engine::Reference { bindings } => {
+                let mesh = &self.inputs.file.mesh;
+                let mut positions = vec![DVec3::ZERO; mesh.positions.len()];
+                deform_vertices(self.inputs.rig.rest(), posed, bindings, &mesh.positions, &mut positions);
+                Ok((positions, bindings.vertices.iter().map(|b| b.sweep).collect()))
+            }
         }
-        None => {
-            let weights = inputs.rig.band_weights(&inputs.file.mesh, &inputs.owners);
-            (FastMesh::bind(rest, &inputs.owners, &weights, &positions), weights)
-        }
-    };
-    fast.deform(&local.posed, &mut positions).expect("a pose loaded for this rig fits it");
-    f32_result(inputs, local, &weights, &positions)
+    }
 }
 
 /// The f32 positions `deformed` (in the frame of `local`) in the world in f64, the vertices no
 /// sweep moves (unowned, or at weight 0 against the rest position) at their exact rest
 /// positions; and the owners.
-fn f32_result(inputs: &Inputs, local: &Local, weights: &[BandWeight], deformed: &[f32]) -> (Vec<DVec3>, Vec<u32>) {
-    let saved = local.saved.as_ref();
+fn f32_result(
+    inputs: &Inputs,
+    framed: &InFrame,
+    saved: Option<&MeshBindings>,
+    weights: &[BandWeight],
+    deformed: &[f32],
+) -> (Vec<DVec3>, Vec<u32>) {
     let owners: Vec<u32> = match saved {
         Some(saved) => saved.vertices.iter().map(|b| b.sweep).collect(),
         None => inputs.owners.clone(),
@@ -184,11 +217,7 @@ fn f32_result(inputs: &Inputs, local: &Local, weights: &[BandWeight], deformed: 
         .chunks_exact(3)
         .zip(&inputs.file.mesh.positions)
         .zip(&keeps_rest)
-        .map(
-            |((p, rest), &keeps)| {
-                if keeps { *rest } else { local.framed.frame.to_world(Vec3::from_slice(p).as_dvec3()) }
-            },
-        )
+        .map(|((p, rest), &keeps)| if keeps { *rest } else { framed.frame.to_world(Vec3::from_slice(p).as_dvec3()) })
         .collect();
     (positions, owners)
 }

@@ -6,6 +6,7 @@
 mod args;
 mod autorig;
 mod backend;
+mod batch;
 mod bench;
 mod bind;
 mod deform;
@@ -43,6 +44,8 @@ enum Command {
     Bind(bind::Args),
     /// Deform a mesh by a pose of its rig and write the deformed mesh.
     Deform(deform::Args),
+    /// Run the deform jobs of a manifest (one shard of them), binding each mesh and rig once.
+    Batch(batch::Args),
     /// Apply edits to a rig (with its hierarchy and a volume rule) and write the pose.
     Pose(pose::Args),
     /// Fit a control sweep to a part of a mesh (§3) and write it into a rig.
@@ -78,6 +81,7 @@ pub fn run() -> ExitCode {
     let result = match &cli.command {
         Command::Bind(args) => bind::run(args, quiet),
         Command::Deform(args) => deform::run(args, quiet),
+        Command::Batch(args) => batch::run(args, quiet),
         Command::Pose(args) => pose::run(args, quiet),
         Command::Fit(args) => fit::run(args, quiet),
         Command::Autorig(args) => autorig::run(args, quiet),

@@ -5,6 +5,7 @@
 mod common;
 
 mod autorig;
+mod batch;
 mod cli;
 mod edit_time;
 mod examples;
