@@ -15,6 +15,7 @@
 //!   panics, every number read must be finite, and counts are checked against
 //!   [`crate::limits`] before anything is allocated for them.
 
+mod animation;
 mod decimal;
 mod error;
 mod format;
@@ -26,9 +27,11 @@ mod off;
 mod ply;
 mod save;
 
+pub use animation::save_morph_animation;
 pub use error::{MeshError, ObjLineError};
 pub use format::Format;
 pub use gltf::GltfDataError;
+pub use gltf::morph::MorphPose;
 pub use loaded::LoadedMesh;
 pub use off::OffLineError;
 pub use ply::PlyHeaderError;

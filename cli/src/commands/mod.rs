@@ -11,6 +11,7 @@ mod bench;
 mod bind;
 mod deform;
 mod demo;
+mod export;
 mod fit;
 mod flags;
 mod info;
@@ -46,6 +47,8 @@ enum Command {
     Deform(deform::Args),
     /// Run the deform jobs of a manifest (one shard of them), binding each mesh and rig once.
     Batch(batch::Args),
+    /// Write a mesh and poses of its rig as one glTF animation (a morph target per pose).
+    Export(export::Args),
     /// Apply edits to a rig (with its hierarchy and a volume rule) and write the pose.
     Pose(pose::Args),
     /// Fit a control sweep to a part of a mesh (§3) and write it into a rig.
@@ -82,6 +85,7 @@ pub fn run() -> ExitCode {
         Command::Bind(args) => bind::run(args, quiet),
         Command::Deform(args) => deform::run(args, quiet),
         Command::Batch(args) => batch::run(args, quiet),
+        Command::Export(args) => export::run(args, quiet),
         Command::Pose(args) => pose::run(args, quiet),
         Command::Fit(args) => fit::run(args, quiet),
         Command::Autorig(args) => autorig::run(args, quiet),

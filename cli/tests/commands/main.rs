@@ -9,6 +9,7 @@ mod batch;
 mod cli;
 mod edit_time;
 mod examples;
+mod export;
 mod falloff_cli;
 mod far_meshes;
 mod fit_cli;

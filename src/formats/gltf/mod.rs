@@ -44,6 +44,7 @@ mod container;
 mod error;
 pub(crate) mod generic;
 mod graph;
+pub(crate) mod morph;
 mod normals;
 mod precheck;
 mod quiet;
