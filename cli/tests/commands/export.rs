@@ -2,8 +2,10 @@
 //! and the bunny's autorig with 3: each morph target, read back with the `gltf` crate (sparse
 //! accessors expanded), puts every vertex where `sweepffd deform` of that pose puts it, within
 //! 1e-6 of the diagonal; the animation's keyframes turn the targets on one by one; the Khronos
-//! glTF validator reports no error and no warning (`cli/tests/gltf-validator`: `npm ci` there;
-//! without it the check prints why and is skipped, and fails under `CI=true`).
+//! glTF validator reports no error and no warning; three.js in headless Chromium plays the
+//! tube's animation where `sweepffd render` draws each pose (`cli/tests/js`: `npm ci` there,
+//! and Debian's `chromium`; without them those checks print why and are skipped, and fail under
+//! `CI=true`).
 
 use crate::common;
 
@@ -17,9 +19,9 @@ use common::sweepffd;
 
 /// Runs the Khronos validator on `file`: `None` (with a notice) where it is not installed.
 fn validator_report(file: &Path) -> Option<serde_json::Value> {
-    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/gltf-validator");
+    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/js");
     let missing = if !folder.join("node_modules/gltf-validator").exists() {
-        Some("the npm package gltf-validator is not installed (npm ci in cli/tests/gltf-validator)".to_string())
+        Some("the npm package gltf-validator is not installed (npm ci in cli/tests/js)".to_string())
     } else {
         None
     };
@@ -194,5 +196,130 @@ fn bad_exports_are_errors_that_write_nothing() {
         assert_eq!(output.status.code(), Some(1), "{args:?}: {stderr}");
         assert!(stderr.contains(expected), "{args:?}: {stderr}");
         assert!(!dir.join("anim.glb").exists() && !dir.join("anim.obj").exists());
+    }
+}
+
+/// Chromium (Debian's `chromium`), for the three.js check: `None` with a notice where it is
+/// missing (a failure under `CI=true`).
+fn chromium() -> Option<&'static str> {
+    let found = ["chromium", "chromium-browser"]
+        .into_iter()
+        .find(|name| std::process::Command::new(name).arg("--version").output().is_ok_and(|o| o.status.success()));
+    if found.is_none() {
+        skip("no chromium to run three.js in (apt-get install chromium)");
+    }
+    found
+}
+
+/// Pixels of `picture` that are not its background (`background`, within 24 per channel).
+fn mask(picture: &image::RgbaImage, background: [u8; 3]) -> Vec<bool> {
+    picture.pixels().map(|p| (0..3).any(|c| p[c].abs_diff(background[c]) > 24)).collect()
+}
+
+/// Intersection over union of two masks.
+fn overlap(a: &[bool], b: &[bool]) -> f64 {
+    let both = a.iter().zip(b).filter(|(x, y)| **x && **y).count();
+    let either = a.iter().zip(b).filter(|(x, y)| **x || **y).count();
+    both as f64 / either.max(1) as f64
+}
+
+/// three.js loads the demo tube's export in headless Chromium and plays its animation: at each
+/// keyframe its silhouette, seen by the camera `sweepffd render` frames that pose with, covers
+/// what `sweepffd render` draws of the pose (intersection over union at least 0.95), and covers
+/// each other keyframe's pose markedly less, so a wrong target or wrong weights fail the check.
+#[test]
+fn three_js_plays_each_pose_where_render_draws_it() {
+    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/js");
+    if !folder.join("node_modules/three").exists() {
+        skip("the npm package three is not installed (npm ci in cli/tests/js)");
+        return;
+    }
+    let Some(chromium) = chromium() else { return };
+    let Some(_) = common::gpu() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    assert!(sweepffd(dir).args(["--quiet", "demo", "--out", "demo"]).status().unwrap().success());
+    let angles = [0, 30, 60, 90];
+    let poses: Vec<String> = angles
+        .iter()
+        .enumerate()
+        .map(|(k, angle)| {
+            let edits = format!(
+                r#"[{{"op": "bend", "sweep": "tube", "t": 0.5, "span": 0.5, "axis": [1, 0, 0], "angle_deg": {angle}}}]"#
+            );
+            fs::write(dir.join(format!("edits-{k}.json")), edits).unwrap();
+            let pose = format!("pose-{k}.json");
+            let args =
+                ["--quiet", "pose", "--rig", "demo/rig.json", "--edits", &format!("edits-{k}.json"), "--out", &pose];
+            assert!(sweepffd(dir).args(args).status().unwrap().success());
+            pose
+        })
+        .collect();
+    let export = ["--quiet", "export", "--mesh", "demo/rest.obj", "--rig", "demo/rig.json", "--out", "anim.glb"];
+    assert!(
+        sweepffd(dir).args(export).arg("--poses").args(&poses).args(["--backend", "cpu"]).status().unwrap().success()
+    );
+    let (width, height) = (400u32, 300u32);
+    let view = sweepffd_cli::render::ViewAngles::try_new(90.0, 20.0).unwrap();
+    let rest = LoadedMesh::load(&dir.join("demo/rest.obj")).unwrap().mesh;
+    let frame = sweepffd::frame::Frame::of_points(&rest.positions);
+    let rig = sweepffd::rig::Rig::load(&dir.join("demo/rig.json")).unwrap();
+    let owners = rig.owners(&rest, "tube").unwrap();
+    let bindings = rig.bind_mesh(&rest, &owners, &|_| {});
+    let mut rendered = Vec::new();
+    let mut played = Vec::new();
+    for (k, pose) in poses.iter().enumerate() {
+        let out = format!("render-{k}.png");
+        let args = ["--quiet", "render", "--mesh", "demo/rest.obj", "--rig", "demo/rig.json", "--pose", pose];
+        assert!(
+            sweepffd(dir)
+                .args(args)
+                .args(["--view", "90,20", "--size", "400x300", "--out", &out])
+                .status()
+                .unwrap()
+                .success()
+        );
+        rendered.push(mask(&image::open(dir.join(&out)).unwrap().to_rgba8(), [245, 245, 247]));
+        // The camera `render` frames this pose with, from the frame's local space to the world.
+        let posed = rig.load_pose(&dir.join(pose)).unwrap();
+        let mut deformed = vec![DVec3::ZERO; rest.positions.len()];
+        sweepffd::deform::deform_vertices(rig.rest(), &posed, &bindings, &rest.positions, &mut deformed);
+        let local: Vec<glam::Vec3> = frame.local_positions(&deformed).iter().map(|p| p.as_vec3()).collect();
+        let (lo, hi) =
+            local.iter().fold((glam::Vec3::INFINITY, glam::Vec3::NEG_INFINITY), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
+        let camera = sweepffd_cli::render::Camera::framing(lo, hi, view, width as f32 / height as f32);
+        let world = |p: glam::Vec3| frame.to_world(p.as_dvec3());
+        let xyz = |p: DVec3| format!("{},{},{}", p.x, p.y, p.z);
+        let scale = frame.scale;
+        let url = format!(
+            "file://{}?glb=file://{}&time={}&eye={}&target={}&up={}&fov={}&near={}&far={}&width={width}&height={height}",
+            folder.join("play.html").display(),
+            dir.join("anim.glb").display(),
+            k as f64,
+            xyz(world(camera.eye)),
+            xyz(world(camera.target)),
+            xyz(camera.up.as_dvec3()),
+            camera.fov_y_degrees,
+            f64::from(camera.near) * scale,
+            f64::from(camera.far) * scale,
+        );
+        let shot = dir.join(format!("three-{k}.png"));
+        let output = std::process::Command::new(chromium)
+            .args(["--headless=new", "--no-sandbox", "--use-angle=swiftshader", "--enable-unsafe-swiftshader"])
+            .args(["--allow-file-access-from-files", "--force-device-scale-factor=1", "--hide-scrollbars"])
+            .arg(format!("--window-size={width},{height}"))
+            .args(["--virtual-time-budget=20000", &format!("--screenshot={}", shot.display()), &url])
+            .output()
+            .unwrap();
+        assert!(shot.exists(), "chromium drew nothing: {}", String::from_utf8_lossy(&output.stderr));
+        played.push(mask(&image::open(&shot).unwrap().to_rgba8(), [255, 255, 255]));
+    }
+    for k in 0..poses.len() {
+        let same = overlap(&played[k], &rendered[k]);
+        let others: Vec<f64> =
+            (0..poses.len()).filter(|&j| j != k).map(|j| overlap(&played[k], &rendered[j])).collect();
+        eprintln!("keyframe {k}: three.js against render of pose {k}: IoU {same:.4}; of the other poses {others:.3?}");
+        assert!(same >= 0.95, "keyframe {k}: three.js covers render's pose by IoU {same}");
+        assert!(others.iter().all(|&o| o < same - 0.05), "keyframe {k} also matches another pose: {others:?}");
     }
 }
