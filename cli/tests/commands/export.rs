@@ -114,46 +114,18 @@ fn export_and_check(dir: &Path, mesh: &str, rig: &str, poses: &[String]) -> f64 
 fn the_demo_tube_exports_five_poses_that_deform_makes() {
     let dir = tempfile::tempdir().unwrap();
     let dir = dir.path();
-    assert!(sweepffd(dir).args(["--quiet", "demo", "--out", "demo"]).status().unwrap().success());
-    let poses: Vec<String> = (0..5)
-        .map(|k| {
-            let angle = 20 * k;
-            let edits = format!(
-                r#"[{{"op": "bend", "sweep": "tube", "t": 0.5, "span": 0.5, "axis": [1, 0, 0], "angle_deg": {angle}}}]"#
-            );
-            fs::write(dir.join(format!("edits-{k}.json")), edits).unwrap();
-            let pose = format!("pose-{k}.json");
-            let status = sweepffd(dir)
-                .args([
-                    "--quiet",
-                    "pose",
-                    "--rig",
-                    "demo/rig.json",
-                    "--edits",
-                    &format!("edits-{k}.json"),
-                    "--out",
-                    &pose,
-                ])
-                .status()
-                .unwrap();
-            assert!(status.success());
-            pose
-        })
-        .collect();
+    let poses = tube_poses(dir, &[0, 20, 40, 60, 80]);
     let worst = export_and_check(dir, "demo/rest.obj", "demo/rig.json", &poses);
     eprintln!("demo tube, 5 poses: morph targets within {worst:.2e} × diagonal of deform's output");
 }
 
-#[test]
-fn the_bunnys_autorig_exports_three_poses_that_deform_makes() {
-    let Some(path) = common::shared_mesh("bunny_stanford_zipper.obj") else { return };
-    let dir = tempfile::tempdir().unwrap();
-    let dir = dir.path();
-    fs::copy(&path, dir.join("bunny.obj")).unwrap();
+/// The bunny's autorig (`bunny.obj` in `dir`, rig `rig.json`) and three poses of its ears,
+/// bent two ways each; returns the pose files.
+fn bunny_poses(dir: &Path) -> Vec<String> {
     let status =
-        sweepffd(dir).args(["--quiet", "autorig", "--mesh", "bunny.obj", "--out", "rig.json"]).status().unwrap();
-    assert!(status.success());
-    let poses: Vec<String> = [(0.0, 0.0), (40.0, -30.0), (-25.0, 60.0)]
+        sweepffd(dir).args(["--quiet", "autorig", "--mesh", "bunny.obj", "--out", "rig.json"]).output().unwrap();
+    assert!(status.status.success());
+    [(0.0, 0.0), (40.0, -30.0), (-25.0, 60.0)]
         .iter()
         .enumerate()
         .map(|(k, (a, b))| {
@@ -170,7 +142,16 @@ fn the_bunnys_autorig_exports_three_poses_that_deform_makes() {
             assert!(status.success());
             pose
         })
-        .collect();
+        .collect()
+}
+
+#[test]
+fn the_bunnys_autorig_exports_three_poses_that_deform_makes() {
+    let Some(path) = common::shared_mesh("bunny_stanford_zipper.obj") else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    fs::copy(&path, dir.join("bunny.obj")).unwrap();
+    let poses = bunny_poses(dir);
     let worst = export_and_check(dir, "bunny.obj", "rig.json", &poses);
     eprintln!("bunny's ears, 3 poses: morph targets within {worst:.2e} × diagonal of deform's output");
 }
@@ -223,24 +204,78 @@ fn overlap(a: &[bool], b: &[bool]) -> f64 {
     both as f64 / either.max(1) as f64
 }
 
-/// three.js loads the demo tube's export in headless Chromium and plays its animation: at each
-/// keyframe its silhouette, seen by the camera `sweepffd render` frames that pose with, covers
-/// what `sweepffd render` draws of the pose (intersection over union at least 0.95), and covers
-/// each other keyframe's pose markedly less, so a wrong target or wrong weights fail the check.
-#[test]
-fn three_js_plays_each_pose_where_render_draws_it() {
+/// The silhouettes three.js draws of `anim.glb` in `dir` at each keyframe and those
+/// `sweepffd render` draws of each pose of `mesh` and `rig`, with the same camera (`view`, the
+/// framing `render` gives each pose); `None` where three.js or Chromium is missing.
+fn three_js_and_render(
+    dir: &Path,
+    mesh: &str,
+    rig: &str,
+    poses: &[String],
+    view: [f32; 2],
+) -> Option<Vec<(Vec<bool>, Vec<bool>)>> {
     let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/js");
     if !folder.join("node_modules/three").exists() {
         skip("the npm package three is not installed (npm ci in cli/tests/js)");
-        return;
+        return None;
     }
-    let Some(chromium) = chromium() else { return };
-    let Some(_) = common::gpu() else { return };
-    let dir = tempfile::tempdir().unwrap();
-    let dir = dir.path();
+    let chromium = chromium()?;
+    common::gpu()?;
+    let (width, height) = (400u32, 300u32);
+    let angles = sweepffd_cli::render::ViewAngles::try_new(view[0], view[1]).unwrap();
+    let rest = LoadedMesh::load(&dir.join(mesh)).unwrap().mesh;
+    let frame = sweepffd::frame::Frame::of_points(&rest.positions);
+    let rig_file = sweepffd::rig::Rig::load(&dir.join(rig)).unwrap();
+    let owners = rig_file.owners(&rest, mesh).unwrap();
+    let bindings = rig_file.bind_mesh(&rest, &owners, &|_| {});
+    let mut masks = Vec::new();
+    for (k, pose) in poses.iter().enumerate() {
+        let out = format!("render-{k}.png");
+        let view = format!("{},{}", view[0], view[1]);
+        let args = ["--quiet", "render", "--mesh", mesh, "--rig", rig, "--pose", pose, "--view", &view];
+        assert!(sweepffd(dir).args(args).args(["--size", "400x300", "--out", &out]).status().unwrap().success());
+        let rendered = mask(&image::open(dir.join(&out)).unwrap().to_rgba8(), [245, 245, 247]);
+        // The camera `render` frames this pose with, from the frame's local space to the world.
+        let posed = rig_file.load_pose(&dir.join(pose)).unwrap();
+        let mut deformed = vec![DVec3::ZERO; rest.positions.len()];
+        sweepffd::deform::deform_vertices(rig_file.rest(), &posed, &bindings, &rest.positions, &mut deformed);
+        let local: Vec<glam::Vec3> = frame.local_positions(&deformed).iter().map(|p| p.as_vec3()).collect();
+        let (lo, hi) =
+            local.iter().fold((glam::Vec3::INFINITY, glam::Vec3::NEG_INFINITY), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
+        let camera = sweepffd_cli::render::Camera::framing(lo, hi, angles, width as f32 / height as f32);
+        let world = |p: glam::Vec3| frame.to_world(p.as_dvec3());
+        let xyz = |p: DVec3| format!("{},{},{}", p.x, p.y, p.z);
+        let url = format!(
+            "file://{}?glb=file://{}&time={}&eye={}&target={}&up={}&fov={}&near={}&far={}&width={width}&height={height}",
+            folder.join("play.html").display(),
+            dir.join("anim.glb").display(),
+            k as f64,
+            xyz(world(camera.eye)),
+            xyz(world(camera.target)),
+            xyz(camera.up.as_dvec3()),
+            camera.fov_y_degrees,
+            f64::from(camera.near) * frame.scale,
+            f64::from(camera.far) * frame.scale,
+        );
+        let shot = dir.join(format!("three-{k}.png"));
+        let output = std::process::Command::new(chromium)
+            .args(["--headless=new", "--no-sandbox", "--use-angle=swiftshader", "--enable-unsafe-swiftshader"])
+            .args(["--allow-file-access-from-files", "--force-device-scale-factor=1", "--hide-scrollbars"])
+            .arg(format!("--window-size={width},{height}"))
+            .args(["--virtual-time-budget=20000", &format!("--screenshot={}", shot.display()), &url])
+            .output()
+            .unwrap();
+        assert!(shot.exists(), "chromium drew nothing: {}", String::from_utf8_lossy(&output.stderr));
+        masks.push((mask(&image::open(&shot).unwrap().to_rgba8(), [255, 255, 255]), rendered));
+    }
+    Some(masks)
+}
+
+/// Writes `angles.len()` poses of the demo tube in `dir/demo`, each bent by one angle (degrees)
+/// over half its length, and returns their files.
+fn tube_poses(dir: &Path, angles: &[i32]) -> Vec<String> {
     assert!(sweepffd(dir).args(["--quiet", "demo", "--out", "demo"]).status().unwrap().success());
-    let angles = [0, 30, 60, 90];
-    let poses: Vec<String> = angles
+    angles
         .iter()
         .enumerate()
         .map(|(k, angle)| {
@@ -254,72 +289,50 @@ fn three_js_plays_each_pose_where_render_draws_it() {
             assert!(sweepffd(dir).args(args).status().unwrap().success());
             pose
         })
-        .collect();
+        .collect()
+}
+
+/// three.js loads the demo tube's export (5 poses) in headless Chromium and plays its
+/// animation: at each keyframe its silhouette, seen by the camera `sweepffd render` frames that
+/// pose with, covers what `sweepffd render` draws of the pose (intersection over union at least
+/// 0.95), and covers each other keyframe's pose markedly less, so a wrong target or wrong
+/// weights fail the check.
+#[test]
+fn three_js_plays_each_pose_of_the_tube_where_render_draws_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    let poses = tube_poses(dir, &[0, 20, 40, 60, 80]);
     let export = ["--quiet", "export", "--mesh", "demo/rest.obj", "--rig", "demo/rig.json", "--out", "anim.glb"];
+    let exported = sweepffd(dir).args(export).arg("--poses").args(&poses).args(["--backend", "cpu"]).status();
+    assert!(exported.unwrap().success());
+    let Some(masks) = three_js_and_render(dir, "demo/rest.obj", "demo/rig.json", &poses, [90.0, 20.0]) else { return };
+    for (k, (played, _)) in masks.iter().enumerate() {
+        let same = overlap(played, &masks[k].1);
+        let others: Vec<f64> = (0..masks.len()).filter(|&j| j != k).map(|j| overlap(played, &masks[j].1)).collect();
+        eprintln!(
+            "tube keyframe {k}: three.js against render of pose {k}: IoU {same:.4}; of the other poses {others:.3?}"
+        );
+        assert!(same >= 0.95, "keyframe {k}: three.js covers render's pose by IoU {same}");
+        assert!(others.iter().all(|&o| o < same - 0.05), "keyframe {k} also matches another pose: {others:?}");
+    }
+}
+
+/// The same for the bunny's autorig with its ears bent three ways (sparse targets).
+#[test]
+fn three_js_plays_each_pose_of_the_bunny_where_render_draws_it() {
+    let Some(path) = common::shared_mesh("bunny_stanford_zipper.obj") else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    fs::copy(&path, dir.join("bunny.obj")).unwrap();
+    let poses = bunny_poses(dir);
+    let export = ["--quiet", "export", "--mesh", "bunny.obj", "--rig", "rig.json", "--out", "anim.glb"];
     assert!(
         sweepffd(dir).args(export).arg("--poses").args(&poses).args(["--backend", "cpu"]).status().unwrap().success()
     );
-    let (width, height) = (400u32, 300u32);
-    let view = sweepffd_cli::render::ViewAngles::try_new(90.0, 20.0).unwrap();
-    let rest = LoadedMesh::load(&dir.join("demo/rest.obj")).unwrap().mesh;
-    let frame = sweepffd::frame::Frame::of_points(&rest.positions);
-    let rig = sweepffd::rig::Rig::load(&dir.join("demo/rig.json")).unwrap();
-    let owners = rig.owners(&rest, "tube").unwrap();
-    let bindings = rig.bind_mesh(&rest, &owners, &|_| {});
-    let mut rendered = Vec::new();
-    let mut played = Vec::new();
-    for (k, pose) in poses.iter().enumerate() {
-        let out = format!("render-{k}.png");
-        let args = ["--quiet", "render", "--mesh", "demo/rest.obj", "--rig", "demo/rig.json", "--pose", pose];
-        assert!(
-            sweepffd(dir)
-                .args(args)
-                .args(["--view", "90,20", "--size", "400x300", "--out", &out])
-                .status()
-                .unwrap()
-                .success()
-        );
-        rendered.push(mask(&image::open(dir.join(&out)).unwrap().to_rgba8(), [245, 245, 247]));
-        // The camera `render` frames this pose with, from the frame's local space to the world.
-        let posed = rig.load_pose(&dir.join(pose)).unwrap();
-        let mut deformed = vec![DVec3::ZERO; rest.positions.len()];
-        sweepffd::deform::deform_vertices(rig.rest(), &posed, &bindings, &rest.positions, &mut deformed);
-        let local: Vec<glam::Vec3> = frame.local_positions(&deformed).iter().map(|p| p.as_vec3()).collect();
-        let (lo, hi) =
-            local.iter().fold((glam::Vec3::INFINITY, glam::Vec3::NEG_INFINITY), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
-        let camera = sweepffd_cli::render::Camera::framing(lo, hi, view, width as f32 / height as f32);
-        let world = |p: glam::Vec3| frame.to_world(p.as_dvec3());
-        let xyz = |p: DVec3| format!("{},{},{}", p.x, p.y, p.z);
-        let scale = frame.scale;
-        let url = format!(
-            "file://{}?glb=file://{}&time={}&eye={}&target={}&up={}&fov={}&near={}&far={}&width={width}&height={height}",
-            folder.join("play.html").display(),
-            dir.join("anim.glb").display(),
-            k as f64,
-            xyz(world(camera.eye)),
-            xyz(world(camera.target)),
-            xyz(camera.up.as_dvec3()),
-            camera.fov_y_degrees,
-            f64::from(camera.near) * scale,
-            f64::from(camera.far) * scale,
-        );
-        let shot = dir.join(format!("three-{k}.png"));
-        let output = std::process::Command::new(chromium)
-            .args(["--headless=new", "--no-sandbox", "--use-angle=swiftshader", "--enable-unsafe-swiftshader"])
-            .args(["--allow-file-access-from-files", "--force-device-scale-factor=1", "--hide-scrollbars"])
-            .arg(format!("--window-size={width},{height}"))
-            .args(["--virtual-time-budget=20000", &format!("--screenshot={}", shot.display()), &url])
-            .output()
-            .unwrap();
-        assert!(shot.exists(), "chromium drew nothing: {}", String::from_utf8_lossy(&output.stderr));
-        played.push(mask(&image::open(&shot).unwrap().to_rgba8(), [255, 255, 255]));
-    }
-    for k in 0..poses.len() {
-        let same = overlap(&played[k], &rendered[k]);
-        let others: Vec<f64> =
-            (0..poses.len()).filter(|&j| j != k).map(|j| overlap(&played[k], &rendered[j])).collect();
-        eprintln!("keyframe {k}: three.js against render of pose {k}: IoU {same:.4}; of the other poses {others:.3?}");
+    let Some(masks) = three_js_and_render(dir, "bunny.obj", "rig.json", &poses, [30.0, 20.0]) else { return };
+    for (k, (played, rendered)) in masks.iter().enumerate() {
+        let same = overlap(played, rendered);
+        eprintln!("bunny keyframe {k}: three.js against render of pose {k}: IoU {same:.4}");
         assert!(same >= 0.95, "keyframe {k}: three.js covers render's pose by IoU {same}");
-        assert!(others.iter().all(|&o| o < same - 0.05), "keyframe {k} also matches another pose: {others:?}");
     }
 }
