@@ -105,6 +105,15 @@ pub fn shard_to_run(
     Ok(Shard { index: 0, count: 1 })
 }
 
+/// Why the jobs of one (mesh, rig) pair cannot share a binding.
+#[derive(Clone, Debug)]
+enum Shared {
+    /// The rig has no sweeps: each job writes the mesh as it is, as `deform` does.
+    EmptyRig(String),
+    /// The mesh or rig could not be loaded or bound: each job fails with this.
+    Failed(String),
+}
+
 /// A mesh and its rig: the jobs that share one binding.
 type Pair = (PathBuf, PathBuf);
 
@@ -184,19 +193,21 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     let mut ran = 0;
     for ((mesh, rig), jobs) in &groups {
         let device = device.as_ref().expect("resolved when there are jobs to run");
-        let loaded = load_inputs(mesh, rig);
+        // What the group's jobs share: the mesh bound to its rig, or why none is.
+        let loaded = load_inputs(mesh, rig).map_err(|error| {
+            if is_empty_rig(&*error) { Shared::EmptyRig(error.to_string()) } else { Shared::Failed(error.to_string()) }
+        });
         let mut bound = match &loaded {
-            Ok(inputs) => Some(BoundMesh::new(inputs, device, None, true).map_err(|e| e.to_string())),
-            Err(_) => None,
+            Ok(inputs) => BoundMesh::new(inputs, device, None, true).map_err(|e| Shared::Failed(e.to_string())),
+            Err(why) => Err(why.clone()),
         };
         for (number, line) in jobs {
             let job_started = Instant::now();
             let result = match (&loaded, &mut bound) {
-                (Ok(inputs), Some(Ok(bound))) => deform_job(inputs, bound, line),
-                (Ok(_), Some(Err(error))) => Err(error.clone()),
-                (Err(error), _) if is_empty_rig(&**error) => unchanged_job(line, &error.to_string()),
-                (Err(error), _) => Err(error.to_string()),
-                (Ok(_), None) => unreachable!("bound when loaded"),
+                (Ok(inputs), Ok(bound)) => deform_job(inputs, bound, line),
+                (_, Err(Shared::EmptyRig(notice))) => unchanged_job(line, notice),
+                (_, Err(Shared::Failed(error))) => Err(error.clone()),
+                (Err(_), Ok(_)) => Err("the mesh was bound without being loaded".into()),
             };
             let seconds = job_started.elapsed().as_secs_f64();
             ran += 1;

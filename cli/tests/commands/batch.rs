@@ -214,3 +214,25 @@ fn a_shard_stopped_mid_run_leaves_no_partial_output_and_its_rerun_completes_it()
         );
     }
 }
+
+/// A rig with no sweeps (autorig's for a mesh with nothing to rig) moves nothing: its jobs
+/// write the mesh as it is, as `deform` does, and count as done.
+#[test]
+fn jobs_of_a_rig_without_sweeps_write_the_mesh_as_it_is() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    tube_scene(dir, "a", &Tube { rings: 10, around: 8, length: 1.0, radius: 0.2 }, 1);
+    let mut empty = sweepffd::rig::RigDocument::parse(&fs::read_to_string(dir.join("a-rig.json")).unwrap()).unwrap();
+    empty.sweeps.clear();
+    fs::write(dir.join("empty.json"), empty.to_json()).unwrap();
+    let job = serde_json::json!({"mesh": "a.obj", "rig": "empty.json", "pose": "a-pose-0.json", "out": "out.obj"});
+    fs::write(dir.join("jobs.jsonl"), format!("{job}\n")).unwrap();
+    let output = sweepffd(dir)
+        .args(["--quiet", "batch", "--manifest", "jobs.jsonl", "--report", "r.jsonl", "--backend", "cpu"])
+        .output()
+        .unwrap();
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    assert!(String::from_utf8_lossy(&output.stderr).contains("wrote the mesh unchanged"));
+    assert_eq!(fs::read(dir.join("out.obj")).unwrap(), fs::read(dir.join("a.obj")).unwrap());
+    assert!(fs::read_to_string(dir.join("r.jsonl")).unwrap().contains("\"status\":\"done\""));
+}
