@@ -103,12 +103,9 @@ impl App {
                     add_key_ring(&mut scene, sweep, end.clamp(0.0, 1.0), &style, BEND_SPAN_RING);
                 }
             }
-            // Each stretch that folds, in red rings across it.
-            for warning in &self.fold_warnings {
-                let Some(sweep) = self.model.rig.as_ref().and_then(|rig| rig.sweep_index(&warning.sweep)) else {
-                    continue;
-                };
-                let [t0, t1] = warning.fold.t;
+            // Each stretch that folds, in red rings across it (the stretches of one sweep that
+            // overlap, of its several kinds of fold, drawn once).
+            for (sweep, [t0, t1]) in fold_stretches(&self.fold_warnings, self.model.rig.as_ref()) {
                 for i in 0..FOLD_RINGS {
                     let t = t0 + (t1 - t0) * i as f64 / (FOLD_RINGS - 1) as f64;
                     add_key_ring(&mut scene, &posed[sweep], t, &style, FOLD_RING);
@@ -272,5 +269,51 @@ impl App {
             }),
             diagonal: self.model.diagonal,
         }
+    }
+}
+
+/// The stretches [t0, t1] of each sweep (by index in `rig`) that `warnings` name, those of one
+/// sweep that overlap merged.
+fn fold_stretches(
+    warnings: &[sweepffd::edit::PoseWarning],
+    rig: Option<&sweepffd::rig::Rig>,
+) -> Vec<(usize, [f64; 2])> {
+    let Some(rig) = rig else { return Vec::new() };
+    let mut stretches: Vec<(usize, [f64; 2])> =
+        warnings.iter().filter_map(|w| Some((rig.sweep_index(&w.sweep)?, w.fold.t))).collect();
+    stretches.sort_by(|a, b| a.0.cmp(&b.0).then(a.1[0].total_cmp(&b.1[0])));
+    let mut merged: Vec<(usize, [f64; 2])> = Vec::with_capacity(stretches.len());
+    for (sweep, t) in stretches {
+        match merged.last_mut() {
+            Some((last, range)) if *last == sweep && range[1] >= t[0] => range[1] = range[1].max(t[1]),
+            _ => merged.push((sweep, t)),
+        }
+    }
+    merged
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use sweepffd::edit::PoseWarning;
+    use sweepffd::sweep::{Fold, FoldKind};
+    use sweepffd::synthetic::{Tube, tube_rig};
+
+    #[test]
+    fn overlapping_folds_of_one_sweep_are_one_stretch() {
+        let rig = tube_rig(&Tube { rings: 4, around: 4, length: 1.0, radius: 0.1 }, 5, 8);
+        let warning = |kind, t| PoseWarning { sweep: "tube".into(), fold: Fold { kind, t, amount: 2.0 } };
+        let warnings = [
+            warning(FoldKind::SectionsCross, [0.3, 0.5]),
+            warning(FoldKind::KeysStepBack, [0.25, 0.5]),
+            warning(FoldKind::FrameFlips, [0.25, 0.5]),
+            warning(FoldKind::SectionsCross, [0.8, 0.9]),
+            PoseWarning {
+                sweep: "no such sweep".into(),
+                fold: Fold { kind: FoldKind::FrameFlips, t: [0.0, 1.0], amount: 100.0 },
+            },
+        ];
+        assert_eq!(fold_stretches(&warnings, Some(&rig)), vec![(0, [0.25, 0.5]), (0, [0.8, 0.9])]);
+        assert_eq!(fold_stretches(&warnings, None), vec![]);
     }
 }
