@@ -7,17 +7,19 @@ use std::path::Path;
 use super::error::MeshError;
 use super::format::Format;
 use super::gltf::morph::{MorphPose, write_morph_animation};
+use super::loaded::{LoadedMesh, Source};
+use super::obj::texcoords::corner_texcoords;
 use crate::atomic_file::write_atomically;
-use crate::mesh::Mesh;
 
 /// Writes `mesh` at rest with one morph target per pose of `poses`, played in order
 /// `seconds_per_pose` apart by one animation, to `path` (`.glb` binary, `.gltf` with its buffer
-/// embedded), atomically. [`MeshError::Write`] naming `path` for another extension, a pose
-/// with another vertex count, a non-finite position, no faces, no poses or a
+/// embedded), atomically. An OBJ file whose face corners all have texture coordinates (`v/vt`)
+/// gives them to the animation's vertices. [`MeshError::Write`] naming `path` for another
+/// extension, a pose with another vertex count, a non-finite position, no faces, no poses or a
 /// `seconds_per_pose` that is not positive and finite, or a file that cannot be written.
 pub fn save_morph_animation(
     path: &Path,
-    mesh: &Mesh,
+    mesh: &LoadedMesh,
     poses: &[MorphPose],
     seconds_per_pose: f64,
 ) -> Result<(), MeshError> {
@@ -29,6 +31,12 @@ pub fn save_morph_animation(
             return Err(MeshError::write(path, why));
         }
     };
-    write_atomically(path, |out| write_morph_animation(out, mesh, poses, seconds_per_pose, binary))
-        .map_err(|e| MeshError::write(path, e))
+    let texcoords = match &mesh.source {
+        Source::Obj(file) if file.describes(&mesh.mesh) => corner_texcoords(&file.bytes, &mesh.mesh.faces),
+        _ => None,
+    };
+    write_atomically(path, |out| {
+        write_morph_animation(out, &mesh.mesh, texcoords.as_ref(), poses, seconds_per_pose, binary)
+    })
+    .map_err(|e| MeshError::write(path, e))
 }

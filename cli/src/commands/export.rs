@@ -70,7 +70,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
         .collect();
     let poses: Vec<MorphPose> =
         names.iter().zip(&deformed).map(|(name, positions)| MorphPose { name, positions }).collect();
-    save_morph_animation(&args.out, &inputs.file.mesh, &poses, args.seconds_per_pose)?;
+    save_morph_animation(&args.out, &inputs.file, &poses, args.seconds_per_pose)?;
     if !quiet {
         println!(
             "exported {} poses of {} vertices as morph targets, {} s apart, in {:.3} s -> {}",

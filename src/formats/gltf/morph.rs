@@ -4,9 +4,13 @@
 //! targets on in order.
 //!
 //! - **Rest mesh.** f32 POSITION and area-weighted unit NORMAL (as the engine's normals pass
-//!   computes them, `[0, 0, 1]` for a vertex of no triangle), shared by one primitive per face
-//!   group (the faces of no group in one more), each with its own u32 indices of its
-//!   fan-triangulated faces; the group's name is the primitive's `extras.name`.
+//!   computes them, `[0, 0, 1]` for a vertex of no triangle), and TEXCOORD_0 where the source
+//!   gives each face corner texture coordinates, shared by one primitive per face group (the
+//!   faces of no group in one more), each with its own u32 indices of its fan-triangulated
+//!   faces; the group's name is the primitive's `extras.name`. glTF gives each vertex one
+//!   texture coordinate, so a mesh vertex whose corners have several (a texture seam) becomes
+//!   one glTF vertex per coordinate, each moving as the mesh vertex does; with texture
+//!   coordinates, vertices of no face are left out.
 //! - **Targets.** Per pose, POSITION and NORMAL displacements. Stored sparse (the indices of
 //!   the vertices that move and their values) where at most half the vertices move, dense
 //!   otherwise. `extras.targetNames` names them (three.js and Blender read it).
@@ -19,6 +23,7 @@ use glam::DVec3;
 use serde_json::{Value, json};
 
 use super::{container, normals};
+use crate::formats::obj::texcoords::CornerTexcoords;
 use crate::mesh::Mesh;
 
 /// `componentType` FLOAT.
@@ -39,13 +44,15 @@ pub struct MorphPose<'a> {
     pub positions: &'a [DVec3],
 }
 
-/// The glTF document (GLB when `binary`) of `mesh` at rest with one morph target per pose of
-/// `poses` and one animation playing them in order, `seconds_per_pose` apart (see the module
-/// docs). Fails on a pose with another vertex count, a non-finite position or normal, or a
-/// `seconds_per_pose` that is not positive and finite.
+/// The glTF document (GLB when `binary`) of `mesh` at rest (with `texcoords`, its face corners'
+/// texture coordinates, if given) with one morph target per pose of `poses` and one animation
+/// playing them in order, `seconds_per_pose` apart (see the module docs). Fails on a pose with
+/// another vertex count, a non-finite position or normal, or a `seconds_per_pose` that is not
+/// positive and finite.
 pub fn write_morph_animation(
     out: &mut impl Write,
     mesh: &Mesh,
+    texcoords: Option<&CornerTexcoords>,
     poses: &[MorphPose],
     seconds_per_pose: f64,
     binary: bool,
@@ -65,14 +72,16 @@ pub fn write_morph_animation(
         )));
     }
     let triangles: Vec<[u32; 3]> = mesh.faces.triangles().collect();
-    let rest = Shape::of(&mesh.positions, &triangles, "the rest mesh")?;
+    let layout = Layout::of(mesh, texcoords);
+    let rest = Shape::of(&mesh.positions, &triangles, "the rest mesh")?.gathered(&layout.source);
     let mut blob = Blob::default();
     let position = blob.dense(&rest.positions, true, ARRAY_BUFFER);
     let normal = blob.dense(&rest.normals, false, ARRAY_BUFFER);
+    let texcoord = layout.texcoords.as_ref().map(|uv| blob.texcoords(uv));
     let targets: Vec<Value> = poses
         .iter()
         .map(|pose| {
-            let shape = Shape::of(pose.positions, &triangles, pose.name)?;
+            let shape = Shape::of(pose.positions, &triangles, pose.name)?.gathered(&layout.source);
             let moved = |a: &[[f32; 3]], b: &[[f32; 3]]| -> Vec<[f32; 3]> {
                 a.iter().zip(b).map(|(p, r)| [p[0] - r[0], p[1] - r[1], p[2] - r[2]]).collect()
             };
@@ -84,10 +93,14 @@ pub fn write_morph_animation(
         .into_iter()
         .filter(|(_, faces)| !faces.is_empty())
         .map(|(name, faces)| {
-            let indices: Vec<u32> = faces.iter().flat_map(|&f| fan(mesh.faces.face(f))).flatten().collect();
+            let indices: Vec<u32> = faces.iter().flat_map(|&f| fan(layout.face(f))).flatten().collect();
             let accessor = blob.indices(&indices);
+            let mut attributes = json!({"POSITION": position, "NORMAL": normal});
+            if let Some(texcoord) = texcoord {
+                attributes["TEXCOORD_0"] = texcoord.into();
+            }
             let mut primitive = json!({
-                "attributes": {"POSITION": position, "NORMAL": normal},
+                "attributes": attributes,
                 "indices": accessor,
                 "mode": 4,
                 "targets": targets,
@@ -129,6 +142,57 @@ pub fn write_morph_animation(
     container::write(out, document, &[blob.data], binary)
 }
 
+/// The glTF vertices of a mesh: one per mesh vertex, or, with texture coordinates, one per
+/// (mesh vertex, texture coordinate) pair its face corners use.
+struct Layout {
+    /// Per glTF vertex, its mesh vertex.
+    source: Vec<u32>,
+    /// Per face corner (the faces' corners in order), its glTF vertex.
+    corners: Vec<u32>,
+    /// Where each face's corners start in `corners`, and their end.
+    offsets: Vec<usize>,
+    /// Per glTF vertex, its texture coordinate (v down, as glTF has it).
+    texcoords: Option<Vec<[f32; 2]>>,
+}
+
+impl Layout {
+    fn of(mesh: &Mesh, texcoords: Option<&CornerTexcoords>) -> Layout {
+        let mut offsets = vec![0];
+        for face in mesh.faces.iter() {
+            offsets.push(offsets[offsets.len() - 1] + face.len());
+        }
+        let flat: Vec<u32> = mesh.faces.iter().flatten().copied().collect();
+        let Some(texcoords) = texcoords.filter(|t| t.corners.len() == flat.len()) else {
+            return Layout {
+                source: (0..mesh.positions.len() as u32).collect(),
+                corners: flat,
+                offsets,
+                texcoords: None,
+            };
+        };
+        let mut index: std::collections::HashMap<(u32, u32), u32> = std::collections::HashMap::new();
+        let (mut source, mut uv) = (Vec::new(), Vec::new());
+        let corners = flat
+            .iter()
+            .zip(&texcoords.corners)
+            .map(|(&v, &t)| {
+                *index.entry((v, t)).or_insert_with(|| {
+                    source.push(v);
+                    let [s, t] = texcoords.coords[t as usize];
+                    uv.push([s, 1.0 - t]);
+                    (source.len() - 1) as u32
+                })
+            })
+            .collect();
+        Layout { source, corners, offsets, texcoords: Some(uv) }
+    }
+
+    /// Face `f`'s glTF vertices.
+    fn face(&self, f: usize) -> &[u32] {
+        &self.corners[self.offsets[f]..self.offsets[f + 1]]
+    }
+}
+
 /// A mesh's f32 positions and unit normals.
 struct Shape {
     positions: Vec<[f32; 3]>,
@@ -144,6 +208,12 @@ impl Shape {
         let sums = normals::sums(|v| DVec3::from_array(local[v as usize].map(f64::from)), local.len(), triangles);
         let normals = sums.into_iter().map(|s| normals::unit(s).unwrap_or([0.0, 0.0, 1.0])).collect();
         Ok(Shape { positions: local, normals })
+    }
+
+    /// The shape at the glTF vertices whose mesh vertices are `source`.
+    fn gathered(self, source: &[u32]) -> Shape {
+        let pick = |values: &[[f32; 3]]| source.iter().map(|&v| values[v as usize]).collect();
+        Shape { positions: pick(&self.positions), normals: pick(&self.normals) }
     }
 }
 
@@ -231,6 +301,12 @@ impl Blob {
         self.accessor(accessor)
     }
 
+    /// The TEXCOORD_0 accessor.
+    fn texcoords(&mut self, values: &[[f32; 2]]) -> usize {
+        let view = self.view(bytemuck::cast_slice(values), Some(ARRAY_BUFFER));
+        self.accessor(json!({"bufferView": view, "componentType": FLOAT, "count": values.len(), "type": "VEC2"}))
+    }
+
     /// The u32 indices of a primitive.
     fn indices(&mut self, indices: &[u32]) -> usize {
         let view = self.view(bytemuck::cast_slice(indices), Some(ELEMENT_ARRAY_BUFFER));
@@ -287,7 +363,7 @@ mod tests {
 
     fn document(mesh: &Mesh, poses: &[MorphPose]) -> Value {
         let mut out = Vec::new();
-        write_morph_animation(&mut out, mesh, poses, 0.25, false).unwrap();
+        write_morph_animation(&mut out, mesh, None, poses, 0.25, false).unwrap();
         serde_json::from_slice(&out).unwrap()
     }
 
@@ -326,16 +402,17 @@ mod tests {
         let short = vec![DVec3::ZERO; 3];
         let mut out = Vec::new();
         let error =
-            write_morph_animation(&mut out, &mesh, &[MorphPose { name: "short", positions: &short }], 1.0, true);
+            write_morph_animation(&mut out, &mesh, None, &[MorphPose { name: "short", positions: &short }], 1.0, true);
         assert!(error.unwrap_err().to_string().contains("3 positions for a mesh of 7 vertices"));
         let pose = [MorphPose { name: "rest", positions: &mesh.positions }];
         for seconds in [0.0, -1.0, f64::NAN] {
-            assert!(write_morph_animation(&mut out, &mesh, &pose, seconds, true).is_err(), "{seconds}");
+            assert!(write_morph_animation(&mut out, &mesh, None, &pose, seconds, true).is_err(), "{seconds}");
         }
-        assert!(write_morph_animation(&mut out, &mesh, &[], 1.0, true).is_err(), "no pose");
+        assert!(write_morph_animation(&mut out, &mesh, None, &[], 1.0, true).is_err(), "no pose");
         let mut bad = mesh.positions.clone();
         bad[2].x = f64::INFINITY;
-        let error = write_morph_animation(&mut out, &mesh, &[MorphPose { name: "bad", positions: &bad }], 1.0, true);
+        let error =
+            write_morph_animation(&mut out, &mesh, None, &[MorphPose { name: "bad", positions: &bad }], 1.0, true);
         assert!(error.unwrap_err().to_string().contains("bad: vertex 2"));
     }
 }

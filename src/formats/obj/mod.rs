@@ -21,6 +21,7 @@ mod pieces;
 mod plain;
 pub(crate) mod read;
 pub(crate) mod scan;
+pub(crate) mod texcoords;
 pub(crate) mod write;
 
 use std::path::Path;
