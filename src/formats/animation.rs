@@ -7,14 +7,15 @@ use std::path::Path;
 use super::error::MeshError;
 use super::format::Format;
 use super::gltf::morph::{MorphPose, write_morph_animation};
+use super::gltf::texcoords::vertex_texcoords;
 use super::loaded::{LoadedMesh, Source};
 use super::obj::texcoords::corner_texcoords;
 use crate::atomic_file::write_atomically;
 
 /// Writes `mesh` at rest with one morph target per pose of `poses`, played in order
 /// `seconds_per_pose` apart by one animation, to `path` (`.glb` binary, `.gltf` with its buffer
-/// embedded), atomically. An OBJ file whose face corners all have texture coordinates (`v/vt`)
-/// gives them to the animation's vertices. [`MeshError::Write`] naming `path` for another
+/// embedded), atomically. An OBJ file whose face corners all have texture coordinates (`v/vt`),
+/// or a glTF file whose primitives all have TEXCOORD_0, gives them to the animation's vertices. [`MeshError::Write`] naming `path` for another
 /// extension, a pose with another vertex count, a non-finite position, no faces, no poses or a
 /// `seconds_per_pose` that is not positive and finite, or a file that cannot be written.
 pub fn save_morph_animation(
@@ -33,6 +34,7 @@ pub fn save_morph_animation(
     };
     let texcoords = match &mesh.source {
         Source::Obj(file) if file.describes(&mesh.mesh) => corner_texcoords(&file.bytes, &mesh.mesh.faces),
+        Source::Gltf(file) if file.describes(&mesh.mesh) => vertex_texcoords(&file.file, &mesh.mesh.faces),
         _ => None,
     };
     write_atomically(path, |out| {

@@ -404,3 +404,93 @@ fn three_js_plays_each_pose_of_the_bunny_where_render_draws_it() {
         assert!(same >= 0.95, "keyframe {k}: three.js covers render's pose by IoU {same}");
     }
 }
+
+/// The tube as a glTF file with TEXCOORD_0 (u around, v along), written to `path`; returns the
+/// texture coordinates per vertex.
+fn tube_gltf_with_texcoords(path: &Path, tube: &sweepffd::synthetic::Tube) -> Vec<[f32; 2]> {
+    use base64::Engine;
+    let mesh = tube.mesh();
+    let positions: Vec<[f32; 3]> = mesh.positions.iter().map(|p| p.as_vec3().to_array()).collect();
+    let texcoords: Vec<[f32; 2]> = mesh
+        .positions
+        .iter()
+        .map(|p| [(p.y.atan2(p.x) / std::f64::consts::TAU + 0.5) as f32, (p.z / tube.length) as f32])
+        .collect();
+    let indices: Vec<u32> = mesh.faces.triangles().flatten().collect();
+    let mut data: Vec<u8> = Vec::new();
+    for p in &positions {
+        p.iter().for_each(|c| data.extend_from_slice(&c.to_le_bytes()));
+    }
+    let uv_offset = data.len();
+    for t in &texcoords {
+        t.iter().for_each(|c| data.extend_from_slice(&c.to_le_bytes()));
+    }
+    let index_offset = data.len();
+    indices.iter().for_each(|i| data.extend_from_slice(&i.to_le_bytes()));
+    let (lo, hi) = positions.iter().fold(([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]), |(lo, hi), p| {
+        (std::array::from_fn(|i| lo[i].min(p[i])), std::array::from_fn(|i| hi[i].max(p[i])))
+    });
+    let n = positions.len();
+    let document = serde_json::json!({
+        "asset": {"version": "2.0"},
+        "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2}]}],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": n, "type": "VEC3", "min": lo, "max": hi},
+            {"bufferView": 1, "componentType": 5126, "count": n, "type": "VEC2"},
+            {"bufferView": 2, "componentType": 5125, "count": indices.len(), "type": "SCALAR"},
+        ],
+        "bufferViews": [
+            {"buffer": 0, "byteOffset": 0, "byteLength": uv_offset},
+            {"buffer": 0, "byteOffset": uv_offset, "byteLength": index_offset - uv_offset},
+            {"buffer": 0, "byteOffset": index_offset, "byteLength": data.len() - index_offset},
+        ],
+        "buffers": [{"byteLength": data.len(),
+            "uri": format!("data:application/octet-stream;base64,{}", base64::engine::general_purpose::STANDARD.encode(&data))}],
+    });
+    fs::write(path, document.to_string()).unwrap();
+    texcoords
+}
+
+/// A glTF source's TEXCOORD_0 goes into the animation: every exported vertex has its source
+/// vertex's coordinates, the targets are `deform`'s, and the validator is clean.
+#[test]
+fn a_gltf_source_exports_its_texture_coordinates_with_its_poses() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    let tube = sweepffd::synthetic::Tube { rings: 20, around: 12, length: 2.0, radius: 0.3 };
+    let texcoords = tube_gltf_with_texcoords(&dir.join("tube.gltf"), &tube);
+    let rig = sweepffd::synthetic::tube_rig(&tube, 5, 8);
+    fs::write(dir.join("rig.json"), rig.to_document().to_json()).unwrap();
+    let poses: Vec<String> = [0, 40, 80]
+        .iter()
+        .enumerate()
+        .map(|(k, angle)| {
+            let edits = format!(
+                r#"[{{"op": "bend", "sweep": "tube", "t": 0.5, "span": 0.5, "axis": [1, 0, 0], "angle_deg": {angle}}}]"#
+            );
+            fs::write(dir.join(format!("edits-{k}.json")), edits).unwrap();
+            let pose = format!("pose-{k}.json");
+            let args = ["--quiet", "pose", "--rig", "rig.json", "--edits", &format!("edits-{k}.json"), "--out", &pose];
+            assert!(sweepffd(dir).args(args).status().unwrap().success());
+            pose
+        })
+        .collect();
+    let worst = export_and_check(dir, "tube.gltf", "rig.json", &poses);
+    eprintln!("glTF tube, 3 poses: morph targets within {worst:.2e} × diagonal of deform's output");
+    let gltf = gltf::Gltf::from_slice(&fs::read(dir.join("anim.glb")).unwrap()).unwrap();
+    let buffers = [gltf.blob.clone().unwrap()];
+    let primitive = gltf.document.meshes().next().unwrap().primitives().next().unwrap();
+    let reader = primitive.reader(|b| Some(&buffers[b.index()]));
+    let uv: Vec<[f32; 2]> = reader.read_tex_coords(0).expect("TEXCOORD_0").into_f32().collect();
+    let positions: Vec<[f32; 3]> = reader.read_positions().unwrap().collect();
+    let mesh = tube.mesh();
+    let at: std::collections::HashMap<[u32; 3], usize> =
+        mesh.positions.iter().enumerate().map(|(v, p)| (p.as_vec3().to_array().map(f32::to_bits), v)).collect();
+    assert_eq!(uv.len(), mesh.positions.len(), "one texture coordinate per vertex: nothing to split");
+    for (p, t) in positions.iter().zip(&uv) {
+        let source = at[&p.map(f32::to_bits)];
+        let expected = texcoords[source];
+        assert!((t[0] - expected[0]).abs() < 1e-6 && (t[1] - expected[1]).abs() < 1e-6, "vertex {source}: {t:?}");
+    }
+}

@@ -50,6 +50,7 @@ mod precheck;
 mod quiet;
 pub(crate) mod read;
 mod scene;
+pub(crate) mod texcoords;
 mod uri;
 pub(crate) mod write;
 

@@ -5,7 +5,7 @@
 //!
 //! - **Rest mesh.** f32 POSITION and area-weighted unit NORMAL (as the engine's normals pass
 //!   computes them, `[0, 0, 1]` for a vertex of no triangle), and TEXCOORD_0 where the source
-//!   gives each face corner texture coordinates, shared by one primitive per face group (the
+//!   (an OBJ's `vt`, a glTF's TEXCOORD_0) gives each face corner texture coordinates, shared by one primitive per face group (the
 //!   faces of no group in one more), each with its own u32 indices of its fan-triangulated
 //!   faces; the group's name is the primitive's `extras.name`. glTF gives each vertex one
 //!   texture coordinate, so a mesh vertex whose corners have several (a texture seam) becomes
