@@ -91,6 +91,9 @@ fn bend_limbs(name: &str, mesh: &Mesh, limbs: &[&str]) -> Vec<Bent> {
                     let path = dir.join(format!("{stem}-{limb}-{pose}.json"));
                     std::fs::write(path, rig.pose_document(keys).to_json()).unwrap();
                 }
+                // Where the close-up looks: the bend's center at rest, for `render --look-at`.
+                let c = rig.rest()[sweep].center(0.5);
+                std::fs::write(dir.join(format!("{stem}-{limb}-look-at.txt")), format!("{},{},{}", c.x, c.y, c.z)).unwrap();
             }
             let keys = &rig.sweeps()[sweep].keys;
             let length: f64 = keys.windows(2).map(|w| w[0].center.distance(w[1].center)).sum();
