@@ -13,7 +13,7 @@ use serde::{Deserialize, Serialize};
 use super::CliResult;
 use super::backend::{Backend, resolve};
 use super::bind::{Inputs, is_empty_rig, load_inputs};
-use super::deform::BoundMesh;
+use super::deform::{BoundMesh, non_finite, warn_of_folds};
 use sweepffd::atomic_file::write_atomically;
 use sweepffd::formats::{Format, LoadedMesh};
 
@@ -272,16 +272,10 @@ fn shard_jobs(text: &str, shard: Shard, folder: &Path) -> Vec<Job> {
 fn deform_job(inputs: &Inputs, bound: &mut BoundMesh, line: &JobLine) -> Result<(), String> {
     Format::of(&line.out).map_err(|e| e.to_string())?;
     let posed = inputs.rig.load_pose(&line.pose).map_err(|e| e.to_string())?;
-    for warning in sweepffd::edit::pose_warnings(&inputs.rig, &posed) {
-        eprintln!("warning: {}: {warning}", line.pose.display());
-    }
+    warn_of_folds(inputs, &posed, &line.pose);
     let (positions, owners) = bound.deform(&posed).map_err(|e| e.to_string())?;
-    if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
-        let sweep = &inputs.rig.sweeps()[owners[i] as usize].name;
-        return Err(format!(
-            "{}: vertex index {i} (sweep {sweep:?}) deforms to a non-finite position",
-            line.pose.display()
-        ));
+    if let Some(error) = non_finite(inputs, &positions, &owners, &line.pose) {
+        return Err(error);
     }
     inputs.file.save(&line.out, &positions).map_err(|e| e.to_string())
 }

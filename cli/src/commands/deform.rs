@@ -1,6 +1,6 @@
 //! `sweepffd deform`: pose the rig, move the bound vertices (Eq. 2), write the mesh.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use glam::{DVec3, Vec3};
@@ -54,10 +54,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
         loaded => loaded?,
     };
     let posed = inputs.rig.load_pose(&args.pose.pose)?;
-    // Folds are warnings: the mesh is still deformed and written.
-    for warning in sweepffd::edit::pose_warnings(&inputs.rig, &posed) {
-        eprintln!("warning: {}: {warning}", args.pose.pose.display());
-    }
+    warn_of_folds(&inputs, &posed, &args.pose.pose);
     let saved = match &args.bindings {
         Some(path) => {
             let file = BindingsFile::load(path)?;
@@ -77,13 +74,8 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     let mut bound = BoundMesh::new(&inputs, &context, saved.as_ref(), quiet)?;
     let (positions, owners) = bound.deform(&posed)?;
     let seconds = start.elapsed().as_secs_f64();
-    if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
-        let sweep = &inputs.rig.sweeps()[owners[i] as usize].name;
-        return Err(format!(
-            "{}: vertex index {i} (sweep {sweep:?}) deforms to a non-finite position; nothing was written",
-            args.pose.pose.display()
-        )
-        .into());
+    if let Some(error) = non_finite(&inputs, &positions, &owners, &args.pose.pose) {
+        return Err(format!("{error}; nothing was written").into());
     }
     inputs.file.save(&args.out, &positions)?;
     if !quiet {
@@ -96,6 +88,22 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
         );
     }
     Ok(())
+}
+
+/// Prints a warning for each stretch of a sweep the pose `posed` (read from `pose`) folds:
+/// folds do not stop `deform`, `batch` or `export`, whose output is still written.
+pub fn warn_of_folds(inputs: &Inputs, posed: &[Sweep], pose: &Path) {
+    for warning in sweepffd::edit::pose_warnings(&inputs.rig, posed) {
+        eprintln!("warning: {}: {warning}", pose.display());
+    }
+}
+
+/// The error naming the pose, the vertex and its sweep where the deformed `positions` (with
+/// their `owners`) hold a non-finite position; `None` where all are finite.
+pub fn non_finite(inputs: &Inputs, positions: &[DVec3], owners: &[u32], pose: &Path) -> Option<String> {
+    let i = positions.iter().position(|p| !p.is_finite())?;
+    let sweep = &inputs.rig.sweeps()[owners[i] as usize].name;
+    Some(format!("{}: vertex index {i} (sweep {sweep:?}) deforms to a non-finite position", pose.display()))
 }
 
 /// A mesh bound to its rig on one backend, deformed pose after pose: the binding, the costly

@@ -10,7 +10,7 @@ use super::CliResult;
 use super::args::{MeshArg, RigArg};
 use super::backend::{Backend, resolve};
 use super::bind::load_inputs;
-use super::deform::BoundMesh;
+use super::deform::{BoundMesh, non_finite, warn_of_folds};
 use sweepffd::formats::{MorphPose, save_morph_animation};
 
 /// The arguments of `sweepffd export`.
@@ -49,17 +49,10 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     let mut deformed: Vec<Vec<DVec3>> = Vec::with_capacity(args.poses.len());
     for path in &args.poses {
         let posed = inputs.rig.load_pose(path)?;
-        for warning in sweepffd::edit::pose_warnings(&inputs.rig, &posed) {
-            eprintln!("warning: {}: {warning}", path.display());
-        }
+        warn_of_folds(&inputs, &posed, path);
         let (positions, owners) = bound.deform(&posed)?;
-        if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
-            let sweep = &inputs.rig.sweeps()[owners[i] as usize].name;
-            return Err(format!(
-                "{}: vertex index {i} (sweep {sweep:?}) deforms to a non-finite position; nothing was written",
-                path.display()
-            )
-            .into());
+        if let Some(error) = non_finite(&inputs, &positions, &owners, path) {
+            return Err(format!("{error}; nothing was written").into());
         }
         deformed.push(positions);
     }

@@ -69,6 +69,22 @@ fn read_animation(file: &Path) -> (Vec<DVec3>, Vec<Vec<DVec3>>, Vec<f32>, Vec<f3
     (rest, targets, times, weights)
 }
 
+/// Poses `rig` (in `dir`) by each edits file of `edits` in turn, from its rest keys; returns the
+/// pose files written, `pose-K.json`.
+fn write_poses(dir: &Path, rig: &str, edits: &[String]) -> Vec<String> {
+    edits
+        .iter()
+        .enumerate()
+        .map(|(k, edits)| {
+            fs::write(dir.join(format!("edits-{k}.json")), edits).unwrap();
+            let pose = format!("pose-{k}.json");
+            let args = ["--quiet", "pose", "--rig", rig, "--edits", &format!("edits-{k}.json"), "--out", &pose];
+            assert!(sweepffd(dir).args(args).status().unwrap().success());
+            pose
+        })
+        .collect()
+}
+
 /// Exports `poses` of `mesh` and `rig` (in `dir`), checks each target against `deform`'s output
 /// and the keyframes, and runs the validator; returns the worst distance over the diagonal.
 fn export_and_check(dir: &Path, mesh: &str, rig: &str, poses: &[String]) -> f64 {
@@ -130,24 +146,16 @@ fn bunny_poses(dir: &Path) -> Vec<String> {
     let status =
         sweepffd(dir).args(["--quiet", "autorig", "--mesh", "bunny.obj", "--out", "rig.json"]).output().unwrap();
     assert!(status.status.success());
-    [(0.0, 0.0), (40.0, -30.0), (-25.0, 60.0)]
+    let edits: Vec<String> = [(0.0, 0.0), (40.0, -30.0), (-25.0, 60.0)]
         .iter()
-        .enumerate()
-        .map(|(k, (a, b))| {
-            let edits = format!(
+        .map(|(a, b)| {
+            format!(
                 r#"[{{"op": "bend", "sweep": "limb0", "t": 0.5, "span": 0.3, "axis": [1, 0, 0], "angle_deg": {a}}},
                     {{"op": "bend", "sweep": "limb1", "t": 0.4, "span": 0.3, "axis": [0, 1, 0], "angle_deg": {b}}}]"#
-            );
-            fs::write(dir.join(format!("edits-{k}.json")), edits).unwrap();
-            let pose = format!("pose-{k}.json");
-            let status = sweepffd(dir)
-                .args(["--quiet", "pose", "--rig", "rig.json", "--edits", &format!("edits-{k}.json"), "--out", &pose])
-                .status()
-                .unwrap();
-            assert!(status.success());
-            pose
+            )
         })
-        .collect()
+        .collect();
+    write_poses(dir, "rig.json", &edits)
 }
 
 #[test]
@@ -174,21 +182,16 @@ fn spot_exports_its_texture_coordinates_with_its_poses() {
     let status =
         sweepffd(dir).args(["--quiet", "autorig", "--mesh", "spot.obj", "--out", "rig.json"]).output().unwrap();
     assert!(status.status.success());
-    let poses: Vec<String> = [0, 30, -30]
+    let edits: Vec<String> = [0, 30, -30]
         .iter()
-        .enumerate()
-        .map(|(k, angle)| {
-            let edits = format!(
+        .map(|angle| {
+            format!(
                 r#"[{{"op": "bend", "sweep": "limb0", "t": 0.5, "span": 0.4, "axis": [1, 0, 0], "angle_deg": {angle}}},
                     {{"op": "bend", "sweep": "limb1", "t": 0.5, "span": 0.4, "axis": [0, 1, 0], "angle_deg": {angle}}}]"#
-            );
-            fs::write(dir.join(format!("edits-{k}.json")), edits).unwrap();
-            let pose = format!("pose-{k}.json");
-            let args = ["--quiet", "pose", "--rig", "rig.json", "--edits", &format!("edits-{k}.json"), "--out", &pose];
-            assert!(sweepffd(dir).args(args).status().unwrap().success());
-            pose
+            )
         })
         .collect();
+    let poses = write_poses(dir, "rig.json", &edits);
     let worst = export_and_check(dir, "spot.obj", "rig.json", &poses);
     eprintln!("spot, 3 poses: morph targets within {worst:.2e} × diagonal of deform's output");
     // The texture coordinates: every corner of the OBJ's faces has its (u, 1 − v) at its glTF
@@ -343,21 +346,12 @@ fn three_js_and_render(
 /// over half its length, and returns their files.
 fn tube_poses(dir: &Path, angles: &[i32]) -> Vec<String> {
     assert!(sweepffd(dir).args(["--quiet", "demo", "--out", "demo"]).status().unwrap().success());
-    angles
-        .iter()
-        .enumerate()
-        .map(|(k, angle)| {
-            let edits = format!(
-                r#"[{{"op": "bend", "sweep": "tube", "t": 0.5, "span": 0.5, "axis": [1, 0, 0], "angle_deg": {angle}}}]"#
-            );
-            fs::write(dir.join(format!("edits-{k}.json")), edits).unwrap();
-            let pose = format!("pose-{k}.json");
-            let args =
-                ["--quiet", "pose", "--rig", "demo/rig.json", "--edits", &format!("edits-{k}.json"), "--out", &pose];
-            assert!(sweepffd(dir).args(args).status().unwrap().success());
-            pose
-        })
-        .collect()
+    write_poses(dir, "demo/rig.json", &angles.iter().map(|&angle| tube_bend(angle)).collect::<Vec<_>>())
+}
+
+/// The edits file bending the demo tube by `angle` degrees over half its length.
+fn tube_bend(angle: i32) -> String {
+    format!(r#"[{{"op": "bend", "sweep": "tube", "t": 0.5, "span": 0.5, "axis": [1, 0, 0], "angle_deg": {angle}}}]"#)
 }
 
 /// three.js loads the demo tube's export (5 poses) in headless Chromium and plays its
@@ -462,20 +456,7 @@ fn a_gltf_source_exports_its_texture_coordinates_with_its_poses() {
     let texcoords = tube_gltf_with_texcoords(&dir.join("tube.gltf"), &tube);
     let rig = sweepffd::synthetic::tube_rig(&tube, 5, 8);
     fs::write(dir.join("rig.json"), rig.to_document().to_json()).unwrap();
-    let poses: Vec<String> = [0, 40, 80]
-        .iter()
-        .enumerate()
-        .map(|(k, angle)| {
-            let edits = format!(
-                r#"[{{"op": "bend", "sweep": "tube", "t": 0.5, "span": 0.5, "axis": [1, 0, 0], "angle_deg": {angle}}}]"#
-            );
-            fs::write(dir.join(format!("edits-{k}.json")), edits).unwrap();
-            let pose = format!("pose-{k}.json");
-            let args = ["--quiet", "pose", "--rig", "rig.json", "--edits", &format!("edits-{k}.json"), "--out", &pose];
-            assert!(sweepffd(dir).args(args).status().unwrap().success());
-            pose
-        })
-        .collect();
+    let poses = write_poses(dir, "rig.json", &[0, 40, 80].map(tube_bend));
     let worst = export_and_check(dir, "tube.gltf", "rig.json", &poses);
     eprintln!("glTF tube, 3 poses: morph targets within {worst:.2e} × diagonal of deform's output");
     let gltf = gltf::Gltf::from_slice(&fs::read(dir.join("anim.glb")).unwrap()).unwrap();
