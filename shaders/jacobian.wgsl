@@ -54,7 +54,7 @@ fn point_frame(cell: CellCoeffs, binding: GpuBinding, beyond_end: bool) -> Point
     if (!beyond_end) {
         let c = cell.curve;
         let velocity = c[1].xyz + s * (2.0 * c[2].xyz + s * 3.0 * c[3].xyz);
-        let dq = cell.dq;
+        let dq = quat_derivative_at(cell, s);
         let spin = (2.0 / dot(q, q)) * (q.w * dq.xyz - dq.w * q.xyz - cross(dq.xyz, q.xyz));
         along_axis = velocity + r_s * direction + cross(spin, local_offset(direction, normal, rho, binding.h));
     }

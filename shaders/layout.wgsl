@@ -15,17 +15,17 @@ const INSTANCES_PER_INVOCATION: u32 = 4u;
 const CELL_GROUP: u32 = 4u;
 
 // Most cells a rig may have for the deform kernel to read them from a uniform buffer (64 KiB).
-const UNIFORM_CELL_CAPACITY: u32 = 409u;
+const UNIFORM_CELL_CAPACITY: u32 = 341u;
 
 // Everything a vertex needs to follow its posed sweep, for one cell (knot interval k, angular
 // interval j): the bicubic r(s, phi) = sum c_pq s^p phi^q stored as radius[q][p]; C(s) = c0 + c1 s
 // + c2 s^2 + c3 s^3 in curve[i].xyz, with pi / M in curve[0].w; and R(t) Rz(theta_mid) as the
-// quaternion q0 + s dq (x, y, z, w) before normalization, theta_mid the cell's middle angle.
+// quaternion a0 + a1 s + a2 s^2 + a3 s^3 (x, y, z, w; a2 = a3 = 0 for the linear rotation
+// interpolation) in rotation[i], before normalization, theta_mid the cell's middle angle.
 struct CellCoeffs {
     radius: array<vec4<f32>, 4>,
     curve: array<vec4<f32>, 4>,
-    q0: vec4<f32>,
-    dq: vec4<f32>,
+    rotation: array<vec4<f32>, 4>,
 }
 
 // Where one sweep's knot intervals and cells start; cell (k, j) is first_cell + k * samples + j.
@@ -36,16 +36,18 @@ struct SweepInfo {
     samples: u32,
 }
 
-// The binding quintic of a rest knot interval, with w = v - origin:
-// g(s) = w.n0 + (w.n1 - e1) s + (w.n2 - e2) s^2 - e3 s^3 - e4 s^4 - e5 s^5.
+// The binding polynomial of a rest knot interval, with w = v - origin:
+// g(s) = sum_m (w.n_m - e_m) s^m (n_m = 0 past m = 6, e_0 = 0), of degree 5 (linear rotation
+// interpolation: n3..n6 and e6..e9 are zero) or 9 (cubic).
 struct BindSegment {
     origin: vec4<f32>,
-    normal: array<vec4<f32>, 3>,
+    normal: array<vec4<f32>, 7>,
     e_low: vec4<f32>,
-    e5: f32,
+    e_high: vec4<f32>,
+    e9: f32,
     t0: f32,
     t1: f32,
-    _pad: f32,
+    degree: u32,
 }
 
 // A vertex's binding, unpacked: its radius cell (or UNOWNED; BAND_FLAG set in a falloff band),

@@ -8,9 +8,17 @@ fn curve_at(cell: CellCoeffs, s: f32) -> vec3<f32> {
     return c[0].xyz + s * (c[1].xyz + s * (c[2].xyz + s * c[3].xyz));
 }
 
-// R(t) Rz(theta_mid) as the unnormalized quaternion q0 + s dq; rotate() normalizes it.
+// R(t) Rz(theta_mid) as the unnormalized quaternion a0 + a1 s + a2 s^2 + a3 s^3; rotate()
+// normalizes it.
 fn quat_at(cell: CellCoeffs, s: f32) -> vec4<f32> {
-    return cell.q0 + s * cell.dq;
+    let a = cell.rotation;
+    return a[0] + s * (a[1] + s * (a[2] + s * a[3]));
+}
+
+// The derivative in s of quat_at.
+fn quat_derivative_at(cell: CellCoeffs, s: f32) -> vec4<f32> {
+    let a = cell.rotation;
+    return a[1] + s * (2.0 * a[2] + s * 3.0 * a[3]);
 }
 
 // v rotated by the unit quaternion q / |q|: v + w t + u x t with q = (u, w) and

@@ -26,7 +26,7 @@ pub const KEEPS_REST: u32 = 1 << 30;
 
 /// Most cells a rig may have for the deform kernel to read them from a uniform buffer (64 KiB,
 /// the portable limit); larger rigs use the storage-buffer variant of the kernel.
-pub const UNIFORM_CELL_CAPACITY: u32 = 409;
+pub const UNIFORM_CELL_CAPACITY: u32 = 341;
 
 /// Instances one invocation of the instanced deform kernel (`deform_instances_main`) deforms:
 /// it reads each binding once for them all.
@@ -42,15 +42,17 @@ pub const CELL_GROUP: u32 = 4;
 pub const SCAN_RUN: u32 = 64;
 
 /// Everything a vertex needs to follow its posed sweep, for one cell: knot interval k of a
-/// sweep and angular interval j of its radius function (§3). Rebuilt every frame; 160 bytes.
+/// sweep and angular interval j of its radius function (§3). Rebuilt every frame; 192 bytes.
 ///
 /// - `radius`: the bicubic r(s, φ) = Σ_p Σ_q c_pq·s^p·φ^q, stored by powers of φ:
 ///   `radius[q][p]` = c_pq.
 /// - `curve[i].xyz`: C(s) = c0 + c1·s + c2·s² + c3·s³ on the interval (c0 = p_k); `curve[0].w`
 ///   is π/M (half the cell's angle); the other `w` are unused.
-/// - `q0`, `dq`: R(t)·Rz(θ_mid) is the quaternion q0 + s·dq normalized, with q0 = q_k ⊗ qz(θ_mid)
-///   and dq = q̃_{k+1} ⊗ qz(θ_mid) − q0, as (x, y, z, w); θ_mid = θ_j + π/M is the cell's middle
-///   angle: a vertex at angle θ_mid + δ turns by δ about z and then by that quaternion.
+/// - `rotation[i]`: R(t)·Rz(θ_mid) is the quaternion a0 + a1·s + a2·s² + a3·s³ normalized, with
+///   a_i the power coefficients of the interval's q(s) (`crate::sweep::orientation`) times
+///   qz(θ_mid), as (x, y, z, w); a2 = a3 = 0 for the linear interpolation, where
+///   a0 = q_k ⊗ qz(θ_mid) and a1 = q̃_{k+1} ⊗ qz(θ_mid) − a0. θ_mid = θ_j + π/M is the cell's
+///   middle angle: a vertex at angle θ_mid + δ turns by δ about z and then by that quaternion.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct CellCoeffs {
@@ -59,10 +61,8 @@ pub struct CellCoeffs {
     /// The curve's coefficients in xyz; π/M in `curve[0].w`; which ends of the sweep the knot
     /// interval holds in `curve[1].w` ([`CellCoeffs::ends`]).
     pub curve: [[f32; 4]; 4],
-    /// q_k ⊗ qz(θ_mid).
-    pub q0: [f32; 4],
-    /// q̃_{k+1} ⊗ qz(θ_mid) − q0.
-    pub dq: [f32; 4],
+    /// Power coefficients a0 … a3 of the unnormalized R(t)·Rz(θ_mid) in s.
+    pub rotation: [[f32; 4]; 4],
 }
 
 impl CellCoeffs {
@@ -92,25 +92,28 @@ pub struct SweepInfo {
     pub samples: u32,
 }
 
-/// The binding quintic of one rest knot interval (see [`crate::bind`]): with w = v − origin,
-/// g(s) = w·n0 + (w·n1 − e1)·s + (w·n2 − e2)·s² − e3·s³ − e4·s⁴ − e5·s⁵. 96 bytes.
+/// The binding polynomial of one rest knot interval (see [`crate::bind`]): with w = v − origin,
+/// g(s) = Σ_m (w·n_m − e_m)·s^m (n_m = 0 past m = 6, e_0 = 0), of degree 5 for the linear
+/// rotation interpolation (n3 … n6 and e6 … e9 are zero) and 9 for the cubic one. 176 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct BindSegment {
     /// p_k in xyz; w unused.
     pub origin: [f32; 4],
-    /// n0, n1, n2 (the unnormalized normal's coefficients) in xyz; w unused.
-    pub normal: [[f32; 4]; 3],
+    /// n0 … n6 (the unnormalized normal's coefficients) in xyz; w unused.
+    pub normal: [[f32; 4]; 7],
     /// e1, e2, e3, e4.
     pub e_low: [f32; 4],
-    /// e5.
-    pub e5: f32,
+    /// e5, e6, e7, e8.
+    pub e_high: [f32; 4],
+    /// e9.
+    pub e9: f32,
     /// u_k.
     pub t0: f32,
     /// u_{k+1}.
     pub t1: f32,
-    /// Unused.
-    pub _pad: f32,
+    /// The degree of g: 5 or 9.
+    pub degree: u32,
 }
 
 /// A vertex's binding in f32: the cell it lies in, local parameters in that cell, and (d, h).
@@ -349,10 +352,10 @@ pub struct Joint {
     pub rows: [[f32; 4]; 3],
 }
 
-const _: () = assert!(size_of::<CellCoeffs>() == 160);
+const _: () = assert!(size_of::<CellCoeffs>() == 192);
+const _: () = assert!(size_of::<BindSegment>() == 176);
 const _: () = assert!(UNIFORM_CELL_CAPACITY as usize * size_of::<CellCoeffs>() <= 65536);
 const _: () = assert!(size_of::<SweepInfo>() == 16);
-const _: () = assert!(size_of::<BindSegment>() == 96);
 const _: () = assert!(size_of::<GpuBinding>() == 20);
 const _: () = assert!(size_of::<PackedBinding>() == 16);
 const _: () = assert!(CELL_BITS + 2 * LOW_BITS < 31);

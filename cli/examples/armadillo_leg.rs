@@ -45,6 +45,7 @@ fn main() {
         knots: None,
         parent: None,
         falloff: fitted.falloff,
+        rotation: Default::default(),
     }])
     .unwrap_or_else(|e| panic!("{e}"));
     out.rig("leg-rig.json", &rig, &rig.sweeps().iter().map(|s| s.keys.clone()).collect::<Vec<_>>());

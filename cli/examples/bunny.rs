@@ -48,6 +48,7 @@ fn main() {
             parent: None,
             // The default falloff: the ears fade into the head instead of tearing from it.
             falloff: fitted.falloff,
+            rotation: Default::default(),
         });
     }
     let rig = Rig::new(sweeps).unwrap_or_else(|e| panic!("{e}"));

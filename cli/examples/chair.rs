@@ -81,6 +81,7 @@ fn main() {
         knots: None,
         parent: parent.map(|p| ParentLink { sweep: p.into(), kind: LinkKind::Branch }),
         falloff: 0.0,
+        rotation: Default::default(),
     };
     let [a, b, c, d] = legs.try_into().unwrap_or_else(|_| unreachable!("four legs"));
     let rig = Rig::new(vec![

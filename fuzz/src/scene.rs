@@ -51,6 +51,7 @@ fn arm() -> RigSweep {
         knots: None,
         parent: Some(ParentLink { sweep: "tube".into(), kind: LinkKind::Branch }),
         falloff: 0.0,
+        rotation: Default::default(),
     }
 }
 

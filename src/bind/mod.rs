@@ -4,7 +4,7 @@
 //! Data flow: rig → sweep → sweep coefficients → **bind** → deform → normals → output.
 //!
 //! For a vertex v, t is the root of f(t) = ⟨v − C(t), N(t)⟩ on [0, 1] nearest to v (smallest
-//! |v − C(t)|); every root is found (`quintic`). A vertex with no root lies beyond an end of
+//! |v − C(t)|); every root is found (`plane_roots`). A vertex with no root lies beyond an end of
 //! the sweep and takes the nearer end, t ∈ {0, 1}. Then, with v̂ = R(t)ᵀ·(v − C(t)):
 //! θ = atan2(v̂_y, v̂_x) ∈ [0, 2π), d = |(v̂_x, v̂_y)| − r(θ, t) and h = v̂_z. For a root h is zero
 //! up to round-off; beyond an end it is the axial offset, so caps follow their sweep.
@@ -12,7 +12,7 @@
 pub mod band;
 pub mod falloff;
 internal_mod! {
-    quintic;
+    plane_roots;
 }
 
 use std::f64::consts::TAU;
@@ -20,7 +20,7 @@ use std::f64::consts::TAU;
 use crate::parallel::prelude::*;
 use glam::DVec3;
 
-use crate::sweep::plane_quintic::PlaneQuintic;
+use crate::sweep::plane_polynomial::PlanePolynomial;
 use crate::sweep::{AxisPoint, Sweep};
 
 pub use band::{BandBinding, MeshBindings};
@@ -61,21 +61,23 @@ impl Binding {
 #[derive(Clone, Debug)]
 pub struct SweepBinder<'a> {
     sweep: &'a Sweep,
-    quintics: Vec<PlaneQuintic>,
+    planes: Vec<PlanePolynomial>,
 }
 
 impl<'a> SweepBinder<'a> {
-    /// Precomputes the per-interval quintics of `sweep`.
+    /// Precomputes the per-interval plane polynomials of `sweep`.
     pub fn new(sweep: &'a Sweep) -> SweepBinder<'a> {
-        let quintics = sweep.segments().iter().map(PlaneQuintic::new).collect();
-        SweepBinder { sweep, quintics }
+        let planes = sweep.segments().iter().map(PlanePolynomial::new).collect();
+        SweepBinder { sweep, planes }
     }
 
     /// Every root t of ⟨v − C(t), N(t)⟩ in [0, 1], as axis points, increasing.
     pub fn roots(&self, v: DVec3) -> Vec<AxisPoint> {
         let mut roots = Vec::new();
-        for (segment, quintic) in self.quintics.iter().enumerate() {
-            quintic::for_each_root(&quintic.for_vertex(v), &mut |s| roots.push(AxisPoint { segment, s }));
+        for (segment, plane) in self.planes.iter().enumerate() {
+            plane_roots::for_each_root(&plane.for_vertex(v)[..=plane.degree], &mut |s| {
+                roots.push(AxisPoint { segment, s })
+            });
         }
         roots
     }
@@ -90,8 +92,8 @@ impl<'a> SweepBinder<'a> {
     pub fn nearest_root(&self, v: DVec3) -> Option<AxisPoint> {
         let segments = self.sweep.segments();
         let mut best: Option<(AxisPoint, f64)> = None;
-        for (segment, quintic) in self.quintics.iter().enumerate() {
-            quintic::for_each_root(&quintic.for_vertex(v), &mut |s| {
+        for (segment, plane) in self.planes.iter().enumerate() {
+            plane_roots::for_each_root(&plane.for_vertex(v)[..=plane.degree], &mut |s| {
                 let d2 = segments[segment].curve.value(s).distance_squared(v);
                 if best.is_none_or(|(_, best_d2)| d2 < best_d2) {
                     best = Some((AxisPoint { segment, s }, d2));

@@ -21,7 +21,7 @@ pub use crate::layout::{
 };
 
 use crate::sweep::Sweep;
-use crate::sweep::plane_quintic::PlaneQuintic;
+use crate::sweep::plane_polynomial::PlanePolynomial;
 
 /// The per-frame coefficient array of a rig, sized once for its structure and refilled in
 /// place for each pose.
@@ -86,16 +86,21 @@ impl SweepCoefficients {
                 let mut curve = segment.curve.power_coefficients().map(vec4);
                 curve[0][3] = half_step as f32;
                 curve[1][3] = CellCoeffs::ends(k, sweep.segments().len());
-                let (start, end) = (segment.orientation.start, segment.orientation.end);
+                let power = segment.orientation.power;
                 for j in 0..m {
-                    // R(t)·Rz(θ_mid) as one quaternion: mixing the ends of q ⊗ qz(θ_mid) is the same
-                    // as mixing q first, since right multiplication is linear.
+                    // R(t)·Rz(θ_mid) as one quaternion: right multiplication by qz(θ_mid) is linear,
+                    // so it turns each power coefficient of q(s).
                     let middle = DQuat::from_rotation_z((2 * j + 1) as f64 * half_step);
                     let c = sweep.radius_field().patch(k, j).c;
                     let radius = std::array::from_fn(|q| std::array::from_fn(|p| c[p][q] as f32));
-                    let (q0, q1) = (start * middle, end * middle);
-                    self.cells[info.first_cell as usize + k * m + j] =
-                        CellCoeffs { radius, curve, q0: quat4(q0), dq: quat4(q1 - q0) };
+                    let rotation = if segment.orientation.cubic {
+                        power.map(|a| quat4(a * middle))
+                    } else {
+                        // As the linear interpolation mixes its ends: a1 = q̃_{k+1}·qz − q_k·qz.
+                        let (q0, q1) = (segment.orientation.start * middle, segment.orientation.end * middle);
+                        [quat4(q0), quat4(q1 - q0), [0.0; 4], [0.0; 4]]
+                    };
+                    self.cells[info.first_cell as usize + k * m + j] = CellCoeffs { radius, curve, rotation };
                 }
             }
         }
@@ -109,21 +114,22 @@ impl SweepCoefficients {
 #[error("the posed sweeps differ from the rest rig in number of sweeps, keys or radii")]
 pub struct StructureMismatch;
 
-/// The binding quintic of every knot interval of the rest sweeps, in global segment order.
+/// The binding polynomial of every knot interval of the rest sweeps, in global segment order.
 pub fn bind_segments(rest: &[Sweep]) -> Vec<BindSegment> {
     rest.iter()
         .flat_map(|sweep| sweep.segments())
         .map(|segment| {
-            let quintic = PlaneQuintic::new(segment);
-            let e = quintic.curve_dot_normal;
+            let plane = PlanePolynomial::new(segment);
+            let e = plane.curve_dot_normal.map(|e| e as f32);
             BindSegment {
-                origin: vec4(quintic.origin),
-                normal: quintic.normal.map(vec4),
-                e_low: [e[0] as f32, e[1] as f32, e[2] as f32, e[3] as f32],
-                e5: e[4] as f32,
+                origin: vec4(plane.origin),
+                normal: plane.normal.map(vec4),
+                e_low: [e[0], e[1], e[2], e[3]],
+                e_high: [e[4], e[5], e[6], e[7]],
+                e9: e[8],
                 t0: segment.t0 as f32,
                 t1: segment.t1 as f32,
-                _pad: 0.0,
+                degree: plane.degree as u32,
             }
         })
         .collect()

@@ -28,7 +28,7 @@ const MAX_REFINE_STEPS: u32 = 32;
 pub struct BindInputs<'a> {
     /// The rest rig's cell records.
     pub cells: &'a [CellCoeffs],
-    /// Rest binding quintics.
+    /// Rest binding polynomials.
     pub bind_segments: &'a [BindSegment],
     /// Where each sweep starts.
     pub sweeps: &'a [SweepInfo],
@@ -44,41 +44,86 @@ struct Nearest {
     found: bool,
 }
 
-/// Power coefficients of g(s) = ⟨v − C(s), n(s)⟩ on a knot interval.
-fn plane_quintic(b: &BindSegment, v: Vec3) -> [f32; 6] {
+/// The plane polynomial g(s) = ⟨v − C(s), n(s)⟩ of a knot interval: power coefficients
+/// `g[0..=degree]`, degree 5 (linear rotation interpolation) or 9 (cubic).
+#[derive(Clone, Copy, Debug)]
+pub struct Plane {
+    /// a0 … a9; those past the degree are 0.
+    pub g: [f32; 10],
+    /// 5 or 9.
+    pub degree: usize,
+}
+
+/// The plane polynomial of knot interval `b` for vertex v.
+pub fn plane_polynomial(b: &BindSegment, v: Vec3) -> Plane {
     let w = v - Vec4::from_array(b.origin).xyz();
-    let n = b.normal.map(|n| Vec4::from_array(n).xyz());
-    [w.dot(n[0]), w.dot(n[1]) - b.e_low[0], w.dot(n[2]) - b.e_low[1], -b.e_low[2], -b.e_low[3], -b.e5]
+    let dot = |m: usize| w.dot(Vec4::from_array(b.normal[m]).xyz());
+    let e = [b.e_low[0], b.e_low[1], b.e_low[2], b.e_low[3], b.e_high[0], b.e_high[1], b.e_high[2], b.e_high[3], b.e9];
+    let g = [
+        dot(0),
+        dot(1) - e[0],
+        dot(2) - e[1],
+        dot(3) - e[2],
+        dot(4) - e[3],
+        dot(5) - e[4],
+        dot(6) - e[5],
+        -e[6],
+        -e[7],
+        -e[8],
+    ];
+    Plane { g, degree: b.degree as usize }
 }
 
-fn eval_quintic(g: &[f32; 6], s: f32) -> f32 {
-    g[0] + s * (g[1] + s * (g[2] + s * (g[3] + s * (g[4] + s * g[5]))))
-}
+impl Plane {
+    /// g(s) by Horner's rule.
+    pub fn at(&self, s: f32) -> f32 {
+        let g = &self.g;
+        if self.degree == 5 {
+            return g[0] + s * (g[1] + s * (g[2] + s * (g[3] + s * (g[4] + s * g[5]))));
+        }
+        g[0] + s * (g[1] + s * (g[2] + s * (g[3] + s * (g[4] + s * (g[5] + s * (g[6] + s * (g[7] + s * (g[8] + s * g[9]))))))))
+    }
 
-fn eval_quintic_derivative(g: &[f32; 6], s: f32) -> f32 {
-    g[1] + s * (2.0 * g[2] + s * (3.0 * g[3] + s * (4.0 * g[4] + s * 5.0 * g[5])))
-}
+    /// g′(s) by Horner's rule.
+    pub fn derivative_at(&self, s: f32) -> f32 {
+        let g = &self.g;
+        if self.degree == 5 {
+            return g[1] + s * (2.0 * g[2] + s * (3.0 * g[3] + s * (4.0 * g[4] + s * 5.0 * g[5])));
+        }
+        g[1] + s
+            * (2.0 * g[2]
+                + s * (3.0 * g[3]
+                    + s * (4.0 * g[4]
+                        + s * (5.0 * g[5] + s * (6.0 * g[6] + s * (7.0 * g[7] + s * (8.0 * g[8] + s * 9.0 * g[9])))))))
+    }
 
-/// Bernstein coefficients of g on [a, a + w]: a Taylor shift to a, a scaling by w, then the
-/// power-to-Bernstein change of basis for degree 5.
-#[expect(clippy::needless_range_loop, reason = "mirrors the WGSL")]
-fn bernstein_on(g: &[f32; 6], a: f32, w: f32) -> [f32; 6] {
-    let mut c = *g;
-    // Most intervals visited are the whole of [0, 1] (a = 0, w = 1), which needs neither step.
-    if a != 0.0 {
-        for k in 0..5 {
-            for i in (k..=4).rev() {
-                c[i] += a * c[i + 1];
+    /// Bernstein coefficients (the first `degree + 1`) of g on [a, a + w]: a Taylor shift to a,
+    /// a scaling by w, then the power-to-Bernstein change of basis.
+    #[expect(clippy::needless_range_loop, reason = "mirrors the WGSL")]
+    pub fn bernstein_on(&self, a: f32, w: f32) -> [f32; 10] {
+        let n = self.degree;
+        let mut c = self.g;
+        // Most intervals visited are the whole of [0, 1] (a = 0, w = 1), which needs neither step.
+        if a != 0.0 {
+            for k in 0..n {
+                for i in (k..n).rev() {
+                    c[i] += a * c[i + 1];
+                }
             }
         }
-    }
-    if w != 1.0 {
-        let mut scale = 1.0;
-        for k in 0..6 {
-            c[k] *= scale;
-            scale *= w;
+        if w != 1.0 {
+            let mut scale = 1.0;
+            for k in 0..=n {
+                c[k] *= scale;
+                scale *= w;
+            }
         }
+        if n == 5 { quintic_to_bernstein(&c) } else { nonic_to_bernstein(&c) }
     }
+}
+
+/// The power-to-Bernstein change of basis for degree 5: b_i = Σ_j C(i, j)/C(5, j)·c_j.
+fn quintic_to_bernstein(c: &[f32; 10]) -> [f32; 10] {
     [
         c[0],
         c[0] + 0.2 * c[1],
@@ -86,13 +131,34 @@ fn bernstein_on(g: &[f32; 6], a: f32, w: f32) -> [f32; 6] {
         c[0] + 0.6 * c[1] + 0.3 * c[2] + 0.1 * c[3],
         c[0] + 0.8 * c[1] + 0.6 * c[2] + 0.4 * c[3] + 0.2 * c[4],
         c[0] + c[1] + c[2] + c[3] + c[4] + c[5],
+        0.0,
+        0.0,
+        0.0,
+        0.0,
     ]
 }
 
-/// Sign variations of Bernstein coefficients, counting 0 as positive.
-fn sign_variations(b: &[f32; 6]) -> u32 {
+/// The power-to-Bernstein change of basis for degree 9: b_i = Σ_j C(i, j)/C(9, j)·c_j.
+#[expect(clippy::excessive_precision, reason = "the WGSL twin spells the same literals")]
+fn nonic_to_bernstein(c: &[f32; 10]) -> [f32; 10] {
+    [
+        c[0],
+        c[0] + 0.1111111111111111 * c[1],
+        c[0] + 0.2222222222222222 * c[1] + 0.027777777777777776 * c[2],
+        c[0] + 0.3333333333333333 * c[1] + 0.08333333333333333 * c[2] + 0.011904761904761904 * c[3],
+        c[0] + 0.4444444444444444 * c[1] + 0.16666666666666666 * c[2] + 0.047619047619047616 * c[3] + 0.007936507936507936 * c[4],
+        c[0] + 0.5555555555555556 * c[1] + 0.2777777777777778 * c[2] + 0.11904761904761904 * c[3] + 0.03968253968253968 * c[4] + 0.007936507936507936 * c[5],
+        c[0] + 0.6666666666666666 * c[1] + 0.4166666666666667 * c[2] + 0.23809523809523808 * c[3] + 0.11904761904761904 * c[4] + 0.047619047619047616 * c[5] + 0.011904761904761904 * c[6],
+        c[0] + 0.7777777777777778 * c[1] + 0.5833333333333334 * c[2] + 0.4166666666666667 * c[3] + 0.2777777777777778 * c[4] + 0.16666666666666666 * c[5] + 0.08333333333333333 * c[6] + 0.027777777777777776 * c[7],
+        c[0] + 0.8888888888888888 * c[1] + 0.7777777777777778 * c[2] + 0.6666666666666666 * c[3] + 0.5555555555555556 * c[4] + 0.4444444444444444 * c[5] + 0.3333333333333333 * c[6] + 0.2222222222222222 * c[7] + 0.1111111111111111 * c[8],
+        c[0] + c[1] + c[2] + c[3] + c[4] + c[5] + c[6] + c[7] + c[8] + c[9],
+    ]
+}
+
+/// Sign variations of the first `degree + 1` Bernstein coefficients, counting 0 as positive.
+pub fn sign_variations(b: &[f32; 10], degree: usize) -> u32 {
     let mut count = 0;
-    for i in 0..5 {
+    for i in 0..degree {
         if (b[i] >= 0.0) != (b[i + 1] >= 0.0) {
             count += 1;
         }
@@ -102,12 +168,12 @@ fn sign_variations(b: &[f32; 6]) -> u32 {
 
 /// The root of g in [lo, hi], where g(lo) and g(hi) differ in sign: Newton's method kept inside
 /// the shrinking bracket, bisecting when a step would leave it.
-fn refine_root(g: &[f32; 6], lo_in: f32, hi_in: f32, positive_at_lo: bool) -> f32 {
+fn refine_root(g: &Plane, lo_in: f32, hi_in: f32, positive_at_lo: bool) -> f32 {
     let mut lo = lo_in;
     let mut hi = hi_in;
     let mut s = 0.5 * (lo + hi);
     for _ in 0..MAX_REFINE_STEPS {
-        let value = eval_quintic(g, s);
+        let value = g.at(s);
         if value == 0.0 {
             break;
         }
@@ -116,7 +182,7 @@ fn refine_root(g: &[f32; 6], lo_in: f32, hi_in: f32, positive_at_lo: bool) -> f3
         } else {
             hi = s;
         }
-        let derivative = eval_quintic_derivative(g, s);
+        let derivative = g.derivative_at(s);
         let mut next = 0.5 * (lo + hi);
         if derivative != 0.0 {
             let newton = s - value / derivative;
@@ -147,8 +213,8 @@ fn consider_root(inputs: &BindInputs, cell: u32, s: f32, v: Vec3, nearest: &mut 
 /// depth first without a stack (level, index encode the interval
 /// [index/2^level, (index + 1)/2^level]), refining every certified root.
 fn roots_on_segment(inputs: &BindInputs, k: u32, cell: u32, v: Vec3, nearest: &mut Nearest) {
-    let g = plane_quintic(&inputs.bind_segments[k as usize], v);
-    if g[0] == 0.0 {
+    let g = plane_polynomial(&inputs.bind_segments[k as usize], v);
+    if g.g[0] == 0.0 {
         consider_root(inputs, cell, 0.0, v, nearest);
     }
     let mut level = 0u32;
@@ -156,14 +222,14 @@ fn roots_on_segment(inputs: &BindInputs, k: u32, cell: u32, v: Vec3, nearest: &m
     loop {
         let w = 1.0 / (1u32 << level) as f32;
         let a = index as f32 * w;
-        let b = bernstein_on(&g, a, w);
-        let variations = sign_variations(&b);
+        let b = g.bernstein_on(a, w);
+        let variations = sign_variations(&b, g.degree);
         if variations > 1 && level < MAX_LEVEL {
             level += 1;
             index *= 2;
             continue;
         }
-        if variations == 1 || (variations > 1 && (b[0] >= 0.0) != (b[5] >= 0.0)) {
+        if variations == 1 || (variations > 1 && (b[0] >= 0.0) != (b[g.degree] >= 0.0)) {
             consider_root(inputs, cell, refine_root(&g, a, a + w, b[0] >= 0.0), v, nearest);
         } else if variations > 1 {
             consider_root(inputs, cell, a + 0.5 * w, v, nearest);
@@ -178,7 +244,7 @@ fn roots_on_segment(inputs: &BindInputs, k: u32, cell: u32, v: Vec3, nearest: &m
         }
         index += 1;
     }
-    if eval_quintic(&g, 1.0) == 0.0 {
+    if g.at(1.0) == 0.0 {
         consider_root(inputs, cell, 1.0, v, nearest);
     }
 }

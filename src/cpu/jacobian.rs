@@ -4,7 +4,7 @@
 
 use glam::{Vec3, Vec4, Vec4Swizzles};
 
-use super::sweep_eval::{curve_at, direction_at, quat_at, rotate, rotate_inverse};
+use super::sweep_eval::{curve_at, direction_at, quat_at, quat_derivative_at, rotate, rotate_inverse};
 use crate::coeffs::{CellCoeffs, GpuBinding};
 
 /// Mode of a normal coordinates record (its w): through the Jacobian in (φ, s, d).
@@ -60,7 +60,7 @@ pub fn point_frame(cell: &CellCoeffs, binding: &GpuBinding, beyond_end: bool) ->
     if !beyond_end {
         let c = cell.curve.map(|c| Vec4::from_array(c).xyz());
         let velocity = c[1] + s * (2.0 * c[2] + s * 3.0 * c[3]);
-        let dq = Vec4::from_array(cell.dq);
+        let dq = quat_derivative_at(cell, s);
         let spin = (2.0 / q.dot(q)) * (q.w * dq.xyz() - dq.w * q.xyz() - dq.xyz().cross(q.xyz()));
         along_axis = velocity + r_s * direction + spin.cross(rho * direction + binding.h * normal);
     }

@@ -11,9 +11,17 @@ pub fn curve_at(cell: &CellCoeffs, s: f32) -> Vec3 {
     c[0] + s * (c[1] + s * (c[2] + s * c[3]))
 }
 
-/// R(t)·Rz(θ_mid) as the unnormalized quaternion q0 + s·dq; [`rotate`] normalizes it.
+/// R(t)·Rz(θ_mid) as the unnormalized quaternion a0 + a1·s + a2·s² + a3·s³; [`rotate`]
+/// normalizes it.
 pub fn quat_at(cell: &CellCoeffs, s: f32) -> Vec4 {
-    Vec4::from_array(cell.q0) + s * Vec4::from_array(cell.dq)
+    let a = cell.rotation.map(Vec4::from_array);
+    a[0] + s * (a[1] + s * (a[2] + s * a[3]))
+}
+
+/// The derivative in s of [`quat_at`].
+pub fn quat_derivative_at(cell: &CellCoeffs, s: f32) -> Vec4 {
+    let a = cell.rotation.map(Vec4::from_array);
+    a[1] + s * (2.0 * a[2] + s * 3.0 * a[3])
 }
 
 /// v rotated by the unit quaternion q/|q|: v + w·t + u × t with q = (u, w) and

@@ -98,7 +98,7 @@ impl Quintic {
                 sub(dot(&b.normal[2]), splat(b.e_low[1])),
                 splat(-b.e_low[2]),
                 splat(-b.e_low[3]),
-                splat(-b.e5),
+                splat(-b.e_high[0]),
             ],
         }
     }
@@ -278,7 +278,8 @@ fn finish_batch(
 ) {
     let cell = &inputs.cells[interval as usize];
     let c = curve_at(&cell.curve, s);
-    let q = |k: usize| add(splat(cell.q0[k]), mul(s, splat(cell.dq[k])));
+    // The batch's sweep interpolates its rotations linearly (`bind_batches`): a2 = a3 = 0.
+    let q = |k: usize| add(splat(cell.rotation[0][k]), mul(s, splat(cell.rotation[1][k])));
     // R(t)ᵀ·(v − C(t)): the inverse rotation, by the conjugate quaternion.
     let inverse =
         [sub(_mm256_setzero_ps(), q(0)), sub(_mm256_setzero_ps(), q(1)), sub(_mm256_setzero_ps(), q(2)), q(3)];
@@ -348,15 +349,26 @@ fn angle_of(x: F8, y: F8) -> F8 {
     select(less(y, _mm256_setzero_ps()), sub(_mm256_setzero_ps(), angle), angle)
 }
 
+/// Whether sweep `owner` interpolates its rotations linearly, so that its plane polynomials are
+/// quintics: the batches bind those in registers, the nonics of the cubic interpolation are
+/// left to the twin.
+fn quintic_sweep(inputs: &BindInputs, owner: u32) -> bool {
+    let info = inputs.sweeps[owner as usize];
+    inputs.bind_segments[info.first_segment as usize].degree == 5
+}
+
 /// Binds the vertices of `positions` (tightly packed xyz) owned by `owners` into `out`: batches
-/// of eight with one owning sweep in registers, the others (and the tail) one by one by the twin.
+/// of eight with one owning sweep (whose rotations are linear) in registers, the others (and the
+/// tail) one by one by the twin.
 #[target_feature(enable = "avx2,fma")]
 pub fn bind_batches(inputs: &BindInputs, owners: &[u32], positions: &[f32], out: &mut [GpuBinding]) {
     let (batches, _) = owners.as_chunks::<LANES>();
     let whole = LANES * batches.len();
     for ((i, batch), out) in batches.iter().enumerate().zip(out.chunks_exact_mut(LANES)) {
         let owner = batch[0] & !BAND_FLAG;
-        let shared = batch[0] != UNOWNED && batch.iter().all(|&o| o != UNOWNED && o & !BAND_FLAG == owner);
+        let shared = batch[0] != UNOWNED
+            && batch.iter().all(|&o| o != UNOWNED && o & !BAND_FLAG == owner)
+            && quintic_sweep(inputs, owner);
         let first = LANES * i;
         if !shared {
             for (lane, binding) in out.iter_mut().enumerate() {

@@ -14,7 +14,7 @@ use crate::coeffs::{CellCoeffs, GpuBinding};
 /// Vertices per batch.
 pub const LANES: usize = 8;
 
-const _: () = assert!(size_of::<CellCoeffs>() == 160 && size_of::<GpuBinding>() == 20);
+const _: () = assert!(size_of::<CellCoeffs>() == 192 && size_of::<GpuBinding>() == 20);
 
 /// One cell's coefficients in every lane (the same cell, or each lane's own): the fields of
 /// [`CellCoeffs`].
@@ -25,8 +25,8 @@ pub(super) struct Coefficients {
     pub curve: [[F8; 3]; 4],
     /// π/M.
     pub half_step: F8,
-    pub q0: [F8; 4],
-    pub dq: [F8; 4],
+    /// `rotation[i][k]`: component k of the coefficient of s^i of the unnormalized quaternion.
+    pub rotation: [[F8; 4]; 4],
 }
 
 impl Coefficients {
@@ -37,17 +37,16 @@ impl Coefficients {
         // Array literals rather than `map`, which LLVM leaves as a call outside the AVX2 code.
         let four = |c: &[f32; 4]| [splat(c[0]), splat(c[1]), splat(c[2]), splat(c[3])];
         let three = |c: &[f32; 4]| [splat(c[0]), splat(c[1]), splat(c[2])];
-        let (r, c) = (&cell.radius, &cell.curve);
+        let (r, c, q) = (&cell.radius, &cell.curve, &cell.rotation);
         Coefficients {
             radius: [four(&r[0]), four(&r[1]), four(&r[2]), four(&r[3])],
             curve: [three(&c[0]), three(&c[1]), three(&c[2]), three(&c[3])],
             half_step: splat(cell.curve[0][3]),
-            q0: four(&cell.q0),
-            dq: four(&cell.dq),
+            rotation: [four(&q[0]), four(&q[1]), four(&q[2]), four(&q[3])],
         }
     }
 
-    /// Lane i holds the coefficients of cell `index[i]`: each record's 40 floats loaded as five
+    /// Lane i holds the coefficients of cell `index[i]`: each record's 48 floats loaded as six
     /// registers, and each block of eight records' registers transposed (gathers are slow on
     /// many CPUs).
     #[target_feature(enable = "avx2,fma")]
@@ -55,24 +54,23 @@ impl Coefficients {
     pub(super) fn transposed(cells: &[CellCoeffs], index: [usize; LANES]) -> Coefficients {
         let records = index.map(|i| &cells[i]);
         // Block b of a record holds its floats 8b..8b + 8: radius[0..2], radius[2..4],
-        // curve[0..2], curve[2..4], then q0 and dq.
+        // curve[0..2], curve[2..4], rotation[0..2], rotation[2..4].
         let block = |b: usize| {
             let rows = records.map(|record| {
-                let words: &[f32; 40] = bytemuck::cast_ref(record);
-                // SAFETY: floats 8b..8b + 8 of a 40-float record, b < 5.
+                let words: &[f32; 48] = bytemuck::cast_ref(record);
+                // SAFETY: floats 8b..8b + 8 of a 48-float record, b < 6.
                 unsafe { _mm256_loadu_ps(words.as_ptr().add(8 * b)) }
             });
             transpose8(rows)
         };
-        let (b0, b1, b2, b3, b4) = (block(0), block(1), block(2), block(3), block(4));
+        let (b0, b1, b2, b3, b4, b5) = (block(0), block(1), block(2), block(3), block(4), block(5));
         let four = |b: &[F8; 8], at: usize| [b[at], b[at + 1], b[at + 2], b[at + 3]];
         let three = |b: &[F8; 8], at: usize| [b[at], b[at + 1], b[at + 2]];
         Coefficients {
             radius: [four(&b0, 0), four(&b0, 4), four(&b1, 0), four(&b1, 4)],
             curve: [three(&b2, 0), three(&b2, 4), three(&b3, 0), three(&b3, 4)],
             half_step: b2[3],
-            q0: four(&b4, 0),
-            dq: four(&b4, 4),
+            rotation: [four(&b4, 0), four(&b4, 4), four(&b5, 0), four(&b5, 4)],
         }
     }
 }
@@ -244,7 +242,7 @@ fn cells_of(bindings: &[GpuBinding; LANES]) -> __m256i {
     _mm256_setr_epi32(c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7])
 }
 
-/// Eq. 2 (+h) in every lane: C(s) + rotate(q0 + s·dq, ((r + d)·cos δ, (r + d)·sin δ, h)).
+/// Eq. 2 (+h) in every lane: C(s) + rotate(q(s), ((r + d)·cos δ, (r + d)·sin δ, h)).
 #[target_feature(enable = "avx2,fma")]
 #[inline]
 fn evaluate(c: &Coefficients, b: &Batch) -> [F8; 3] {
@@ -255,10 +253,26 @@ fn evaluate(c: &Coefficients, b: &Batch) -> [F8; 3] {
     let (cos, sin) = cos_sin_small(mul(_mm256_fmsub_ps(splat(2.0), b.phi, splat(1.0)), c.half_step));
     let local = [mul(rho, cos), mul(rho, sin), b.h];
     let curve = |axis: usize| cubic([c.curve[0][axis], c.curve[1][axis], c.curve[2][axis], c.curve[3][axis]], b.s);
-    let quat = |k: usize| fma(b.s, c.dq[k], c.q0[k]);
-    let q = [quat(0), quat(1), quat(2), quat(3)];
+    let q = quat_at(c, b.s);
     let rotated = rotate(q, local);
     [add(curve(0), rotated[0]), add(curve(1), rotated[1]), add(curve(2), rotated[2])]
+}
+
+/// The unnormalized q(s) in every lane ([`crate::cpu::sweep_eval::quat_at`]).
+#[target_feature(enable = "avx2,fma")]
+#[inline]
+pub(super) fn quat_at(c: &Coefficients, s: F8) -> [F8; 4] {
+    let quat = |k: usize| cubic([c.rotation[0][k], c.rotation[1][k], c.rotation[2][k], c.rotation[3][k]], s);
+    [quat(0), quat(1), quat(2), quat(3)]
+}
+
+/// dq/ds in every lane ([`crate::cpu::sweep_eval::quat_derivative_at`]).
+#[target_feature(enable = "avx2,fma")]
+#[inline]
+pub(super) fn quat_derivative_at(c: &Coefficients, s: F8) -> [F8; 4] {
+    let (two, three) = (splat(2.0), splat(3.0));
+    let slope = |k: usize| fma(s, fma(s, mul(three, c.rotation[3][k]), mul(two, c.rotation[2][k])), c.rotation[1][k]);
+    [slope(0), slope(1), slope(2), slope(3)]
 }
 
 /// v rotated by q/|q| ([`crate::cpu::sweep_eval::rotate`]): v + w·t + u × t, t = 2(u × v)/|q|².

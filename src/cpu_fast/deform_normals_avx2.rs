@@ -15,7 +15,9 @@ use std::arch::x86_64::*;
 
 use glam::Vec4;
 
-use super::deform_avx2::{Batch, CellCache, Coefficients, LANES, Picked, cos_sin_small, load4, store_lanes};
+use super::deform_avx2::{
+    Batch, CellCache, Coefficients, LANES, Picked, cos_sin_small, load4, quat_at, quat_derivative_at, store_lanes,
+};
 use super::lanes8::{F8, add, cross, cubic, fma, mul, splat, sub};
 use crate::coeffs::{CellCoeffs, GpuBinding};
 use crate::cpu::jacobian::{NORMAL_BEYOND_END, NORMAL_FRAME};
@@ -110,7 +112,8 @@ fn evaluate(c: &Coefficients, b: &Batch, records: &Records) -> ([F8; 3], [F8; 3]
     let r_s = fma(s, fma(s, mul(three, along_s[3]), mul(two, along_s[2])), along_s[1]);
     let r_phi = cubic([d_phi(0), d_phi(1), d_phi(2), d_phi(3)], s);
     let (cos, sin) = cos_sin_small(mul(_mm256_fmsub_ps(two, phi, splat(1.0)), c.half_step));
-    let q = [fma(s, c.dq[0], c.q0[0]), fma(s, c.dq[1], c.q0[1]), fma(s, c.dq[2], c.q0[2]), fma(s, c.dq[3], c.q0[3])];
+    let q = quat_at(c, s);
+    let dq = quat_derivative_at(c, s);
     let columns = rotation_columns(&q);
     let direction = combine(cos, &columns[0], sin, &columns[1]);
     let normal = columns[2];
@@ -125,10 +128,10 @@ fn evaluate(c: &Coefficients, b: &Batch, records: &Records) -> ([F8; 3], [F8; 3]
     // ∂/∂h = e beyond an end.
     let velocity =
         |axis: usize| fma(s, fma(s, mul(three, c.curve[3][axis]), mul(two, c.curve[2][axis])), c.curve[1][axis]);
-    let (u, du) = ([q[0], q[1], q[2]], [c.dq[0], c.dq[1], c.dq[2]]);
+    let (u, du) = ([q[0], q[1], q[2]], [dq[0], dq[1], dq[2]]);
     let k = _mm256_div_ps(two, fma(q[0], q[0], fma(q[1], q[1], fma(q[2], q[2], mul(q[3], q[3])))));
     let twist = cross(du, u);
-    let spin = |i: usize| mul(k, sub(_mm256_fmsub_ps(q[3], du[i], mul(c.dq[3], u[i])), twist[i]));
+    let spin = |i: usize| mul(k, sub(_mm256_fmsub_ps(q[3], du[i], mul(dq[3], u[i])), twist[i]));
     let swirl = cross([spin(0), spin(1), spin(2)], offset);
     let along_s_axis = add3(plus_scaled([velocity(0), velocity(1), velocity(2)], r_s, &direction), swirl);
     let beyond = _mm256_cmp_ps::<_CMP_EQ_OQ>(records.mode, splat(NORMAL_BEYOND_END));

@@ -81,7 +81,7 @@ pub fn parameter_jacobian(sweep: &Sweep, binding: &VertexBinding) -> DMat3 {
     let dt = segment.t1 - segment.t0;
     let (r_t, r_theta) = (r_s / dt, r_phi * samples as f64 / TAU);
     let q = segment.orientation.unnormalized(at.s);
-    let dq = segment.orientation.end - segment.orientation.start;
+    let dq = segment.orientation.derivative(at.s);
     let rotation = q.normalize();
     let (sin, cos) = binding.theta.sin_cos();
     let direction = rotation * DVec3::new(cos, sin, 0.0);

@@ -23,7 +23,7 @@ use crate::sweep::{Key, Sweep};
 
 /// Satisfies every link of `rig` again after sweep `edited` changed in `keys`.
 pub fn propagate(rig: &Rig, keys: &mut [Vec<Key>], edited: usize, controls: &Controls) -> Result<(), EditError> {
-    propagate_kept(rig, keys, edited, controls, &mut vec![Shape::default(); keys.len()])
+    propagate_kept(rig, keys, edited, controls, &mut rig.rest().iter().map(Shape::like).collect::<Vec<_>>())
 }
 
 /// [`propagate`] with the sweeps' memos `shapes`.
@@ -58,7 +58,7 @@ pub(super) fn propagate_kept(
 
 /// Updates every descendant of `node` from it (downward only).
 pub fn propagate_down(rig: &Rig, keys: &mut [Vec<Key>], node: usize) -> Result<(), EditError> {
-    propagate_down_kept(rig, keys, node, &mut vec![Shape::default(); keys.len()])
+    propagate_down_kept(rig, keys, node, &mut rig.rest().iter().map(Shape::like).collect::<Vec<_>>())
 }
 
 /// [`propagate_down`] with the sweeps' memos `shapes`.

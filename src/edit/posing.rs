@@ -99,7 +99,7 @@ impl<'a> Posing<'a> {
         self.keys
             .iter()
             .zip(self.rig.rest())
-            .map(|(keys, rest)| Sweep::try_new(keys, Some(rest.knots())).map_err(EditError::from))
+            .map(|(keys, rest)| rest.try_posed(keys).map_err(EditError::from))
             .collect()
     }
 

@@ -27,12 +27,14 @@ use glam::{DQuat, DVec3};
 use super::rigid::Motion;
 use crate::limits::MAX_RIG_COORDINATE;
 use crate::sweep::radius::AreaPolynomial;
-use crate::sweep::{Key, Sweep, SweepError};
+use crate::sweep::{Key, RotationInterpolation, Sweep, SweepError};
 
 /// One sweep's memo.
 #[derive(Clone, Debug, Default)]
 pub struct Shape {
     kept: Option<Kept>,
+    /// The rotation interpolation of the sweeps it builds.
+    rotation: RotationInterpolation,
 }
 
 #[derive(Clone, Debug)]
@@ -56,7 +58,18 @@ struct Kept {
 const MAX_SCALED: usize = 512;
 
 impl Shape {
-    /// The sweep through `keys` at `knots`, as [`Sweep::try_new`] builds it. A memo is for one
+    /// An empty memo for a sweep with rotation interpolation `rotation`.
+    pub fn new(rotation: RotationInterpolation) -> Shape {
+        Shape { kept: None, rotation }
+    }
+
+    /// An empty memo for sweeps like `sweep` (its rotation interpolation).
+    pub fn like(sweep: &Sweep) -> Shape {
+        Shape::new(sweep.rotation_interpolation())
+    }
+
+    /// The sweep through `keys` at `knots`, as [`Sweep::try_new_with`] builds it with the memo's
+    /// rotation interpolation. A memo is for one
     /// sweep: `knots` must be the same on every call, and `keys` must have the radii of the
     /// last call unless the memo was told otherwise.
     pub fn sweep(&mut self, keys: &[Key], knots: &[f64]) -> Result<&Sweep, SweepError> {
@@ -73,7 +86,7 @@ impl Shape {
         Ok(kept.volume.expect("set above"))
     }
 
-    /// The memo of `sweep`, which is the sweep [`Sweep::try_new`] builds through `keys` at its
+    /// The memo of `sweep`, which is the sweep [`Sweep::try_new_with`] builds through `keys` at its
     /// knots (e.g. a rig's rest sweep and its rest keys): nothing is rebuilt.
     pub fn of(sweep: &Sweep, keys: &[Key]) -> Shape {
         let kept = Kept {
@@ -85,7 +98,7 @@ impl Shape {
             moved: 0,
             largest: largest_radius(keys),
         };
-        Shape { kept: Some(kept) }
+        Shape { kept: Some(kept), rotation: sweep.rotation_interpolation() }
     }
 
     /// Forgets the sweep: the keys' radii changed, so the next call rebuilds it from them.
@@ -111,7 +124,7 @@ impl Shape {
         if !same_frames {
             let rebuilt = match &self.kept {
                 Some(kept) => kept.sweep.try_with_axis(keys),
-                None => Sweep::try_new(keys, Some(knots)),
+                None => Sweep::try_new_with(keys, Some(knots), self.rotation),
             };
             let rebuilt = rebuilt.inspect_err(|_| self.kept = None)?;
             let (areas, scaled, largest) = match self.kept.take() {

@@ -80,7 +80,7 @@ pub struct Volumes {
 impl Volumes {
     /// Measures `keys`.
     pub fn measure(rig: &Rig, keys: &[Vec<Key>], mesh: Option<&BoundMesh>) -> Result<Volumes, EditError> {
-        Volumes::measure_kept(rig, keys, mesh, &mut vec![Shape::default(); keys.len()])
+        Volumes::measure_kept(rig, keys, mesh, &mut rig.rest().iter().map(Shape::like).collect::<Vec<_>>())
     }
 
     /// [`Volumes::measure`] with the sweeps' memos `shapes`: a sweep unchanged since its last

@@ -97,7 +97,7 @@ impl Autorig {
                 p.fit.sweep_document(p.name.clone(), VertexSelection::Indices(p.vertices.clone()), parent)
             })
             .collect();
-        RigDocument { format: FORMAT.to_string(), version: VERSION, sweeps }
+        RigDocument { format: FORMAT.to_string(), version: VERSION, rotation_interpolation: None, sweeps }
     }
 }
 

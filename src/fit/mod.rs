@@ -267,6 +267,7 @@ impl Fit {
             knots: None,
             parent,
             falloff: (self.falloff > 0.0).then_some(self.falloff),
+            rotation_interpolation: None,
         }
     }
 }

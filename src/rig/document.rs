@@ -15,7 +15,7 @@ use serde::{Deserialize, Serialize};
 
 #[cfg(feature = "json")]
 use super::bounded;
-use crate::sweep::Key;
+use crate::sweep::{Key, RotationInterpolation};
 
 /// The value of the `format` field.
 pub const FORMAT: &str = "sweepffd-rig";
@@ -31,6 +31,9 @@ pub struct RigDocument {
     pub format: String,
     /// Always [`VERSION`].
     pub version: u32,
+    /// The rotation interpolation of every sweep that does not name its own; absent: linear.
+    #[cfg_attr(feature = "json", serde(default, skip_serializing_if = "Option::is_none"))]
+    pub rotation_interpolation: Option<RotationInterpolation>,
     /// The sweeps, in order; a vertex binds to the sweep that owns it. At most
     /// [`crate::limits::MAX_SWEEPS`], refused while read.
     #[cfg_attr(feature = "json", serde(deserialize_with = "bounded::sweeps"))]
@@ -62,6 +65,10 @@ pub struct SweepDocument {
     /// Falloff width W in mesh units (≥ 0); absent or 0: a hard boundary.
     #[cfg_attr(feature = "json", serde(default, skip_serializing_if = "Option::is_none"))]
     pub falloff: Option<f64>,
+    /// How R(t) interpolates the keys' rotations, `"linear"` (the paper's) or `"cubic"` (C¹
+    /// across the keys); absent: the rig's `rotation_interpolation`, else linear.
+    #[cfg_attr(feature = "json", serde(default, skip_serializing_if = "Option::is_none"))]
+    pub rotation_interpolation: Option<RotationInterpolation>,
 }
 
 /// `"parent": {"sweep": "body", "kind": "branch"}`: a sweep's place in the hierarchy (§5).

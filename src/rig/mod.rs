@@ -25,7 +25,7 @@ pub use error::{RigError, RigErrorKind};
 pub use links::{KeyBinding, Link};
 pub use pose_into::PoseBuffer;
 
-use crate::sweep::{Key, Sweep, SweepSystems};
+use crate::sweep::{Key, RotationInterpolation, Sweep, SweepSystems};
 
 /// One named sweep of a rig, as written in the rig file.
 #[derive(Clone, Debug, PartialEq)]
@@ -44,13 +44,24 @@ pub struct RigSweep {
     /// over which the sweep's deformation fades into its neighbour's (or the rest position);
     /// 0: a hard boundary (see [`crate::bind::falloff`]).
     pub falloff: f64,
+    /// How R(t) interpolates the key rotations (the paper's linear one unless the rig file
+    /// says otherwise).
+    pub rotation: RotationInterpolation,
 }
 
 impl RigSweep {
     /// A root sweep named `name` through the rest `keys`, owning no vertices, with chord-length
     /// knots and a hard boundary; the `owning`, `with_*` methods set the rest.
     pub fn new(name: impl Into<String>, keys: Vec<Key>) -> RigSweep {
-        RigSweep { name: name.into(), vertices: None, keys, knots: None, parent: None, falloff: 0.0 }
+        RigSweep {
+            name: name.into(),
+            vertices: None,
+            keys,
+            knots: None,
+            parent: None,
+            falloff: 0.0,
+            rotation: RotationInterpolation::Linear,
+        }
     }
 
     /// The same sweep owning `vertices`.
@@ -66,6 +77,11 @@ impl RigSweep {
     /// The same sweep as a child of `parent` in the hierarchy (§5).
     pub fn with_parent(self, parent: ParentLink) -> RigSweep {
         RigSweep { parent: Some(parent), ..self }
+    }
+
+    /// The same sweep with R(t) interpolating its key rotations as `rotation` says.
+    pub fn with_rotation_interpolation(self, rotation: RotationInterpolation) -> RigSweep {
+        RigSweep { rotation, ..self }
     }
 
     /// The same sweep with a falloff band of width `falloff` (mesh units along the surface).
@@ -113,6 +129,7 @@ impl Rig {
                 knots: sweep.knots.clone(),
                 parent: sweep.parent.clone(),
                 falloff: sweep.falloff.unwrap_or(0.0),
+                rotation: sweep.rotation_interpolation.or(document.rotation_interpolation).unwrap_or_default(),
             })
             .collect();
         Rig::build(sweeps, file)
@@ -133,7 +150,7 @@ impl Rig {
         let rest = sweeps
             .iter()
             .map(|sweep| {
-                Sweep::try_new(&sweep.keys, sweep.knots.as_deref())
+                Sweep::try_new_with(&sweep.keys, sweep.knots.as_deref(), sweep.rotation)
                     .map_err(|source| fail(RigErrorKind::Sweep { sweep: sweep.name.clone(), source }))
             })
             .collect::<Result<Vec<_>, _>>()?;
@@ -182,6 +199,7 @@ impl Rig {
         RigDocument {
             format: FORMAT.to_string(),
             version: VERSION,
+            rotation_interpolation: None,
             sweeps: self
                 .sweeps
                 .iter()
@@ -193,6 +211,7 @@ impl Rig {
                     knots: sweep.knots.clone(),
                     parent: sweep.parent.clone(),
                     falloff: (sweep.falloff > 0.0).then_some(sweep.falloff),
+                    rotation_interpolation: (sweep.rotation != RotationInterpolation::Linear).then_some(sweep.rotation),
                 })
                 .collect(),
         }
@@ -250,8 +269,7 @@ impl Rig {
                     return Err(fail(RigErrorKind::PoseMissingSweep { sweep: sweep.name.clone() }));
                 };
                 self.check_pose_structure(index, keys).map_err(fail)?;
-                Sweep::try_new(keys, Some(rest.knots()))
-                    .map_err(|source| fail(RigErrorKind::Sweep { sweep: sweep.name.clone(), source }))
+                rest.try_posed(keys).map_err(|source| fail(RigErrorKind::Sweep { sweep: sweep.name.clone(), source }))
             })
             .collect()
     }

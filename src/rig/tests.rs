@@ -143,6 +143,7 @@ fn a_rig_built_in_code_is_held_to_the_same_limits() {
         knots: None,
         parent: None,
         falloff: 0.0,
+        rotation: Default::default(),
     };
     let error = message(Rig::new((0..2).map(sweep).collect()));
     assert_eq!(error, "sweep \"s1\": the rig holds more than 1048576 radii in all, the most a rig may have");

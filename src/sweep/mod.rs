@@ -9,8 +9,9 @@
 //! ```
 //!
 //! with C the natural cubic spline through the centers (`curve`), R the normalized linear
-//! interpolation of the key quaternions (`orientation`) and r the tensor-product spline of the
-//! radii (`radius`). Its volume is Eq. 1 ([`Sweep::volume`]).
+//! interpolation of the key quaternions or, chosen per sweep, a normalized cubic spline of them
+//! that is C¹ across the keys (`orientation`, [`RotationInterpolation`]) and r the
+//! tensor-product spline of the radii (`radius`). Its volume is Eq. 1 ([`Sweep::volume`]).
 
 mod error;
 mod folds;
@@ -23,7 +24,7 @@ internal_mod! {
     natural_spline;
     orientation;
     periodic_spline;
-    plane_quintic;
+    plane_polynomial;
     quadrature;
     radius;
 }
@@ -38,6 +39,7 @@ use glam::{DQuat, DVec3};
 pub use error::SweepError;
 pub use folds::{FLIP_DEGREES, Fold, FoldKind, SAMPLES_PER_INTERVAL};
 pub use key::Key;
+pub use orientation::RotationInterpolation;
 pub(crate) use rebuild::{RebuildScratch, SweepSystems};
 
 use curve::{CurvePiece, center_curve};
@@ -74,6 +76,8 @@ pub struct Sweep {
     /// Shared with the sweeps rebuilt from it by [`Sweep::try_with_axis`], whose keys have the
     /// same radii.
     radius: Arc<RadiusField>,
+    /// How R(t) interpolates the keys; every sweep rebuilt from this one keeps it.
+    rotation: RotationInterpolation,
 }
 
 impl Sweep {
@@ -89,6 +93,15 @@ impl Sweep {
     /// [`MAX_RADII_PER_KEY`](crate::limits::MAX_RADII_PER_KEY) and the key count at most
     /// [`MAX_KEYS_PER_SWEEP`](crate::limits::MAX_KEYS_PER_SWEEP).
     pub fn try_new(keys: &[Key], knots: Option<&[f64]>) -> Result<Sweep, SweepError> {
+        Sweep::try_new_with(keys, knots, RotationInterpolation::Linear)
+    }
+
+    /// [`Sweep::try_new`] with R(t) interpolating the key rotations as `rotation` says.
+    pub fn try_new_with(
+        keys: &[Key],
+        knots: Option<&[f64]>,
+        rotation: RotationInterpolation,
+    ) -> Result<Sweep, SweepError> {
         validate_keys(keys)?;
         let knots = match knots {
             Some(knots) => {
@@ -100,7 +113,18 @@ impl Sweep {
                 knots::chord_length_knots(&centers)?
             }
         };
-        Ok(Sweep::from_valid(keys, knots))
+        Ok(Sweep::from_valid(keys, knots, rotation))
+    }
+
+    /// The sweep through `keys` at this sweep's knots with this sweep's rotation
+    /// interpolation: a pose of it ([`Sweep::try_new_with`]).
+    pub fn try_posed(&self, keys: &[Key]) -> Result<Sweep, SweepError> {
+        Sweep::try_new_with(keys, Some(&self.knots), self.rotation)
+    }
+
+    /// How R(t) interpolates the key rotations.
+    pub fn rotation_interpolation(&self) -> RotationInterpolation {
+        self.rotation
     }
 
     /// Checks `keys` as [`Sweep::try_new`] does, without building the sweep (knots aside).
@@ -115,11 +139,11 @@ impl Sweep {
         keys.iter().enumerate().try_for_each(|(index, key)| validate_frame(index, key))
     }
 
-    fn from_valid(keys: &[Key], knots: Vec<f64>) -> Sweep {
-        let segments = axis_segments(keys, &knots);
+    fn from_valid(keys: &[Key], knots: Vec<f64>, rotation: RotationInterpolation) -> Sweep {
+        let segments = axis_segments(keys, &knots, rotation);
         let radii: Vec<&[f64]> = keys.iter().map(|key| key.radii.as_slice()).collect();
         let radius = Arc::new(RadiusField::new(&knots, &radii));
-        Sweep { knots, segments, radius }
+        Sweep { knots, segments, radius, rotation }
     }
 
     /// The same surface in the coordinates p' = (p − `origin`) / `scale`: centers moved and
@@ -143,7 +167,12 @@ impl Sweep {
                 Segment { curve: curve::CurvePiece { axes }, ..segment.clone() }
             })
             .collect();
-        Sweep { knots: self.knots.clone(), segments, radius: Arc::new(self.radius.scaled(1.0 / scale)) }
+        Sweep {
+            knots: self.knots.clone(),
+            segments,
+            radius: Arc::new(self.radius.scaled(1.0 / scale)),
+            rotation: self.rotation,
+        }
     }
 
     /// The knots u_0 = 0 < … < u_n = 1.
@@ -228,19 +257,16 @@ impl Sweep {
 }
 
 /// The knot intervals of C(t) (the natural cubic spline through the centers) and R(t) (the
-/// normalized linear interpolation of the rotations) through `keys` at `knots`.
-fn axis_segments(keys: &[Key], knots: &[f64]) -> Vec<Segment> {
+/// `rotation` interpolation of the normalized rotations) through `keys` at `knots`.
+fn axis_segments(keys: &[Key], knots: &[f64], rotation: RotationInterpolation) -> Vec<Segment> {
     let centers: Vec<DVec3> = keys.iter().map(|key| key.center).collect();
-    let rotations: Vec<DQuat> = keys.iter().map(|key| key.rotation.normalize()).collect();
+    let mut pieces = Vec::with_capacity(keys.len() - 1);
+    orientation::for_each_piece(rotation, knots, |i| keys[i].rotation.normalize(), |_, piece| pieces.push(piece));
     center_curve(knots, &centers)
         .into_iter()
+        .zip(pieces)
         .enumerate()
-        .map(|(k, curve)| Segment {
-            t0: knots[k],
-            t1: knots[k + 1],
-            curve,
-            orientation: OrientationPiece::new(rotations[k], rotations[k + 1]),
-        })
+        .map(|(k, (curve, orientation))| Segment { t0: knots[k], t1: knots[k + 1], curve, orientation })
         .collect()
 }
 

@@ -19,7 +19,7 @@ use glam::DQuat;
 use super::cubic::CubicPiece;
 use super::curve::CurvePiece;
 use super::natural_spline::NaturalSplineSystem;
-use super::orientation::OrientationPiece;
+use super::orientation::{self, OrientationPiece, RotationInterpolation};
 use super::periodic_spline::PeriodicSplineSystem;
 use super::radius::{RadiusField, RadiusPatch};
 use super::{Key, Segment, Sweep};
@@ -94,10 +94,16 @@ impl Sweep {
             patches: Arc::new((*self.radius.patches).clone()),
             scale: self.radius.scale,
         };
-        Sweep { knots: self.knots.clone(), segments: self.segments.clone(), radius: Arc::new(radius) }
+        Sweep {
+            knots: self.knots.clone(),
+            segments: self.segments.clone(),
+            radius: Arc::new(radius),
+            rotation: self.rotation,
+        }
     }
 
-    /// Makes this sweep the one [`Sweep::try_new`]`(keys, Some(knots))` builds, bit for bit,
+    /// Makes this sweep the one [`Sweep::try_new_with`]`(keys, Some(knots), rotation)` builds
+    /// (its own rotation interpolation kept), bit for bit,
     /// reusing its vectors: allocation-free when it already has `keys.len()` keys and their
     /// radius count and its radius function is not shared (see [`Sweep::detached`]).
     ///
@@ -112,7 +118,7 @@ impl Sweep {
     ) {
         self.knots.clear();
         self.knots.extend_from_slice(knots);
-        rebuild_axis(&mut self.segments, keys, knots, &systems.along, scratch);
+        rebuild_axis(&mut self.segments, keys, knots, self.rotation, &systems.along, scratch);
         match Arc::get_mut(&mut self.radius) {
             Some(field) => rebuild_radius(field, keys, systems, scratch),
             None => {
@@ -131,12 +137,13 @@ fn rebuild_axis(
     segments: &mut Vec<Segment>,
     keys: &[Key],
     knots: &[f64],
+    rotation: RotationInterpolation,
     along: &NaturalSplineSystem,
     scratch: &mut RebuildScratch,
 ) {
     let n = keys.len() - 1;
     let flat = CubicPiece { y0: 0.0, y1: 0.0, m0: 0.0, m1: 0.0, h: 1.0 };
-    let still = OrientationPiece { start: DQuat::IDENTITY, end: DQuat::IDENTITY };
+    let still = OrientationPiece::new(DQuat::IDENTITY, DQuat::IDENTITY);
     segments.truncate(n);
     while segments.len() < n {
         segments.push(Segment { t0: 0.0, t1: 1.0, curve: CurvePiece { axes: [flat; 3] }, orientation: still });
@@ -154,11 +161,18 @@ fn rebuild_axis(
     }
     scratch.rotations.clear();
     scratch.rotations.extend(keys.iter().map(|key| key.rotation.normalize()));
-    for (k, segment) in segments.iter_mut().enumerate() {
-        segment.t0 = knots[k];
-        segment.t1 = knots[k + 1];
-        segment.orientation = OrientationPiece::new(scratch.rotations[k], scratch.rotations[k + 1]);
-    }
+    let rotations = &scratch.rotations;
+    orientation::for_each_piece(
+        rotation,
+        knots,
+        |i| rotations[i],
+        |k, piece| {
+            let segment = &mut segments[k];
+            segment.t0 = knots[k];
+            segment.t1 = knots[k + 1];
+            segment.orientation = piece;
+        },
+    );
 }
 
 /// r(θ, t) through the keys' radii, as [`RadiusField::new`] computes it: the natural spline in
@@ -231,6 +245,20 @@ mod tests {
             let expected = Sweep::try_new(&posed, Some(rest.knots())).unwrap();
             assert_eq!(format!("{sweep:?}"), format!("{expected:?}"), "shift {shift}");
         }
+    }
+
+    #[test]
+    fn rebuild_keeps_the_cubic_rotation_interpolation_bit_for_bit() {
+        let cubic = RotationInterpolation::Cubic;
+        let rest = Sweep::try_new_with(&keys(6, 0.0), None, cubic).unwrap();
+        let mut sweep = rest.detached();
+        let mut scratch = RebuildScratch::default();
+        for shift in [0.25, -0.5] {
+            let posed = keys(6, shift);
+            sweep.rebuild_valid(&posed, rest.knots(), &SweepSystems::of(&rest), &mut scratch);
+            assert_eq!(sweep, Sweep::try_new_with(&posed, Some(rest.knots()), cubic).unwrap(), "shift {shift}");
+        }
+        assert_ne!(sweep, Sweep::try_new(&keys(6, -0.5), Some(rest.knots())).unwrap(), "the linear sweep differs");
     }
 
     #[test]

@@ -8,7 +8,7 @@ use glam::{DQuat, DVec3};
 
 use super::cubic::CubicPiece;
 use super::curve::CurvePiece;
-use super::orientation::OrientationPiece;
+use super::orientation;
 use super::{Key, Sweep, SweepError, axis_segments, validate_count, validate_frame};
 
 impl Sweep {
@@ -26,7 +26,12 @@ impl Sweep {
         if keys.len() != self.knots.len() {
             return Err(SweepError::KnotCount { keys: keys.len(), found: self.knots.len() });
         }
-        Ok(Sweep { knots: self.knots.clone(), segments: axis_segments(keys, &self.knots), radius: self.radius.clone() })
+        Ok(Sweep {
+            knots: self.knots.clone(),
+            segments: axis_segments(keys, &self.knots, self.rotation),
+            radius: self.radius.clone(),
+            rotation: self.rotation,
+        })
     }
 
     /// Carries this sweep by a rigid motion with rotation `rotation` onto `keys`: this sweep's
@@ -56,8 +61,16 @@ impl Sweep {
             for (c, axis) in segment.curve.axes.iter_mut().enumerate() {
                 *axis = CubicPiece { y0: p0[c], y1: p1[c], m0: m0[c], m1: m1[c], h: axis.h };
             }
-            segment.orientation = OrientationPiece::new(ends[0].rotation.normalize(), ends[1].rotation.normalize());
         }
+        let segments = &mut self.segments;
+        orientation::for_each_piece(
+            self.rotation,
+            &self.knots,
+            |i| keys[i].rotation.normalize(),
+            |k, piece| {
+                segments[k].orientation = piece;
+            },
+        );
         Ok(())
     }
 
@@ -68,6 +81,7 @@ impl Sweep {
             knots: self.knots.clone(),
             segments: self.segments.clone(),
             radius: Arc::new(self.radius.scaled(factor)),
+            rotation: self.rotation,
         }
     }
 

@@ -210,3 +210,80 @@ fn a_sweep_moved_rigidly_equals_the_one_rebuilt_from_the_moved_keys() {
     assert!(kept.try_move_rigidly(&bad, rotation).is_err());
     assert_eq!(kept, sweep);
 }
+
+/// The volume enclosed by a dense tessellation of S(θ, t) closed by fans at both ends (the
+/// divergence theorem, |Σ det(a, b, c)| / 6), to check Eq. 1 without it.
+fn tessellated_volume(sweep: &Sweep, along: usize, around: usize) -> f64 {
+    let point = |i: usize, j: usize| {
+        sweep.surface_point(std::f64::consts::TAU * j as f64 / around as f64, i as f64 / along as f64)
+    };
+    let mut six_volume = 0.0;
+    let mut triangle = |a: DVec3, b: DVec3, c: DVec3| six_volume += a.dot(b.cross(c));
+    for i in 0..along {
+        for j in 0..around {
+            let (a, b, c, d) = (point(i, j), point(i, j + 1), point(i + 1, j + 1), point(i + 1, j));
+            triangle(a, b, c);
+            triangle(a, c, d);
+        }
+    }
+    let (start, end) = (sweep.center(0.0), sweep.center(1.0));
+    for j in 0..around {
+        triangle(start, point(0, j + 1), point(0, j));
+        triangle(end, point(along, j), point(along, j + 1));
+    }
+    six_volume.abs() / 6.0
+}
+
+/// Eq. 1 stays exact for the cubic rotation interpolation: on a bent, tilting sweep its volume
+/// equals that of the tessellated surface, as the linear interpolation's does, and both are
+/// invariant under a rigid motion; the two interpolations give different sweeps. The sections
+/// are circles (of radii varying along the sweep): Eq. 1 counts the volume a section sweeps as
+/// it slides along its normal, not the volume it sweeps turning about a center that is not its
+/// centroid, so it is exact only for sections centred on C.
+#[test]
+fn eq1_volume_of_either_rotation_interpolation_matches_its_tessellated_surface() {
+    let keys: Vec<Key> = bent_keys()
+        .into_iter()
+        .enumerate()
+        .map(|(i, key)| Key { radii: vec![0.3 + 0.05 * (i % 3) as f64; 8], ..key })
+        .collect();
+    let motion = DQuat::from_axis_angle(DVec3::new(-0.3, 0.8, 0.1).normalize(), 2.3);
+    let moved: Vec<Key> = keys
+        .iter()
+        .map(|key| Key { center: motion * key.center, rotation: motion * key.rotation, ..key.clone() })
+        .collect();
+    let mut volumes = Vec::new();
+    for rotation in [RotationInterpolation::Linear, RotationInterpolation::Cubic] {
+        let sweep = Sweep::try_new_with(&keys, None, rotation).unwrap();
+        // The polygons inscribed in the circular sections have sin(2π/n)/(2π/n) of their area.
+        let step = std::f64::consts::TAU / 256.0;
+        let (eq1, tessellated) = (sweep.volume().abs(), tessellated_volume(&sweep, 2000, 256) * step / step.sin());
+        println!("{rotation:?}: Eq. 1 {eq1:.9}, tessellated {tessellated:.9}");
+        assert!(relative_error(tessellated, eq1) <= 1e-5, "{rotation:?}: {eq1} vs {tessellated}");
+        let turned = Sweep::try_new_with(&moved, None, rotation).unwrap().volume().abs();
+        assert!(relative_error(turned, eq1) <= 1e-12, "{rotation:?}: {eq1} vs {turned} moved");
+        volumes.push(eq1);
+    }
+    assert!(relative_error(volumes[1], volumes[0]) > 1e-4, "the interpolations agree: {volumes:?}");
+}
+
+#[test]
+fn cubic_rotation_normal_is_continuous_in_its_derivative_across_keys() {
+    let cubic = Sweep::try_new_with(&bent_keys(), None, RotationInterpolation::Cubic).unwrap();
+    let linear = Sweep::try_new(&bent_keys(), None).unwrap();
+    let kink = |sweep: &Sweep| {
+        let h = 1e-6;
+        sweep.knots()[1..sweep.knots().len() - 1]
+            .iter()
+            .map(|&u| {
+                let left = (sweep.normal(u - h) - sweep.normal(u - 2.0 * h)) / h;
+                let right = (sweep.normal(u + 2.0 * h) - sweep.normal(u + h)) / h;
+                (left - right).length() / left.length().max(right.length())
+            })
+            .fold(0.0, f64::max)
+    };
+    let (smooth, sharp) = (kink(&cubic), kink(&linear));
+    println!("N′ jumps across the keys by at most {smooth:.2e} (cubic) and {sharp:.2e} (linear), relative");
+    assert!(smooth < 1e-4, "cubic: N′ jumps by {smooth}");
+    assert!(sharp > 0.05, "linear: N′ jumps by only {sharp}");
+}

@@ -123,6 +123,7 @@ pub fn straight_sweep(
         knots: None,
         parent: None,
         falloff,
+        rotation: Default::default(),
     }
 }
 
@@ -150,6 +151,7 @@ pub fn split_tube_rig(tube: &Tube, keys: usize, samples: usize, falloff: f64) ->
             knots: None,
             parent: None,
             falloff,
+            rotation: Default::default(),
         }
     };
     Rig::new(vec![half("lower", lower, 0.0, z_middle), half("upper", upper, z_middle, tube.length)])

@@ -25,6 +25,7 @@ pub fn tube_sweep(name: &str, vertices: Vec<u32>, z0: f64, z1: f64, falloff: f64
         knots: None,
         parent: None,
         falloff,
+        rotation: Default::default(),
     }
 }
 

@@ -114,6 +114,7 @@ pub fn axis_rig(mesh: &Mesh, keys: usize, samples: usize) -> Rig {
         knots: None,
         parent: None,
         falloff: 0.0,
+        rotation: Default::default(),
     };
     Rig::new(vec![sweep]).expect("the axis rig is valid")
 }

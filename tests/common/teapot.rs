@@ -83,6 +83,7 @@ pub fn teapot_rig(mesh: &Mesh) -> Rig {
         knots: None,
         parent: parent.map(|(sweep, kind)| ParentLink { sweep: sweep.to_string(), kind }),
         falloff: 0.0,
+        rotation: Default::default(),
     };
     let groups = |names: &[&str]| VertexSelection::Groups(names.iter().map(|n| n.to_string()).collect());
     Rig::new(vec![

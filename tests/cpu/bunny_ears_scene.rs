@@ -48,7 +48,7 @@ fn write_the_million_vertex_bunny_with_fitted_ears() {
         );
         sweeps.push(fitted.sweep_document(name.into(), VertexSelection::Indices(owned), None));
     }
-    let rig = RigDocument { format: FORMAT.into(), version: VERSION, sweeps };
+    let rig = RigDocument { format: FORMAT.into(), version: VERSION, rotation_interpolation: None, sweeps };
     std::fs::write(dir.join("ears.json"), rig.to_json()).unwrap();
     let file = LoadedMesh::from(mesh);
     file.save(&dir.join("bunny_1m.obj"), &file.mesh.positions).unwrap();

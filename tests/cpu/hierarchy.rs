@@ -199,6 +199,7 @@ fn chair() -> Rig {
         knots: None,
         parent: parent.map(|p| ParentLink { sweep: p.into(), kind: LinkKind::Branch }),
         falloff: 0.0,
+        rotation: Default::default(),
     };
     Rig::new(vec![
         sweep("leg_a", true, leg(0.0, 0.0, false), None),

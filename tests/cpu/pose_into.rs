@@ -16,6 +16,7 @@ fn sweep(name: &str, keys: Vec<Key>, parent: Option<(&str, LinkKind)>, owns: boo
         knots: None,
         parent: parent.map(|(sweep, kind)| ParentLink { sweep: sweep.to_string(), kind }),
         falloff: 0.0,
+        rotation: Default::default(),
     }
 }
 

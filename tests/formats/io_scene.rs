@@ -42,7 +42,7 @@ fn write_the_two_million_vertex_bunny_with_two_rigs() {
         let owned = steps.iter().fold(ear, |owned, step| step.carry(&owned));
         sweeps.push(fitted.sweep_document(name.into(), VertexSelection::Indices(owned), None));
     }
-    let ears = RigDocument { format: FORMAT.into(), version: VERSION, sweeps };
+    let ears = RigDocument { format: FORMAT.into(), version: VERSION, rotation_interpolation: None, sweeps };
     let ears = Rig::from_document(&ears, None).unwrap();
     let axis = common::axis_rig(&mesh, 9, 16);
     let pose = BendTwistTaper { bend: 0.3, twist: 0.2, taper: 0.8 };

@@ -28,6 +28,7 @@ fn rig(selections: Vec<Option<VertexSelection>>) -> Rig {
             knots: None,
             parent: None,
             falloff: 0.0,
+            rotation: Default::default(),
         })
         .collect();
     Rig::new(sweeps).unwrap()

@@ -103,7 +103,12 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
 
     let mut document = match &args.append_to {
         Some(path) => RigDocument::load(path)?,
-        None => RigDocument { format: FORMAT.to_string(), version: VERSION, sweeps: Vec::new() },
+        None => RigDocument {
+            format: FORMAT.to_string(),
+            version: VERSION,
+            rotation_interpolation: None,
+            sweeps: Vec::new(),
+        },
     };
     if document.sweeps.iter().any(|s| s.name == name) {
         let file = args.append_to.as_deref().unwrap_or(&args.out).display();

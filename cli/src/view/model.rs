@@ -62,7 +62,12 @@ impl Model {
             Some(path) => {
                 carry_selections(RigDocument::load(path).map_err(|e| ViewError::Input(e.to_string()))?, &steps)
             }
-            None => RigDocument { format: FORMAT.to_string(), version: VERSION, sweeps: Vec::new() },
+            None => RigDocument {
+                format: FORMAT.to_string(),
+                version: VERSION,
+                rotation_interpolation: None,
+                sweeps: Vec::new(),
+            },
         };
         let triangles = mesh.faces.triangles().collect();
         let closed = mesh.is_closed();
@@ -73,7 +78,12 @@ impl Model {
             triangles,
             closed,
             diagonal,
-            document: RigDocument { format: FORMAT.to_string(), version: VERSION, sweeps: Vec::new() },
+            document: RigDocument {
+                format: FORMAT.to_string(),
+                version: VERSION,
+                rotation_interpolation: None,
+                sweeps: Vec::new(),
+            },
             rig: None,
             owners: Vec::new(),
             bands: Vec::new(),

@@ -35,6 +35,7 @@ fn arm(parent: Option<(&str, LinkKind)>) -> RigSweep {
         knots: None,
         parent: parent.map(|(sweep, kind)| ParentLink { sweep: sweep.into(), kind }),
         falloff: 0.0,
+        rotation: Default::default(),
     }
 }
 
@@ -262,6 +263,7 @@ fn rig_fails(others: Vec<RigSweep>, expected: &str) {
             knots: s.knots.clone(),
             parent: s.parent.clone(),
             falloff: (s.falloff > 0.0).then_some(s.falloff),
+            rotation_interpolation: None,
         })
         .collect();
     fs::write(dir.path().join("bad.json"), document.to_json()).unwrap();

@@ -59,6 +59,7 @@ fn fitted_rig(mesh: &Mesh, parts: &[(&str, Vec<u32>)], falloff: Option<f64>, key
                 knots: None,
                 parent: None,
                 falloff: fitted.falloff,
+                rotation: Default::default(),
             }
         })
         .collect();

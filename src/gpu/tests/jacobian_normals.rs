@@ -21,6 +21,7 @@ use sweepffd::gpu::{BindingSource, DeformerDescriptor, GpuContext, GpuDeformer, 
 use sweepffd::mesh::Mesh;
 use sweepffd::normals::{NormalAdjacency, jacobian_reach, vertex_normals};
 use sweepffd::rig::{Rig, RigSweep, VertexSelection};
+use sweepffd::sweep::RotationInterpolation;
 use sweepffd::synthetic::{BendTwistTaper, Tube, tube_rig};
 
 const POSE: BendTwistTaper = BendTwistTaper { bend: 1.2, twist: 1.7, taper: 0.6 };
@@ -251,6 +252,7 @@ fn fitted_rig(mesh: &Mesh, parts: &[Part], falloff: Option<f64>) -> Rig {
                 knots: None,
                 parent: None,
                 falloff: falloff.unwrap_or(fitted.falloff),
+                rotation: Default::default(),
             }
         })
         .collect();
@@ -325,6 +327,15 @@ fn whole_armadillo_jacobian_normals() {
 fn tube_jacobian_normals() {
     let tube = Tube { rings: 65, around: 48, length: 4.0, radius: 0.5 };
     check("tube", &tube.mesh(), &tube_rig(&tube, 8, 16), &BEND, Target::Facets(P99_TARGET_DEG));
+}
+
+#[test]
+fn tube_jacobian_normals_with_cubic_rotations() {
+    let tube = Tube { rings: 65, around: 48, length: 4.0, radius: 0.5 };
+    let linear = tube_rig(&tube, 8, 16);
+    let sweeps = linear.sweeps().iter().cloned();
+    let cubic = sweeps.map(|sweep| sweep.with_rotation_interpolation(RotationInterpolation::Cubic)).collect();
+    check("tube, cubic rotations", &tube.mesh(), &Rig::new(cubic).unwrap(), &BEND, Target::Facets(P99_TARGET_DEG));
 }
 
 #[test]

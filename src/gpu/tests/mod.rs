@@ -3,6 +3,7 @@
 //! outputs, the naga layout checks and the zero-allocation frame.
 
 mod cell_groups;
+mod cubic_rotation;
 mod equivalence;
 mod frame_allocations;
 mod instances;

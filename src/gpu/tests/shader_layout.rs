@@ -23,9 +23,9 @@ macro_rules! layout {
 
 fn rust_layouts() -> Vec<RustLayout> {
     vec![
-        layout!(CellCoeffs { radius, curve, q0, dq }),
+        layout!(CellCoeffs { radius, curve, rotation }),
         layout!(SweepInfo { first_segment, segment_count, first_cell, samples }),
-        layout!(BindSegment { origin, normal, e_low, e5, t0, t1, _pad }),
+        layout!(BindSegment { origin, normal, e_low, e_high, e9, t0, t1, degree }),
         layout!(GpuBinding { cell, s, phi, d, h }),
         layout!(BandRecord { vertex, weight, cell, s_phi }),
         layout!(BandFlag { vertex, x, y, z }),
