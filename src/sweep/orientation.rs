@@ -5,8 +5,10 @@
 //!   `q̃_{i+1} = ±q_{i+1}` chosen so that `q_i · q̃_{i+1} ≥ 0`. R is C⁰ at the keys: its angular
 //!   velocity jumps there.
 //! - **cubic**: the keys are sign-aligned along the sweep (each q̃_i on the side of q̃_{i−1}) and
-//!   joined by the cubic Hermite spline in R⁴ whose tangent at each key is the knot-weighted
-//!   mean of the slopes beside it (Bessel's tangent; one-sided at the ends), then normalized.
+//!   joined by the cubic Hermite spline in R⁴ whose tangent at each key is Fritsch and
+//!   Butland's harmonic mean of the slopes beside it (each slope weighted by the other's length:
+//!   no tangent beside a still interval, so the spline never turns back past a key; the chord's
+//!   slope at the ends), then normalized.
 //!   q(t) and so R(t) are C¹ across the keys. Each tangent is shortened where needed so that on
 //!   both of its intervals `|h·m − Δq| ≤ |Δq|` (Δq the interval's chord, h its width): the cubic
 //!   then stays within 2·(4/27)·|Δq| of the chord, whose points have norm ≥ cos 45°, so
@@ -159,15 +161,18 @@ struct KeyFrame {
     u: f64,
 }
 
-/// dq/dt at `key`: Bessel's tangent (the slope of the parabola through the key and its
-/// neighbours), the chord's slope at an end, then shortened so that on each interval beside
+/// dq/dt at `key`: the harmonic mean of the slopes beside it (see the module docs), the
+/// chord's slope at an end, then shortened so that on each interval beside
 /// the key `|h·m − Δq| ≤ |Δq|` (see the module docs).
 fn key_tangent(before: Option<KeyFrame>, key: KeyFrame, after: Option<KeyFrame>) -> DQuat {
     let slope = |a: KeyFrame, b: KeyFrame| (b.q - a.q) / (b.u - a.u);
     let tangent = match (before, after) {
         (Some(a), Some(b)) => {
-            let (h0, h1) = (key.u - a.u, b.u - key.u);
-            (slope(a, key) * h1 + slope(key, b) * h0) / (h0 + h1)
+            // Fritsch–Butland's harmonic mean, for vectors: each slope weighted by the other's
+            // length, so a key beside a still interval gets no tangent.
+            let (before, after) = (slope(a, key), slope(key, b));
+            let (l0, l1) = (before.length(), after.length());
+            if l0 + l1 == 0.0 { ZERO } else { (before * l1 + after * l0) / (l0 + l1) }
         }
         (Some(a), None) => slope(a, key),
         (None, Some(b)) => slope(key, b),

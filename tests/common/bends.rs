@@ -97,3 +97,31 @@ pub fn thinnest_axis(rig: &Rig, sweep: usize, t: f64, span: f64) -> (DVec3, f64)
         .unwrap_or(0.0);
     (DVec3::new(phi.cos(), phi.sin(), 0.0), reach(phi))
 }
+
+/// The largest change, in degrees, of the dihedral angle across any edge that two triangles
+/// share, between the rest mesh and `posed`: a crease the deformation makes shows as a large
+/// change on the edges along it, a smooth bend as small changes spread over many edges.
+pub fn largest_crease(mesh: &Mesh, posed: &[DVec3]) -> f64 {
+    use std::collections::HashMap;
+    let triangles: Vec<[u32; 3]> = mesh.faces.triangles().collect();
+    let mut sides: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
+    for (f, &[a, b, c]) in triangles.iter().enumerate() {
+        for (x, y) in [(a, b), (b, c), (c, a)] {
+            sides.entry((x.min(y), x.max(y))).or_default().push(f);
+        }
+    }
+    let normal = |points: &[DVec3], f: usize| {
+        let [a, b, c] = triangles[f].map(|i| points[i as usize]);
+        (b - a).cross(c - a).normalize_or_zero()
+    };
+    let angle = |p: DVec3, q: DVec3| p.cross(q).length().atan2(p.dot(q)).to_degrees();
+    sides
+        .values()
+        .filter(|faces| faces.len() == 2)
+        .map(|faces| {
+            let rest = angle(normal(&mesh.positions, faces[0]), normal(&mesh.positions, faces[1]));
+            let moved = angle(normal(posed, faces[0]), normal(posed, faces[1]));
+            (moved - rest).abs()
+        })
+        .fold(0.0, f64::max)
+}

@@ -26,3 +26,23 @@ pub struct PoseArg {
     #[arg(long)]
     pub pose: PathBuf,
 }
+
+/// `--rotation-interpolation`: how the sweeps a command writes interpolate their key rotations.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum RotationArg {
+    /// The paper's normalized linear interpolation (C⁰ frames at the keys).
+    #[default]
+    Linear,
+    /// A normalized cubic spline of the key quaternions (C¹ frames across the keys).
+    Cubic,
+}
+
+impl RotationArg {
+    /// The rig file's field for it: absent for the default.
+    pub fn field(self) -> Option<sweepffd::sweep::RotationInterpolation> {
+        match self {
+            RotationArg::Linear => None,
+            RotationArg::Cubic => Some(sweepffd::sweep::RotationInterpolation::Cubic),
+        }
+    }
+}

@@ -8,7 +8,7 @@ use std::time::Instant;
 use serde::Serialize;
 
 use super::CliResult;
-use super::args::MeshArg;
+use super::args::{MeshArg, RotationArg};
 use super::flags::fit_error;
 use sweepffd::atomic_file::write_atomically;
 use sweepffd::fit::autorig::{AutorigOptions, MIN_VERTICES, autorig};
@@ -31,6 +31,9 @@ pub struct Args {
     /// Falloff width W of every sweep in mesh units; 0: hard boundaries (default: 0.3 of each part's length).
     #[arg(long, allow_negative_numbers = true)]
     pub falloff: Option<f64>,
+    /// How every sweep interpolates its key rotations.
+    #[arg(long, value_enum, default_value_t)]
+    pub rotation_interpolation: RotationArg,
     /// Print what was found as JSON instead of a table.
     #[arg(long)]
     pub json: bool,
@@ -85,7 +88,8 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     }
     let options = AutorigOptions { min_length: args.min_length, max_parts: args.max_parts, falloff: args.falloff };
     let rigged = autorig(&mesh, &options).map_err(|e| format!("{file}: {}; nothing was written", fit_error(&e)))?;
-    let document = rigged.document();
+    let mut document = rigged.document();
+    document.rotation_interpolation = args.rotation_interpolation.field();
     let text = document.try_to_json(&args.out)?;
     write_atomically(&args.out, |out| out.write_all(text.as_bytes()))
         .map_err(|e| format!("cannot write {}: {e}", args.out.display()))?;

@@ -7,7 +7,7 @@ use std::time::Instant;
 use glam::DVec3;
 
 use super::CliResult;
-use super::args::MeshArg;
+use super::args::{MeshArg, RotationArg};
 use super::flags::fit_error;
 use sweepffd::atomic_file::write_atomically;
 use sweepffd::fit::{DEFAULT_FALLOFF_FRACTION, Fit, FitOptions, fit};
@@ -64,6 +64,9 @@ pub struct Args {
     /// The sweep's name (default: the groups joined by "+", or the indices file's stem).
     #[arg(long)]
     pub name: Option<String>,
+    /// How the sweep interpolates its key rotations.
+    #[arg(long, value_enum, default_value_t)]
+    pub rotation_interpolation: RotationArg,
     /// Hang the sweep from this sweep of the rig (--append-to) in the hierarchy.
     #[arg(long)]
     pub parent: Option<String>,
@@ -115,7 +118,9 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
         return Err(format!("{file}: the rig already has a sweep named {name:?}; choose another with --name").into());
     }
     let parent = args.parent.clone().map(|sweep| ParentLink { sweep, kind: args.kind.into() });
-    document.sweeps.push(fitted.sweep_document(name.clone(), selection, parent));
+    let mut sweep = fitted.sweep_document(name.clone(), selection, parent);
+    sweep.rotation_interpolation = args.rotation_interpolation.field();
+    document.sweeps.push(sweep);
     // The written rig must load and own the mesh's vertices without conflict.
     let rig = Rig::from_document(&document, args.append_to.clone())?;
     rig.owners(&mesh, &args.mesh.mesh.display().to_string())?;

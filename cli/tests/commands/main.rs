@@ -15,4 +15,5 @@ mod far_meshes;
 mod fit_cli;
 mod pose_cli;
 mod render;
+mod rotation_cli;
 mod viewer;

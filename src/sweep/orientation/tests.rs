@@ -162,3 +162,24 @@ fn cubic_norm_stays_above_its_bound() {
     }
     assert!(smallest >= 0.28, "|q(s)| down to {smallest}");
 }
+
+/// A key turned between still stretches (the pose of one `move_key`): the cubic turns only
+/// across the turned interval, never backwards before it or past the turn after it.
+#[test]
+fn cubic_never_turns_back_beside_still_keys() {
+    let knots = [0.0, 0.2, 0.4, 0.6, 0.8, 1.0];
+    let (still, turned) = (DQuat::IDENTITY, DQuat::from_rotation_x(1.0));
+    let rotations = [still, still, still, turned, turned, turned];
+    let pieces = pieces(RotationInterpolation::Cubic, &knots, &rotations);
+    let mut previous = 0.0;
+    for (k, p) in pieces.iter().enumerate() {
+        for i in 0..=32 {
+            let angle = p.value(i as f64 / 32.0).angle_between(still);
+            assert!(angle >= previous - 1e-15 && angle <= 1.0 + 1e-15, "interval {k}: {angle} after {previous}");
+            if k != 2 {
+                assert!((angle - if k < 2 { 0.0 } else { 1.0 }).abs() < 1e-15, "interval {k} turns: {angle}");
+            }
+            previous = angle;
+        }
+    }
+}
