@@ -32,108 +32,65 @@ struct Nearest {
     found: bool,
 }
 
-// The plane polynomial g(s) = <v - C(s), n(s)> of a knot interval: power coefficients
-// g[0..=degree], degree 5 (linear rotation interpolation) or 9 (cubic).
-struct Plane {
-    g: array<f32, 10>,
-    degree: u32,
-}
-
-fn plane_polynomial(b: BindSegment, v: vec3<f32>) -> Plane {
+// Power coefficients of g(s) = <v - C(s), n(s)> on a knot interval whose rotations are
+// linear (degree 5). The cubic interpolation's nonics (degree 9) have functions of their own
+// below, named *_nonic, and only the entry point bind_cubic_main reaches them: sharing one
+// array of ten coefficients and a degree, or even a branch to the nonic in the same entry
+// point, halves the speed of binding a linear rig on lavapipe.
+fn plane_quintic(b: BindSegment, v: vec3<f32>) -> array<f32, 6> {
     let w = v - b.origin.xyz;
-    return Plane(array<f32, 10>(
+    return array<f32, 6>(
         dot(w, b.normal[0].xyz),
         dot(w, b.normal[1].xyz) - b.e_low.x,
         dot(w, b.normal[2].xyz) - b.e_low.y,
-        dot(w, b.normal[3].xyz) - b.e_low.z,
-        dot(w, b.normal[4].xyz) - b.e_low.w,
-        dot(w, b.normal[5].xyz) - b.e_high.x,
-        dot(w, b.normal[6].xyz) - b.e_high.y,
-        -b.e_high.z,
-        -b.e_high.w,
-        -b.e9,
-    ), b.degree);
+        -b.e_low.z,
+        -b.e_low.w,
+        -b.e_high.x,
+    );
 }
 
-fn plane_at(p: Plane, s: f32) -> f32 {
-    let g = p.g;
-    if (p.degree == 5u) {
-        return g[0] + s * (g[1] + s * (g[2] + s * (g[3] + s * (g[4] + s * g[5]))));
-    }
-    return g[0] + s * (g[1] + s * (g[2] + s * (g[3] + s * (g[4] + s * (g[5] + s * (g[6] + s * (g[7] + s * (g[8] + s * g[9]))))))));
+fn eval_quintic(g: array<f32, 6>, s: f32) -> f32 {
+    return g[0] + s * (g[1] + s * (g[2] + s * (g[3] + s * (g[4] + s * g[5]))));
 }
 
-fn plane_derivative_at(p: Plane, s: f32) -> f32 {
-    let g = p.g;
-    if (p.degree == 5u) {
-        return g[1] + s * (2.0 * g[2] + s * (3.0 * g[3] + s * (4.0 * g[4] + s * 5.0 * g[5])));
-    }
-    return g[1] + s * (2.0 * g[2] + s * (3.0 * g[3] + s * (4.0 * g[4] + s * (5.0 * g[5] + s * (6.0 * g[6] + s * (7.0 * g[7] + s * (8.0 * g[8] + s * 9.0 * g[9])))))));
+fn eval_quintic_derivative(g: array<f32, 6>, s: f32) -> f32 {
+    return g[1] + s * (2.0 * g[2] + s * (3.0 * g[3] + s * (4.0 * g[4] + s * 5.0 * g[5])));
 }
 
-// Bernstein coefficients (the first degree + 1) of g on [a, a + w]: a Taylor shift to a, a
-// scaling by w, then the power-to-Bernstein change of basis.
-fn bernstein_on(p: Plane, a: f32, w: f32) -> array<f32, 10> {
-    let n = i32(p.degree);
-    var c = p.g;
+// Bernstein coefficients of g on [a, a + w]: a Taylor shift to a, a scaling by w, then the
+// power-to-Bernstein change of basis for degree 5.
+fn bernstein_on(g: array<f32, 6>, a: f32, w: f32) -> array<f32, 6> {
+    var c = g;
     // Most intervals visited are the whole of [0, 1] (a = 0, w = 1), which needs neither step.
     if (a != 0.0) {
-        for (var k = 0; k < n; k++) {
-            for (var i = n - 1; i >= k; i--) {
+        for (var k = 0; k < 5; k++) {
+            for (var i = 4; i >= k; i--) {
                 c[i] += a * c[i + 1];
             }
         }
     }
     if (w != 1.0) {
         var scale = 1.0;
-        for (var k = 0; k <= n; k++) {
+        for (var k = 0; k < 6; k++) {
             c[k] *= scale;
             scale *= w;
         }
     }
-    if (n == 5) {
-        return quintic_to_bernstein(c);
-    }
-    return nonic_to_bernstein(c);
-}
-
-// b_i = sum_j C(i, j) / C(5, j) c_j.
-fn quintic_to_bernstein(c: array<f32, 10>) -> array<f32, 10> {
-    return array<f32, 10>(
+    return array<f32, 6>(
         c[0],
         c[0] + 0.2 * c[1],
         c[0] + 0.4 * c[1] + 0.1 * c[2],
         c[0] + 0.6 * c[1] + 0.3 * c[2] + 0.1 * c[3],
         c[0] + 0.8 * c[1] + 0.6 * c[2] + 0.4 * c[3] + 0.2 * c[4],
         c[0] + c[1] + c[2] + c[3] + c[4] + c[5],
-        0.0,
-        0.0,
-        0.0,
-        0.0,
     );
 }
 
-// b_i = sum_j C(i, j) / C(9, j) c_j.
-fn nonic_to_bernstein(c: array<f32, 10>) -> array<f32, 10> {
-    return array<f32, 10>(
-        c[0],
-        c[0] + 0.1111111111111111 * c[1],
-        c[0] + 0.2222222222222222 * c[1] + 0.027777777777777776 * c[2],
-        c[0] + 0.3333333333333333 * c[1] + 0.08333333333333333 * c[2] + 0.011904761904761904 * c[3],
-        c[0] + 0.4444444444444444 * c[1] + 0.16666666666666666 * c[2] + 0.047619047619047616 * c[3] + 0.007936507936507936 * c[4],
-        c[0] + 0.5555555555555556 * c[1] + 0.2777777777777778 * c[2] + 0.11904761904761904 * c[3] + 0.03968253968253968 * c[4] + 0.007936507936507936 * c[5],
-        c[0] + 0.6666666666666666 * c[1] + 0.4166666666666667 * c[2] + 0.23809523809523808 * c[3] + 0.11904761904761904 * c[4] + 0.047619047619047616 * c[5] + 0.011904761904761904 * c[6],
-        c[0] + 0.7777777777777778 * c[1] + 0.5833333333333334 * c[2] + 0.4166666666666667 * c[3] + 0.2777777777777778 * c[4] + 0.16666666666666666 * c[5] + 0.08333333333333333 * c[6] + 0.027777777777777776 * c[7],
-        c[0] + 0.8888888888888888 * c[1] + 0.7777777777777778 * c[2] + 0.6666666666666666 * c[3] + 0.5555555555555556 * c[4] + 0.4444444444444444 * c[5] + 0.3333333333333333 * c[6] + 0.2222222222222222 * c[7] + 0.1111111111111111 * c[8],
-        c[0] + c[1] + c[2] + c[3] + c[4] + c[5] + c[6] + c[7] + c[8] + c[9],
-    );
-}
-
-// Sign variations of the first degree + 1 Bernstein coefficients, counting 0 as positive.
-fn sign_variations(b: array<f32, 10>, degree: u32) -> u32 {
+// Sign variations of Bernstein coefficients, counting 0 as positive.
+fn sign_variations(b: array<f32, 6>) -> u32 {
     var count = 0u;
-    for (var i = 0u; i < degree; i++) {
-        if ((b[i] >= 0.0) != (b[i + 1u] >= 0.0)) {
+    for (var i = 0; i < 5; i++) {
+        if ((b[i] >= 0.0) != (b[i + 1] >= 0.0)) {
             count += 1u;
         }
     }
@@ -142,12 +99,12 @@ fn sign_variations(b: array<f32, 10>, degree: u32) -> u32 {
 
 // The root of g in [lo, hi], where g(lo) and g(hi) differ in sign: Newton's method kept inside
 // the shrinking bracket, bisecting when a step would leave it.
-fn refine_root(g: Plane, lo_in: f32, hi_in: f32, positive_at_lo: bool) -> f32 {
+fn refine_root(g: array<f32, 6>, lo_in: f32, hi_in: f32, positive_at_lo: bool) -> f32 {
     var lo = lo_in;
     var hi = hi_in;
     var s = 0.5 * (lo + hi);
     for (var step = 0u; step < MAX_REFINE_STEPS; step++) {
-        let value = plane_at(g, s);
+        let value = eval_quintic(g, s);
         if (value == 0.0) {
             break;
         }
@@ -156,7 +113,7 @@ fn refine_root(g: Plane, lo_in: f32, hi_in: f32, positive_at_lo: bool) -> f32 {
         } else {
             hi = s;
         }
-        let derivative = plane_derivative_at(g, s);
+        let derivative = eval_quintic_derivative(g, s);
         var next = 0.5 * (lo + hi);
         if (derivative != 0.0) {
             let newton = s - value / derivative;
@@ -186,9 +143,13 @@ fn consider_root(cell: u32, s: f32, v: vec3<f32>, nearest: ptr<function, Nearest
 // Every root on knot interval k (first cell `cell`): visits the dyadic subintervals of [0, 1]
 // depth first without a stack (level, index encode the interval
 // [index / 2^level, (index + 1) / 2^level]), refining every certified root.
-fn roots_on_segment(k: u32, cell: u32, v: vec3<f32>, nearest: ptr<function, Nearest>) {
-    let g = plane_polynomial(bind_segments[k], v);
-    if (g.g[0] == 0.0) {
+fn roots_on_segment(k: u32, cell: u32, v: vec3<f32>, nearest: ptr<function, Nearest>, nonics: bool) {
+    if (nonics && bind_segments[k].degree == 9u) {
+        roots_on_nonic_segment(k, cell, v, nearest);
+        return;
+    }
+    let g = plane_quintic(bind_segments[k], v);
+    if (g[0] == 0.0) {
         consider_root(cell, 0.0, v, nearest);
     }
     var level = 0u;
@@ -197,13 +158,13 @@ fn roots_on_segment(k: u32, cell: u32, v: vec3<f32>, nearest: ptr<function, Near
         let w = 1.0 / f32(1u << level);
         let a = f32(index) * w;
         let b = bernstein_on(g, a, w);
-        let variations = sign_variations(b, g.degree);
+        let variations = sign_variations(b);
         if (variations > 1u && level < MAX_LEVEL) {
             level += 1u;
             index *= 2u;
             continue;
         }
-        if (variations == 1u || (variations > 1u && (b[0] >= 0.0) != (b[g.degree] >= 0.0))) {
+        if (variations == 1u || (variations > 1u && (b[0] >= 0.0) != (b[5] >= 0.0))) {
             consider_root(cell, refine_root(g, a, a + w, b[0] >= 0.0), v, nearest);
         } else if (variations > 1u) {
             consider_root(cell, a + 0.5 * w, v, nearest);
@@ -218,18 +179,169 @@ fn roots_on_segment(k: u32, cell: u32, v: vec3<f32>, nearest: ptr<function, Near
         }
         index += 1u;
     }
-    if (plane_at(g, 1.0) == 0.0) {
+    if (eval_quintic(g, 1.0) == 0.0) {
         consider_root(cell, 1.0, v, nearest);
     }
 }
 
+// Power coefficients of the nonic g(s) of a knot interval whose rotations are cubic.
+fn plane_nonic(b: BindSegment, v: vec3<f32>) -> array<f32, 10> {
+    let w = v - b.origin.xyz;
+    return array<f32, 10>(
+        dot(w, b.normal[0].xyz),
+        dot(w, b.normal[1].xyz) - b.e_low.x,
+        dot(w, b.normal[2].xyz) - b.e_low.y,
+        dot(w, b.normal[3].xyz) - b.e_low.z,
+        dot(w, b.normal[4].xyz) - b.e_low.w,
+        dot(w, b.normal[5].xyz) - b.e_high.x,
+        dot(w, b.normal[6].xyz) - b.e_high.y,
+        -b.e_high.z,
+        -b.e_high.w,
+        -b.e9,
+    );
+}
+
+fn eval_nonic(g: array<f32, 10>, s: f32) -> f32 {
+    return g[0] + s * (g[1] + s * (g[2] + s * (g[3] + s * (g[4] + s * (g[5] + s * (g[6] + s * (g[7] + s * (g[8] + s * g[9]))))))));
+}
+
+fn eval_nonic_derivative(g: array<f32, 10>, s: f32) -> f32 {
+    return g[1] + s * (2.0 * g[2] + s * (3.0 * g[3] + s * (4.0 * g[4] + s * (5.0 * g[5] + s * (6.0 * g[6] + s * (7.0 * g[7] + s * (8.0 * g[8] + s * 9.0 * g[9])))))));
+}
+
+// Bernstein coefficients of the nonic on [a, a + w], as bernstein_on does for the quintic;
+// b_i = sum_j C(i, j) / C(9, j) c_j.
+fn bernstein_on_nonic(g: array<f32, 10>, a: f32, w: f32) -> array<f32, 10> {
+    var c = g;
+    if (a != 0.0) {
+        for (var k = 0; k < 9; k++) {
+            for (var i = 8; i >= k; i--) {
+                c[i] += a * c[i + 1];
+            }
+        }
+    }
+    if (w != 1.0) {
+        var scale = 1.0;
+        for (var k = 0; k < 10; k++) {
+            c[k] *= scale;
+            scale *= w;
+        }
+    }
+    return array<f32, 10>(
+        c[0],
+        c[0] + 0.1111111111111111 * c[1],
+        c[0] + 0.2222222222222222 * c[1] + 0.027777777777777776 * c[2],
+        c[0] + 0.3333333333333333 * c[1] + 0.08333333333333333 * c[2] + 0.011904761904761904 * c[3],
+        c[0] + 0.4444444444444444 * c[1] + 0.16666666666666666 * c[2] + 0.047619047619047616 * c[3] + 0.007936507936507936 * c[4],
+        c[0] + 0.5555555555555556 * c[1] + 0.2777777777777778 * c[2] + 0.11904761904761904 * c[3] + 0.03968253968253968 * c[4] + 0.007936507936507936 * c[5],
+        c[0] + 0.6666666666666666 * c[1] + 0.4166666666666667 * c[2] + 0.23809523809523808 * c[3] + 0.11904761904761904 * c[4] + 0.047619047619047616 * c[5] + 0.011904761904761904 * c[6],
+        c[0] + 0.7777777777777778 * c[1] + 0.5833333333333334 * c[2] + 0.4166666666666667 * c[3] + 0.2777777777777778 * c[4] + 0.16666666666666666 * c[5] + 0.08333333333333333 * c[6] + 0.027777777777777776 * c[7],
+        c[0] + 0.8888888888888888 * c[1] + 0.7777777777777778 * c[2] + 0.6666666666666666 * c[3] + 0.5555555555555556 * c[4] + 0.4444444444444444 * c[5] + 0.3333333333333333 * c[6] + 0.2222222222222222 * c[7] + 0.1111111111111111 * c[8],
+        c[0] + c[1] + c[2] + c[3] + c[4] + c[5] + c[6] + c[7] + c[8] + c[9],
+    );
+}
+
+fn sign_variations_nonic(b: array<f32, 10>) -> u32 {
+    var count = 0u;
+    for (var i = 0; i < 9; i++) {
+        if ((b[i] >= 0.0) != (b[i + 1] >= 0.0)) {
+            count += 1u;
+        }
+    }
+    return count;
+}
+
+// refine_root for the nonic.
+fn refine_root_nonic(g: array<f32, 10>, lo_in: f32, hi_in: f32, positive_at_lo: bool) -> f32 {
+    var lo = lo_in;
+    var hi = hi_in;
+    var s = 0.5 * (lo + hi);
+    for (var step = 0u; step < MAX_REFINE_STEPS; step++) {
+        let value = eval_nonic(g, s);
+        if (value == 0.0) {
+            break;
+        }
+        if ((value >= 0.0) == positive_at_lo) {
+            lo = s;
+        } else {
+            hi = s;
+        }
+        let derivative = eval_nonic_derivative(g, s);
+        var next = 0.5 * (lo + hi);
+        if (derivative != 0.0) {
+            let newton = s - value / derivative;
+            if (newton > lo && newton < hi) {
+                next = newton;
+            }
+        }
+        let moved = abs(next - s);
+        s = next;
+        if (moved <= S_TOLERANCE || hi - lo <= S_TOLERANCE) {
+            break;
+        }
+    }
+    return s;
+}
+
+// roots_on_segment for a knot interval whose rotations are cubic.
+fn roots_on_nonic_segment(k: u32, cell: u32, v: vec3<f32>, nearest: ptr<function, Nearest>) {
+    let g = plane_nonic(bind_segments[k], v);
+    if (g[0] == 0.0) {
+        consider_root(cell, 0.0, v, nearest);
+    }
+    var level = 0u;
+    var index = 0u;
+    loop {
+        let w = 1.0 / f32(1u << level);
+        let a = f32(index) * w;
+        let b = bernstein_on_nonic(g, a, w);
+        let variations = sign_variations_nonic(b);
+        if (variations > 1u && level < MAX_LEVEL) {
+            level += 1u;
+            index *= 2u;
+            continue;
+        }
+        if (variations == 1u || (variations > 1u && (b[0] >= 0.0) != (b[9] >= 0.0))) {
+            consider_root(cell, refine_root_nonic(g, a, a + w, b[0] >= 0.0), v, nearest);
+        } else if (variations > 1u) {
+            consider_root(cell, a + 0.5 * w, v, nearest);
+        }
+        while ((index & 1u) == 1u) {
+            index = index >> 1u;
+            level -= 1u;
+        }
+        if (level == 0u) {
+            break;
+        }
+        index += 1u;
+    }
+    if (eval_nonic(g, 1.0) == 0.0) {
+        consider_root(cell, 1.0, v, nearest);
+    }
+}
+
+// Binds vertices of sweeps whose rotations are linear.
 @compute @workgroup_size(WORKGROUP_SIZE)
 fn bind_main(
     @builtin(workgroup_id) group: vec3<u32>,
     @builtin(num_workgroups) groups: vec3<u32>,
     @builtin(local_invocation_index) lane: u32,
 ) {
-    let i = invocation_index(group, groups, lane);
+    bind_invocation(invocation_index(group, groups, lane), false);
+}
+
+// Binds vertices of any sweep, those whose rotations are cubic included.
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn bind_cubic_main(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+    @builtin(local_invocation_index) lane: u32,
+) {
+    bind_invocation(invocation_index(group, groups, lane), true);
+}
+
+// The binding of vertex i; `nonics`: whether some knot interval's polynomial is a nonic.
+fn bind_invocation(i: u32, nonics: bool) {
     if (i >= params.vertex_count) {
         return;
     }
@@ -244,7 +356,7 @@ fn bind_main(
     let sweep = sweeps[owner];
     var nearest = Nearest(sweep.first_cell, 0.0, 0.0, false);
     for (var k = 0u; k < sweep.segment_count; k++) {
-        roots_on_segment(sweep.first_segment + k, sweep.first_cell + k * sweep.samples, v, &nearest);
+        roots_on_segment(sweep.first_segment + k, sweep.first_cell + k * sweep.samples, v, &nearest, nonics);
     }
     if (!nearest.found) {
         // Beyond an end: the nearer of C(0) and C(1).

@@ -47,7 +47,9 @@ pub const SCAN_RUN: u32 = 64;
 /// - `radius`: the bicubic r(s, φ) = Σ_p Σ_q c_pq·s^p·φ^q, stored by powers of φ:
 ///   `radius[q][p]` = c_pq.
 /// - `curve[i].xyz`: C(s) = c0 + c1·s + c2·s² + c3·s³ on the interval (c0 = p_k); `curve[0].w`
-///   is π/M (half the cell's angle); the other `w` are unused.
+///   is π/M (half the cell's angle); `curve[2].w` is 1 where the rotations are cubic (a2 or a3
+///   below may be non-zero), 0 where they are linear, so that the fast CPU path can skip a2 and
+///   a3; `curve[3].w` is unused.
 /// - `rotation[i]`: R(t)·Rz(θ_mid) is the quaternion a0 + a1·s + a2·s² + a3·s³ normalized, with
 ///   a_i the power coefficients of the interval's q(s) (`crate::sweep::orientation`) times
 ///   qz(θ_mid), as (x, y, z, w); a2 = a3 = 0 for the linear interpolation, where
@@ -59,7 +61,8 @@ pub struct CellCoeffs {
     /// Power-basis coefficients of r, `[power of φ][power of s]`.
     pub radius: [[f32; 4]; 4],
     /// The curve's coefficients in xyz; π/M in `curve[0].w`; which ends of the sweep the knot
-    /// interval holds in `curve[1].w` ([`CellCoeffs::ends`]).
+    /// interval holds in `curve[1].w` ([`CellCoeffs::ends`]); 1 in `curve[2].w` where the
+    /// rotations are cubic.
     pub curve: [[f32; 4]; 4],
     /// Power coefficients a0 … a3 of the unnormalized R(t)·Rz(θ_mid) in s.
     pub rotation: [[f32; 4]; 4],

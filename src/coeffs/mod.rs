@@ -86,6 +86,7 @@ impl SweepCoefficients {
                 let mut curve = segment.curve.power_coefficients().map(vec4);
                 curve[0][3] = half_step as f32;
                 curve[1][3] = CellCoeffs::ends(k, sweep.segments().len());
+                curve[2][3] = f32::from(u8::from(segment.orientation.cubic));
                 let power = segment.orientation.power;
                 for j in 0..m {
                     // R(t)·Rz(θ_mid) as one quaternion: right multiplication by qz(θ_mid) is linear,

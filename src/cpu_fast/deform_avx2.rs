@@ -25,8 +25,11 @@ pub(super) struct Coefficients {
     pub curve: [[F8; 3]; 4],
     /// π/M.
     pub half_step: F8,
-    /// `rotation[i][k]`: component k of the coefficient of s^i of the unnormalized quaternion.
+    /// `rotation[i][k]`: component k of the coefficient of s^i of the unnormalized quaternion;
+    /// `rotation[2]` and `rotation[3]` are zero and unread unless `cubic`.
     pub rotation: [[F8; 4]; 4],
+    /// Whether some lane's cell has cubic rotations (`CellCoeffs::curve[2].w`).
+    pub cubic: bool,
 }
 
 impl Coefficients {
@@ -43,6 +46,7 @@ impl Coefficients {
             curve: [three(&c[0]), three(&c[1]), three(&c[2]), three(&c[3])],
             half_step: splat(cell.curve[0][3]),
             rotation: [four(&q[0]), four(&q[1]), four(&q[2]), four(&q[3])],
+            cubic: cell.curve[2][3] != 0.0,
         }
     }
 
@@ -63,7 +67,10 @@ impl Coefficients {
             });
             transpose8(rows)
         };
-        let (b0, b1, b2, b3, b4, b5) = (block(0), block(1), block(2), block(3), block(4), block(5));
+        let (b0, b1, b2, b3, b4) = (block(0), block(1), block(2), block(3), block(4));
+        // Block 5 (a2, a3) only where a lane's rotations are cubic: most rigs have none.
+        let cubic = _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_NEQ_UQ>(b3[3], _mm256_setzero_ps())) != 0;
+        let b5 = if cubic { block(5) } else { [_mm256_setzero_ps(); 8] };
         let four = |b: &[F8; 8], at: usize| [b[at], b[at + 1], b[at + 2], b[at + 3]];
         let three = |b: &[F8; 8], at: usize| [b[at], b[at + 1], b[at + 2]];
         Coefficients {
@@ -71,6 +78,7 @@ impl Coefficients {
             curve: [three(&b2, 0), three(&b2, 4), three(&b3, 0), three(&b3, 4)],
             half_step: b2[3],
             rotation: [four(&b4, 0), four(&b4, 4), four(&b5, 0), four(&b5, 4)],
+            cubic,
         }
     }
 }
@@ -262,6 +270,11 @@ fn evaluate(c: &Coefficients, b: &Batch) -> [F8; 3] {
 #[target_feature(enable = "avx2,fma")]
 #[inline]
 pub(super) fn quat_at(c: &Coefficients, s: F8) -> [F8; 4] {
+    if !c.cubic {
+        // a0 + s·a1, as the twin's Horner rounds it with a2 = a3 = 0.
+        let linear = |k: usize| fma(s, c.rotation[1][k], c.rotation[0][k]);
+        return [linear(0), linear(1), linear(2), linear(3)];
+    }
     let quat = |k: usize| cubic([c.rotation[0][k], c.rotation[1][k], c.rotation[2][k], c.rotation[3][k]], s);
     [quat(0), quat(1), quat(2), quat(3)]
 }
@@ -270,6 +283,9 @@ pub(super) fn quat_at(c: &Coefficients, s: F8) -> [F8; 4] {
 #[target_feature(enable = "avx2,fma")]
 #[inline]
 pub(super) fn quat_derivative_at(c: &Coefficients, s: F8) -> [F8; 4] {
+    if !c.cubic {
+        return c.rotation[1];
+    }
     let (two, three) = (splat(2.0), splat(3.0));
     let slope = |k: usize| fma(s, fma(s, mul(three, c.rotation[3][k]), mul(two, c.rotation[2][k])), c.rotation[1][k]);
     [slope(0), slope(1), slope(2), slope(3)]

@@ -38,11 +38,13 @@ impl Binder {
                 usage: wgpu::BufferUsages::STORAGE,
             })
         };
+        let segments = bind_segments(rest);
+        let cubic = segments.iter().any(|segment| segment.degree != 5);
         Binder {
-            kernel: context.kernels().bind(device),
+            kernel: context.kernels().bind(device, cubic),
             device: device.clone(),
             cells: cells.clone(),
-            bind_segments: table("sweepffd bind segments", bytemuck::cast_slice(&bind_segments(rest))),
+            bind_segments: table("sweepffd bind segments", bytemuck::cast_slice(&segments)),
             sweeps: table("sweepffd sweeps", bytemuck::cast_slice(&coefficients.sweeps)),
         }
     }

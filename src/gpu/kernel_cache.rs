@@ -13,7 +13,7 @@ type Slot = OnceLock<Arc<Kernel>>;
 /// The kernels of one device, each compiled on first use.
 #[derive(Debug, Default)]
 pub(crate) struct KernelCache {
-    bind: Slot,
+    bind: [Slot; 2],
     deform: [Slot; 2],
     deform_instances: [Slot; 2],
     deform_staged: [Slot; 2],
@@ -50,9 +50,10 @@ impl KernelCache {
         }))
     }
 
-    /// `shaders/bind.wgsl`.
-    pub(crate) fn bind(&self, device: &wgpu::Device) -> Arc<Kernel> {
-        self.get(&self.bind, || kernels::bind(device))
+    /// `shaders/bind.wgsl`, for rigs with sweeps whose rotations are cubic or not
+    /// ([`kernels::bind`]).
+    pub(crate) fn bind(&self, device: &wgpu::Device, cubic: bool) -> Arc<Kernel> {
+        self.get(&self.bind[usize::from(cubic)], || kernels::bind(device, cubic))
     }
 
     /// `shaders/deform.wgsl` for cell records of `variant`.

@@ -171,10 +171,13 @@ impl DeformVariant {
 }
 
 /// `shaders/bind.wgsl`: params, cells, bind segments, sweeps, owners, positions (read);
-/// bindings (written).
-pub fn bind(device: &wgpu::Device) -> Kernel {
+/// bindings (written). With `cubic`, the entry point that also solves the nonics of sweeps
+/// whose rotations are cubic (`bind_cubic_main`); without, the faster one for rigs whose
+/// rotations are all linear.
+pub fn bind(device: &wgpu::Device, cubic: bool) -> Kernel {
     let slots = [Uniform, Read, Read, Read, Read, Read, ReadWrite];
-    Kernel::new(device, "sweepffd bind", shaders::BIND, "bind_main", &slots)
+    let entry = if cubic { "bind_cubic_main" } else { "bind_main" };
+    Kernel::new(device, "sweepffd bind", shaders::BIND, entry, &slots)
 }
 
 /// `shaders/deform.wgsl`: params, cells (uniform or storage), bindings (read); positions

@@ -71,8 +71,9 @@ pub const TANGENTS: &str = include_str!(concat!(env!("OUT_DIR"), "/tangents.wgsl
 pub const JACOBIAN_PROBE: &str = include_str!(concat!(env!("OUT_DIR"), "/jacobian_probe.wgsl"));
 
 /// Every kernel as (name, composed source, entry point).
-pub const ALL: [(&str, &str, &str); 37] = [
+pub const ALL: [(&str, &str, &str); 38] = [
     ("bind", BIND, "bind_main"),
+    ("bind_cubic", BIND, "bind_cubic_main"),
     ("deform_uniform", DEFORM_UNIFORM, "deform_main"),
     ("deform_storage", DEFORM_STORAGE, "deform_main"),
     ("deform_instances_uniform", DEFORM_UNIFORM, "deform_instances_main"),
