@@ -11,11 +11,6 @@
 //! fixed step, this cannot miss two roots that are close together however sharply the sweep
 //! bends.
 
-use crate::sweep::plane_polynomial::MAX_DEGREE;
-
-/// Bernstein coefficients of one interval, the first `degree + 1` used.
-type Bernstein = [f64; MAX_DEGREE + 1];
-
 /// Subdivision stops at intervals of width 2^−40; an interval that still has several sign
 /// variations there holds a (near-)double root, reported at its midpoint.
 const MAX_DEPTH: u32 = 40;
@@ -29,7 +24,7 @@ pub fn eval(g: &[f64], s: f64) -> f64 {
 }
 
 /// g(s) and g′(s) by Horner's rule.
-fn eval_with_derivative(g: &[f64], s: f64) -> (f64, f64) {
+fn eval_with_derivative<const N: usize>(g: &[f64; N], s: f64) -> (f64, f64) {
     let (mut value, mut derivative) = (0.0, 0.0);
     for &a in g.iter().rev() {
         derivative = derivative * s + value;
@@ -49,63 +44,64 @@ const fn binomial(n: usize, k: usize) -> f64 {
     product
 }
 
-/// The ratios C(i, j) / C(n, j) of the power → Bernstein conversion for degree n.
-const fn power_to_bernstein(n: usize) -> [[f64; MAX_DEGREE + 1]; MAX_DEGREE + 1] {
-    let mut table = [[0.0; MAX_DEGREE + 1]; MAX_DEGREE + 1];
-    let mut i = 0;
-    while i <= n {
-        let mut j = 0;
-        while j <= i {
-            table[i][j] = binomial(i, j) / binomial(n, j);
-            j += 1;
+/// Polynomials of degree N − 1, as arrays of N power or Bernstein coefficients: the sizes are
+/// constants, so that the loops below unroll for the quintic (N = 6) and the nonic (N = 10).
+struct Degree<const N: usize>;
+
+impl<const N: usize> Degree<N> {
+    /// The ratios C(i, j) / C(N − 1, j) of the power → Bernstein conversion.
+    const POWER_TO_BERNSTEIN: [[f64; N]; N] = {
+        let mut table = [[0.0; N]; N];
+        let mut i = 0;
+        while i < N {
+            let mut j = 0;
+            while j <= i {
+                table[i][j] = binomial(i, j) / binomial(N - 1, j);
+                j += 1;
+            }
+            i += 1;
         }
-        i += 1;
-    }
-    table
+        table
+    };
 }
 
-const QUINTIC_TO_BERNSTEIN: [[f64; MAX_DEGREE + 1]; MAX_DEGREE + 1] = power_to_bernstein(5);
-const NONIC_TO_BERNSTEIN: [[f64; MAX_DEGREE + 1]; MAX_DEGREE + 1] = power_to_bernstein(9);
-
-/// Bernstein coefficients of g (degree 5 or 9) on [0, 1]: b_i = Σ_{j ≤ i} C(i, j) / C(n, j) · a_j.
-fn bernstein(g: &[f64]) -> Bernstein {
-    let n = g.len() - 1;
-    let table = match n {
-        5 => &QUINTIC_TO_BERNSTEIN,
-        9 => &NONIC_TO_BERNSTEIN,
-        _ => unreachable!("plane polynomials have degree 5 or 9, not {n}"),
-    };
-    let mut b = [0.0; MAX_DEGREE + 1];
-    for (i, b) in b.iter_mut().enumerate().take(n + 1) {
-        *b = (0..=i).map(|j| table[i][j] * g[j]).sum();
-    }
-    b
+/// Bernstein coefficients of g on [0, 1]: b_i = Σ_{j ≤ i} C(i, j) / C(n, j) · a_j.
+fn bernstein<const N: usize>(g: &[f64; N]) -> [f64; N] {
+    std::array::from_fn(|i| (0..=i).map(|j| Degree::<N>::POWER_TO_BERNSTEIN[i][j] * g[j]).sum())
 }
 
 /// Sign variations of a coefficient sequence, counting 0 as positive.
-fn sign_variations(b: &[f64]) -> u32 {
+fn sign_variations<const N: usize>(b: &[f64; N]) -> u32 {
     b.windows(2).filter(|w| (w[0] >= 0.0) != (w[1] >= 0.0)).count() as u32
 }
 
-/// The Bernstein coefficients (the first `n + 1`) of the left and right halves (de Casteljau
-/// at ½).
-fn split(b: &Bernstein, n: usize) -> (Bernstein, Bernstein) {
+/// The Bernstein coefficients of the left and right halves (de Casteljau at ½).
+fn split<const N: usize>(b: &[f64; N]) -> ([f64; N], [f64; N]) {
     let mut work = *b;
-    let mut left = [0.0; MAX_DEGREE + 1];
-    let mut right = [0.0; MAX_DEGREE + 1];
-    for level in 0..=n {
+    let mut left = [0.0; N];
+    let mut right = [0.0; N];
+    for level in 0..N {
         left[level] = work[0];
-        right[n - level] = work[n - level];
-        for i in 0..n - level {
+        right[N - 1 - level] = work[N - 1 - level];
+        for i in 0..N - 1 - level {
             work[i] = 0.5 * (work[i] + work[i + 1]);
         }
     }
     (left, right)
 }
 
-/// Calls `found` with every root of `g` (power coefficients a0 … a_n, n ≤ 9) in [0, 1], in
-/// increasing order (a root on the boundary of two subintervals may be reported twice).
+/// Calls `found` with every root in [0, 1] of `g`, the power coefficients a0 … a_n of a
+/// quintic (n = 5) or a nonic (n = 9), in increasing order (a root on the boundary of two
+/// subintervals may be reported twice).
 pub fn for_each_root(g: &[f64], found: &mut impl FnMut(f64)) {
+    match g.len() {
+        6 => roots_of_degree::<6>(g.try_into().expect("six coefficients"), found),
+        10 => roots_of_degree::<10>(g.try_into().expect("ten coefficients"), found),
+        n => unreachable!("plane polynomials have degree 5 or 9, not {}", n - 1),
+    }
+}
+
+fn roots_of_degree<const N: usize>(g: &[f64; N], found: &mut impl FnMut(f64)) {
     if g[0] == 0.0 {
         found(0.0);
     }
@@ -115,17 +111,16 @@ pub fn for_each_root(g: &[f64], found: &mut impl FnMut(f64)) {
     }
 }
 
-fn isolate(g: &[f64], b: &Bernstein, lo: f64, hi: f64, depth: u32, found: &mut impl FnMut(f64)) {
-    let n = g.len() - 1;
-    match sign_variations(&b[..=n]) {
+fn isolate<const N: usize>(g: &[f64; N], b: &[f64; N], lo: f64, hi: f64, depth: u32, found: &mut impl FnMut(f64)) {
+    match sign_variations(b) {
         0 => {}
         1 => found(refine(g, lo, hi, b[0] >= 0.0)),
         _ if depth >= MAX_DEPTH => {
-            let at_ends_differ = (b[0] >= 0.0) != (b[n] >= 0.0);
+            let at_ends_differ = (b[0] >= 0.0) != (b[N - 1] >= 0.0);
             found(if at_ends_differ { refine(g, lo, hi, b[0] >= 0.0) } else { 0.5 * (lo + hi) });
         }
         _ => {
-            let (left, right) = split(b, n);
+            let (left, right) = split(b);
             let mid = 0.5 * (lo + hi);
             isolate(g, &left, lo, mid, depth + 1, found);
             isolate(g, &right, mid, hi, depth + 1, found);
@@ -135,7 +130,7 @@ fn isolate(g: &[f64], b: &Bernstein, lo: f64, hi: f64, depth: u32, found: &mut i
 
 /// The root of g in [lo, hi], where g(lo) and g(hi) differ in sign (0 counted as positive):
 /// Newton's method kept inside the shrinking bracket, bisecting when a step would leave it.
-fn refine(g: &[f64], mut lo: f64, mut hi: f64, positive_at_lo: bool) -> f64 {
+fn refine<const N: usize>(g: &[f64; N], mut lo: f64, mut hi: f64, positive_at_lo: bool) -> f64 {
     let mut s = 0.5 * (lo + hi);
     for _ in 0..100 {
         let (value, derivative) = eval_with_derivative(g, s);
@@ -260,7 +255,7 @@ mod tests {
 
     #[test]
     fn the_nonic_conversion_keeps_the_end_values() {
-        let g = from_roots::<9>(&[0.2, 0.7], 1.5);
+        let g: [f64; 10] = from_roots::<9>(&[0.2, 0.7], 1.5).try_into().unwrap();
         let b = bernstein(&g);
         assert_eq!(b[0], g[0]);
         let size: f64 = g.iter().map(|a| a.abs()).sum();

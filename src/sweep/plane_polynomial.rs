@@ -52,8 +52,10 @@ impl PlanePolynomial {
     /// Power-basis coefficients of g for vertex v.
     pub fn for_vertex(&self, v: DVec3) -> PlaneCoefficients {
         let w = v - self.origin;
+        // n_m is zero past m = 2 for the quintic and past m = 6 for the nonic.
+        let normals = if self.degree == 5 { 3 } else { 7 };
         std::array::from_fn(|m| {
-            let along = if m < 7 { w.dot(self.normal[m]) } else { 0.0 };
+            let along = if m < normals { w.dot(self.normal[m]) } else { 0.0 };
             if m == 0 { along } else { along - self.curve_dot_normal[m - 1] }
         })
     }
