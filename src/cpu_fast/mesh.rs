@@ -21,7 +21,7 @@ pub struct FastMesh {
     pub bands: Vec<BandRecord>,
     /// The rest rig's cell records (the band kernel reads them).
     pub rest: SweepCoefficients,
-    /// Its binding quintics.
+    /// Its binding polynomials (quintics, nonics where the rotations are cubic).
     pub tables: Vec<BindSegment>,
     /// The posed cell records, refilled by [`FastMesh::deform`].
     posed: SweepCoefficients,

@@ -46,7 +46,7 @@ fn f(sweep: &Sweep, v: DVec3, t: f64) -> f64 {
 }
 
 /// The distance from v to C at the nearest root of f that dense sampling brackets, each
-/// bracketed root refined by bisection on f itself (not through the binding quintic).
+/// bracketed root refined by bisection on f itself (not through the binding polynomial).
 fn nearest_sampled_root(sweep: &Sweep, v: DVec3) -> Option<f64> {
     let mut nearest: Option<f64> = None;
     let mut previous = (0.0, f(sweep, v, 0.0));
