@@ -191,6 +191,7 @@ pub mod bends;
 pub mod falloff_tubes;
 pub mod isas;
 pub mod normal_angles;
+pub mod sampled_roots;
 pub mod star;
 mod teapot;
 

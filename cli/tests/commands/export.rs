@@ -131,6 +131,18 @@ fn export_and_check(dir: &Path, mesh: &str, rig: &str, poses: &[String]) -> f64 
     worst
 }
 
+/// The texture coordinates, positions and indices of the first primitive of GLB `file`.
+fn textured_primitive(file: &Path) -> (Vec<[f32; 2]>, Vec<[f32; 3]>, Vec<u32>) {
+    let gltf = gltf::Gltf::from_slice(&fs::read(file).unwrap()).unwrap();
+    let buffers = [gltf.blob.clone().unwrap()];
+    let primitive = gltf.document.meshes().next().unwrap().primitives().next().unwrap();
+    let reader = primitive.reader(|b| Some(&buffers[b.index()]));
+    let uv = reader.read_tex_coords(0).expect("TEXCOORD_0").into_f32().collect();
+    let positions = reader.read_positions().unwrap().collect();
+    let indices = reader.read_indices().unwrap().into_u32().collect();
+    (uv, positions, indices)
+}
+
 #[test]
 fn the_demo_tube_exports_five_poses_that_deform_makes() {
     let dir = tempfile::tempdir().unwrap();
@@ -196,13 +208,7 @@ fn spot_exports_its_texture_coordinates_with_its_poses() {
     eprintln!("spot, 3 poses: morph targets within {worst:.2e} × diagonal of deform's output");
     // The texture coordinates: every corner of the OBJ's faces has its (u, 1 − v) at its glTF
     // vertex.
-    let gltf = gltf::Gltf::from_slice(&fs::read(dir.join("anim.glb")).unwrap()).unwrap();
-    let buffers = [gltf.blob.clone().unwrap()];
-    let primitive = gltf.document.meshes().next().unwrap().primitives().next().unwrap();
-    let reader = primitive.reader(|b| Some(&buffers[b.index()]));
-    let uv: Vec<[f32; 2]> = reader.read_tex_coords(0).expect("TEXCOORD_0").into_f32().collect();
-    let positions: Vec<[f32; 3]> = reader.read_positions().unwrap().collect();
-    let indices: Vec<u32> = reader.read_indices().unwrap().into_u32().collect();
+    let (uv, positions, indices) = textured_primitive(&dir.join("anim.glb"));
     let text = fs::read_to_string(dir.join("spot.obj")).unwrap();
     let vt: Vec<[f32; 2]> = text
         .lines()
@@ -459,12 +465,7 @@ fn a_gltf_source_exports_its_texture_coordinates_with_its_poses() {
     let poses = write_poses(dir, "rig.json", &[0, 40, 80].map(tube_bend));
     let worst = export_and_check(dir, "tube.gltf", "rig.json", &poses);
     eprintln!("glTF tube, 3 poses: morph targets within {worst:.2e} × diagonal of deform's output");
-    let gltf = gltf::Gltf::from_slice(&fs::read(dir.join("anim.glb")).unwrap()).unwrap();
-    let buffers = [gltf.blob.clone().unwrap()];
-    let primitive = gltf.document.meshes().next().unwrap().primitives().next().unwrap();
-    let reader = primitive.reader(|b| Some(&buffers[b.index()]));
-    let uv: Vec<[f32; 2]> = reader.read_tex_coords(0).expect("TEXCOORD_0").into_f32().collect();
-    let positions: Vec<[f32; 3]> = reader.read_positions().unwrap().collect();
+    let (uv, positions, _) = textured_primitive(&dir.join("anim.glb"));
     let mesh = tube.mesh();
     let at: std::collections::HashMap<[u32; 3], usize> =
         mesh.positions.iter().enumerate().map(|(v, p)| (p.as_vec3().to_array().map(f32::to_bits), v)).collect();

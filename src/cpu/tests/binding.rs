@@ -4,6 +4,8 @@
 
 use crate::common;
 
+use common::sampled_roots::{f, nearest_sampled_root};
+
 use glam::{DQuat, DVec3};
 use rayon::prelude::*;
 use sweepffd::bind::{Binding, bind_vertices};
@@ -12,12 +14,9 @@ use sweepffd::cpu;
 use sweepffd::deform::deform_hard;
 use sweepffd::mesh::Mesh;
 use sweepffd::rig::Rig;
-use sweepffd::sweep::{Key, Sweep};
+use sweepffd::sweep::Key;
 
 const MESHES: [&str; 3] = ["bunny_stanford_zipper.obj", "teapot_newell.obj", "armadillo_50k.obj"];
-
-/// Samples of f over [0, 1] for the dense search for nearer roots.
-const SAMPLES: usize = 2048;
 
 struct Case {
     name: &'static str,
@@ -39,32 +38,6 @@ fn cases() -> Vec<Case> {
             Some(Case { name, mesh, rig, bindings, diagonal })
         })
         .collect()
-}
-
-fn f(sweep: &Sweep, v: DVec3, t: f64) -> f64 {
-    (v - sweep.center(t)).dot(sweep.normal(t))
-}
-
-/// The distance from v to C at the nearest root of f that dense sampling brackets, each
-/// bracketed root refined by bisection on f itself (not through the binding polynomial).
-fn nearest_sampled_root(sweep: &Sweep, v: DVec3) -> Option<f64> {
-    let mut nearest: Option<f64> = None;
-    let mut previous = (0.0, f(sweep, v, 0.0));
-    for i in 1..=SAMPLES {
-        let t = i as f64 / SAMPLES as f64;
-        let value = f(sweep, v, t);
-        if (previous.1 >= 0.0) != (value >= 0.0) {
-            let (mut lo, mut hi, positive_at_lo) = (previous.0, t, previous.1 >= 0.0);
-            for _ in 0..60 {
-                let mid = 0.5 * (lo + hi);
-                if (f(sweep, v, mid) >= 0.0) == positive_at_lo { lo = mid } else { hi = mid }
-            }
-            let distance = sweep.center(0.5 * (lo + hi)).distance(v);
-            nearest = Some(nearest.map_or(distance, |n| n.min(distance)));
-        }
-        previous = (t, value);
-    }
-    nearest
 }
 
 #[test]

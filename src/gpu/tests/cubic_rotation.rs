@@ -14,6 +14,8 @@
 
 use crate::common;
 
+use common::sampled_roots::{f, nearest_sampled_root};
+
 use glam::{DQuat, DVec3};
 use rayon::prelude::*;
 use sweepffd::bind::{Binding, bind_vertices};
@@ -29,9 +31,6 @@ use sweepffd::sweep::{RotationInterpolation, Sweep};
 use sweepffd::synthetic::{BendTwistTaper, Tube, tube_rig};
 
 const POSE: BendTwistTaper = BendTwistTaper { bend: 1.2, twist: 1.7, taper: 0.6 };
-/// Samples of f over [0, 1] for the dense search for nearer roots.
-const SAMPLES: usize = 2048;
-
 /// `rig` with every sweep's rotations interpolated as `rotation` says.
 fn with_rotation(rig: &Rig, rotation: RotationInterpolation) -> Rig {
     let sweeps = rig.sweeps().iter().cloned().map(|sweep| sweep.with_rotation_interpolation(rotation)).collect();
@@ -47,32 +46,6 @@ fn tilting_tube() -> (Mesh, Rig) {
         key.rotation = DQuat::from_rotation_x(0.2 * (1.7 * i).sin()) * DQuat::from_rotation_y(0.15 * (1.1 * i).cos());
     }
     (tube.mesh(), Rig::new(sweeps).unwrap())
-}
-
-fn f(sweep: &Sweep, v: DVec3, t: f64) -> f64 {
-    (v - sweep.center(t)).dot(sweep.normal(t))
-}
-
-/// The distance from v to C at the nearest root of f that dense sampling brackets, refined by
-/// bisection on f itself.
-fn nearest_sampled_root(sweep: &Sweep, v: DVec3) -> Option<f64> {
-    let mut nearest: Option<f64> = None;
-    let mut previous = (0.0, f(sweep, v, 0.0));
-    for i in 1..=SAMPLES {
-        let t = i as f64 / SAMPLES as f64;
-        let value = f(sweep, v, t);
-        if (previous.1 >= 0.0) != (value >= 0.0) {
-            let (mut lo, mut hi, positive_at_lo) = (previous.0, t, previous.1 >= 0.0);
-            for _ in 0..60 {
-                let mid = 0.5 * (lo + hi);
-                if (f(sweep, v, mid) >= 0.0) == positive_at_lo { lo = mid } else { hi = mid }
-            }
-            let distance = sweep.center(0.5 * (lo + hi)).distance(v);
-            nearest = Some(nearest.map_or(distance, |n: f64| n.min(distance)));
-        }
-        previous = (t, value);
-    }
-    nearest
 }
 
 /// Every bound t is a root, and no sampled root is nearer.
