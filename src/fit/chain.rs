@@ -19,7 +19,9 @@
 //! made near its level by the plane through the level set's centroid normal to the skeleton
 //! there (`Cut`). Each link's sweep is fitted to its vertices and [`OVERLAP`] of its
 //! radius beyond each of its cuts, so that the links overlap and a child's first key lies on
-//! a cross-section of its parent (§5's branch link binds it there).
+//! a cross-section of its parent (§5's branch link binds it there); on a coarse limb (fewer
+//! than [`COARSE`] vertices), whose rings may lie a whole forearm apart, a link is also
+//! fitted to the ring of vertices just past its far cut.
 //!
 //! - **Forks** (`Profile::branches`): toes past a foot, fingers past a hand. The levels, at
 //!   least [`FIRST`] of the limb's length from the rim, where the vertices farther than them fall
@@ -44,7 +46,7 @@ use glam::DVec3;
 use super::Fit;
 use super::disjoint_sets::DisjointSets;
 use super::geodesic::EdgeGraph;
-use super::limb::{fork_levels, level_segment, perimeters};
+use super::limb::{COARSE, fork_levels, level_segment, perimeters};
 use super::part::Part;
 use super::protrusions::flood;
 use crate::mesh::Mesh;
@@ -440,11 +442,36 @@ impl Profile {
         }
         let (wider_from, wider_to) =
             (from.map(|cut| cut.moved(-OVERLAP * cut.radius)), to.map(|cut| cut.moved(OVERLAP * cut.radius)));
-        let fitted = self.stretch(wider_from.as_ref(), wider_to.as_ref(), excluded);
-        let attached_at = from.map_or(self.rim_center, |cut| cut.center);
+        let mut fitted = self.stretch(wider_from.as_ref(), wider_to.as_ref(), excluded);
+        if let Some(to) = to.filter(|_| self.s.len() < COARSE) {
+            fitted = self.with_ring_past(&vertices, fitted, to, excluded);
+        }
+        // A coarse link may reach a whole span past its far cut: seen from a point the limb's
+        // length back along its near cut's normal, key 0 is still the end on the parent's side.
+        let back = if self.s.len() < COARSE { self.length } else { 0.0 };
+        let attached_at = from.map_or(self.rim_center, |cut| cut.center - cut.normal * back);
         let link = self.fitted_link(&vertices, &fitted, attached_at, None, fitter)?;
         let worst = fitter.loose(&link.fit);
         Some(Chain { links: vec![link], worst })
+    }
+
+    /// `fitted` (increasing) and the neighbours of local `vertices` past `cut` in none of
+    /// `excluded`: on a coarse limb, whose rings lie farther apart than [`OVERLAP`] of its
+    /// radius, the ring past a link's far cut, so that the link reaches its child's first key
+    /// (the faerie's forearm is one span of long triangles from its elbow's ring to its
+    /// wrist's: the upper arm's link ended at the elbow, and the hand's first key, at the
+    /// wrist, lay on no cross-section of it). The child is not grown back: it would take the
+    /// whole span and fit it as loosely as one sweep.
+    fn with_ring_past(&self, vertices: &[u32], fitted: Vec<u32>, cut: &Cut, excluded: &[bool]) -> Vec<u32> {
+        let mut grown: Vec<u32> = vertices
+            .iter()
+            .flat_map(|&v| self.graph.neighbours(v).iter().map(|&(n, _)| n))
+            .filter(|&n| !excluded[n as usize] && self.beyond(cut, n))
+            .chain(fitted)
+            .collect();
+        grown.sort_unstable();
+        grown.dedup();
+        grown
     }
 
     /// The link of local `vertices` fitted to local `fitted`, turned so that key 0 is the end

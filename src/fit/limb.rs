@@ -37,6 +37,7 @@ use glam::DVec3;
 
 use super::disjoint_sets::DisjointSets;
 use super::geodesic::EdgeGraph;
+use super::axis::Polyline;
 use super::part::Part;
 use super::skeleton::skeleton;
 use crate::mesh::Mesh;
@@ -70,6 +71,14 @@ pub const OBLIQUE: f64 = 2.0;
 /// A limb holds at most this share of its component's vertices: more is the body's far side
 /// (the eldest branch of a body with short protrusions, such as the bunny's back), not a limb.
 pub const MAX_SHARE: f64 = 0.25;
+/// A coarse limb whose rim is oblique is grown by at most 1/this of its vertices to even it
+/// ([`evened`]): a ring's vertex or two left out by the cut, not a share of the body.
+pub const GROWN_SHARE: usize = 5;
+/// A coarse limb grown to even its rim ([`evened`]) is kept grown only where its rim then
+/// spreads along its skeleton over at most this many times its radius (a cut within about 27°
+/// of the plane normal to the limb; an oblique one spreads over [`OBLIQUE`] times or more):
+/// a ring completed, not a rim that crept a little way into a crotch.
+pub const EVEN: f64 = 1.0;
 /// A limb is at least this many times as long as the radius of its cut.
 pub const TUBULAR: f64 = 1.5;
 
@@ -79,7 +88,8 @@ pub const TUBULAR: f64 = 1.5;
 /// oblique. The tip is moved to the limb's vertex farthest along the direction of its
 /// skeleton's end (from 60% to 90% of its length, [`skeleton`]), and the limb found again
 /// from there, so that its rim is normal to it. A limb of fewer than [`COARSE`] vertices whose
-/// rim is still oblique is then squared off ([`squared_off`]). Indices are the mesh's; `graph`
+/// rim is still oblique is then evened where a few more vertices complete the ring its cut
+/// passed through ([`evened`]), and otherwise squared off ([`squared_off`]). Indices are the mesh's; `graph`
 /// and `triangles` may join vertices `mesh` keeps apart (welded seams).
 pub fn aligned_limb(
     mesh: &Mesh,
@@ -93,7 +103,113 @@ pub fn aligned_limb(
     if vertices.len() >= COARSE {
         return Some((vertices, tip));
     }
+    let vertices = evened(mesh, graph, triangles, vertices, tip, length);
     Some((squared_off(mesh, triangles, vertices, tip), tip))
+}
+
+/// Where a coarse limb meets the rest of the mesh, seen along the limb's skeleton.
+struct Rim {
+    /// The limb's skeleton, from its attached end to its tip.
+    axis: Polyline,
+    /// The rim vertices' positions along `axis`, the nearest the body and the nearest the tip.
+    shallowest: f64,
+    deepest: f64,
+    /// The rim vertices' mean distance from their centroid.
+    radius: f64,
+}
+
+impl Rim {
+    /// The rim of the limb whose vertices are marked `inside`: its vertices on a triangle that
+    /// leaves the limb. `None` where the limb has no skeleton.
+    fn of(mesh: &Mesh, triangles: &[[u32; 3]], vertices: &[u32], inside: &[bool]) -> Option<Rim> {
+        let axis = skeleton(&Part::new(mesh, vertices))?.axis;
+        let position = |v: u32| mesh.positions[v as usize];
+        let mut rim: Vec<u32> = triangles
+            .iter()
+            .filter(|t| t.iter().any(|&v| !inside[v as usize]))
+            .flatten()
+            .copied()
+            .filter(|&v| inside[v as usize])
+            .collect();
+        rim.sort_unstable();
+        rim.dedup();
+        let along: Vec<f64> = rim.iter().map(|&v| axis.project(position(v))).collect();
+        let deepest = along.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let shallowest = along.iter().copied().fold(f64::INFINITY, f64::min);
+        let centroid = rim.iter().map(|&v| position(v)).sum::<DVec3>() / rim.len().max(1) as f64;
+        let radius = rim.iter().map(|&v| position(v).distance(centroid)).sum::<f64>() / rim.len().max(1) as f64;
+        Some(Rim { axis, shallowest, deepest, radius })
+    }
+
+    /// Whether the limb is to be squared off ([`squared_off`]): its rim spreads along the
+    /// skeleton over [`OBLIQUE`] times its radius or more, down to no more than half the
+    /// skeleton's length.
+    fn squares_off(&self) -> bool {
+        let oblique = self.deepest - self.shallowest >= OBLIQUE * self.radius;
+        oblique && self.deepest > 0.0 && self.deepest <= 0.5 * self.axis.length()
+    }
+
+    /// The rim's spread along the skeleton over its radius.
+    fn spread(&self) -> f64 {
+        (self.deepest - self.shallowest) / self.radius
+    }
+}
+
+/// Marks `vertices` in a mask over the mesh's vertices.
+fn mask(count: usize, vertices: &[u32]) -> Vec<bool> {
+    let mut inside = vec![false; count];
+    for &v in vertices {
+        inside[v as usize] = true;
+    }
+    inside
+}
+
+/// The coarse limb `vertices` (found from `tip`, of protrusion length `length`), grown where
+/// its rim is [`OBLIQUE`] only because its cut passed between the vertices of one ring: on a
+/// mesh this coarse the edge-path distances of a ring's vertices from the tip differ by up to
+/// an edge, and a cut between them leaves a vertex of the ring outside, which drags the rim
+/// down the limb to its neighbours (the faerie's shoulder ring, one vertex past the cut, took
+/// the rim down to the elbow, and squaring off then cut the upper arm away). The limb takes
+/// the next vertices in distance from the tip, one at a time, no farther than [`WINDOW`]
+/// levels past its cut (where the opening onto the body was measured from) nor more than
+/// 1/[`GROWN_SHARE`] of its vertices, and is the one of those whose rim is evenest (least
+/// spread along the skeleton for its radius), where that is [`EVEN`]; where none is, it stays
+/// as it was.
+fn evened(mesh: &Mesh, graph: &EdgeGraph, triangles: &[[u32; 3]], vertices: Vec<u32>, tip: u32, length: f64) -> Vec<u32> {
+    let count = mesh.positions.len();
+    if !Rim::of(mesh, triangles, &vertices, &mask(count, &vertices)).is_some_and(|rim| rim.squares_off()) {
+        return vertices;
+    }
+    let d = graph.distances_within(&[tip], REACH * length);
+    let cut = vertices.iter().map(|&v| d[v as usize]).fold(0.0, f64::max);
+    let reach = cut + WINDOW as f64 * length / LEVELS_PER_LENGTH;
+    let inside = mask(count, &vertices);
+    // The vertices on the limb's triangles (not across a bridge to a touching piece).
+    let mut beside = vec![false; count];
+    for t in triangles.iter().filter(|t| t.iter().any(|&v| inside[v as usize])) {
+        for &v in t {
+            beside[v as usize] = !inside[v as usize];
+        }
+    }
+    let mut next: Vec<u32> =
+        (0..count as u32).filter(|&v| beside[v as usize] && d[v as usize] > cut && d[v as usize] <= reach).collect();
+    next.sort_by(|&a, &b| d[a as usize].total_cmp(&d[b as usize]).then(a.cmp(&b)));
+    next.truncate(vertices.len() / GROWN_SHARE);
+    // The evenest of the limbs grown by the first 1, 2, … of them: the least spread of its
+    // rim along its skeleton for its radius, the fewest vertices on a tie.
+    let mut best: Option<(f64, Vec<u32>)> = None;
+    let mut grown = vertices.clone();
+    for v in next {
+        grown.push(v);
+        let mut sorted = grown.clone();
+        sorted.sort_unstable();
+        let Some(rim) = Rim::of(mesh, triangles, &sorted, &mask(count, &sorted)) else { continue };
+        let spread = rim.spread();
+        if spread <= EVEN && best.as_ref().is_none_or(|(least, _)| spread < *least) {
+            best = Some((spread, sorted));
+        }
+    }
+    best.map_or(vertices, |(_, evenest)| evenest)
 }
 
 /// The limb found again from its aligned tip (see [`aligned_limb`]), not yet squared off.
@@ -131,30 +247,14 @@ fn aligned(
 /// only. The limb is kept whole where that would cut off its tip `tip` or more than half of
 /// its skeleton's length.
 fn squared_off(mesh: &Mesh, triangles: &[[u32; 3]], vertices: Vec<u32>, tip: u32) -> Vec<u32> {
-    let mut inside = vec![false; mesh.positions.len()];
-    for &v in &vertices {
-        inside[v as usize] = true;
-    }
-    let Some(axis) = skeleton(&Part::new(mesh, &vertices)).map(|s| s.axis) else { return vertices };
-    let position = |v: u32| mesh.positions[v as usize];
-    let mut rim: Vec<u32> = triangles
-        .iter()
-        .filter(|t| t.iter().any(|&v| !inside[v as usize]))
-        .flatten()
-        .copied()
-        .filter(|&v| inside[v as usize])
-        .collect();
-    rim.sort_unstable();
-    rim.dedup();
-    let along: Vec<f64> = rim.iter().map(|&v| axis.project(position(v))).collect();
-    let deepest = along.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    let shallowest = along.iter().copied().fold(f64::INFINITY, f64::min);
-    let centroid = rim.iter().map(|&v| position(v)).sum::<DVec3>() / rim.len().max(1) as f64;
-    let radius = rim.iter().map(|&v| position(v).distance(centroid)).sum::<f64>() / rim.len().max(1) as f64;
-    let oblique = deepest - shallowest >= OBLIQUE * radius;
-    if !(oblique && deepest > 0.0 && deepest <= 0.5 * axis.length()) {
+    let Some(rim) = Rim::of(mesh, triangles, &vertices, &mask(mesh.positions.len(), &vertices)) else {
+        return vertices;
+    };
+    if !rim.squares_off() {
         return vertices;
     }
+    let (axis, deepest) = (&rim.axis, rim.deepest);
+    let position = |v: u32| mesh.positions[v as usize];
     let mut beyond = vec![false; mesh.positions.len()];
     for &v in &vertices {
         beyond[v as usize] = axis.project(position(v)) >= deepest;
@@ -344,4 +444,68 @@ pub fn perimeters(positions: &[DVec3], triangles: &[[u32; 3]], d: &[f64], h: f64
         }
     }
     perimeter
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::common;
+    use crate::fit::body::Body;
+    use crate::fit::protrusions::protrusions;
+
+    /// The faerie's arms (366 vertices: each arm a tube of rings of five or six vertices, its
+    /// forearm one span of long triangles): the level set where each arm's opens onto the body
+    /// passes between the vertices of its shoulder's ring, so its rim runs down to the elbow.
+    /// Squared off as it was found, an arm loses its upper arm and spans less than a quarter of
+    /// the body's height; evened first (its shoulder's ring completed), it keeps it, and its
+    /// rim is then no more oblique.
+    #[test]
+    fn a_coarse_arm_evened_keeps_its_upper_arm() {
+        let Some(path) = common::shared_mesh("characters/faerie.obj") else { return };
+        let mesh = Mesh::load(&path).unwrap();
+        let body = Body::new(&mesh);
+        let ys = || mesh.positions.iter().map(|p| p.y);
+        let (bottom, top) = (ys().fold(f64::INFINITY, f64::min), ys().fold(f64::NEG_INFINITY, f64::max));
+        let height = top - bottom;
+        // How far a part reaches: the largest distance between two of its vertices.
+        let span = |vertices: &[u32]| {
+            let at = |v: &u32| mesh.positions[*v as usize];
+            vertices.iter().flat_map(|a| vertices.iter().map(move |b| at(a).distance(at(b)))).fold(0.0, f64::max)
+        };
+        // The arms: the protrusions whose tips, the hands, hang at mid height, to either side.
+        let found = protrusions(&mesh, &body, 0.04 * body.diagonal, 32);
+        let arms: Vec<_> = found
+            .iter()
+            .filter(|p| {
+                let tip = mesh.positions[p.tip as usize];
+                // The wings spread behind her back (x < −8); she faces +x.
+                (tip.y - (bottom + top) / 2.0).abs() < 0.1 * height && tip.z.abs() > 0.1 * height && tip.x > -5.0
+            })
+            .collect();
+        assert_eq!(arms.len(), 2, "{:?}", found.iter().map(|p| p.tip).collect::<Vec<_>>());
+        let (graph, triangles, size) = (&body.graph, &body.triangles[..], mesh.positions.len());
+        for arm in arms {
+            let (found_as, tip) = aligned(&mesh, graph, triangles, arm.tip, arm.length, size).unwrap();
+            let rim = |vertices: &[u32]| Rim::of(&mesh, triangles, vertices, &mask(size, vertices)).unwrap();
+            assert!(rim(&found_as).squares_off(), "tip {tip}: the rim as found is oblique");
+            let squared = squared_off(&mesh, triangles, found_as.clone(), tip);
+            let evened = evened(&mesh, graph, triangles, found_as.clone(), tip, arm.length);
+            eprintln!(
+                "faerie arm at tip {tip}: found {} vertices, squared off {} spanning {:.2}, evened {} spanning {:.2} \
+                 (rim spread {:.2} → {:.2} radii) of {height:.2}",
+                found_as.len(),
+                squared.len(),
+                span(&squared),
+                evened.len(),
+                span(&evened),
+                rim(&found_as).spread(),
+                rim(&evened).spread()
+            );
+            assert!(span(&squared) < 0.25 * height, "tip {tip}: squared off as found, the upper arm is lost");
+            assert!(evened.len() > found_as.len() && evened.len() <= found_as.len() + found_as.len() / GROWN_SHARE);
+            assert!(rim(&evened).spread() <= EVEN && !rim(&evened).squares_off());
+            assert_eq!(squared_off(&mesh, triangles, evened.clone(), tip), evened, "tip {tip}: evened, kept whole");
+            assert!(span(&evened) >= 0.25 * height, "tip {tip}: the arm spans {} of {height}", span(&evened));
+        }
+    }
 }
