@@ -121,7 +121,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
                 folded: r.folded.map(|f| [f.backwards, f.intervals]),
             })
             .collect();
-        println!(
+        out!(
             "{}",
             serde_json::to_string(&Report {
                 mesh: file.to_string(),
@@ -145,28 +145,29 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
             ),
             (None, None) => format!("a limb has at least {MIN_VERTICES} vertices"),
         };
-        eprintln!("notice: {file}: left out a part of {} vertices at tip vertex {}: {why}", r.vertices, r.tip);
+        note!("notice: {file}: left out a part of {} vertices at tip vertex {}: {why}", r.vertices, r.tip);
     }
     if rigged.twins_left_out > 0 {
-        eprintln!(
+        note!(
             "notice: {file}: left out {} limb(s) at --max-parts {}: mirror twins of the next limb found, \
              for which there was no room (a pair is kept or left out together)",
-            rigged.twins_left_out, args.max_parts
+            rigged.twins_left_out,
+            args.max_parts
         );
     }
     match (parts.is_empty() && rigged.twins_left_out == 0, rigged.rejected.len()) {
-        (true, 0) => eprintln!(
+        (true, 0) => note!(
             "notice: {file}: found no protrusion longer than --min-length {}; wrote an empty rig",
             args.min_length
         ),
         (true, left_out) => {
-            eprintln!("notice: {file}: left out every protrusion found ({left_out}); wrote an empty rig")
+            note!("notice: {file}: left out every protrusion found ({left_out}); wrote an empty rig")
         }
         _ => {}
     }
     for p in &parts {
         let parent = p.parent.as_ref().map(|parent| format!(" (child of {parent})")).unwrap_or_default();
-        println!(
+        out!(
             "{}{parent}: {} vertices, tip vertex {}, length {:.4}, {} keys, RMS |d| {:.2}%, max {:.1}% of the mean radius, {:.3} s",
             p.name,
             p.vertices,
@@ -179,7 +180,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
         );
     }
     if !quiet {
-        println!("wrote {} ({} sweeps) in {seconds:.3} s", args.out.display(), parts.len());
+        out!("wrote {} ({} sweeps) in {seconds:.3} s", args.out.display(), parts.len());
     }
     Ok(())
 }

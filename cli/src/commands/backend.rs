@@ -49,7 +49,7 @@ pub fn resolve(backend: Backend, quiet: bool) -> Result<Device, GpuError> {
             Ok(context) => Ok(Device::Gpu(Box::new(context))),
             Err(error) => {
                 if !quiet {
-                    eprintln!("note: using the CPU, the GPU is not available: {error}");
+                    note!("note: using the CPU, the GPU is not available: {error}");
                 }
                 Ok(Device::Cpu)
             }

@@ -220,7 +220,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
                     Some(error) => format!("failed: {error}"),
                     None => format!("done in {seconds:.3} s -> {}", line.out.display()),
                 };
-                eprintln!("[{ran}/{to_run}] job {number}: {what}");
+                note!("[{ran}/{to_run}] job {number}: {what}");
             }
             outcomes.push(outcome);
         }
@@ -230,7 +230,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     let count = |status: Status| outcomes.iter().filter(|o| o.status == status).count();
     let (done, skipped, failed) = (count(Status::Done), count(Status::Skipped), count(Status::Failed));
     if !quiet {
-        println!(
+        out!(
             "shard {shard}: {} jobs, {done} done, {skipped} skipped (done before), {failed} failed in {:.3} s; report -> {}",
             outcomes.len(),
             started.elapsed().as_secs_f64(),
@@ -285,7 +285,7 @@ fn unchanged_job(line: &JobLine, notice: &str) -> Result<(), String> {
     Format::of(&line.out).map_err(|e| e.to_string())?;
     let file = LoadedMesh::load(&line.mesh).map_err(|e| e.to_string())?;
     file.save(&line.out, &file.mesh.positions).map_err(|e| e.to_string())?;
-    eprintln!("notice: {notice}; wrote the mesh unchanged to {}", line.out.display());
+    note!("notice: {notice}; wrote the mesh unchanged to {}", line.out.display());
     Ok(())
 }
 

@@ -55,7 +55,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
         (None, None) => {
             let vertices = tube_vertex_count(args.vertices, max_vertices).map_err(|e| format!("--{e}"))?;
             if vertices != args.vertices && !quiet {
-                eprintln!(
+                note!(
                     "note: measuring {vertices} vertices, the largest synthetic tube with at most --vertices {} \
                      (tubes have 256·k + 2 vertices)",
                     args.vertices
@@ -71,7 +71,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
         Device::Cpu | Device::Reference => CpuBench::new(scene).report(runs),
     };
     if args.json {
-        println!("{}", serde_json::to_string(&report)?);
+        out!("{}", serde_json::to_string(&report)?);
     } else {
         print_table(&report);
     }
@@ -80,53 +80,53 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
 
 fn print_table(r: &BenchReport) {
     let rate = |v: f64| format!("{:>10.2} M vertices/s", v / 1e6);
-    println!("{} backend, {}, {} vertices, medians of {} runs", r.backend, r.adapter, r.n, r.runs);
-    println!("  bind      {}", rate(r.bind_verts_per_s));
-    println!(
+    out!("{} backend, {}, {} vertices, medians of {} runs", r.backend, r.adapter, r.n, r.runs);
+    out!("  bind      {}", rate(r.bind_verts_per_s));
+    out!(
         "  deform    {}   ({:.2} × copy time, {:.2} × skinning time)",
         rate(r.deform_verts_per_s),
         r.deform_over_copy,
         r.deform_over_lbs
     );
     if let Some(cpu) = &r.cpu {
-        println!("  (bind and deform: the fast f32 path on {})", cpu.isa);
-        println!("  reference bind   {}   (f64, with the falloff bands)", rate(cpu.reference_bind_verts_per_s));
-        println!(
+        out!("  (bind and deform: the fast f32 path on {})", cpu.isa);
+        out!("  reference bind   {}   (f64, with the falloff bands)", rate(cpu.reference_bind_verts_per_s));
+        out!(
             "  reference deform {}   ({:.2} × the fast path's time)",
             rate(cpu.reference_deform_verts_per_s),
             cpu.reference_over_fast
         );
     }
-    println!("  copy      {}   (baseline: the deform kernel's bytes)", rate(r.copy_verts_per_s));
-    println!("  skinning  {}   (baseline: 4-influence linear-blend skinning)", rate(r.lbs_verts_per_s));
-    println!("  frame     {:>10.3} ms (pose to coefficients, upload, deform)", r.frame_ms);
+    out!("  copy      {}   (baseline: the deform kernel's bytes)", rate(r.copy_verts_per_s));
+    out!("  skinning  {}   (baseline: 4-influence linear-blend skinning)", rate(r.lbs_verts_per_s));
+    out!("  frame     {:>10.3} ms (pose to coefficients, upload, deform)", r.frame_ms);
     if let Some(ms) = r.frame_cpu_ms {
-        println!("  frame CPU {ms:>10.4} ms (host: pose_into, set_pose, encode)");
+        out!("  frame CPU {ms:>10.4} ms (host: pose_into, set_pose, encode)");
     }
     if r.backend == "gpu" {
-        println!("  normals   {:>10.3} ms (area-weighted vertex normals of the deformed mesh)", r.normals_ms);
+        out!("  normals   {:>10.3} ms (area-weighted vertex normals of the deformed mesh)", r.normals_ms);
     }
     if let (Some(copy), Some(separate), Some(angle)) =
         (r.fused_over_copy, r.fused_over_separate, r.normals_angle_p99_deg)
     {
-        println!(
+        out!(
             "  fused     {copy:>10.2} × (deform + Jacobian normals over a copy of its bytes; {separate:.2} × deform + \
              triangle normals; 99th percentile {angle:.2}° from the triangle normals)"
         );
     }
     if let Some(readback) = r.readback_ms {
-        println!("  readback  {readback:>10.3} ms");
+        out!("  readback  {readback:>10.3} ms");
     }
     if let Some(bytes) = r.device_bytes_per_vertex {
-        println!("  device memory for bindings + positions: {bytes:.1} bytes per vertex");
+        out!("  device memory for bindings + positions: {bytes:.1} bytes per vertex");
     }
     if let (Some(instances), Some(partial)) = (r.instances_over_single, r.partial_over_full) {
-        println!(
+        out!(
             "  instances {instances:>10.2} × ({} instances of n / {} vertices over one n-vertex mesh, deform)",
             sweepffd::bench::INSTANCES,
             sweepffd::bench::INSTANCES
         );
-        println!(
+        out!(
             "  partial   {partial:>10.2} × (a rig owning {:.0}% of the vertices over one owning all, deform + normals)",
             100.0 * sweepffd::bench::PARTIAL_SHARE
         );
@@ -136,14 +136,14 @@ fn print_table(r: &BenchReport) {
             FalloffKind::Rest => "the rest position",
             FalloffKind::Sweep => "a neighbouring sweep",
         };
-        println!(
+        out!(
             "  falloff   {}   ({:.0}% of the vertices in bands fading into {into}: {:.2} × the deform time without)",
             rate(f.deform_verts_per_s),
             100.0 * f.band_fraction,
             f.over_plain
         );
         if let Some(bytes) = f.device_bytes_per_vertex {
-            println!("            device memory with the bands: {bytes:.1} bytes per vertex");
+            out!("            device memory with the bands: {bytes:.1} bytes per vertex");
         }
     }
 }

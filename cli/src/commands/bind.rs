@@ -125,7 +125,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     let owned = inputs.owners.iter().filter(|&&o| o != sweepffd::bind::UNOWNED).count();
     BindingsFile::new(&inputs.rig, &inputs.file.mesh.positions, bindings).save(out)?;
     if !quiet {
-        println!(
+        out!(
             "bound {owned} of {} vertices to {} sweeps on the {} in {seconds:.3} s -> {}",
             inputs.file.mesh.positions.len(),
             inputs.rig.sweeps().len(),

@@ -48,7 +48,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
             // A rig of no sweeps moves nothing: the mesh is written as it is.
             let file = LoadedMesh::load(&args.mesh.mesh)?;
             file.save(&args.out, &file.mesh.positions)?;
-            eprintln!("notice: {error}; wrote the mesh unchanged to {}", args.out.display());
+            note!("notice: {error}; wrote the mesh unchanged to {}", args.out.display());
             return Ok(());
         }
         loaded => loaded?,
@@ -81,7 +81,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     if !quiet {
         let owned = owners.iter().filter(|&&o| o != UNOWNED).count();
         let (source, backend) = (if saved.is_some() { "saved" } else { "new" }, context.name());
-        println!(
+        out!(
             "deformed {owned} of {} vertices on the {backend} ({source} bindings) in {seconds:.3} s -> {}",
             positions.len(),
             args.out.display()
@@ -94,7 +94,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
 /// folds do not stop `deform`, `batch` or `export`, whose output is still written.
 pub fn warn_of_folds(inputs: &Inputs, posed: &[Sweep], pose: &Path) {
     for warning in sweepffd::edit::pose_warnings(&inputs.rig, posed) {
-        eprintln!("warning: {}: {warning}", pose.display());
+        note!("warning: {}: {warning}", pose.display());
     }
 }
 

@@ -51,17 +51,17 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
 
     if !quiet {
         let (rest_volume, posed_volume) = (rig.rest()[0].volume(), posed[0].volume());
-        println!(
+        out!(
             "sweepffd demo: a tube of {} vertices bound to a 5-key sweep, bent 108°, twisted 135°, tapered to 45%",
             file.mesh.positions.len()
         );
-        println!("  bound in {bind_seconds:.3} s, deformed in {deform_seconds:.4} s");
-        println!("  sweep volume (Eq. 1): rest {rest_volume:.4}, posed {posed_volume:.4}");
-        println!("  wrote {}", rest_path.display());
-        println!("  wrote {}", deformed_path.display());
-        println!("  wrote {}", rig_path.display());
-        println!("  wrote {}", pose_path.display());
-        println!(
+        out!("  bound in {bind_seconds:.3} s, deformed in {deform_seconds:.4} s");
+        out!("  sweep volume (Eq. 1): rest {rest_volume:.4}, posed {posed_volume:.4}");
+        out!("  wrote {}", rest_path.display());
+        out!("  wrote {}", deformed_path.display());
+        out!("  wrote {}", rig_path.display());
+        out!("  wrote {}", pose_path.display());
+        out!(
             "  the same from the command line: sweepffd deform --mesh {} --rig {} --pose {} --out deformed.ply",
             rest_path.display(),
             rig_path.display(),

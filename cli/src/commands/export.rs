@@ -65,7 +65,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
         names.iter().zip(&deformed).map(|(name, positions)| MorphPose { name, positions }).collect();
     save_morph_animation(&args.out, &inputs.file, &poses, args.seconds_per_pose)?;
     if !quiet {
-        println!(
+        out!(
             "exported {} poses of {} vertices as morph targets, {} s apart, in {:.3} s -> {}",
             poses.len(),
             inputs.file.mesh.positions.len(),

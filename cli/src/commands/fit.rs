@@ -129,7 +129,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
         .map_err(|e| format!("cannot write {}: {e}", args.out.display()))?;
     print_report(&name, &fitted, &options, elapsed);
     if !quiet {
-        println!("wrote {} ({} sweeps)", args.out.display(), document.sweeps.len());
+        out!("wrote {} ({} sweeps)", args.out.display(), document.sweeps.len());
     }
     Ok(())
 }
@@ -224,14 +224,14 @@ fn default_name(args: &Args) -> String {
 fn print_report(name: &str, fitted: &Fit, options: &FitOptions, seconds: f64) {
     let q = &fitted.quality;
     let placed = fitted.steps.get(1).map_or(fitted.keys.len(), |s| s.keys.len());
-    println!(
+    out!(
         "fit {name:?}: {} vertices, {} keys ({placed} placed, {} inserted), {} radii per key, {seconds:.3} s",
         q.vertices,
         fitted.keys.len(),
         fitted.keys.len() - placed,
         options.radii
     );
-    println!(
+    out!(
         "  |d| / mean radius ({:.6}): max {:.2}%, RMS {:.2}%; {}",
         q.mean_radius,
         100.0 * q.max_d,
@@ -250,7 +250,7 @@ fn print_report(name: &str, fitted: &Fit, options: &FitOptions, seconds: f64) {
         (None, true) => "as much rim at both ends: key 0 where the skeleton starts",
         (None, false) => "no rim: key 0 where the skeleton starts",
     };
-    println!(
+    out!(
         "  rim (where the part meets the rest of the mesh): {near_first:.6} near key 0, {near_last:.6} near key {last}; {order}"
     );
     let source = match options.falloff {
@@ -258,34 +258,36 @@ fn print_report(name: &str, fitted: &Fit, options: &FitOptions, seconds: f64) {
         None => format!("default: {DEFAULT_FALLOFF_FRACTION} of the part's length"),
     };
     if fitted.falloff > 0.0 {
-        println!("  falloff {:.6} ({source})", fitted.falloff);
+        out!("  falloff {:.6} ({source})", fitted.falloff);
     } else {
-        println!("  falloff 0: a hard boundary ({source})");
+        out!("  falloff 0: a hard boundary ({source})");
     }
     for (k, section) in fitted.sections.iter().enumerate() {
         if !section.cut {
-            println!("  key {k}: its plane misses the part; radii interpolated from the neighbouring keys");
+            out!("  key {k}: its plane misses the part; radii interpolated from the neighbouring keys");
             continue;
         }
         if section.several_crossings > 0 {
-            println!(
+            out!(
                 "  key {k}: section not star-shaped around its center: {} of {} rays cross the boundary more than once; outermost crossing taken",
-                section.several_crossings, options.radii
+                section.several_crossings,
+                options.radii
             );
         }
         if section.borrowed {
-            println!(
+            out!(
                 "  key {k}: partial section (its plane leaves the part through the part's open rim); center extrapolated from the neighbouring keys, rays that miss take the nearest complete key's radii"
             );
         } else if section.missed > 0 {
-            println!(
+            out!(
                 "  key {k}: {} of {} rays meet no boundary (open section); their radii are interpolated",
-                section.missed, options.radii
+                section.missed,
+                options.radii
             );
         }
     }
     for step in &fitted.steps {
         let q = &step.quality;
-        println!("  step: {}: max {:.2}%, RMS {:.2}%", step.label, 100.0 * q.max_d, 100.0 * q.rms_d);
+        out!("  step: {}: max {:.2}%, RMS {:.2}%", step.label, 100.0 * q.max_d, 100.0 * q.rms_d);
     }
 }

@@ -78,7 +78,7 @@ pub fn run() -> ExitCode {
     let cli = Cli::parse();
     let quiet = cli.quiet;
     if let Err(error) = signals::install() {
-        eprintln!("error: cannot install the SIGINT and SIGTERM handler: {error}");
+        note!("error: cannot install the SIGINT and SIGTERM handler: {error}");
         return ExitCode::FAILURE;
     }
     let result = match &cli.command {
@@ -100,7 +100,7 @@ pub fn run() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(error) => {
-            eprintln!("error: {error}");
+            note!("error: {error}");
             ExitCode::FAILURE
         }
     }

@@ -81,10 +81,10 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     write_pose(&args.out, &text)?;
     // Folds are warnings, not errors: the pose is written, and the user told where it folds.
     for warning in posing.warnings().map_err(|e| format!("{}: {e}", args.out.display()))? {
-        eprintln!("warning: {}: {warning}", args.out.display());
+        note!("warning: {}: {warning}", args.out.display());
     }
     if !quiet {
-        println!("applied {} edits -> {}", edits.len(), args.out.display());
+        out!("applied {} edits -> {}", edits.len(), args.out.display());
     }
     Ok(())
 }

@@ -134,7 +134,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     let seconds = start.elapsed().as_secs_f64();
     save_png(&picture, &args.out)?;
     if !quiet {
-        println!(
+        out!(
             "rendered {}x{} on {} in {seconds:.3} s -> {}",
             picture.width(),
             picture.height(),
@@ -157,7 +157,7 @@ fn build_scenes(args: &Args) -> Result<(Vec<Scene>, Frame), Box<dyn std::error::
     let inputs = match load_inputs(&args.mesh.mesh, rig_path) {
         Err(error) if is_empty_rig(&*error) => {
             // A rig of no sweeps moves nothing and has no sweeps to show: the mesh alone.
-            eprintln!("notice: {error}; drawing the mesh as it is");
+            note!("notice: {error}; drawing the mesh as it is");
             return Ok(mesh_alone(&Mesh::load(&args.mesh.mesh)?));
         }
         loaded => loaded?,

@@ -70,7 +70,7 @@ impl Args {
 pub fn run_view(args: &Args) -> CliResult {
     let Some(report) = run(args.options())? else { return Ok(()) };
     let json = serde_json::to_string_pretty(&report)?;
-    println!("{json}");
+    out!("{json}");
     if let Some(path) = &args.report {
         write_atomically(path, |out| writeln!(out, "{json}"))
             .map_err(|e| format!("cannot write {}: {e}", path.display()))?;

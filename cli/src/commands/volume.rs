@@ -54,6 +54,6 @@ pub fn run(args: &Args) -> CliResult {
         )
         .into());
     }
-    println!("{}", serde_json::to_string(&Report { sweeps: volumes, total })?);
+    out!("{}", serde_json::to_string(&Report { sweeps: volumes, total })?);
     Ok(())
 }

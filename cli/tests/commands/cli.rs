@@ -151,6 +151,31 @@ fn quiet_demo_prints_nothing() {
     }
 }
 
+/// A reader that has gone (`sweepffd demo | head -0`) ends the command as a shell's SIGPIPE would:
+/// status 141, no panic (it panicked with status 101 on its first line before), and no
+/// temporary file left behind. Standard output is a pipe whose reading end is closed before the
+/// command starts, so every line it prints meets the closed pipe.
+#[test]
+fn a_reader_that_has_gone_ends_the_command_quietly() {
+    let dir = tempfile::tempdir().unwrap();
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    let output = common::sweepffd(dir.path()).args(["demo"]).stdout(writer).output().unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(141), "stderr: {stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    let left: Vec<_> = std::fs::read_dir(dir.path().join("sweepffd-demo"))
+        .map(|entries| entries.map(|e| e.unwrap().file_name()).collect())
+        .unwrap_or_default();
+    assert!(left.iter().all(|name| !name.to_string_lossy().ends_with(".tmp")), "{left:?}");
+    // The same for standard error: an error message that cannot be read.
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    let missing = ["deform", "--mesh", "missing.obj", "--rig", "r.json", "--pose", "p.json", "--out", "o.obj"];
+    let output = common::sweepffd(dir.path()).args(missing).stderr(writer).output().unwrap();
+    assert_eq!(output.status.code(), Some(141));
+}
+
 /// The pose of the acceptance test: a quarter-turn bend, a 0.4π twist and a taper to 60%.
 const BUNNY_POSE: BendTwistTaper = BendTwistTaper { bend: 0.5 * PI, twist: 0.4 * PI, taper: 0.6 };
 
