@@ -125,7 +125,14 @@ pub fn run(part: &Part, options: &FitOptions) -> Result<(Fitted, Vec<FitStep>), 
     // Scored at the vertices and at the triangles' centroids, the worse of the two: radii
     // fitted through a coarse part's vertices may bulge between them.
     let centroids = part.triangle_centroids();
+    // Where the part has no rim to start from (a whole component), a start whose keys zigzag
+    // through it loses to any that does not: its skeleton starts at an extreme vertex that
+    // rounding picks among near ties, and mirror images of one part took different starts.
+    let rimless = part.rim.is_empty();
     let score = |run: &(Fitted, Vec<FitStep>)| {
+        if rimless && zigzags(&run.0.keys) {
+            return f64::INFINITY;
+        }
         let between = measure(&run.0.sweep, &centroids).quality.rms_d;
         run.0.measured.quality.rms_d.max(between)
     };
@@ -140,6 +147,23 @@ pub fn run(part: &Part, options: &FitOptions) -> Result<(Fitted, Vec<FitStep>), 
     }
     Ok(best)
 }
+
+/// Whether `keys`' centers zigzag through the part rather than run along it: the path from
+/// center to center turns back (a step against the one before it) at more than half of its
+/// keys, and is over [`ZIGZAG_PATH`] times as long as the farthest two centers are apart. A coarse part's
+/// fit may do so from one start and not from another (one of the AT-AT's four upper legs, whose
+/// three mirror images ran down their legs, turned back 13 times in 22 keys over 3.3 times
+/// its reach; the faerie's 12-vertex hand 11 times in 20 over 4.6).
+pub fn zigzags(keys: &[Key]) -> bool {
+    let steps: Vec<DVec3> = keys.windows(2).map(|pair| pair[1].center - pair[0].center).collect();
+    let turns = steps.windows(2).filter(|pair| pair[0].dot(pair[1]) < 0.0).count();
+    let path: f64 = steps.iter().map(|step| step.length()).sum();
+    let reach = keys.iter().flat_map(|a| keys.iter().map(move |b| a.center.distance(b.center))).fold(0.0, f64::max);
+    2 * turns > steps.len().saturating_sub(1) && path > ZIGZAG_PATH * reach
+}
+
+/// See [`zigzags`].
+pub const ZIGZAG_PATH: f64 = 2.0;
 
 /// Fits a sweep to `part` from the first guess `axis`; `follows`: the keys' planes stay normal
 /// to it.
@@ -591,4 +615,39 @@ fn fill_missing_keys(radii: Vec<Option<Vec<f64>>>) -> Option<Vec<Vec<f64>>> {
         })
         .collect();
     Some(filled)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn keys_through(points: &[[f64; 3]]) -> Vec<Key> {
+        points.iter().map(|&p| Key::circle(DVec3::from(p), DQuat::IDENTITY, 1.0, 8)).collect()
+    }
+
+    /// A path that turns back at most of its keys and travels far more than it reaches
+    /// zigzags; a straight one, a C-shaped handle's (which reaches half as far as it travels
+    /// but never turns back) and a coarse leg's wobble (two turns in five keys) do not.
+    #[test]
+    fn keys_that_turn_back_at_most_keys_zigzag_and_others_do_not() {
+        let straight: Vec<[f64; 3]> = (0..8).map(|k| [0.0, 0.0, k as f64]).collect();
+        assert!(!zigzags(&keys_through(&straight)));
+        let zigzag: Vec<[f64; 3]> =
+            (0..12).map(|k| [0.0, 0.0, if k % 2 == 0 { 0.1 * k as f64 } else { 3.0 }]).collect();
+        assert!(zigzags(&keys_through(&zigzag)));
+        let handle: Vec<[f64; 3]> = (0..=10)
+            .map(|k| {
+                let a = std::f64::consts::PI * k as f64 / 10.0 * 1.6;
+                [a.cos(), a.sin(), 0.0]
+            })
+            .collect();
+        assert!(!zigzags(&keys_through(&handle)));
+        let wobble =
+            [[0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 0.0, 0.8], [0.0, 0.0, 2.0], [0.0, 0.0, 1.9], [0.0, 0.0, 3.0]];
+        assert!(!zigzags(&keys_through(&wobble)));
+        // Turning back at most keys is not enough: the path must also travel far.
+        let shuffle =
+            [[0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 0.0, 0.9], [0.0, 0.0, 2.0], [0.0, 0.0, 1.9], [0.0, 0.0, 3.0]];
+        assert!(!zigzags(&keys_through(&shuffle)));
+    }
 }
