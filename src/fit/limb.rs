@@ -89,8 +89,8 @@ pub const TUBULAR: f64 = 1.5;
 /// skeleton's end (from 60% to 90% of its length, [`skeleton`]), and the limb found again
 /// from there, so that its rim is normal to it. A limb of fewer than [`COARSE`] vertices whose
 /// rim is still oblique is then evened where a few more vertices complete the ring its cut
-/// passed through ([`evened`]), and otherwise squared off ([`squared_off`]). Indices are the mesh's; `graph`
-/// and `triangles` may join vertices `mesh` keeps apart (welded seams).
+/// passed through ([`evened`]), and otherwise squared off ([`squared_off`]). Indices are the
+/// mesh's; `graph` and `triangles` may join vertices `mesh` keeps apart (welded seams).
 pub fn aligned_limb(
     mesh: &Mesh,
     graph: &EdgeGraph,
@@ -119,10 +119,11 @@ struct Rim {
 }
 
 impl Rim {
-    /// The rim of the limb whose vertices are marked `inside`: its vertices on a triangle that
-    /// leaves the limb. `None` where the limb has no skeleton.
-    fn of(mesh: &Mesh, triangles: &[[u32; 3]], vertices: &[u32], inside: &[bool]) -> Option<Rim> {
+    /// The rim of the limb made of `vertices`: its vertices on a triangle that leaves the limb.
+    /// `None` where the limb has no skeleton.
+    fn of(mesh: &Mesh, triangles: &[[u32; 3]], vertices: &[u32]) -> Option<Rim> {
         let axis = skeleton(&Part::new(mesh, vertices))?.axis;
+        let inside = mask(mesh.positions.len(), vertices);
         let position = |v: u32| mesh.positions[v as usize];
         let mut rim: Vec<u32> = triangles
             .iter()
@@ -170,14 +171,15 @@ fn mask(count: usize, vertices: &[u32]) -> Vec<bool> {
 /// an edge, and a cut between them leaves a vertex of the ring outside, which drags the rim
 /// down the limb to its neighbours (the faerie's shoulder ring, one vertex past the cut, took
 /// the rim down to the elbow, and squaring off then cut the upper arm away). The limb takes
-/// the next vertices in distance from the tip, one at a time, no farther than [`WINDOW`]
+/// the next vertices in distance from the tip that share a triangle with it (not a touching
+/// piece's across a bridge), one at a time, no farther than [`WINDOW`]
 /// levels past its cut (where the opening onto the body was measured from) nor more than
 /// 1/[`GROWN_SHARE`] of its vertices, and is the one of those whose rim is evenest (least
 /// spread along the skeleton for its radius), where that is [`EVEN`]; where none is, it stays
 /// as it was.
 fn evened(mesh: &Mesh, graph: &EdgeGraph, triangles: &[[u32; 3]], vertices: Vec<u32>, tip: u32, length: f64) -> Vec<u32> {
     let count = mesh.positions.len();
-    if !Rim::of(mesh, triangles, &vertices, &mask(count, &vertices)).is_some_and(|rim| rim.squares_off()) {
+    if !Rim::of(mesh, triangles, &vertices).is_some_and(|rim| rim.squares_off()) {
         return vertices;
     }
     let d = graph.distances_within(&[tip], REACH * length);
@@ -203,7 +205,7 @@ fn evened(mesh: &Mesh, graph: &EdgeGraph, triangles: &[[u32; 3]], vertices: Vec<
         grown.push(v);
         let mut sorted = grown.clone();
         sorted.sort_unstable();
-        let Some(rim) = Rim::of(mesh, triangles, &sorted, &mask(count, &sorted)) else { continue };
+        let Some(rim) = Rim::of(mesh, triangles, &sorted) else { continue };
         let spread = rim.spread();
         if spread <= EVEN && best.as_ref().is_none_or(|(least, _)| spread < *least) {
             best = Some((spread, sorted));
@@ -247,7 +249,7 @@ fn aligned(
 /// only. The limb is kept whole where that would cut off its tip `tip` or more than half of
 /// its skeleton's length.
 fn squared_off(mesh: &Mesh, triangles: &[[u32; 3]], vertices: Vec<u32>, tip: u32) -> Vec<u32> {
-    let Some(rim) = Rim::of(mesh, triangles, &vertices, &mask(mesh.positions.len(), &vertices)) else {
+    let Some(rim) = Rim::of(mesh, triangles, &vertices) else {
         return vertices;
     };
     if !rim.squares_off() {
@@ -486,7 +488,7 @@ mod tests {
         let (graph, triangles, size) = (&body.graph, &body.triangles[..], mesh.positions.len());
         for arm in arms {
             let (found_as, tip) = aligned(&mesh, graph, triangles, arm.tip, arm.length, size).unwrap();
-            let rim = |vertices: &[u32]| Rim::of(&mesh, triangles, vertices, &mask(size, vertices)).unwrap();
+            let rim = |vertices: &[u32]| Rim::of(&mesh, triangles, vertices).unwrap();
             assert!(rim(&found_as).squares_off(), "tip {tip}: the rim as found is oblique");
             let squared = squared_off(&mesh, triangles, found_as.clone(), tip);
             let evened = evened(&mesh, graph, triangles, found_as.clone(), tip, arm.length);
