@@ -21,7 +21,7 @@ cp "$work/chair/chair.png" docs/chair.png
 mkdir -p docs/autorig
 for spec in spot_triangulated.obj:spot:110,10 bunny_closed.obj:bunny:20,15 chair.off:chair:30,20 \
   teapot_newell.obj:teapot-newell:30,20 teapot_mcguire/teapot.obj:teapot-mcguire:30,20 dino.off:dino:150,-30 \
-  characters/blocky_man.obj:blocky-man:30,10 characters/wuson.obj:wuson:60,15 characters/at-at.obj:at-at:30,20 \
+  characters/blocky_man.obj:blocky-man:30,10 characters/wuson.obj:wuson:60,15 characters/at-at.obj:at-at:120,60 \
   characters/faerie.obj:faerie:90,10; do
   IFS=: read -r mesh name view <<< "$spec"
   ./target/release/sweepffd autorig --mesh "../shared/meshes/$mesh" --out "$work/$name-rig.json" --quiet > /dev/null
@@ -31,6 +31,13 @@ done
 ./target/release/sweepffd autorig --mesh ../shared/meshes/armadillo_50k.obj --out "$work/armadillo-rig.json" --quiet > /dev/null
 ./target/release/sweepffd render --mesh ../shared/meshes/armadillo_50k.obj --rig "$work/armadillo-rig.json" \
   --show-sweeps --size 1200x900 --out docs/autorig-armadillo.png --quiet
+# The faerie at rest and with every sweep bent 45° at its middle key: the autorig pipeline
+# test's pose (tests/fitting/autorig_pipeline.rs).
+mkdir -p "$work/pipeline"
+SWEEPFFD_PICTURES_DIR="$work/pipeline" cargo test --release --test fitting meshes_no_constant --quiet > /dev/null
+./target/release/sweepffd render --mesh "$work/pipeline/characters-faerie.obj.obj" \
+  --rig "$work/pipeline/characters-faerie.obj-rig.json" --pose "$work/pipeline/characters-faerie.obj-pose.json" \
+  --compare --view 90,10 --size 450x400 --out docs/autorig/faerie-bent.png --quiet
 # Bends over a fifth of a limb against the same turn given to one key (docs/method.md): the
 # poses the bend test writes, drawn close up where they bend.
 mkdir -p docs/pose "$work/pose"
