@@ -463,15 +463,23 @@ impl Profile {
     /// wrist, lay on no cross-section of it). The child is not grown back: it would take the
     /// whole span and fit it as loosely as one sweep.
     fn with_ring_past(&self, vertices: &[u32], fitted: Vec<u32>, cut: &Cut, excluded: &[bool]) -> Vec<u32> {
-        let mut grown: Vec<u32> = vertices
-            .iter()
-            .flat_map(|&v| self.graph.neighbours(v).iter().map(|&(n, _)| n))
-            .filter(|&n| !excluded[n as usize] && self.beyond(cut, n))
-            .chain(fitted)
-            .collect();
+        let mut grown = self.neighbours_where(vertices, |n| !excluded[n as usize] && self.beyond(cut, n));
+        grown.extend(fitted);
         grown.sort_unstable();
         grown.dedup();
         grown
+    }
+
+    /// The neighbours of local `vertices` that `keep` accepts, increasing, each once.
+    fn neighbours_where(&self, vertices: &[u32], keep: impl Fn(u32) -> bool) -> Vec<u32> {
+        let mut found: Vec<u32> = vertices
+            .iter()
+            .flat_map(|&v| self.graph.neighbours(v).iter().map(|&(n, _)| n))
+            .filter(|&n| keep(n))
+            .collect();
+        found.sort_unstable();
+        found.dedup();
+        found
     }
 
     /// The link of local `vertices` fitted to local `fitted`, turned so that key 0 is the end
@@ -495,13 +503,7 @@ impl Profile {
     /// `None` where its fit is refused or its first key does not bind to that link.
     fn add_branch(&self, chain: &mut Chain, vertices: &[u32], fitter: &impl LinkFitter) -> Option<()> {
         let inside = self.marked(&[vertices.to_vec()]);
-        let mut collar: Vec<u32> = vertices
-            .iter()
-            .flat_map(|&v| self.graph.neighbours(v).iter().map(|&(n, _)| n))
-            .filter(|&n| !inside[n as usize])
-            .collect();
-        collar.sort_unstable();
-        collar.dedup();
+        let collar = self.neighbours_where(vertices, |n| !inside[n as usize]);
         let owner = |v: u32| {
             let v = self.part.vertices[v as usize];
             chain.links.iter().position(|link| link.vertices.binary_search(&v).is_ok())
