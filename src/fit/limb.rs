@@ -121,12 +121,7 @@ pub fn aligned_limb(
 fn without_spikes(mesh: &Mesh, triangles: &[[u32; 3]], vertices: Vec<u32>) -> Vec<u32> {
     let count = mesh.positions.len();
     let inside = mask(count, &vertices);
-    let mut on_rim = vec![false; count];
-    for t in triangles.iter().filter(|t| t.iter().any(|&v| !inside[v as usize])) {
-        for &v in t {
-            on_rim[v as usize] |= inside[v as usize];
-        }
-    }
+    let on_rim = rim_mask(triangles, &inside);
     // Per limb vertex, whether it shares a limb triangle with a limb vertex off the rim.
     let mut reaches_inside = vec![false; count];
     for t in triangles.iter().filter(|t| t.iter().all(|&v| inside[v as usize])) {
@@ -140,14 +135,33 @@ fn without_spikes(mesh: &Mesh, triangles: &[[u32; 3]], vertices: Vec<u32>) -> Ve
     if !vertices.iter().any(|&v| dangling(v)) {
         return vertices;
     }
-    let position = |v: u32| mesh.positions[v as usize];
     let rest: Vec<u32> = vertices.iter().copied().filter(|&v| on_rim[v as usize] && !dangling(v)).collect();
     if rest.is_empty() {
         return vertices;
     }
-    let centroid = rest.iter().map(|&v| position(v)).sum::<DVec3>() / rest.len() as f64;
-    let radius = rest.iter().map(|&v| position(v).distance(centroid)).sum::<f64>() / rest.len() as f64;
-    vertices.into_iter().filter(|&v| !dangling(v) || position(v).distance(centroid) <= SPIKE * radius).collect()
+    let (centroid, radius) = spread_around_centroid(mesh, &rest);
+    let near = |v: u32| mesh.positions[v as usize].distance(centroid) <= SPIKE * radius;
+    vertices.into_iter().filter(|&v| !dangling(v) || near(v)).collect()
+}
+
+/// Per mesh vertex, whether it is a rim vertex of the limb marked `inside`: in the limb, on a
+/// triangle that leaves it.
+fn rim_mask(triangles: &[[u32; 3]], inside: &[bool]) -> Vec<bool> {
+    let mut on_rim = vec![false; inside.len()];
+    for t in triangles.iter().filter(|t| t.iter().any(|&v| !inside[v as usize])) {
+        for &v in t {
+            on_rim[v as usize] |= inside[v as usize];
+        }
+    }
+    on_rim
+}
+
+/// The centroid of `vertices` and their mean distance from it.
+fn spread_around_centroid(mesh: &Mesh, vertices: &[u32]) -> (DVec3, f64) {
+    let position = |v: u32| mesh.positions[v as usize];
+    let count = vertices.len().max(1) as f64;
+    let centroid = vertices.iter().map(|&v| position(v)).sum::<DVec3>() / count;
+    (centroid, vertices.iter().map(|&v| position(v).distance(centroid)).sum::<f64>() / count)
 }
 
 /// Where a coarse limb meets the rest of the mesh, seen along the limb's skeleton.
@@ -166,22 +180,12 @@ impl Rim {
     /// `None` where the limb has no skeleton.
     fn of(mesh: &Mesh, triangles: &[[u32; 3]], vertices: &[u32]) -> Option<Rim> {
         let axis = skeleton(&Part::new(mesh, vertices))?.axis;
-        let inside = mask(mesh.positions.len(), vertices);
-        let position = |v: u32| mesh.positions[v as usize];
-        let mut rim: Vec<u32> = triangles
-            .iter()
-            .filter(|t| t.iter().any(|&v| !inside[v as usize]))
-            .flatten()
-            .copied()
-            .filter(|&v| inside[v as usize])
-            .collect();
-        rim.sort_unstable();
-        rim.dedup();
-        let along: Vec<f64> = rim.iter().map(|&v| axis.project(position(v))).collect();
+        let on_rim = rim_mask(triangles, &mask(mesh.positions.len(), vertices));
+        let rim: Vec<u32> = (0..on_rim.len() as u32).filter(|&v| on_rim[v as usize]).collect();
+        let along: Vec<f64> = rim.iter().map(|&v| axis.project(mesh.positions[v as usize])).collect();
         let deepest = along.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         let shallowest = along.iter().copied().fold(f64::INFINITY, f64::min);
-        let centroid = rim.iter().map(|&v| position(v)).sum::<DVec3>() / rim.len().max(1) as f64;
-        let radius = rim.iter().map(|&v| position(v).distance(centroid)).sum::<f64>() / rim.len().max(1) as f64;
+        let (_, radius) = spread_around_centroid(mesh, &rim);
         Some(Rim { axis, shallowest, deepest, radius })
     }
 
