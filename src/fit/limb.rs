@@ -17,7 +17,10 @@
 //!    first falls below [`CAPPED`]), where (P(d_k) − P(d_{k−w}))/(w·h) exceeds
 //!    [`OPENING`] with w = [`WINDOW`], sustained (P does not fall back by more than
 //!    1 − [`KEEPS`] over the next [`SUSTAIN`] levels, as it does past a hand or a foot): the
-//!    limb is the vertices with d < d_{k−w}, where the opening began.
+//!    limb is the vertices with d < d_{k−w}, where the opening began. A widening that falls
+//!    back later, to a wrist and a forearm ([`wrist_within`]), is a long hand (a cartoon's),
+//!    not the body: the limb runs on through it to the next opening where it is still at most
+//!    [`MAX_SHARE`] of its component (past a body's neck it is not).
 //! 4. **Forks.** A limb that would hold more than [`MAX_SHARE`] of its component is cut
 //!    instead at the lowest level below its opening where the region farther from the tip
 //!    falls apart into two pieces each reaching on at least [`START`] × the length
@@ -59,6 +62,15 @@ pub const CAPPED: f64 = 2.0;
 pub const SUSTAIN: usize = 20;
 /// See [`SUSTAIN`].
 pub const KEEPS: f64 = 0.85;
+/// A widening is a hand (not the body) where within this many levels its perimeter falls below
+/// [`WRIST`] times its largest since…
+pub const HAND: usize = 40;
+/// …(see [`HAND`])…
+pub const WRIST: f64 = 0.75;
+/// …and then holds within [`FOREARM_SPREAD`] of that for this many levels, a forearm's.
+pub const FOREARM: usize = 10;
+/// See [`FOREARM`].
+pub const FOREARM_SPREAD: f64 = 0.1;
 /// A component that is a limb of its own is at least this many times as long as its widest
 /// level radius.
 pub const WHOLE_TUBE: f64 = 5.0;
@@ -353,6 +365,19 @@ pub fn limb(
     length: f64,
     component_size: usize,
 ) -> Option<Vec<u32>> {
+    limb_through_hands(positions, graph, triangles, tip, length, component_size, true)
+}
+
+/// [`limb`], through the hands it passes (see [`wrist_within`]) only where `past_hands`.
+fn limb_through_hands(
+    positions: &[DVec3],
+    graph: &EdgeGraph,
+    triangles: &[[u32; 3]],
+    tip: u32,
+    length: f64,
+    component_size: usize,
+    past_hands: bool,
+) -> Option<Vec<u32>> {
     if !(length > 0.0 && length.is_finite()) {
         return None;
     }
@@ -366,18 +391,25 @@ pub fn limb(
     // Past the tip's own cap (a round end, a hoof's sole), where the level sets grow like
     // circles around a point: the first level where they grow slower than [`CAPPED`].
     let past_cap = (WINDOW..levels).find(|&k| rate(k) < CAPPED).unwrap_or(levels);
-    let opening = ((start + WINDOW).max(past_cap + WINDOW)..levels).find(|&k| {
-        let rate = (perimeter[k] - perimeter[k - WINDOW]) / (WINDOW as f64 * h);
-        // A widening that narrows again (a hand's or a foot's below its wrist or ankle) is
-        // not the body.
-        let after = &perimeter[k..(k + 1 + SUSTAIN).min(levels)];
-        let mut peak = 0.0;
-        let keeps = after.iter().all(|&p| {
-            peak = f64::max(peak, p);
-            p >= KEEPS * peak
-        });
-        rate > OPENING && after.len() == SUSTAIN + 1 && keeps
-    });
+    // The first level where the level sets open onto the body, past the hands (see
+    // [`wrist_within`]) where `past_hands`.
+    let opening = |past_hands: bool| {
+        ((start + WINDOW).max(past_cap + WINDOW)..levels).find(|&k| {
+            let rate = (perimeter[k] - perimeter[k - WINDOW]) / (WINDOW as f64 * h);
+            // A widening that narrows again (a hand's or a foot's below its wrist or ankle) is
+            // not the body.
+            let after = &perimeter[k..(k + 1 + SUSTAIN).min(levels)];
+            let mut peak = 0.0;
+            let keeps = after.iter().all(|&p| {
+                peak = f64::max(peak, p);
+                p >= KEEPS * peak
+            });
+            let sustained = rate > OPENING && after.len() == SUSTAIN + 1 && keeps;
+            sustained
+                && !(past_hands
+                    && wrist_within(&perimeter[k..], |j| level_loops(triangles, &d, (k + j) as f64 * h) == 1))
+        })
+    };
     let within = |level: f64| {
         let mut v: Vec<u32> = (0..d.len() as u32).filter(|&v| d[v as usize] < level).collect();
         v.sort_unstable();
@@ -387,7 +419,15 @@ pub fn limb(
         let level = k as f64 * h;
         (level >= TUBULAR * perimeter[k] / TAU).then(|| within(level))
     };
-    match opening {
+    let opening_at_palm = opening(false);
+    // The limb through its hand where that is still a limb (not the body past its neck).
+    if let Some(k) = opening(true).filter(|&k| past_hands && Some(k) != opening_at_palm)
+        && let Some(arm) = cut(k - WINDOW)
+        && arm.len() as f64 <= MAX_SHARE * component_size as f64
+    {
+        return Some(arm);
+    }
+    match opening_at_palm {
         Some(k) => {
             let limb = cut(k - WINDOW)?;
             if limb.len() as f64 <= MAX_SHARE * component_size as f64 {
@@ -413,6 +453,61 @@ pub fn limb(
             (whole && far >= WHOLE_TUBE * widest).then(|| within(f64::INFINITY))
         }
     }
+}
+
+/// Whether the perimeters `after` a widening (`after[0]` at the widening) fall, within
+/// [`HAND`] levels, below [`WRIST`] times the largest they have been since and then hold as a
+/// tube's for [`FOREARM`] levels (within [`FOREARM_SPREAD`] of the fallen value), the level set
+/// one loop (`one_loop`, by level after the widening) where they fall and where they stop
+/// holding: a hand whose palm is longer than [`SUSTAIN`] levels (a cartoon's), past its wrist
+/// the forearm. A body's level sets may fall as much past its waist or its neck, but there
+/// they are several loops (around the other limbs too).
+fn wrist_within(after: &[f64], one_loop: impl Fn(usize) -> bool) -> bool {
+    let mut peak: f64 = 0.0;
+    for (j, &p) in after.iter().enumerate().take(HAND + 1) {
+        peak = peak.max(p);
+        if p > 0.0 && p < WRIST * peak {
+            let Some(forearm) = after.get(j..=j + FOREARM) else { return false };
+            if forearm.iter().all(|&q| (q - p).abs() <= FOREARM_SPREAD * p) && one_loop(j) && one_loop(j + FOREARM) {
+                return true;
+            }
+        }
+    }
+    false
+}
+
+/// The number of loops of the level set d = `level` (the triangles it crosses, joined across
+/// the edges it crosses).
+fn level_loops(triangles: &[[u32; 3]], d: &[f64], level: f64) -> usize {
+    let crosses = |a: u32, b: u32| {
+        let (da, db) = (d[a as usize], d[b as usize]);
+        da.is_finite() && db.is_finite() && (da < level) != (db < level)
+    };
+    let crossing: Vec<usize> =
+        (0..triangles.len()).filter(|&i| (0..3).any(|e| crosses(triangles[i][e], triangles[i][(e + 1) % 3]))).collect();
+    let mut sets = DisjointSets::new(crossing.len());
+    let mut first_at: std::collections::HashMap<(u32, u32), u32> = Default::default();
+    for (local, &i) in crossing.iter().enumerate() {
+        let t = triangles[i];
+        for e in 0..3 {
+            let (a, b) = (t[e], t[(e + 1) % 3]);
+            if !crosses(a, b) {
+                continue;
+            }
+            match first_at.entry((a.min(b), a.max(b))) {
+                std::collections::hash_map::Entry::Occupied(other) => {
+                    let (x, y) = (sets.root(local as u32), sets.root(*other.get()));
+                    if x != y {
+                        sets.attach(x, y);
+                    }
+                }
+                std::collections::hash_map::Entry::Vacant(slot) => {
+                    slot.insert(local as u32);
+                }
+            }
+        }
+    }
+    (0..crossing.len() as u32).filter(|&i| sets.root(i) == i).count()
 }
 
 /// The lowest level of `d` (distance from a limb's tip, reached out to `limit`) at which the
@@ -564,6 +659,87 @@ mod tests {
         println!("sections' RMS |d|: {:.1}% with the spike, {:.1}% without", 100.0 * with_spike, 100.0 * without);
         assert!(with_spike > 0.35, "with its spike the arm's sections are no tube's");
         assert!(without < 0.5 * with_spike, "without its spike the arm fits at least twice as closely");
+    }
+
+    /// A surface of revolution about z through the profile `(z, r)` (r > 0), its rings about
+    /// `spacing` apart along the profile, 24 vertices each, closed by a vertex on the axis at
+    /// each end.
+    fn revolved(profile: &[(f64, f64)], spacing: impl Fn(f64) -> f64) -> Mesh {
+        const AROUND: u32 = 24;
+        let mut rings: Vec<(f64, f64)> = vec![profile[0]];
+        for pair in profile.windows(2) {
+            let ((z0, r0), (z1, r1)) = (pair[0], pair[1]);
+            let steps = ((z1 - z0).hypot(r1 - r0) / spacing(z0)).ceil().max(1.0) as usize;
+            rings.extend((1..=steps).map(|i| {
+                let f = i as f64 / steps as f64;
+                (z0 + f * (z1 - z0), r0 + f * (r1 - r0))
+            }));
+        }
+        let mut positions = vec![DVec3::new(0.0, 0.0, rings[0].0 - rings[0].1)];
+        for &(z, r) in &rings {
+            positions.extend((0..AROUND).map(|a| {
+                let angle = std::f64::consts::TAU * a as f64 / AROUND as f64;
+                DVec3::new(r * angle.cos(), r * angle.sin(), z)
+            }));
+        }
+        let last = rings.last().unwrap();
+        positions.push(DVec3::new(0.0, 0.0, last.0 + last.1));
+        let top = positions.len() as u32 - 1;
+        let mut faces = crate::mesh::Faces::new();
+        let at = |ring: u32, a: u32| 1 + ring * AROUND + a % AROUND;
+        for a in 0..AROUND {
+            faces.push(&[0, at(0, a + 1), at(0, a)]);
+            faces.push(&[at(rings.len() as u32 - 1, a), at(rings.len() as u32 - 1, a + 1), top]);
+        }
+        for ring in 0..rings.len() as u32 - 1 {
+            for a in 0..AROUND {
+                faces.push(&[at(ring, a), at(ring, a + 1), at(ring + 1, a + 1), at(ring + 1, a)]);
+            }
+        }
+        Mesh::from_parts(positions, faces, Vec::new()).unwrap()
+    }
+
+    /// A cartoon's arm on its body: a ball of radius 6 (z < 0), an arm of radius 0.3 up to
+    /// z = 4, a hand of radius 0.9 from 4.5 to 6 (its palm longer than [`SUSTAIN`] levels) and
+    /// a finger of radius 0.2 from 6.3 to 7. Seen from the fingertip, the level sets widen at
+    /// the palm and hold there for more than [`SUSTAIN`] levels, as they do where a limb meets
+    /// the body; but past the palm they fall back to the wrist's and hold as the forearm's. The
+    /// limb runs through the hand to the body; cut at the palm, as before the hand was told
+    /// from the body, it is the finger alone.
+    #[test]
+    fn a_limb_is_found_through_a_long_hand() {
+        let mut profile: Vec<(f64, f64)> = (0..=16)
+            .map(|i| {
+                // The ball's lower part, from its bottom pole up to where the arm leaves it.
+                let angle = std::f64::consts::PI * (i as f64 / 16.0) * 0.97;
+                (-6.0 - 6.0 * angle.cos(), 6.0 * angle.sin())
+            })
+            .filter(|&(_, r)| r > 0.0)
+            .collect();
+        profile.extend([(-0.3, 0.6), (0.0, 0.3), (4.0, 0.3), (4.5, 0.9), (6.0, 0.9), (6.3, 0.2), (7.0, 0.2)]);
+        // The body's rings closer together than the limb's, so that the limb is a limb's share.
+        let mesh = revolved(&profile, |z| if z < 0.0 { 0.05 } else { 0.1 });
+        let triangles: Vec<[u32; 3]> = mesh.faces.triangles().collect();
+        let graph = EdgeGraph::new(&mesh.positions, &triangles);
+        let tip = mesh.positions.len() as u32 - 1;
+        let size = mesh.positions.len();
+        let (length, z) = (3.0, |v: &u32| mesh.positions[*v as usize].z);
+        let through =
+            limb_through_hands(&mesh.positions, &graph, &triangles, tip, length, size, true).expect("a limb");
+        let at_palm =
+            limb_through_hands(&mesh.positions, &graph, &triangles, tip, length, size, false).expect("a limb");
+        let lowest = |vertices: &[u32]| vertices.iter().map(z).fold(f64::INFINITY, f64::min);
+        eprintln!(
+            "through the hand: {} vertices down to z = {:.2}; cut at the palm: {} down to z = {:.2}",
+            through.len(),
+            lowest(&through),
+            at_palm.len(),
+            lowest(&at_palm)
+        );
+        assert!(lowest(&through) < 0.5 && lowest(&through) > -0.5, "the arm down to the body");
+        assert!((through.len() as f64) <= MAX_SHARE * size as f64);
+        assert_eq!(limb(&mesh.positions, &graph, &triangles, tip, length, size), Some(through));
+        assert!(lowest(&at_palm) > 5.5, "cut at the palm, the finger alone");
     }
 
     /// The faerie's arms (366 vertices: each arm a tube of rings of five or six vertices, its
