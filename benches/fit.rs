@@ -2,7 +2,9 @@
 //! the same fit started from the part's principal axis, measured in the same run: the upper
 //! five sixths of a closed tube (attached at z = 1, capped at its tip), at several vertex
 //! counts, and the shared meshes' limbs when `../shared/meshes` is beside the clone; and
-//! `autorig` (protrusions found and each fitted) on the bunny and the armadillo.
+//! `autorig` (protrusions found and each fitted) on the bunny and the armadillo; and the body
+//! autorig searches (seams welded, touching components joined) of a dense tube with small
+//! pieces lying on it, whose contacts are searched per vertex among the pieces' triangles.
 //!
 //! `cargo bench --features internals --bench fit`.
 
@@ -13,8 +15,9 @@ use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use glam::DVec3;
 use sweepffd::fit::autorig::{AutorigOptions, autorig};
 use sweepffd::fit::axis::principal_axis;
+use sweepffd::fit::body::Body;
 use sweepffd::fit::{FitOptions, fit, largest_connected};
-use sweepffd::mesh::Mesh;
+use sweepffd::mesh::{Faces, Mesh};
 use sweepffd::synthetic::Tube;
 
 /// The part's principal axis as a user's axis: the first guess the fit used before the skeleton.
@@ -71,5 +74,38 @@ fn autorig_meshes(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, tube_parts, shared_limbs, autorig_meshes);
+/// A 50,000-vertex tube (length 6, radius 0.5) with `pieces` small tubes (length 0.6, radius
+/// 0.05, 130 vertices) lying along its wall, 0.01 off it: every piece touches the tube, and
+/// each of the tube's vertices near a piece looks for the piece's nearest triangle.
+fn tube_with_pieces(pieces: usize) -> Mesh {
+    let body = Tube::with_vertex_count(50_000, 6.0, 0.5).mesh();
+    let piece = Tube { rings: 8, around: 16, length: 0.6, radius: 0.05 }.mesh();
+    let mut positions = body.positions.clone();
+    let mut faces = Faces::new();
+    for t in body.faces.triangles() {
+        faces.push(&t);
+    }
+    for k in 0..pieces {
+        let (angle, z) = (std::f64::consts::TAU * k as f64 / pieces as f64, 0.5 + 4.5 * k as f64 / pieces as f64);
+        let offset = positions.len() as u32;
+        let (out, up) = (DVec3::new(angle.cos(), angle.sin(), 0.0), DVec3::Z);
+        positions.extend(piece.positions.iter().map(|p| out * (0.56 + p.x) + up * (z + p.z) + out.cross(up) * p.y));
+        for t in piece.faces.triangles() {
+            faces.push(&t.map(|v| v + offset));
+        }
+    }
+    Mesh::from_parts(positions, faces, Vec::new()).unwrap()
+}
+
+fn body_contacts(c: &mut Criterion) {
+    let mut group = c.benchmark_group("autorig_body");
+    group.sample_size(10);
+    for pieces in [10, 40] {
+        let mesh = tube_with_pieces(pieces);
+        group.bench_function(BenchmarkId::new("tube_with_pieces", pieces), |b| b.iter(|| Body::new(&mesh)));
+    }
+    group.finish();
+}
+
+criterion_group!(benches, tube_parts, shared_limbs, autorig_meshes, body_contacts);
 criterion_main!(benches);

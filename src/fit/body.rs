@@ -28,6 +28,7 @@ use glam::DVec3;
 
 use super::disjoint_sets::DisjointSets;
 use super::geodesic::EdgeGraph;
+use super::nearest_triangle::NearestTriangle;
 use crate::mesh::{Faces, Mesh, bounds_of};
 
 /// Vertices nearer each other than this fraction of the bounding-box diagonal are welded.
@@ -206,11 +207,14 @@ fn bridges(positions: &[DVec3], triangles: &[[u32; 3]], reach: f64) -> (Vec<[u32
     if !(reach > 0.0 && reach.is_finite()) || triangles.iter().all(|t| Some(component[t[0] as usize]) == first) {
         return (Vec::new(), Vec::new());
     }
-    let contacts = contacts(positions, triangles, &component, &used, reach);
     let mut sizes: HashMap<u32, usize> = HashMap::new();
     for v in (0..positions.len()).filter(|&v| used[v]) {
         *sizes.entry(component[v]).or_default() += 1;
     }
+    let contacts = contacts(positions, triangles, &component, &used, reach, |a, b| {
+        let (smaller, larger) = (sizes[&a].min(sizes[&b]), sizes[&a].max(sizes[&b]));
+        is_piece(smaller, larger)
+    });
     // Kruskal over the components: each pair's contacts join them if they are not yet one.
     let mut joined = DisjointSets::new(positions.len());
     let mut by_pair: HashMap<[u32; 2], (f64, Vec<[u32; 2]>)> = HashMap::new();
@@ -226,7 +230,7 @@ fn bridges(positions: &[DVec3], triangles: &[[u32; 3]], reach: f64) -> (Vec<[u32
     // [`MAX_TOUCHING`] of its vertices (a hollow wall's two sides lie along each other).
     by_pair.retain(|key, (_, edges)| {
         let (smaller, larger) = if sizes[&key[0]] <= sizes[&key[1]] { (key[0], key[1]) } else { (key[1], key[0]) };
-        let piece = sizes[&smaller] < SMALL_COMPONENT || sizes[&smaller] as f64 <= SMALL_SHARE * sizes[&larger] as f64;
+        let piece = is_piece(sizes[&smaller], sizes[&larger]);
         let mut touching: Vec<u32> =
             edges.iter().flat_map(|e| e.iter().copied()).filter(|&v| component[v as usize] == smaller).collect();
         touching.sort_unstable();
@@ -289,14 +293,25 @@ fn bridges(positions: &[DVec3], triangles: &[[u32; 3]], reach: f64) -> (Vec<[u32
     (bridges, leaves)
 }
 
-/// Every vertex within `reach` of a triangle of another component, with the triangle's corner
-/// nearest it; triangles are found through a grid of cells at least `reach` wide.
+/// Whether a component of `smaller` vertices may be a piece of one of `larger` (see the module
+/// docs).
+fn is_piece(smaller: usize, larger: usize) -> bool {
+    smaller < SMALL_COMPONENT || smaller as f64 <= SMALL_SHARE * larger as f64
+}
+
+/// Every vertex within `reach` of a triangle of another component that it `may_join` (by their
+/// components' roots), with the corner nearest it of the nearest such triangle (the first on a
+/// tie). A grid of cells at least `reach` wide lists the components whose triangles come
+/// within reach of each cell; each component's triangles are searched through their own tree
+/// ([`NearestTriangle`]), so that a vertex near a densely meshed piece visits a few of its
+/// triangles, not every one in its cell (a 62,000-vertex scan of 44 components took 23 s).
 fn contacts(
     positions: &[DVec3],
     triangles: &[[u32; 3]],
     component: &[u32],
     used: &[bool],
     reach: f64,
+    may_join: impl Fn(u32, u32) -> bool,
 ) -> Vec<Contact> {
     let (lo, hi) = bounds_of(positions);
     // Cells no smaller than 1/64 of the extent, and coarser while the triangles would fill more
@@ -323,17 +338,30 @@ fn contacts(
         }
         size *= 2.0;
     }
+    // Per cell, the components whose triangles come within reach of it, each once.
     let mut grid: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
+    let mut by_component: HashMap<u32, Vec<(u32, [DVec3; 3])>> = HashMap::new();
     for (i, t) in triangles.iter().enumerate() {
+        let owner = component[t[0] as usize];
+        by_component.entry(owner).or_default().push((i as u32, t.map(|v| positions[v as usize])));
         let (a, b) = cells_of(t, size);
         for x in a.x..=b.x {
             for y in a.y..=b.y {
                 for z in a.z..=b.z {
-                    grid.entry([x, y, z]).or_default().push(i as u32);
+                    let list = grid.entry([x, y, z]).or_default();
+                    if list.last() != Some(&owner) {
+                        list.push(owner);
+                    }
                 }
             }
         }
     }
+    for list in grid.values_mut() {
+        list.sort_unstable();
+        list.dedup();
+    }
+    let trees: HashMap<u32, NearestTriangle> =
+        by_component.into_iter().map(|(owner, triangles)| (owner, NearestTriangle::new(triangles))).collect();
     let mut found = Vec::new();
     for (v, &p) in positions.iter().enumerate() {
         if !used[v] {
@@ -341,30 +369,16 @@ fn contacts(
         }
         let c = ((p - lo) / size).floor().as_i64vec3().to_array();
         let Some(list) = grid.get(&c) else { continue };
-        // The nearest triangle of each other component.
-        let mut nearest: Vec<(u32, f64, u32)> = Vec::new();
-        for &i in list {
+        for &other in list {
+            if other == component[v] || !may_join(component[v], other) {
+                continue;
+            }
+            let Some((i, gap, _)) = trees[&other].nearest(p, reach) else { continue };
             let t = triangles[i as usize];
-            let other = component[t[0] as usize];
-            if other == component[v] {
-                continue;
-            }
-            let corners = t.map(|w| positions[w as usize]);
-            let gap = closest_on_triangle(p, corners).distance(p);
-            if gap > reach {
-                continue;
-            }
             let corner = *t
                 .iter()
                 .min_by(|&&a, &&b| positions[a as usize].distance(p).total_cmp(&positions[b as usize].distance(p)))
                 .unwrap_or(&t[0]);
-            match nearest.iter_mut().find(|(c, _, _)| *c == other) {
-                Some(entry) if gap < entry.1 => *entry = (other, gap, corner),
-                Some(_) => {}
-                None => nearest.push((other, gap, corner)),
-            }
-        }
-        for (other, gap, corner) in nearest {
             found.push(Contact { gap, components: [component[v], other], edge: [v as u32, corner] });
         }
     }

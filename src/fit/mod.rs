@@ -88,6 +88,7 @@ internal_mod! {
     hidden;
     least_squares;
     limb;
+    nearest_triangle;
     protrusions;
     radii;
     section;
