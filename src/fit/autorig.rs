@@ -262,7 +262,8 @@ fn rig_limb(mesh: &Mesh, vertices: &[u32], options: &FitOptions) -> Result<Vec<F
     if close {
         return Ok(whole.map(one).unwrap_or_default());
     }
-    let chain = Profile::new(mesh, vertices).and_then(|profile| profile.chain(&fitter, TARGET));
+    let profile = Profile::new(mesh, vertices);
+    let chain = profile.as_ref().and_then(|profile| profile.chain(&fitter, TARGET));
     // A part that is no tube as one sweep becomes a limb only as a chain of tubes.
     let most = if whole_rms <= MAX_RMS { MAX_RMS } else { MAX_RMS.min(RESCUED_SHARE * whole_rms) };
     if let Some(chain) = chain.filter(|chain| chain.worst <= most && chain.worst < whole_rms) {
@@ -273,6 +274,15 @@ fn rig_limb(mesh: &Mesh, vertices: &[u32], options: &FitOptions) -> Result<Vec<F
             }
         }
         return Ok(links);
+    }
+    // A coarse part that is no tube for what lies at its attached end (a leg cut above its
+    // crotch, one span of long triangles below it) is a limb without it, where the rest fits
+    // within the target.
+    if whole_rms > MAX_RMS
+        && vertices.len() < COARSE
+        && let Some(trimmed) = profile.and_then(|profile| profile.trimmed(&fitter, TARGET))
+    {
+        return Ok(trimmed.links);
     }
     match whole {
         Some(whole) if whole_rms <= MAX_RMS => Ok(one(whole)),

@@ -67,6 +67,11 @@ pub const BEND_DEGREES: f64 = 30.0;
 pub const BEND_SPAN: usize = 3;
 /// A branch past a fork reaches at least this fraction of the limb's length beyond it.
 pub const BRANCH: f64 = 0.05;
+/// A vertex on none of a limb's triangles within this fraction of its length of one that is on
+/// one is a seam's copy of it ([`copies_take_distances`]).
+pub const COPY: f64 = 1e-6;
+/// A limb is trimmed ([`Profile::trimmed`]) by at most this many [`LEVELS`] of its length.
+pub const TRIMMED: usize = LEVELS / 4;
 /// A bend and a widening nearer each other than this fraction of their stretch are one cut.
 pub const SAME_CUT: f64 = 0.1;
 /// A link has at least this many vertices, as a limb has.
@@ -155,8 +160,9 @@ impl Profile {
         let mut sources: Vec<u32> = part.rim.iter().flatten().copied().collect();
         sources.sort_unstable();
         sources.dedup();
-        let s = graph.distances(&sources);
+        let mut s = graph.distances(&sources);
         let length = s.iter().copied().filter(|d| d.is_finite()).fold(0.0, f64::max);
+        copies_take_distances(&part, &mut s, COPY * length);
         let rim_center = sources.iter().map(|&v| part.positions[v as usize]).sum::<DVec3>() / sources.len() as f64;
         (length > 0.0).then_some(Profile { part, graph, s, length, rim_center })
     }
@@ -379,6 +385,31 @@ impl Profile {
         self.stretch_chain(None, None, &none, target, depth, fitter).filter(|chain| chain.links.len() > 1)
     }
 
+    /// The limb without its attached end, where that end is the body's and not a tube's (a
+    /// coarse leg cut above its crotch, its rim on the pelvis's top and holding the slab
+    /// between the legs' tops): the stretch past the cut at level k/[`LEVELS`] of its length,
+    /// for k = 1, 2, … [`TRIMMED`], as one link fitted to its own vertices (not past its cut,
+    /// where the body is), key 0 at the cut; the first within `target` both as a link
+    /// ([`LinkFitter::loose`]) and by its sections' radii (a flat ribbon whose fitted radii
+    /// follow it is no limb). `None` where none is.
+    pub fn trimmed(&self, fitter: &impl LinkFitter, target: f64) -> Option<Chain> {
+        let none = vec![false; self.s.len()];
+        // Seen from the limb's length back along the cut's normal, key 0 is the end at the cut
+        // however far a coarse link reaches past it (see `fitted_stretch`).
+        let back = if self.s.len() < COARSE { self.length } else { 0.0 };
+        (1..=TRIMMED).find_map(|k| {
+            let cut = self.cut(k as f64 * self.length / LEVELS as f64)?;
+            let vertices = self.stretch(Some(&cut), None, &none);
+            if vertices.len() < MIN_LINK {
+                return None;
+            }
+            let link = self.fitted_link(&vertices, &vertices, cut.center - cut.normal * back, None, fitter)?;
+            let worst = fitter.loose(&link.fit);
+            (worst <= target && link.fit.sections_quality().rms_d <= target)
+                .then(|| Chain { links: vec![link], worst })
+        })
+    }
+
     /// Per local vertex, whether it is in one of `sets`.
     fn marked(&self, sets: &[Vec<u32>]) -> Vec<bool> {
         let mut marked = vec![false; self.s.len()];
@@ -523,6 +554,27 @@ impl Profile {
     }
 }
 
+/// Gives each vertex of `part` on none of its triangles and within `reach` of one that is (a
+/// seam's copy, whose welded twin the triangles use) the distance `s` of the nearest such, so
+/// that it goes with its twin to the same side of every cut (with an infinite s it lay past
+/// them all, and the last link took every copy in the limb).
+fn copies_take_distances(part: &Part, s: &mut [f64], reach: f64) {
+    let mut on_triangle = vec![false; part.positions.len()];
+    for &v in part.triangles.iter().flatten() {
+        on_triangle[v as usize] = true;
+    }
+    let reached: Vec<usize> = (0..s.len()).filter(|&v| on_triangle[v] && s[v].is_finite()).collect();
+    for v in (0..s.len()).filter(|&v| !on_triangle[v]) {
+        let p = part.positions[v];
+        let twin = reached.iter().copied().min_by(|&a, &b| {
+            part.positions[a].distance_squared(p).total_cmp(&part.positions[b].distance_squared(p)).then(a.cmp(&b))
+        });
+        if let Some(twin) = twin.filter(|&twin| part.positions[twin].distance(p) <= reach) {
+            s[v] = s[twin];
+        }
+    }
+}
+
 /// `Some` where the first key of `child` lies on a cross-section of `parent`.
 fn binds(parent: &Fit, child: &Fit) -> Option<()> {
     let parent = Sweep::try_new(&parent.keys, None).ok()?;
@@ -584,6 +636,82 @@ mod tests {
         }
         let mesh = Mesh::from_parts(positions, faces, Vec::new()).unwrap();
         (mesh, (around..=cap).collect())
+    }
+
+    /// A seam's copy of a vertex (at its position, on no triangle: its welded twin the
+    /// triangles use) goes with its twin to the near side of a cut past them; with an infinite
+    /// distance from the rim, as before copies took their twins' distances, it lay past every
+    /// cut.
+    #[test]
+    fn a_seam_copy_goes_with_its_twin() {
+        let profile: Vec<(f64, f64)> = (0..12).map(|i| (i as f64 * 0.5, 0.5)).collect();
+        let (mesh, mut limb) = limb_on_a_flange(&profile, 12);
+        // A copy of a vertex of the third ring (the rings start after the flange's 12).
+        let twin = 12 + 2 * 12 + 5;
+        let mut positions = mesh.positions.clone();
+        positions.push(positions[twin as usize]);
+        let copy = positions.len() as u32 - 1;
+        let mesh = Mesh::from_parts(positions, mesh.faces.clone(), Vec::new()).unwrap();
+        limb.push(copy);
+        let profile = Profile::new(&mesh, &limb).expect("a rim");
+        let local = |v: u32| profile.part.vertices.binary_search(&v).unwrap();
+        assert_eq!(profile.s[local(copy)], profile.s[local(twin)]);
+        let (near, far) = cut_at(&profile, 0.5 * profile.length);
+        assert!(near.binary_search(&twin).is_ok() && near.binary_search(&copy).is_ok(), "near the rim with its twin");
+        assert!(far.binary_search(&copy).is_err());
+    }
+
+    /// A part that is no tube at its attached end: the faerie's hair, found from its tip, whose
+    /// part holds a piece of the back of her head where it starts. As one sweep it misses its
+    /// sections by over [`MAX_RMS`](crate::fit::autorig::MAX_RMS); trimmed of its first levels it
+    /// fits within the target by its sections' radii and keeps most of its vertices.
+    #[test]
+    fn a_part_that_is_no_tube_at_its_attached_end_is_trimmed() {
+        use crate::fit::autorig::{MAX_RMS, TARGET};
+        use crate::fit::body::Body;
+        use crate::fit::protrusions::protrusions;
+        use crate::fit::{FitOptions, fit};
+
+        struct Plain<'a>(&'a Mesh);
+        impl LinkFitter for Plain<'_> {
+            fn fit(&self, vertices: &[u32]) -> Option<(Fit, f64)> {
+                fit(self.0, vertices, &FitOptions::default()).ok().map(|fitted| (fitted, 0.0))
+            }
+            fn loose(&self, fitted: &Fit) -> f64 {
+                fitted.sections_quality().rms_d
+            }
+        }
+        let Some(path) = crate::common::shared_mesh("characters/faerie.obj") else { return };
+        let mesh = Mesh::load(&path).unwrap();
+        let body = Body::new(&mesh);
+        let welded = body.welded_mesh(&mesh);
+        let on = welded.as_ref().unwrap_or(&mesh);
+        let ys = || mesh.positions.iter().map(|p| p.y);
+        let height = ys().fold(f64::NEG_INFINITY, f64::max) - ys().fold(f64::INFINITY, f64::min);
+        // Her hair hangs behind her (she faces +x), over a quarter of her height.
+        let hair = protrusions(&mesh, &body, 0.04 * body.diagonal, 32)
+            .into_iter()
+            .find(|p| {
+                let at = |v: &u32| mesh.positions[*v as usize];
+                let (lo, hi) = p.vertices.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+                    (lo.min(at(v).y), hi.max(at(v).y))
+                });
+                p.vertices.iter().all(|v| at(v).x < -2.0) && hi - lo >= 0.25 * height
+            })
+            .expect("her hair is found");
+        let whole = fit(on, &hair.vertices, &FitOptions::default()).unwrap().sections_quality().rms_d;
+        let trimmed = Profile::new(on, &hair.vertices).unwrap().trimmed(&Plain(on), TARGET).expect("trimmed");
+        let kept = &trimmed.links[0];
+        eprintln!(
+            "faerie's hair: {} vertices at {:.0}% as one sweep; trimmed, {} at {:.1}%",
+            hair.vertices.len(),
+            100.0 * whole,
+            kept.vertices.len(),
+            100.0 * kept.fit.sections_quality().rms_d
+        );
+        assert!(whole > MAX_RMS, "as one sweep its sections are no tube's");
+        assert!(kept.fit.sections_quality().rms_d <= TARGET);
+        assert!(4 * kept.vertices.len() >= 3 * hair.vertices.len(), "most of it kept");
     }
 
     /// The limb's vertices before and past the cut at `level`.
