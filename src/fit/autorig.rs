@@ -7,7 +7,8 @@
 //! forked at its toes or fingers, each link a branch child (§5) of the one it hangs from, so
 //! that turning the limb carries its end, with [`LINK_FALLOFF_SHARE`] of the falloff; a part
 //! that is no tube as one sweep (the dino's legs, their toes splayed) is rigged where its
-//! chain fits much better ([`RESCUED_SHARE`]). The rest of the mesh (the body)
+//! chain fits much better ([`RESCUED_SHARE`]), and a coarse part that is no tube only at its
+//! attached end (a leg cut above its crotch) where it fits without it. The rest of the mesh (the body)
 //! stays unowned. The fits run on the welded mesh, so a part's sections close; a part whose
 //! fit with the radii of its sections misses its surface by more than [`MAX_RMS`] (a lid's
 //! flange, a ring) is no limb, nor is one whose fitted keys fold back (`folds`: a ball, such

@@ -38,6 +38,12 @@
 //! would hold its toes); otherwise its best chain unforked, the one whose loosest link fits
 //! best. A chain whose child's first key does not bind to its parent is none. A limb with no
 //! rim (a whole component) has no profile and stays one sweep.
+//!
+//! - **Trimmed** ([`Profile::trimmed`]): a coarse limb that is no tube only at its attached end
+//!   (a leg cut above its crotch, holding the pelvis's slab) is the stretch past the first of
+//!   its first [`TRIMMED`] levels from which it fits.
+//!
+//! A seam's copy of a vertex (on none of the welded part's triangles) takes its twin's s.
 
 use std::f64::consts::TAU;
 
