@@ -74,7 +74,7 @@ pub const BEND_SPAN: usize = 3;
 /// A branch past a fork reaches at least this fraction of the limb's length beyond it.
 pub const BRANCH: f64 = 0.05;
 /// A vertex on none of a limb's triangles within this fraction of its length of one that is on
-/// one is a seam's copy of it ([`copies_take_distances`]).
+/// one is a seam's copy of it (`copies_take_distances`).
 pub const COPY: f64 = 1e-6;
 /// A limb is trimmed ([`Profile::trimmed`]) by at most this many [`LEVELS`] of its length.
 pub const TRIMMED: usize = LEVELS / 4;

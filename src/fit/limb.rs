@@ -18,7 +18,7 @@
 //!    [`OPENING`] with w = [`WINDOW`], sustained (P does not fall back by more than
 //!    1 − [`KEEPS`] over the next [`SUSTAIN`] levels, as it does past a hand or a foot): the
 //!    limb is the vertices with d < d_{k−w}, where the opening began. A widening that falls
-//!    back later, to a wrist and a forearm ([`wrist_within`]), is a long hand (a cartoon's),
+//!    back later, to a wrist and a forearm (`wrist_within`), is a long hand (a cartoon's),
 //!    not the body: the limb runs on through it to the next opening where it is still at most
 //!    [`MAX_SHARE`] of its component (past a body's neck it is not).
 //! 4. **Forks.** A limb that would hold more than [`MAX_SHARE`] of its component is cut
