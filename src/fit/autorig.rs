@@ -127,7 +127,7 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
     let fitted = |protrusion: &Protrusion, selection: &Selection| match selection {
         Selection::Fit(vertices) => {
             let options = FitOptions { axis: protrusion.axis.clone(), ..fit_options.clone() };
-            Some(rig_limb(fitted_on, vertices, &options))
+            Some(rig_limb(fitted_on, vertices, &protrusion.vertices, &options))
         }
         _ => None,
     };
@@ -251,9 +251,19 @@ impl Selection {
 /// Fits the limb made of `vertices` (increasing): one sweep where its fitted radii miss it by
 /// at most [`TARGET`] and its sections' radii by at most [`MAX_RMS`], otherwise its best chain (`super::chain`) where each link fits within [`MAX_RMS`] and the
 /// loosest better than the one sweep, otherwise the one sweep within [`MAX_RMS`]; a sweep whose
-/// keys fold back ([`folds`]) fits no link. `Err` with why the one sweep is no limb,
-/// `Err(None)` where the fit refuses the part.
-fn rig_limb(mesh: &Mesh, vertices: &[u32], options: &FitOptions) -> Result<Vec<FittedLink>, Option<LeftOut>> {
+/// keys fold back ([`folds`]) fits no link; a coarse part that none of those rig well is
+/// trimmed of its attached end where the rest fits. The part is what a longer limb left of its
+/// protrusion, `found` (both increasing); it is trimmed as found (a leg and its mirror twin,
+/// found above their crotch, share the pelvis's slab, and the first takes its own hip's ring
+/// out of the other's slab), and the trimmed limb is kept only where it holds none of what
+/// the longer limbs took. `Err` with why the one sweep is no limb, `Err(None)` where the fit
+/// refuses the part.
+fn rig_limb(
+    mesh: &Mesh,
+    vertices: &[u32],
+    found: &[u32],
+    options: &FitOptions,
+) -> Result<Vec<FittedLink>, Option<LeftOut>> {
     let fitter = Fitter { mesh, options, fitted: Default::default() };
     let whole = fitter.fit(vertices);
     let whole_rms = whole.as_ref().map_or(f64::INFINITY, |(fitted, _)| one_sweep_loose(fitted));
@@ -263,8 +273,7 @@ fn rig_limb(mesh: &Mesh, vertices: &[u32], options: &FitOptions) -> Result<Vec<F
     if close {
         return Ok(whole.map(one).unwrap_or_default());
     }
-    let profile = Profile::new(mesh, vertices);
-    let chain = profile.as_ref().and_then(|profile| profile.chain(&fitter, TARGET));
+    let chain = Profile::new(mesh, vertices).and_then(|profile| profile.chain(&fitter, TARGET));
     // A part that is no tube as one sweep becomes a limb only as a chain of tubes.
     let most = if whole_rms <= MAX_RMS { MAX_RMS } else { MAX_RMS.min(RESCUED_SHARE * whole_rms) };
     if let Some(chain) = chain.filter(|chain| chain.worst <= most && chain.worst < whole_rms) {
@@ -278,10 +287,12 @@ fn rig_limb(mesh: &Mesh, vertices: &[u32], options: &FitOptions) -> Result<Vec<F
     }
     // A coarse part that is no tube for what lies at its attached end (a leg cut above its
     // crotch, one span of long triangles below it) is a limb without it, where the rest fits
-    // within the target.
-    if whole_rms > MAX_RMS
+    // within the target and the one sweep is no limb or misses it by over [`TRIMMED_OVER`].
+    let loose_whole = whole.as_ref().is_none_or(|(fitted, _)| fitted.quality.rms_d > TRIMMED_OVER);
+    if (whole_rms > MAX_RMS || loose_whole)
         && vertices.len() < COARSE
-        && let Some(trimmed) = profile.and_then(|profile| profile.trimmed(&fitter, TARGET))
+        && let Some(trimmed) = Profile::new(mesh, found).and_then(|profile| profile.trimmed(&fitter, TARGET))
+        && trimmed.links[0].vertices.iter().all(|v| vertices.binary_search(v).is_ok())
     {
         return Ok(trimmed.links);
     }
@@ -425,6 +436,10 @@ pub const LINK_FALLOFF_SHARE: f64 = 0.5;
 /// dino's legs, their toes splayed (19% and 15% against 101% and 134%), and arms (22% against
 /// 56%) are; a teapot handle's junction (25% against 39%) is not.
 pub const RESCUED_SHARE: f64 = 0.5;
+
+/// A coarse limb's one sweep that misses it by more than this RMS |d| (over the mean radius) is
+/// trimmed of its attached end where that fits it within [`TARGET`] (see [`rig_limb`]).
+pub const TRIMMED_OVER: f64 = 0.15;
 
 /// A limb's one sweep within this RMS |d| (over the mean radius) with its fitted radii, and
 /// within [`MAX_RMS`] with its sections', is kept without trying a chain; a stretch of a chain
