@@ -135,6 +135,13 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     }
     for r in &rigged.rejected {
         let why = match (r.rms_d, r.folded) {
+            // Sections of a flat part (a sheet) have next to no area: their mean radius is
+            // near zero, and |d| over it says nothing more.
+            (Some(rms_d), _) if rms_d >= FLAT => format!(
+                "its sections are no tube's: they have next to no area, a flat part (RMS |d| over {:.0}% of \
+                 the mean radius with their radii)",
+                100.0 * FLAT
+            ),
             (Some(rms_d), _) => format!(
                 "its sections are no tube's (RMS |d| {:.0}% of the mean radius with their radii)",
                 100.0 * rms_d
@@ -184,3 +191,8 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     }
     Ok(())
 }
+
+/// A part left out whose sections miss it by at least this RMS |d| over their mean radius is
+/// reported as flat: its sections have next to no area (a sheet, such as a drawing's outline
+/// meshed in a plane: 21,685 times its mean radius).
+const FLAT: f64 = 10.0;

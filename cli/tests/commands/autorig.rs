@@ -120,3 +120,39 @@ fn a_mesh_whose_every_protrusion_is_left_out_says_so() {
         assert!(vertices >= 4 && part["tip"].is_u64(), "{part}");
     }
 }
+
+/// A flat mesh (a strip meshed in a plane, as a drawing's outline may be): the part found is
+/// left out, its notice saying its sections have next to no area rather than a meaningless
+/// percentage (they missed it by 53,045% of their mean radius), and the rig is empty.
+#[test]
+fn a_flat_mesh_is_left_out_as_flat() {
+    let dir = tempfile::tempdir().unwrap();
+    let (columns, rows) = (60, 6);
+    let mut obj = String::new();
+    for j in 0..=rows {
+        for i in 0..=columns {
+            obj += &format!("v {} {} 0\n", 0.25 * i as f64, 0.25 * j as f64);
+        }
+    }
+    let at = |i: usize, j: usize| j * (columns + 1) + i + 1;
+    for j in 0..rows {
+        for i in 0..columns {
+            obj += &format!(
+                "f {} {} {}\nf {} {} {}\n",
+                at(i, j),
+                at(i + 1, j),
+                at(i + 1, j + 1),
+                at(i, j),
+                at(i + 1, j + 1),
+                at(i, j + 1)
+            );
+        }
+    }
+    fs::write(dir.path().join("flat.obj"), obj).unwrap();
+    let (sweeps, stderr, report) = autorig_command(dir.path(), "flat.obj");
+    assert_eq!(sweeps, 0, "{stderr}");
+    assert!(stderr.contains("they have next to no area, a flat part"), "{stderr}");
+    assert!(!stderr.contains("RMS |d| 5"), "no meaningless percentage: {stderr}");
+    assert!(stderr.contains("left out every protrusion found (1); wrote an empty rig"), "{stderr}");
+    assert_eq!(report["parts"].as_array().map(Vec::len), Some(0));
+}
