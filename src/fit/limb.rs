@@ -421,7 +421,7 @@ fn limb_through_hands(
     };
     let opening_at_palm = opening(false);
     // The limb through its hand where that is still a limb (not the body past its neck).
-    if let Some(k) = opening(true).filter(|&k| past_hands && Some(k) != opening_at_palm)
+    if let Some(k) = past_hands.then(|| opening(true)).flatten().filter(|&k| Some(k) != opening_at_palm)
         && let Some(arm) = cut(k - WINDOW)
         && arm.len() as f64 <= MAX_SHARE * component_size as f64
     {
@@ -460,8 +460,9 @@ fn limb_through_hands(
 /// tube's for [`FOREARM`] levels (within [`FOREARM_SPREAD`] of the fallen value), the level set
 /// one loop (`one_loop`, by level after the widening) where they fall and where they stop
 /// holding: a hand whose palm is longer than [`SUSTAIN`] levels (a cartoon's), past its wrist
-/// the forearm. A body's level sets may fall as much past its waist or its neck, but there
-/// they are several loops (around the other limbs too).
+/// the forearm. A body's level sets may fall as much past its neck, as one loop where the arms
+/// lie nearer the tip (a cartoon bear's, seen from its foot); the limb through such a fall is
+/// then more than [`MAX_SHARE`] of its component, and [`limb`] keeps the opening before it.
 fn wrist_within(after: &[f64], one_loop: impl Fn(usize) -> bool) -> bool {
     let mut peak: f64 = 0.0;
     for (j, &p) in after.iter().enumerate().take(HAND + 1) {
