@@ -373,7 +373,7 @@ fn contacts(
             if other == component[v] || !may_join(component[v], other) {
                 continue;
             }
-            let Some((i, gap, _)) = trees[&other].nearest(p, reach) else { continue };
+            let Some((i, gap)) = trees[&other].nearest(p, reach) else { continue };
             let t = triangles[i as usize];
             let corner = *t
                 .iter()

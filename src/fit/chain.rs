@@ -399,9 +399,6 @@ impl Profile {
     /// ([`LinkFitter::loose`]) and by its sections' radii (a flat ribbon whose fitted radii
     /// follow it is no limb). `None` where none is.
     pub fn trimmed(&self, fitter: &impl LinkFitter, target: f64) -> Option<Chain> {
-        // Seen from the limb's length back along the cut's normal, key 0 is the end at the cut
-        // however far a coarse link reaches past it (see `fitted_stretch`).
-        let back = if self.s.len() < COARSE { self.length } else { 0.0 };
         (1..=TRIMMED).find_map(|k| {
             let cut = self.cut(k as f64 * self.length / LEVELS as f64)?;
             // By the level alone: near the rim the level set holds the body's piece, and the
@@ -410,7 +407,7 @@ impl Profile {
             if vertices.len() < MIN_LINK {
                 return None;
             }
-            let link = self.fitted_link(&vertices, &vertices, cut.center - cut.normal * back, None, fitter)?;
+            let link = self.fitted_link(&vertices, &vertices, self.attached_at(Some(&cut)), None, fitter)?;
             let worst = fitter.loose(&link.fit);
             (worst <= target && link.fit.sections_quality().rms_d <= target)
                 .then(|| Chain { links: vec![link], worst })
@@ -484,13 +481,18 @@ impl Profile {
         if let Some(to) = to.filter(|_| self.s.len() < COARSE) {
             fitted = self.with_ring_past(&vertices, fitted, to, excluded);
         }
-        // A coarse link may reach a whole span past its far cut: seen from a point the limb's
-        // length back along its near cut's normal, key 0 is still the end on the parent's side.
-        let back = if self.s.len() < COARSE { self.length } else { 0.0 };
-        let attached_at = from.map_or(self.rim_center, |cut| cut.center - cut.normal * back);
-        let link = self.fitted_link(&vertices, &fitted, attached_at, None, fitter)?;
+        let link = self.fitted_link(&vertices, &fitted, self.attached_at(from), None, fitter)?;
         let worst = fitter.loose(&link.fit);
         Some(Chain { links: vec![link], worst })
+    }
+
+    /// The point a link past `from` (the rim where `None`) is attached at, for turning its key 0
+    /// there: a coarse link may reach a whole span past its far cut, so it is seen from a point
+    /// the limb's length back along its near cut's normal, from which key 0 is still the end on
+    /// the parent's side.
+    fn attached_at(&self, from: Option<&Cut>) -> DVec3 {
+        let back = if self.s.len() < COARSE { self.length } else { 0.0 };
+        from.map_or(self.rim_center, |cut| cut.center - cut.normal * back)
     }
 
     /// `fitted` (increasing) and the neighbours of local `vertices` past `cut` in none of

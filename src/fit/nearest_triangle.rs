@@ -46,8 +46,8 @@ impl NearestTriangle {
         tree
     }
 
-    /// Builds the subtree over `local[..]` (positions into `corners`), which it reorders; the
-    /// ranges it records are offsets into the whole list, which `local` is a window of.
+    /// Builds the tree over `local` (positions into `corners`), which it reorders leaf by leaf;
+    /// a leaf's range is into `local`.
     fn build(&mut self, local: &mut [u32]) {
         let mut stack: Vec<(usize, usize, Option<usize>)> = vec![(0, local.len(), None)];
         while let Some((start, end, parent)) = stack.pop() {
@@ -95,10 +95,10 @@ impl NearestTriangle {
         }
     }
 
-    /// The triangle nearest `p` within `reach` (the caller's index, its distance, its corners),
-    /// the lowest index among equally near ones; `None` where none is within reach.
-    pub fn nearest(&self, p: DVec3, reach: f64) -> Option<(u32, f64, [DVec3; 3])> {
-        let mut best: Option<(f64, u32, usize)> = None;
+    /// The triangle nearest `p` within `reach` (the caller's index and its distance), the
+    /// lowest index among equally near ones; `None` where none is within reach.
+    pub fn nearest(&self, p: DVec3, reach: f64) -> Option<(u32, f64)> {
+        let mut best: Option<(f64, u32)> = None;
         let mut stack = Vec::with_capacity(64);
         if !self.nodes.is_empty() {
             stack.push(0usize);
@@ -106,16 +106,16 @@ impl NearestTriangle {
         while let Some(n) = stack.pop() {
             let node = self.nodes[n];
             let box_gap = (node.lo - p).max(p - node.hi).max(DVec3::ZERO).length();
-            if box_gap > reach || best.is_some_and(|(gap, _, _)| box_gap > gap) {
+            if box_gap > reach || best.is_some_and(|(gap, _)| box_gap > gap) {
                 continue;
             }
             if node.leaf {
                 for k in node.start as usize..node.end as usize {
                     let gap = closest_on_triangle(p, self.corners[k]).distance(p);
                     let index = self.order[k];
-                    let better = best.is_none_or(|(least, at, _)| gap < least || (gap == least && index < at));
+                    let better = best.is_none_or(|(least, at)| gap < least || (gap == least && index < at));
                     if gap <= reach && better {
-                        best = Some((gap, index, k));
+                        best = Some((gap, index));
                     }
                 }
             } else {
@@ -123,7 +123,7 @@ impl NearestTriangle {
                 stack.push(node.start as usize);
             }
         }
-        best.map(|(gap, index, k)| (index, gap, self.corners[k]))
+        best.map(|(gap, index)| (index, gap))
     }
 }
 
@@ -160,7 +160,7 @@ mod tests {
                     .filter(|&(_, gap, _)| gap <= reach)
                     .min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
                 let found = tree.nearest(p, reach);
-                assert_eq!(found.map(|f| (f.0, f.1)), scanned.map(|s| (s.0, s.1)), "p {p}, reach {reach}");
+                assert_eq!(found, scanned.map(|s| (s.0, s.1)), "p {p}, reach {reach}");
             }
         }
         assert!(NearestTriangle::new(Vec::new()).nearest(DVec3::ZERO, 1.0).is_none());
