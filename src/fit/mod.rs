@@ -91,6 +91,7 @@ internal_mod! {
     nearest_triangle;
     protrusions;
     radii;
+    ray_fan;
     section;
     select;
     skeleton;

@@ -2,11 +2,10 @@
 //! section's boundary; where a ray crosses it more than once, the mean distance of the
 //! boundary around the ray ([`super::hidden`]).
 
-use std::f64::consts::TAU;
-
 use glam::DVec2;
 
 use super::hidden::mean_radii;
+use super::ray_fan::RayFan;
 use super::section::Contour;
 
 /// The radii of one key and how the section met the rays.
@@ -26,14 +25,16 @@ pub struct SampledRadii {
 /// Samples `count` radii of the section made of `contours` around `center` (all in in-plane
 /// coordinates); `None` when no ray meets the boundary.
 pub fn sample(contours: &[&Contour], center: DVec2, count: usize) -> Option<SampledRadii> {
+    let mut fan = RayFan::new(count);
+    fan.cast(contours, center);
     let mut several = Vec::new();
     let mut found: Vec<Option<f64>> = (0..count)
         .map(|j| {
-            let (crossings, outermost) = ray_crossings(contours, center, TAU * j as f64 / count as f64);
-            if crossings > 1 {
+            let crossings = fan.crossings(j);
+            if crossings.len() > 1 {
                 several.push(j);
             }
-            outermost
+            crossings.last().copied()
         })
         .collect();
     for (&j, mean) in several.iter().zip(mean_radii(contours, center, count, &several)) {
@@ -45,41 +46,6 @@ pub fn sample(contours: &[&Contour], center: DVec2, count: usize) -> Option<Samp
     let missed = found.iter().filter(|r| r.is_none()).count();
     let radii = fill_periodic_gaps(&found)?;
     Some(SampledRadii { radii, several_crossings, missed })
-}
-
-/// How many times the ray from `center` at `angle` crosses the contours, and the distance to
-/// its outermost crossing.
-pub fn ray_crossings(contours: &[&Contour], center: DVec2, angle: f64) -> (usize, Option<f64>) {
-    let hits = ray_hits(contours, center, angle);
-    (hits.len(), hits.last().copied())
-}
-
-/// The distances along the ray from `center` at `angle` to each crossing of the contours,
-/// increasing.
-pub fn ray_hits(contours: &[&Contour], center: DVec2, angle: f64) -> Vec<f64> {
-    let direction = DVec2::new(angle.cos(), angle.sin());
-    let mut hits: Vec<f64> =
-        contours.iter().flat_map(|c| c.segments()).filter_map(|(a, b)| ray_hit(center, direction, a, b)).collect();
-    hits.sort_by(f64::total_cmp);
-    // A ray through a shared point of two segments meets both: count it once.
-    hits.dedup_by(|b, a| *b - *a <= 1e-9 * a.abs().max(f64::MIN_POSITIVE));
-    hits
-}
-
-/// The distance along the ray from `origin` in unit `direction` to the segment `a`–`b`, if
-/// they meet (the ends included, with a little slack so that a ray through a shared point of
-/// two segments cannot slip between them).
-fn ray_hit(origin: DVec2, direction: DVec2, a: DVec2, b: DVec2) -> Option<f64> {
-    let edge = b - a;
-    let denominator = direction.perp_dot(edge);
-    if denominator == 0.0 {
-        return None;
-    }
-    let to_a = a - origin;
-    let distance = to_a.perp_dot(edge) / denominator;
-    let u = to_a.perp_dot(direction) / denominator;
-    const SLACK: f64 = 1e-9;
-    (distance >= 0.0 && (-SLACK..=1.0 + SLACK).contains(&u)).then_some(distance)
 }
 
 /// Fills each missing value by linear interpolation between the nearest present values on

@@ -2,8 +2,6 @@
 //! planes along the axis, re-centering of the keys on their sections, and key insertion where
 //! the fit is loose, with the end keys kept just past the part.
 
-use std::f64::consts::TAU;
-
 use glam::{DQuat, DVec2, DVec3};
 
 use super::axis::{Polyline, principal_axis};
@@ -11,7 +9,8 @@ use super::frames::{first_x_axis, reference_direction, transported_frames};
 use super::least_squares::fitted_radii;
 use super::part::Part;
 use super::quality::{Measured, measure};
-use super::radii::{ray_crossings, sample};
+use super::radii::sample;
+use super::ray_fan::RayFan;
 use super::section::{Contour, Plane, around, center, cut};
 use super::skeleton::skeleton;
 use super::star::star_center;
@@ -81,8 +80,9 @@ fn inner_neighbours(complete: &[usize], i: usize, last: usize) -> Vec<usize> {
 fn partial_radii(cut: &Cut, center: DVec3, neighbour: &[f64]) -> Vec<f64> {
     let contours: Vec<&Contour> = cut.contours.iter().collect();
     let q = cut.plane.coordinates_of(center);
-    let m = neighbour.len();
-    (0..m).map(|j| ray_crossings(&contours, q, TAU * j as f64 / m as f64).1.unwrap_or(neighbour[j])).collect()
+    let mut fan = RayFan::new(neighbour.len());
+    fan.cast(&contours, q);
+    neighbour.iter().enumerate().map(|(j, &r)| fan.crossings(j).last().copied().unwrap_or(r)).collect()
 }
 
 /// Where the line through the centers `a` (nearer) and `b` meets the station's plane; `None`

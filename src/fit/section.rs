@@ -2,10 +2,12 @@
 //! plane, and the center of the section the key describes.
 
 use std::collections::HashMap;
+use std::hash::BuildHasherDefault;
 
 use glam::{DVec2, DVec3};
 
 use super::part::Part;
+use crate::mesh::weld::PositionHasher;
 
 /// A key's plane with its in-plane axes: `x` is θ = 0, `y` is θ = π/2, `normal` = x × y.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -98,7 +100,8 @@ fn segment_distance(q: DVec2, a: DVec2, b: DVec2) -> f64 {
 /// triangles agree on it bit for bit.
 pub fn cut(part: &Part, plane: &Plane) -> Vec<Contour> {
     let heights: Vec<f64> = part.positions.iter().map(|p| (*p - plane.origin).dot(plane.normal)).collect();
-    let mut nodes: HashMap<(u32, u32), usize> = HashMap::new();
+    // Edge keys are no adversary's: the multiply-rotate hash, not the default SipHash.
+    let mut nodes: HashMap<(u32, u32), usize, BuildHasherDefault<PositionHasher>> = HashMap::default();
     let mut points: Vec<DVec2> = Vec::new();
     let mut segments: Vec<[usize; 2]> = Vec::new();
     let mut node = |a: u32, b: u32| -> usize {

@@ -9,11 +9,9 @@
 //! gets), relative to the mean outermost distance, with a ray that meets nothing counting
 //! as fully hidden. The best point wins, ties going to the point nearest the centroid.
 
-use std::f64::consts::TAU;
-
 use glam::DVec2;
 
-use super::radii::ray_hits;
+use super::ray_fan::RayFan;
 use super::section::Contour;
 
 /// Probe rays per candidate center.
@@ -26,20 +24,21 @@ pub fn star_center(contours: &[&Contour], centroid: DVec2) -> DVec2 {
     if contours.iter().any(|c| !c.closed) {
         return centroid;
     }
-    let mut best = (hidden_depth(contours, centroid), 0.0, centroid);
+    let mut fan = RayFan::new(PROBES);
+    let mut best = (hidden_depth(&mut fan, contours, centroid), 0.0, centroid);
     if best.0 == 0.0 {
         return centroid;
     }
     let (lo, hi) = bounds(contours);
     let mut step = (hi - lo) / (GRID - 1) as f64;
-    let search = |origin: DVec2, step: DVec2, best: &mut (f64, f64, DVec2)| {
+    let mut search = |origin: DVec2, step: DVec2, best: &mut (f64, f64, DVec2)| {
         for i in 0..GRID {
             for j in 0..GRID {
                 let q = origin + DVec2::new(i as f64 * step.x, j as f64 * step.y);
                 if !contours.iter().any(|c| c.encloses(q)) {
                     continue;
                 }
-                let candidate = (hidden_depth(contours, q), q.distance(centroid), q);
+                let candidate = (hidden_depth(&mut fan, contours, q), q.distance(centroid), q);
                 if (candidate.0, candidate.1) < (best.0, best.1) {
                     *best = candidate;
                 }
@@ -54,11 +53,12 @@ pub fn star_center(contours: &[&Contour], centroid: DVec2) -> DVec2 {
 }
 
 /// How much of the boundary the rays from `q` cannot see (see the module docs); 0 when the
-/// section is star-shaped around `q`.
-fn hidden_depth(contours: &[&Contour], q: DVec2) -> f64 {
+/// section is star-shaped around `q`. `fan` has [`PROBES`] rays.
+fn hidden_depth(fan: &mut RayFan, contours: &[&Contour], q: DVec2) -> f64 {
+    fan.cast(contours, q);
     let (mut hidden, mut reach, mut missed) = (0.0, 0.0, 0usize);
     for j in 0..PROBES {
-        let hits = ray_hits(contours, q, TAU * j as f64 / PROBES as f64);
+        let hits = fan.crossings(j);
         match (hits.first(), hits.last()) {
             (Some(first), Some(last)) => {
                 hidden += last - first;
@@ -82,6 +82,8 @@ fn bounds(contours: &[&Contour]) -> (DVec2, DVec2) {
 
 #[cfg(test)]
 mod tests {
+    use std::f64::consts::TAU;
+
     use super::*;
 
     #[test]
@@ -100,7 +102,8 @@ mod tests {
         let contours = [&c];
         let centroid = crate::fit::section::center(&contours);
         let chosen = star_center(&contours, centroid);
-        assert!(hidden_depth(&contours, chosen) < hidden_depth(&contours, centroid));
+        let mut fan = RayFan::new(PROBES);
+        assert!(hidden_depth(&mut fan, &contours, chosen) < hidden_depth(&mut fan, &contours, centroid));
         assert!(c.encloses(chosen));
     }
 

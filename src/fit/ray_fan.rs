@@ -1,0 +1,191 @@
+//! A fan of rays from one center in a section's plane, at θ_j = 2πj/M (the angles at which a
+//! key's radii are sampled, §3), and where each crosses the section's boundary.
+//!
+//! Each segment is tested only against the rays within one ray's step of the angles it spans
+//! as seen from the center, so a fan over S segments costs about S + M tests, not
+//! M·S. A segment seen from (nearly) on its own line, or from (nearly) one of its ends, spans
+//! up to π and is tested against every ray. The tests themselves are the single ray's
+//! ([`ray_hit`]), so the fan's crossings are the ones each ray finds alone, to the bit.
+
+use std::f64::consts::{PI, TAU};
+
+use glam::DVec2;
+
+use super::section::Contour;
+
+/// A segment whose angle seen from the center comes within this of π is tested against
+/// every ray.
+const NEARLY_STRAIGHT: f64 = 0.01;
+/// A segment whose nearer end lies within this fraction of its length from the center is
+/// tested against every ray (the single ray's end slack then spans a wide angle).
+const NEAR_END: f64 = 1e-6;
+
+/// `count` rays and the crossings each found on the last [`RayFan::cast`].
+pub struct RayFan {
+    directions: Vec<DVec2>,
+    crossings: Vec<Vec<f64>>,
+    /// The angles of a contour's points seen from the center, one contour at a time.
+    angles: Vec<f64>,
+}
+
+impl RayFan {
+    /// A fan of `count` rays, ray j at θ_j = 2πj/count.
+    pub fn new(count: usize) -> Self {
+        let directions = (0..count)
+            .map(|j| {
+                let angle = TAU * j as f64 / count as f64;
+                DVec2::new(angle.cos(), angle.sin())
+            })
+            .collect();
+        RayFan { directions, crossings: vec![Vec::new(); count], angles: Vec::new() }
+    }
+
+    /// Casts the fan from `center` (in-plane coordinates) onto the contours.
+    pub fn cast(&mut self, contours: &[&Contour], center: DVec2) {
+        for crossings in &mut self.crossings {
+            crossings.clear();
+        }
+        let count = self.directions.len();
+        for contour in contours {
+            self.angles.clear();
+            self.angles.extend(contour.points.iter().map(|p| (*p - center).to_angle()));
+            let n = contour.points.len();
+            for (i, (a, b)) in contour.segments().enumerate() {
+                let (first, rays) = self
+                    .spanned(a - center, b - center, self.angles[i], self.angles[(i + 1) % n])
+                    .unwrap_or((0, count));
+                for k in 0..rays {
+                    let j = (first + k) % count;
+                    if let Some(distance) = ray_hit(center, self.directions[j], a, b) {
+                        self.crossings[j].push(distance);
+                    }
+                }
+            }
+        }
+        for crossings in &mut self.crossings {
+            merge_shared_points(crossings);
+        }
+    }
+
+    /// The distances along ray `j` to each of its crossings on the last cast, increasing.
+    pub fn crossings(&self, j: usize) -> &[f64] {
+        &self.crossings[j]
+    }
+
+    /// The rays a segment from `a` to `b` (relative to the center, at angles `angle_a` and
+    /// `angle_b`) may meet: the first and how many, around the fan; `None` when it may meet any.
+    fn spanned(&self, a: DVec2, b: DVec2, angle_a: f64, angle_b: f64) -> Option<(usize, usize)> {
+        let count = self.directions.len();
+        let near = NEAR_END * a.distance(b);
+        if a.length() <= near || b.length() <= near {
+            return None;
+        }
+        let swept = match angle_b - angle_a {
+            d if d > PI => d - TAU,
+            d if d <= -PI => d + TAU,
+            d => d,
+        };
+        if swept.abs() >= PI - NEARLY_STRAIGHT {
+            return None;
+        }
+        let step = TAU / count as f64;
+        let start = angle_a + swept.min(0.0);
+        let first = (start / step - 1.0).ceil() as i64;
+        let last = ((start + swept.abs()) / step + 1.0).floor() as i64;
+        let rays = (last - first + 1) as usize;
+        (rays < count).then(|| (first.rem_euclid(count as i64) as usize, rays))
+    }
+}
+
+/// The distances along the single ray from `center` at `angle` to each crossing of the
+/// contours, increasing: what one ray of a [`RayFan`] finds, by testing every segment.
+#[cfg(test)]
+pub fn ray_hits(contours: &[&Contour], center: DVec2, angle: f64) -> Vec<f64> {
+    let direction = DVec2::new(angle.cos(), angle.sin());
+    let mut hits: Vec<f64> =
+        contours.iter().flat_map(|c| c.segments()).filter_map(|(a, b)| ray_hit(center, direction, a, b)).collect();
+    merge_shared_points(&mut hits);
+    hits
+}
+
+/// Sorts a ray's crossings and counts a crossing through a shared point of two segments, which
+/// the ray meets on both, once.
+fn merge_shared_points(hits: &mut Vec<f64>) {
+    hits.sort_by(f64::total_cmp);
+    hits.dedup_by(|b, a| *b - *a <= 1e-9 * a.abs().max(f64::MIN_POSITIVE));
+}
+
+/// The distance along the ray from `origin` in unit `direction` to the segment `a`–`b`, if
+/// they meet (the ends included, with a little slack so that a ray through a shared point of
+/// two segments cannot slip between them).
+fn ray_hit(origin: DVec2, direction: DVec2, a: DVec2, b: DVec2) -> Option<f64> {
+    let edge = b - a;
+    let denominator = direction.perp_dot(edge);
+    if denominator == 0.0 {
+        return None;
+    }
+    let to_a = a - origin;
+    let distance = to_a.perp_dot(edge) / denominator;
+    let u = to_a.perp_dot(direction) / denominator;
+    const SLACK: f64 = 1e-9;
+    (distance >= 0.0 && (-SLACK..=1.0 + SLACK).contains(&u)).then_some(distance)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A star-ish closed contour of `n` points with a wobbling radius, and a crescent-like
+    /// dent so that some rays cross it more than twice.
+    fn wobbly(n: usize, seed: f64) -> Contour {
+        let points = (0..n)
+            .map(|k| {
+                let a = TAU * k as f64 / n as f64;
+                let r = 2.0 + 0.6 * (3.0 * a + seed).sin() + 0.4 * (7.0 * a - seed).cos();
+                DVec2::new(a.cos(), a.sin()) * r + DVec2::new(0.3, -0.2)
+            })
+            .collect();
+        Contour { points, closed: true }
+    }
+
+    #[test]
+    fn the_fan_finds_what_each_ray_finds_alone() {
+        let shapes = [wobbly(40, 0.3), wobbly(97, 1.7), wobbly(12, 2.9)];
+        let mut compared = 0;
+        for count in [4, 16, 48, 64] {
+            let mut fan = RayFan::new(count);
+            for shape in &shapes {
+                let contours = [shape];
+                // Centers inside, outside, on a vertex, on an edge's midpoint and near a vertex.
+                let p = shape.points[5];
+                let mid = 0.5 * (shape.points[7] + shape.points[8]);
+                for center in [DVec2::ZERO, DVec2::new(3.5, 1.0), p, mid, p + DVec2::splat(1e-9), DVec2::new(1.2, 0.4)] {
+                    fan.cast(&contours, center);
+                    for j in 0..count {
+                        let alone = ray_hits(&contours, center, TAU * j as f64 / count as f64);
+                        assert_eq!(fan.crossings(j), alone.as_slice(), "ray {j} of {count} from {center}");
+                        compared += alone.len();
+                    }
+                }
+            }
+        }
+        assert!(compared > 1000, "only {compared} crossings compared");
+    }
+
+    #[test]
+    fn a_segment_is_tested_against_the_rays_within_a_step_of_its_angles() {
+        let fan = RayFan::new(8);
+        // From the origin, (1, 0.1) to (0.1, 1) spans θ from 0.0997 to 1.4711 rad, which holds
+        // ray 1 (π/4); within a step (π/4) of it lie rays 0 and 2 as well, not 7 or 3.
+        let spanned = |a: DVec2, b: DVec2| fan.spanned(a, b, a.to_angle(), b.to_angle());
+        assert_eq!(spanned(DVec2::new(1.0, 0.1), DVec2::new(0.1, 1.0)), Some((0, 3)));
+        assert_eq!(spanned(DVec2::new(0.1, 1.0), DVec2::new(1.0, 0.1)), Some((0, 3)));
+        // Across θ = 0: from -0.5 to 0.5 rad, rays 7, 0 and 1.
+        assert_eq!(spanned(DVec2::from_angle(-0.5), DVec2::from_angle(0.5)), Some((7, 3)));
+        // Across θ = π: from 3 to -3 rad (3.28), rays 3 (3π/4), 4 (π) and 5 (5π/4).
+        assert_eq!(spanned(DVec2::from_angle(3.0), DVec2::from_angle(-3.0)), Some((3, 3)));
+        // Seen from on its own line, a segment may meet any ray.
+        assert_eq!(spanned(DVec2::new(-1.0, 0.0), DVec2::new(1.0, 0.0)), None);
+        assert_eq!(spanned(DVec2::ZERO, DVec2::new(1.0, 0.0)), None);
+    }
+}
