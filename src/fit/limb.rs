@@ -16,8 +16,10 @@
 //!    foot's widening below its fingers or toes) and past the tip's own cap (where the rate
 //!    first falls below [`CAPPED`]), where (P(d_k) − P(d_{k−w}))/(w·h) exceeds
 //!    [`OPENING`] with w = [`WINDOW`], sustained (P does not fall back by more than
-//!    1 − [`KEEPS`] over the next [`SUSTAIN`] levels, as it does past a hand or a foot): the
-//!    limb is the vertices with d < d_{k−w}, where the opening began. A widening that falls
+//!    1 − [`KEEPS`] over the next [`SUSTAIN`] levels, as it does past a hand or a foot, unless
+//!    the level set falls apart first and stays apart, as past a crotch seen from a foot:
+//!    [`falls_apart_before_falling`]): the limb is the vertices with d < d_{k−w}, where the
+//!    opening began. A widening that falls
 //!    back later, to a wrist and a forearm (`wrist_within`), is a long hand (a cartoon's),
 //!    not the body: the limb runs on through it to the next opening where it is still at most
 //!    [`MAX_SHARE`] of its component (past a body's neck it is not).
@@ -105,17 +107,18 @@ pub const SPIKE: f64 = 2.0;
 /// from there, so that its rim is normal to it. A limb of fewer than [`COARSE`] vertices whose
 /// rim is still oblique is then evened where a few more vertices complete the ring its cut
 /// passed through ([`evened`]), and otherwise squared off ([`squared_off`]); then it drops its
-/// spikes ([`without_spikes`]). Indices are the
-/// mesh's; `graph` and `triangles` may join vertices `mesh` keeps apart (welded seams).
+/// spikes ([`without_spikes`]). Indices are the mesh's; `graph` and `triangles` may join
+/// vertices `mesh` keeps apart (welded seams), and `welded` is then `mesh` on `triangles`.
 pub fn aligned_limb(
     mesh: &Mesh,
+    welded: Option<&Mesh>,
     graph: &EdgeGraph,
     triangles: &[[u32; 3]],
     tip: u32,
     length: f64,
     component_size: usize,
 ) -> Option<(Vec<u32>, u32)> {
-    let (vertices, tip) = aligned(mesh, graph, triangles, tip, length, component_size)?;
+    let (vertices, tip) = aligned(mesh, welded, graph, triangles, tip, length, component_size)?;
     if vertices.len() >= COARSE {
         return Some((vertices, tip));
     }
@@ -276,6 +279,7 @@ fn evened(mesh: &Mesh, graph: &EdgeGraph, triangles: &[[u32; 3]], vertices: Vec<
 /// The limb found again from its aligned tip (see [`aligned_limb`]), not yet squared off.
 fn aligned(
     mesh: &Mesh,
+    welded: Option<&Mesh>,
     graph: &EdgeGraph,
     triangles: &[[u32; 3]],
     tip: u32,
@@ -283,20 +287,33 @@ fn aligned(
     component_size: usize,
 ) -> Option<(Vec<u32>, u32)> {
     let first = limb(&mesh.positions, graph, triangles, tip, length, component_size)?;
-    let Some(axis) = skeleton(&Part::new(mesh, &first)).map(|s| s.axis) else { return Some((first, tip)) };
-    let Some(direction) = (axis.point(0.9 * axis.length()) - axis.point(0.6 * axis.length())).try_normalize() else {
-        return Some((first, tip));
+    // The limb found again from the far end of a skeleton of `first` on `faces`.
+    let again = |faces: &Mesh| -> Option<(Vec<u32>, u32)> {
+        let axis = skeleton(&Part::new(faces, &first))?.axis;
+        let direction = (axis.point(0.9 * axis.length()) - axis.point(0.6 * axis.length())).try_normalize()?;
+        let along = |v: u32| mesh.positions[v as usize].dot(direction);
+        let end = first.iter().copied().max_by(|&a, &b| along(a).total_cmp(&along(b)).then(b.cmp(&a)))?;
+        if end == tip {
+            return Some((first.clone(), tip));
+        }
+        Some((limb(&mesh.positions, graph, triangles, end, length, component_size)?, end))
     };
-    let along = |v: u32| mesh.positions[v as usize].dot(direction);
-    let Some(end) = first.iter().copied().max_by(|&a, &b| along(a).total_cmp(&along(b)).then(b.cmp(&a))) else {
-        return Some((first, tip));
+    let found = again(mesh);
+    // Where the mesh's seams are not welded, a skeleton of the limb on the file's triangles may
+    // start at a seam's edge (a game character's leg, cut along its seams, gave one from the knee
+    // to the thigh, and the limb found again from its end was a slab of the torso). A limb that
+    // is not coarse is found again from the end of its skeleton on the welded triangles too,
+    // and the one more nearly the limb first found (by shared vertices over all) is kept.
+    let Some(welded) = welded.filter(|_| first.len() >= COARSE).and_then(again) else {
+        return Some(found.unwrap_or((first, tip)));
     };
-    if end == tip {
-        return Some((first, tip));
-    }
-    match limb(&mesh.positions, graph, triangles, end, length, component_size) {
-        Some(second) => Some((second, end)),
-        None => Some((first, tip)),
+    let overlap = |vertices: &[u32]| {
+        let common = vertices.iter().filter(|v| first.binary_search(v).is_ok()).count();
+        common as f64 / (vertices.len() + first.len() - common) as f64
+    };
+    match found {
+        Some(found) if found.1 == welded.1 || overlap(&found.0) >= overlap(&welded.0) => Some(found),
+        _ => Some(welded),
     }
 }
 
@@ -365,7 +382,7 @@ pub fn limb(
     length: f64,
     component_size: usize,
 ) -> Option<Vec<u32>> {
-    limb_through_hands(positions, graph, triangles, tip, length, component_size, true)
+    limb_through_hands(positions, graph, triangles, tip, length, component_size, std::env::var("NOHAND").is_err())
 }
 
 /// [`limb`], through the hands it passes (see [`wrist_within`]) only where `past_hands`.
@@ -386,6 +403,9 @@ fn limb_through_hands(
     let h = length / LEVELS_PER_LENGTH;
     let levels = (limit / h).ceil() as usize;
     let perimeter = perimeters(positions, triangles, &d, h, levels, limit);
+    // The triangles a level set may cross: those with an edge within reach of the tip.
+    let near: Vec<[u32; 3]> =
+        triangles.iter().copied().filter(|t| t.iter().filter(|&&v| d[v as usize].is_finite()).count() >= 2).collect();
     let start = (START * LEVELS_PER_LENGTH).ceil() as usize;
     let rate = |k: usize| (perimeter[k] - perimeter[k - WINDOW]) / (WINDOW as f64 * h);
     // Past the tip's own cap (a round end, a hoof's sole), where the level sets grow like
@@ -399,15 +419,22 @@ fn limb_through_hands(
             // A widening that narrows again (a hand's or a foot's below its wrist or ankle) is
             // not the body.
             let after = &perimeter[k..(k + 1 + SUSTAIN).min(levels)];
-            let mut peak = 0.0;
-            let keeps = after.iter().all(|&p| {
-                peak = f64::max(peak, p);
-                p >= KEEPS * peak
-            });
-            let sustained = rate > OPENING && after.len() == SUSTAIN + 1 && keeps;
+            // …unless its level set falls apart first and stays apart, never shorter than where the
+            // widening began: a crotch seen from a foot, past which the level set runs around the
+            // other leg and up the body (their sum below the loop that hugged both on the flat
+            // between them, but longer than the leg). A coarse limb's level sets fall apart around
+            // whatever lies near (a wing, a braid): there the rule is not applied, and a leg cut
+            // past its crotch is trimmed when it is fitted.
+            let falls_apart = || {
+                d.iter().filter(|&&x| x < (k - WINDOW) as f64 * h).count() >= COARSE
+                    && falls_apart_before_falling(after, perimeter[k - WINDOW], |j| {
+                        level_loop_counts(&near, &d, (k + j) as f64 * h).1
+                    })
+            };
+            let sustained = rate > OPENING && after.len() == SUSTAIN + 1 && (keeps(after) || falls_apart());
             sustained
                 && !(past_hands
-                    && wrist_within(&perimeter[k..], |j| level_loops(triangles, &d, (k + j) as f64 * h) == 1))
+                    && wrist_within(&perimeter[k..], |j| level_loops(&near, &d, (k + j) as f64 * h) == 1))
         })
     };
     let within = |level: f64| {
@@ -455,6 +482,31 @@ fn limb_through_hands(
     }
 }
 
+/// Whether `perimeters` never fall below [`KEEPS`] times the largest they have been since the
+/// first: a widening that holds.
+fn keeps(perimeters: &[f64]) -> bool {
+    let mut peak: f64 = 0.0;
+    perimeters.iter().all(|&p| {
+        peak = peak.max(p);
+        p >= KEEPS * peak
+    })
+}
+
+/// Whether the level set past a widening (`after[0]` its perimeter at the widening, `loops(j)`
+/// its count of closed loops `j` levels on, so that a hole in a scan, which opens a loop, is
+/// no split) falls apart into more loops than it had at the widening and stays apart to the end
+/// of `after`, its perimeter kept ([`keeps`]) until it falls apart and never below `began`, the
+/// perimeter where the widening began (a bump's level set on a body may fall apart around
+/// another part, and fall back below its own).
+fn falls_apart_before_falling(after: &[f64], began: f64, loops: impl Fn(usize) -> usize) -> bool {
+    if after.iter().any(|&p| p < began) {
+        return false;
+    }
+    let base = loops(0);
+    let Some(apart) = (1..after.len()).find(|&j| loops(j) > base) else { return false };
+    keeps(&after[..=apart]) && (apart + 1..after.len()).all(|j| loops(j) > base)
+}
+
 /// Whether the perimeters `after` a widening (`after[0]` at the widening) fall, within
 /// [`HAND`] levels, below [`WRIST`] times the largest they have been since and then hold as a
 /// tube's for [`FOREARM`] levels (within [`FOREARM_SPREAD`] of the fallen value), the level set
@@ -480,6 +532,12 @@ fn wrist_within(after: &[f64], one_loop: impl Fn(usize) -> bool) -> bool {
 /// The number of loops of the level set d = `level` (the triangles it crosses, joined across
 /// the edges it crosses).
 fn level_loops(triangles: &[[u32; 3]], d: &[f64], level: f64) -> usize {
+    level_loop_counts(triangles, d, level).0
+}
+
+/// The number of loops of the level set d = `level` (see [`level_loops`]) and how many of them
+/// close: a loop that runs into the mesh's boundary (a hole in a scan) is open.
+fn level_loop_counts(triangles: &[[u32; 3]], d: &[f64], level: f64) -> (usize, usize) {
     let crosses = |a: u32, b: u32| {
         let (da, db) = (d[a as usize], d[b as usize]);
         da.is_finite() && db.is_finite() && (da < level) != (db < level)
@@ -487,7 +545,8 @@ fn level_loops(triangles: &[[u32; 3]], d: &[f64], level: f64) -> usize {
     let crossing: Vec<usize> =
         (0..triangles.len()).filter(|&i| (0..3).any(|e| crosses(triangles[i][e], triangles[i][(e + 1) % 3]))).collect();
     let mut sets = DisjointSets::new(crossing.len());
-    let mut first_at: std::collections::HashMap<(u32, u32), u32> = Default::default();
+    // Per crossed edge, the first triangle met on it and whether a second one was.
+    let mut first_at: std::collections::HashMap<(u32, u32), (u32, bool)> = Default::default();
     for (local, &i) in crossing.iter().enumerate() {
         let t = triangles[i];
         for e in 0..3 {
@@ -496,19 +555,28 @@ fn level_loops(triangles: &[[u32; 3]], d: &[f64], level: f64) -> usize {
                 continue;
             }
             match first_at.entry((a.min(b), a.max(b))) {
-                std::collections::hash_map::Entry::Occupied(other) => {
-                    let (x, y) = (sets.root(local as u32), sets.root(*other.get()));
+                std::collections::hash_map::Entry::Occupied(mut other) => {
+                    let (x, y) = (sets.root(local as u32), sets.root(other.get().0));
                     if x != y {
                         sets.attach(x, y);
                     }
+                    other.get_mut().1 = true;
                 }
                 std::collections::hash_map::Entry::Vacant(slot) => {
-                    slot.insert(local as u32);
+                    slot.insert((local as u32, false));
                 }
             }
         }
     }
-    (0..crossing.len() as u32).filter(|&i| sets.root(i) == i).count()
+    let mut open = vec![false; crossing.len()];
+    for &(local, shared) in first_at.values() {
+        if !shared {
+            open[sets.root(local) as usize] = true;
+        }
+    }
+    let roots: Vec<u32> = (0..crossing.len() as u32).filter(|&i| sets.root(i) == i).collect();
+    let closed = roots.iter().filter(|&&r| !open[r as usize]).count();
+    (roots.len(), closed)
 }
 
 /// The lowest level of `d` (distance from a limb's tip, reached out to `limit`) at which the
@@ -774,8 +842,9 @@ mod tests {
             .collect();
         assert_eq!(arms.len(), 2, "{:?}", found.iter().map(|p| p.tip).collect::<Vec<_>>());
         let (graph, triangles, size) = (&body.graph, &body.triangles[..], mesh.positions.len());
+        let welded = body.welded_mesh(&mesh);
         for arm in arms {
-            let (found_as, tip) = aligned(&mesh, graph, triangles, arm.tip, arm.length, size).unwrap();
+            let (found_as, tip) = aligned(&mesh, welded.as_ref(), graph, triangles, arm.tip, arm.length, size).unwrap();
             let rim = |vertices: &[u32]| Rim::of(&mesh, triangles, vertices).unwrap();
             assert!(rim(&found_as).squares_off(), "tip {tip}: the rim as found is oblique");
             let squared = squared_off(&mesh, triangles, found_as.clone(), tip);
@@ -797,5 +866,99 @@ mod tests {
             assert_eq!(squared_off(&mesh, triangles, evened.clone(), tip), evened, "tip {tip}: evened, kept whole");
             assert!(span(&evened) >= 0.25 * height, "tip {tip}: the arm spans {} of {height}", span(&evened));
         }
+    }
+
+    /// A leg bent at right angles into its foot, on a flange: a tube of radius 1 up the z axis
+    /// to z = 6, a quarter turn of radius 2, and a foot along +x to x = 8, 16 vertices a ring
+    /// (not coarse), closed by a cap at the toe. The file's triangles are cut along a seam: the
+    /// ring at z = 3 is stored twice, the triangles below on one copy and above on the other.
+    fn seamed_leg() -> Mesh {
+        const AROUND: u32 = 16;
+        let mut centers: Vec<(DVec3, DVec3)> = (0..=12).map(|k| (DVec3::new(0.0, 0.0, 0.5 * k as f64), DVec3::Z)).collect();
+        for k in 1..8 {
+            let angle = std::f64::consts::FRAC_PI_2 * k as f64 / 8.0;
+            let center = DVec3::new(2.0 - 2.0 * angle.cos(), 0.0, 6.0 + 2.0 * angle.sin());
+            centers.push((center, DVec3::new(angle.sin(), 0.0, angle.cos())));
+        }
+        centers.extend((0..=12).map(|k| (DVec3::new(2.0 + 0.5 * k as f64, 0.0, 8.0), DVec3::X)));
+        let mut positions = Vec::new();
+        let mut ring = |center: DVec3, normal: DVec3, r: f64| {
+            let first = positions.len() as u32;
+            let x = normal.cross(DVec3::Y).normalize();
+            let y = normal.cross(x);
+            for a in 0..AROUND {
+                let angle = std::f64::consts::TAU * a as f64 / AROUND as f64;
+                positions.push(center + (x * angle.cos() + y * angle.sin()) * r);
+            }
+            first
+        };
+        let flange = ring(centers[0].0, DVec3::Z, 12.0);
+        let rings: Vec<u32> = centers.iter().map(|&(c, n)| ring(c, n, 1.0)).collect();
+        // The seam: the rings from z = 3 up start on a copy of the ring at z = 3.
+        let seam = 6;
+        let copy = ring(centers[seam].0, DVec3::Z, 1.0);
+        let cap = positions.len() as u32;
+        positions.push(DVec3::new(8.2, 0.0, 8.0));
+        let mut faces = crate::mesh::Faces::new();
+        let mut band = |lo: u32, hi: u32| {
+            for a in 0..AROUND {
+                let b = (a + 1) % AROUND;
+                faces.push(&[lo + a, lo + b, hi + b, hi + a]);
+            }
+        };
+        band(flange, rings[0]);
+        for i in 0..rings.len() - 1 {
+            band(if i == seam { copy } else { rings[i] }, rings[i + 1]);
+        }
+        let last = rings[rings.len() - 1];
+        for a in 0..AROUND {
+            faces.push(&[last + a, last + (a + 1) % AROUND, cap]);
+        }
+        Mesh::from_parts(positions, faces, Vec::new()).unwrap()
+    }
+
+    #[test]
+    fn a_seamed_limb_is_aligned_by_its_skeleton_on_the_welded_triangles() {
+        let mesh = seamed_leg();
+        let body = Body::new(&mesh);
+        let welded = body.welded_mesh(&mesh).expect("the seam is welded");
+        let tip = mesh.positions.len() as u32 - 1;
+        let size = mesh.positions.len();
+        let (graph, triangles) = (&body.graph, &body.triangles[..]);
+        let on_file = aligned_limb(&mesh, None, graph, triangles, tip, 14.0, size).expect("a limb");
+        let on_welded = aligned_limb(&mesh, Some(&welded), graph, triangles, tip, 14.0, size).expect("a limb");
+        let describe = |(vertices, tip): &(Vec<u32>, u32)| format!("{} vertices, tip at {}", vertices.len(), mesh.positions[*tip as usize]);
+        eprintln!("on the file's triangles: {}; on the welded: {}", describe(&on_file), describe(&on_welded));
+        // The welded skeleton runs up the leg and along the foot: the toe is the tip already.
+        assert_eq!(on_welded.1, tip);
+        assert!(on_welded.0.binary_search(&tip).is_ok());
+        // The file's is cut at the seam, its end pointing up the shin: the tip moved to the top
+        // of the foot's last ring, off the foot's axis (z = 8), as it did before the welded one
+        // was tried.
+        assert_ne!(on_file.1, tip);
+        assert!(mesh.positions[on_file.1 as usize].z > 8.5, "{}", describe(&on_file));
+    }
+
+    #[test]
+    fn a_widening_whose_level_set_falls_apart_before_it_falls_back_is_the_body() {
+        // A crotch seen from a foot: the loop on the flat between the legs grows (0.44 to 1.48),
+        // falls apart around the other leg (two loops from level 3 on) and falls back to their
+        // sum (1.10), still apart.
+        let perimeters = [0.47, 0.86, 1.27, 1.48, 1.40, 1.23, 1.10, 1.10, 1.10];
+        let crotch = |j: usize| if j >= 3 { 2 } else { 1 };
+        assert!(!keeps(&perimeters), "the old rule: a widening that falls back is no opening");
+        assert!(falls_apart_before_falling(&perimeters, 0.44, crotch));
+        // A bump's: it falls apart too, but back below where it began.
+        assert!(!falls_apart_before_falling(&perimeters, 1.2, crotch));
+        // A palm seen from a fingertip: the level set falls apart around the other fingers and
+        // is one loop again at the wrist, where it has fallen back.
+        let palm = |j: usize| if (3..6).contains(&j) { 4 } else { 1 };
+        assert!(!falls_apart_before_falling(&perimeters, 0.44, palm));
+        // A hand's widening that falls back as one loop: a wrist.
+        assert!(!falls_apart_before_falling(&perimeters, 0.44, |_| 1));
+        // One that falls back before it falls apart.
+        let late = |j: usize| if j >= 6 { 2 } else { 1 };
+        assert!(!falls_apart_before_falling(&perimeters, 0.44, late));
+        assert!(keeps(&[0.5, 1.0, 0.9, 0.86]) && !keeps(&[0.5, 1.0, 0.84]));
     }
 }

@@ -69,6 +69,7 @@ struct Branch {
 /// The protrusions of `mesh` (see the module docs), longest first.
 pub fn protrusions(mesh: &Mesh, body: &Body, min_length: f64, max_parts: usize) -> Vec<Protrusion> {
     let (graph, triangles) = (&body.graph, &body.triangles[..]);
+    let welded = body.welded_mesh(mesh);
     let mut used = vec![false; mesh.positions.len()];
     for t in triangles {
         for &v in t {
@@ -86,7 +87,7 @@ pub fn protrusions(mesh: &Mesh, body: &Body, min_length: f64, max_parts: usize) 
         for &v in &component {
             sizes[v as usize] = component.len();
         }
-        found.extend(component_protrusions(mesh, graph, triangles, &component, min_length));
+        found.extend(component_protrusions(mesh, welded.as_ref(), graph, triangles, &component, min_length));
     }
     longest_first(&mut found);
     // Pieces joined at one end come first: their ends are known.
@@ -177,6 +178,7 @@ pub(super) fn flood(graph: &EdgeGraph, start: u32, keep: impl Fn(u32) -> bool) -
 /// The protrusions of one component (its vertices increasing).
 fn component_protrusions(
     mesh: &Mesh,
+    welded: Option<&Mesh>,
     graph: &EdgeGraph,
     triangles: &[[u32; 3]],
     component: &[u32],
@@ -200,7 +202,7 @@ fn component_protrusions(
     let kept = branches.iter().filter(|b| g[b.tip as usize] - b.end >= min_length).map(|b| (b.tip, b.end));
     let limb_of = |(tip, end): (u32, f64)| {
         let length = g[tip as usize] - end;
-        let (vertices, tip) = aligned_limb(mesh, graph, triangles, tip, length, component.len())?;
+        let (vertices, tip) = aligned_limb(mesh, welded, graph, triangles, tip, length, component.len())?;
         Some(Protrusion { vertices, tip, length, axis: None })
     };
     let mut found: Vec<Protrusion> = kept.filter_map(limb_of).collect();
