@@ -36,7 +36,10 @@
 //! Everything depends on edge lengths and connectivity, so a rigidly moved mesh gives the
 //! same limb.
 
+use std::collections::HashMap;
+use std::collections::hash_map::Entry;
 use std::f64::consts::TAU;
+use std::hash::BuildHasherDefault;
 
 use glam::DVec3;
 
@@ -46,6 +49,7 @@ use super::axis::Polyline;
 use super::part::Part;
 use super::skeleton::skeleton;
 use crate::mesh::Mesh;
+use crate::mesh::weld::PositionHasher;
 
 /// The search reaches this many times the protrusion's length from its tip.
 pub const REACH: f64 = 4.0;
@@ -403,9 +407,7 @@ fn limb_through_hands(
     let h = length / LEVELS_PER_LENGTH;
     let levels = (limit / h).ceil() as usize;
     let perimeter = perimeters(positions, triangles, &d, h, levels, limit);
-    // The triangles a level set may cross: those with an edge within reach of the tip.
-    let near: Vec<[u32; 3]> =
-        triangles.iter().copied().filter(|t| t.iter().filter(|&&v| d[v as usize].is_finite()).count() >= 2).collect();
+    let crossing = LevelTriangles::new(triangles, &d, h, perimeter.len());
     let start = (START * LEVELS_PER_LENGTH).ceil() as usize;
     let rate = |k: usize| (perimeter[k] - perimeter[k - WINDOW]) / (WINDOW as f64 * h);
     // Past the tip's own cap (a round end, a hoof's sole), where the level sets grow like
@@ -426,15 +428,17 @@ fn limb_through_hands(
             // whatever lies near (a wing, a braid): there the rule is not applied, and a leg cut
             // past its crotch is trimmed when it is fitted.
             let falls_apart = || {
-                d.iter().filter(|&&x| x < (k - WINDOW) as f64 * h).count() >= COARSE
-                    && falls_apart_before_falling(after, perimeter[k - WINDOW], |j| {
-                        level_loop_counts(&near, &d, (k + j) as f64 * h).1
+                let began = perimeter[k - WINDOW];
+                after.iter().all(|&p| p >= began)
+                    && d.iter().filter(|&&x| x < (k - WINDOW) as f64 * h).count() >= COARSE
+                    && falls_apart_before_falling(after, began, |j| {
+                        level_loop_counts(crossing.at(k + j), &d, (k + j) as f64 * h).1
                     })
             };
             let sustained = rate > OPENING && after.len() == SUSTAIN + 1 && (keeps(after) || falls_apart());
             sustained
                 && !(past_hands
-                    && wrist_within(&perimeter[k..], |j| level_loops(&near, &d, (k + j) as f64 * h) == 1))
+                    && wrist_within(&perimeter[k..], |j| level_loops(crossing.at(k + j), &d, (k + j) as f64 * h) == 1))
         })
     };
     let within = |level: f64| {
@@ -535,6 +539,38 @@ fn level_loops(triangles: &[[u32; 3]], d: &[f64], level: f64) -> usize {
     level_loop_counts(triangles, d, level).0
 }
 
+/// For each level d_k = k·h, the triangles whose values of d span it (in their order in the
+/// mesh): those the level set may cross, so that counting its loops visits the front, not the
+/// whole mesh. A triangle with two vertices within reach spans the levels from its least value
+/// to its greatest, one more on either side for rounding.
+struct LevelTriangles {
+    at_level: Vec<Vec<[u32; 3]>>,
+}
+
+impl LevelTriangles {
+    fn new(triangles: &[[u32; 3]], d: &[f64], h: f64, levels: usize) -> LevelTriangles {
+        let mut at_level = vec![Vec::new(); levels];
+        for t in triangles {
+            let reached: Vec<f64> = t.iter().map(|&v| d[v as usize]).filter(|x| x.is_finite()).collect();
+            if reached.len() < 2 {
+                continue;
+            }
+            let (lo, hi) = reached.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| (lo.min(x), hi.max(x)));
+            let first = ((lo / h).floor() as usize).saturating_sub(1);
+            let last = ((hi / h).floor() as usize + 2).min(levels);
+            for level in &mut at_level[first.min(levels)..last] {
+                level.push(*t);
+            }
+        }
+        LevelTriangles { at_level }
+    }
+
+    /// The triangles the level set d_k may cross (none past the last level).
+    fn at(&self, k: usize) -> &[[u32; 3]] {
+        self.at_level.get(k).map_or(&[], Vec::as_slice)
+    }
+}
+
 /// The number of loops of the level set d = `level` (see [`level_loops`]) and how many of them
 /// close: a loop that runs into the mesh's boundary (a hole in a scan) is open.
 fn level_loop_counts(triangles: &[[u32; 3]], d: &[f64], level: f64) -> (usize, usize) {
@@ -546,7 +582,7 @@ fn level_loop_counts(triangles: &[[u32; 3]], d: &[f64], level: f64) -> (usize, u
         (0..triangles.len()).filter(|&i| (0..3).any(|e| crosses(triangles[i][e], triangles[i][(e + 1) % 3]))).collect();
     let mut sets = DisjointSets::new(crossing.len());
     // Per crossed edge, the first triangle met on it and whether a second one was.
-    let mut first_at: std::collections::HashMap<(u32, u32), (u32, bool)> = Default::default();
+    let mut first_at: HashMap<(u32, u32), (u32, bool), BuildHasherDefault<PositionHasher>> = HashMap::default();
     for (local, &i) in crossing.iter().enumerate() {
         let t = triangles[i];
         for e in 0..3 {
@@ -555,14 +591,14 @@ fn level_loop_counts(triangles: &[[u32; 3]], d: &[f64], level: f64) -> (usize, u
                 continue;
             }
             match first_at.entry((a.min(b), a.max(b))) {
-                std::collections::hash_map::Entry::Occupied(mut other) => {
+                Entry::Occupied(mut other) => {
                     let (x, y) = (sets.root(local as u32), sets.root(other.get().0));
                     if x != y {
                         sets.attach(x, y);
                     }
                     other.get_mut().1 = true;
                 }
-                std::collections::hash_map::Entry::Vacant(slot) => {
+                Entry::Vacant(slot) => {
                     slot.insert((local as u32, false));
                 }
             }
