@@ -386,7 +386,7 @@ pub fn limb(
     length: f64,
     component_size: usize,
 ) -> Option<Vec<u32>> {
-    limb_through_hands(positions, graph, triangles, tip, length, component_size, std::env::var("NOHAND").is_err())
+    limb_through_hands(positions, graph, triangles, tip, length, component_size, true)
 }
 
 /// [`limb`], through the hands it passes (see [`wrist_within`]) only where `past_hands`.
@@ -428,10 +428,8 @@ fn limb_through_hands(
             // whatever lies near (a wing, a braid): there the rule is not applied, and a leg cut
             // past its crotch is trimmed when it is fitted.
             let falls_apart = || {
-                let began = perimeter[k - WINDOW];
-                after.iter().all(|&p| p >= began)
-                    && d.iter().filter(|&&x| x < (k - WINDOW) as f64 * h).count() >= COARSE
-                    && falls_apart_before_falling(after, began, |j| {
+                d.iter().filter(|&&x| x < (k - WINDOW) as f64 * h).count() >= COARSE
+                    && falls_apart_before_falling(after, perimeter[k - WINDOW], |j| {
                         level_loop_counts(crossing.at(k + j), &d, (k + j) as f64 * h).1
                     })
             };
@@ -551,11 +549,13 @@ impl LevelTriangles {
     fn new(triangles: &[[u32; 3]], d: &[f64], h: f64, levels: usize) -> LevelTriangles {
         let mut at_level = vec![Vec::new(); levels];
         for t in triangles {
-            let reached: Vec<f64> = t.iter().map(|&v| d[v as usize]).filter(|x| x.is_finite()).collect();
-            if reached.len() < 2 {
+            let (mut lo, mut hi, mut reached) = (f64::INFINITY, f64::NEG_INFINITY, 0);
+            for x in t.iter().map(|&v| d[v as usize]).filter(|x| x.is_finite()) {
+                (lo, hi, reached) = (lo.min(x), hi.max(x), reached + 1);
+            }
+            if reached < 2 {
                 continue;
             }
-            let (lo, hi) = reached.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| (lo.min(x), hi.max(x)));
             let first = ((lo / h).floor() as usize).saturating_sub(1);
             let last = ((hi / h).floor() as usize + 2).min(levels);
             for level in &mut at_level[first.min(levels)..last] {
