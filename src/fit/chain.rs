@@ -607,6 +607,7 @@ fn joined(mut near: Chain, far: Chain) -> Option<Chain> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fit::tests::bent_tube::{elbow_centers, tube_along};
     use crate::mesh::Faces;
     use glam::DVec3;
 
@@ -764,51 +765,9 @@ mod tests {
         assert!(Profile::new(&mesh, &all).is_none());
     }
 
-    /// A tube of radius 1 bent by a right angle: up z to (0, 0, 6), around a quarter circle of
-    /// radius 2 to (2, 0, 8), then along +x to (8, 0, 8); a flange at z = 0, a cap at the end.
+    /// A tube of radius 1 bent by a right angle ([`elbow_centers`]) on a flange of radius 4.
     fn elbow() -> (Mesh, Vec<u32>) {
-        let mut centers: Vec<(DVec3, DVec3)> = (0..=12).map(|k| (DVec3::new(0.0, 0.0, 0.5 * k as f64), DVec3::Z)).collect();
-        for k in 1..8 {
-            let angle = std::f64::consts::FRAC_PI_2 * k as f64 / 8.0;
-            let center = DVec3::new(2.0 - 2.0 * angle.cos(), 0.0, 6.0 + 2.0 * angle.sin());
-            centers.push((center, DVec3::new(angle.sin(), 0.0, angle.cos())));
-        }
-        centers.extend((0..=12).map(|k| (DVec3::new(2.0 + 0.5 * k as f64, 0.0, 8.0), DVec3::X)));
-        limb_along(&centers, 1.0, 16)
-    }
-
-    /// Rings of `around` vertices of radius `radius` about `centers` (each with the limb's
-    /// direction there), the first ring the rim of a flange of radius 4, the last capped.
-    fn limb_along(centers: &[(DVec3, DVec3)], radius: f64, around: u32) -> (Mesh, Vec<u32>) {
-        let mut positions = Vec::new();
-        let ring = |positions: &mut Vec<DVec3>, (center, normal): (DVec3, DVec3), r: f64| {
-            let first = positions.len() as u32;
-            let x = normal.cross(DVec3::Y).normalize();
-            let y = normal.cross(x);
-            for a in 0..around {
-                let angle = std::f64::consts::TAU * a as f64 / around as f64;
-                positions.push(center + (x * angle.cos() + y * angle.sin()) * r);
-            }
-            first
-        };
-        let mut faces = Faces::new();
-        let flange = ring(&mut positions, centers[0], 4.0);
-        let rings: Vec<u32> = centers.iter().map(|&c| ring(&mut positions, c, radius)).collect();
-        let cap = positions.len() as u32;
-        let (end, direction) = centers[centers.len() - 1];
-        positions.push(end + direction * 0.2);
-        for pair in std::iter::once(flange).chain(rings.iter().copied()).collect::<Vec<_>>().windows(2) {
-            for a in 0..around {
-                let b = (a + 1) % around;
-                faces.push(&[pair[0] + a, pair[0] + b, pair[1] + b, pair[1] + a]);
-            }
-        }
-        let last = *rings.last().unwrap();
-        for a in 0..around {
-            faces.push(&[last + a, last + (a + 1) % around, cap]);
-        }
-        let mesh = Mesh::from_parts(positions, faces, Vec::new()).unwrap();
-        (mesh, (around..=cap).collect())
+        tube_along(&elbow_centers(), 1.0, 16, 4.0, None)
     }
 
     #[test]

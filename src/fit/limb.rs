@@ -700,6 +700,7 @@ mod tests {
     use super::*;
     use crate::common;
     use crate::fit::body::Body;
+    use crate::fit::tests::bent_tube::{elbow_centers, tube_along};
     use crate::fit::protrusions::protrusions;
 
     /// A blocky arm: a square tube of three rings of four vertices (half-width 0.5) from a
@@ -904,53 +905,13 @@ mod tests {
         }
     }
 
-    /// A leg bent at right angles into its foot, on a flange: a tube of radius 1 up the z axis
-    /// to z = 6, a quarter turn of radius 2, and a foot along +x to x = 8, 16 vertices a ring
-    /// (not coarse), closed by a cap at the toe. The file's triangles are cut along a seam: the
-    /// ring at z = 3 is stored twice, the triangles below on one copy and above on the other.
+    /// A leg bent at right angles into its foot ([`elbow_centers`]: up the z axis to z = 6, a
+    /// quarter turn of radius 2, a foot along +x to x = 8), radius 1, 16 vertices a ring (not
+    /// coarse), on a flange of radius 12, capped at the toe. The file's triangles are cut along
+    /// a seam: the ring at z = 3 is stored twice, the triangles below on one copy and above on
+    /// the other.
     fn seamed_leg() -> Mesh {
-        const AROUND: u32 = 16;
-        let mut centers: Vec<(DVec3, DVec3)> = (0..=12).map(|k| (DVec3::new(0.0, 0.0, 0.5 * k as f64), DVec3::Z)).collect();
-        for k in 1..8 {
-            let angle = std::f64::consts::FRAC_PI_2 * k as f64 / 8.0;
-            let center = DVec3::new(2.0 - 2.0 * angle.cos(), 0.0, 6.0 + 2.0 * angle.sin());
-            centers.push((center, DVec3::new(angle.sin(), 0.0, angle.cos())));
-        }
-        centers.extend((0..=12).map(|k| (DVec3::new(2.0 + 0.5 * k as f64, 0.0, 8.0), DVec3::X)));
-        let mut positions = Vec::new();
-        let mut ring = |center: DVec3, normal: DVec3, r: f64| {
-            let first = positions.len() as u32;
-            let x = normal.cross(DVec3::Y).normalize();
-            let y = normal.cross(x);
-            for a in 0..AROUND {
-                let angle = std::f64::consts::TAU * a as f64 / AROUND as f64;
-                positions.push(center + (x * angle.cos() + y * angle.sin()) * r);
-            }
-            first
-        };
-        let flange = ring(centers[0].0, DVec3::Z, 12.0);
-        let rings: Vec<u32> = centers.iter().map(|&(c, n)| ring(c, n, 1.0)).collect();
-        // The seam: the rings from z = 3 up start on a copy of the ring at z = 3.
-        let seam = 6;
-        let copy = ring(centers[seam].0, DVec3::Z, 1.0);
-        let cap = positions.len() as u32;
-        positions.push(DVec3::new(8.2, 0.0, 8.0));
-        let mut faces = crate::mesh::Faces::new();
-        let mut band = |lo: u32, hi: u32| {
-            for a in 0..AROUND {
-                let b = (a + 1) % AROUND;
-                faces.push(&[lo + a, lo + b, hi + b, hi + a]);
-            }
-        };
-        band(flange, rings[0]);
-        for i in 0..rings.len() - 1 {
-            band(if i == seam { copy } else { rings[i] }, rings[i + 1]);
-        }
-        let last = rings[rings.len() - 1];
-        for a in 0..AROUND {
-            faces.push(&[last + a, last + (a + 1) % AROUND, cap]);
-        }
-        Mesh::from_parts(positions, faces, Vec::new()).unwrap()
+        tube_along(&elbow_centers(), 1.0, 16, 12.0, Some(6)).0
     }
 
     #[test]

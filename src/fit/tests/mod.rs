@@ -2,6 +2,7 @@ mod autorig;
 mod autorig_characters;
 mod autorig_hand;
 mod autorig_star;
+pub(crate) mod bent_tube;
 mod falloff;
 mod falloff_meshes;
 mod falloff_rebind;
