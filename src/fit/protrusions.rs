@@ -25,8 +25,11 @@
 //!    the tip than where the level sets of distance from it open onto the body, the tip moved
 //!    to the limb's end along its skeleton so the cut is normal to the limb. A branch whose
 //!    level sets never open (a bump, the body's far side) gives no part; a part holding more than a
-//!    quarter of its component, unless it is the whole component (a spout that is a mesh
-//!    component of its own), is the body's far side and is dropped.
+//!    quarter of its component's vertices and of its area, unless it is the whole component (a
+//!    spout that is a mesh component of its own), is the body's far side and is dropped. By
+//!    area as well: a figure's head is often modelled far more densely than its body (the
+//!    dino's head and neck hold 29% of its vertices and 17% of its surface, the blocky man's
+//!    head 52% and 9%).
 //!
 //! Everything depends on edge lengths, connectivity and the order of distances (ties broken
 //! by vertex index), so a rigidly moved mesh gives the same parts.
@@ -225,10 +228,30 @@ fn component_protrusions(
     let second = second.filter(grown);
     found.extend(first);
     found.extend(second);
+    // The component's area, measured only where a part holds more than its share of the
+    // vertices.
+    let mut component_area = None;
     found.retain(|p| {
-        p.vertices.len() as f64 <= MAX_SHARE * component.len() as f64 || p.vertices.len() == component.len()
+        if p.vertices.len() as f64 <= MAX_SHARE * component.len() as f64 || p.vertices.len() == component.len() {
+            return true;
+        }
+        let whole = *component_area.get_or_insert_with(|| area_within(mesh, triangles, component));
+        area_within(mesh, triangles, &p.vertices) <= MAX_SHARE * whole
     });
     found
+}
+
+/// The area of the triangles of `triangles` whose three vertices are all in `vertices`
+/// (increasing).
+fn area_within(mesh: &Mesh, triangles: &[[u32; 3]], vertices: &[u32]) -> f64 {
+    triangles
+        .iter()
+        .filter(|t| t.iter().all(|v| vertices.binary_search(v).is_ok()))
+        .map(|t| {
+            let [a, b, c] = t.map(|v| mesh.positions[v as usize]);
+            0.5 * (b - a).cross(c - a).length()
+        })
+        .sum()
 }
 
 /// See [`component_protrusions`]: the eldest branch reaching on to the next level where a

@@ -262,7 +262,8 @@ fn the_armadillo_gets_its_limbs_ears_and_tail() {
 /// sections' radii): each is a chain from the hip to its toes, the toes branch children of the
 /// link before them (§5), every link within the fit target, and turning the leg at its hip
 /// carries its toes. Its arms (56% as one sweep) are chains too, their three fingers children
-/// of the arm, mirror arms alike (the same links, the same keys).
+/// of the arm, mirror arms alike (the same links, the same keys). Its head and neck are one
+/// sweep.
 #[test]
 fn the_dinos_legs_and_arms_are_chains_their_toes_and_fingers_children() {
     let Some(path) = common::shared_mesh("dino.off") else { return };
@@ -329,19 +330,33 @@ fn the_dinos_legs_and_arms_are_chains_their_toes_and_fingers_children() {
         arms.push(keys);
     }
     assert_eq!(arms[0], arms[1], "mirror arms get the same links and keys");
+    // Its head on its neck, reaching forward (−y) and up from the body: one sweep from the
+    // body to the snout, key 0 at the body. The head and neck hold 29% of the vertices and 17%
+    // of the area: by vertices alone they were taken for the body's far side.
+    let snout = extreme(&mesh, |_| true, |p| -p.y);
+    let head = part_at(&mesh, &rigged, "dino head", snout);
+    assert!(head.parent.is_none() && !rigged.parts.iter().any(|p| p.parent.as_deref() == Some(head.name.as_str())));
+    let (first, last) = (head.fit.keys[0].center, head.fit.keys.last().unwrap().center);
+    assert!(first.y > last.y + 0.5, "the head's key 0 at the body: {first}, the last at {last}");
 }
 
 /// The Newell teapot (patches, unwelded seams; the spout a component of its own, the handle
-/// touching the pot at one vertex): its spout and handle, each holding its outermost vertex;
-/// the lid's flange, found too, fits no sweep and is left out.
+/// touching the pot at one vertex): its spout and handle, each holding its outermost vertex,
+/// and the lid's knob, holding its top, attached at the lid; the lid's flange, found too, fits
+/// no sweep and is left out. The knob holds over a quarter of the lid's vertices but not of
+/// its area: by vertices alone it was taken for the lid's far side.
 #[test]
-fn the_teapot_gets_its_spout_and_handle() {
+fn the_teapot_gets_its_spout_handle_and_knob() {
     let Some(path) = common::shared_mesh("teapot_newell.obj") else { return };
     let mesh = Mesh::load(&path).unwrap();
     let rigged = autorig(&mesh, &AutorigOptions::default()).unwrap();
     print_parts("teapot", &mesh, &rigged);
     let spout = part_at(&mesh, &rigged, "teapot spout", extreme(&mesh, |_| true, |p| p.x));
     let handle = part_at(&mesh, &rigged, "teapot handle", extreme(&mesh, |_| true, |p| -p.x));
+    let knob = part_at(&mesh, &rigged, "teapot knob", extreme(&mesh, |_| true, |p| p.y));
     assert_ne!(spout.name, handle.name);
-    assert_eq!(rigged.parts.len(), 2, "{} parts", rigged.parts.len());
+    assert!(knob.name != spout.name && knob.name != handle.name);
+    assert_eq!(rigged.parts.len(), 3, "{} parts", rigged.parts.len());
+    let (first, last) = (knob.fit.keys[0].center, knob.fit.keys.last().unwrap().center);
+    assert!(first.y < last.y, "the knob's key 0 at the lid: {first}, the last at {last}");
 }
