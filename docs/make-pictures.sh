@@ -31,13 +31,17 @@ done
 ./target/release/sweepffd autorig --mesh ../shared/meshes/armadillo_50k.obj --out "$work/armadillo-rig.json" --quiet > /dev/null
 ./target/release/sweepffd render --mesh ../shared/meshes/armadillo_50k.obj --rig "$work/armadillo-rig.json" \
   --show-sweeps --size 1200x900 --out docs/autorig-armadillo.png --quiet
-# The faerie at rest and with every sweep bent 45° at its middle key: the autorig pipeline
-# test's pose (tests/fitting/autorig_pipeline.rs).
+# The faerie, the dino and wuson at rest and with every sweep bent 45° at its middle key: the
+# autorig pipeline test's poses (tests/fitting/autorig_pipeline.rs).
 mkdir -p "$work/pipeline"
 SWEEPFFD_PICTURES_DIR="$work/pipeline" cargo test --release --test fitting meshes_no_constant --quiet > /dev/null
-./target/release/sweepffd render --mesh "$work/pipeline/characters-faerie.obj.obj" \
-  --rig "$work/pipeline/characters-faerie.obj-rig.json" --pose "$work/pipeline/characters-faerie.obj-pose.json" \
-  --compare --view 90,10 --size 450x400 --out docs/autorig/faerie-bent.png --quiet
+# Wuson's with its sweeps drawn.
+for spec in characters-faerie.obj:faerie:90,10: dino.off:dino:150,-30: characters-wuson.obj:wuson:60,15:--show-sweeps; do
+  IFS=: read -r mesh name view sweeps <<< "$spec"
+  ./target/release/sweepffd render --mesh "$work/pipeline/$mesh.obj" --rig "$work/pipeline/$mesh-rig.json" \
+    --pose "$work/pipeline/$mesh-pose.json" --compare $sweeps --view "$view" --size 450x400 \
+    --out "docs/autorig/$name-bent.png" --quiet
+done
 # Bends over a fifth of a limb against the same turn given to one key (docs/method.md): the
 # poses the bend test writes, drawn close up where they bend.
 mkdir -p docs/pose "$work/pose"
