@@ -72,6 +72,9 @@ struct PartReport {
     keys: usize,
     rms_d: f64,
     max_d: f64,
+    /// Its key sections that are not star-shaped (rays from the section's center crossing its
+    /// boundary more than once): a fit target of 15% rather than 10% RMS |d|.
+    sections_not_star_shaped: usize,
     without_root: usize,
     seconds: f64,
 }
@@ -106,6 +109,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
             keys: p.fit.keys.len(),
             rms_d: p.fit.quality.rms_d,
             max_d: p.fit.quality.max_d,
+            sections_not_star_shaped: p.fit.sections.iter().filter(|s| s.several_crossings > 0).count(),
             without_root: p.fit.quality.without_root,
             seconds: p.seconds,
         })
@@ -174,8 +178,12 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     }
     for p in &parts {
         let parent = p.parent.as_ref().map(|parent| format!(" (child of {parent})")).unwrap_or_default();
+        let crescents = match p.sections_not_star_shaped {
+            0 => String::new(),
+            n => format!(" ({n} of its {} sections not star-shaped)", p.keys),
+        };
         out!(
-            "{}{parent}: {} vertices, tip vertex {}, length {:.4}, {} keys, RMS |d| {:.2}%, max {:.1}% of the mean radius, {:.3} s",
+            "{}{parent}: {} vertices, tip vertex {}, length {:.4}, {} keys, RMS |d| {:.2}%, max {:.1}% of the mean radius{crescents}, {:.3} s",
             p.name,
             p.vertices,
             p.tip,
