@@ -88,6 +88,7 @@ internal_mod! {
     hidden;
     least_squares;
     limb;
+    mirror;
     nearest_triangle;
     protrusions;
     radii;

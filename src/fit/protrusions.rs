@@ -31,8 +31,14 @@
 //!    dino's head and neck hold 29% of its vertices and 17% of its surface, the blocky man's
 //!    head 52% and 9%).
 //!
-//! Everything depends on edge lengths, connectivity and the order of distances (ties broken
-//! by vertex index), so a rigidly moved mesh gives the same parts.
+//! 5. **Mirror twins.** Where the searched vertices have a mirror plane ([`super::mirror`]), a
+//!    part that shares most of its vertices with another part's mirror image takes that image's
+//!    vertices too ([`made_alike`]): the limb search from two mirror tips, whose persistences
+//!    differ, may keep a ring's vertex in one limb and not in the other.
+//!
+//! Everything depends on edge lengths, connectivity, the order of distances (ties broken by
+//! vertex index) and the vertices' own principal axes, so a rigidly moved mesh gives the same
+//! parts.
 
 use std::collections::HashMap;
 
@@ -41,6 +47,7 @@ use glam::DVec3;
 use super::body::Body;
 use super::geodesic::EdgeGraph;
 use super::limb::{MAX_SHARE, aligned_limb};
+use super::mirror::{NO_TWIN, mirror_map};
 use crate::mesh::Mesh;
 
 /// A protrusion: a tip and the vertices of its branch.
@@ -69,8 +76,34 @@ struct Branch {
     into: u32,
 }
 
-/// The protrusions of `mesh` (see the module docs), longest first.
+/// The protrusions of `mesh` (see the module docs), longest first: those found
+/// ([`found_protrusions`]), mirror twins made alike where the searched vertices have a mirror
+/// plane ([`made_alike`]), each welded vertex standing for every vertex welded to it.
 pub fn protrusions(mesh: &Mesh, body: &Body, min_length: f64, max_parts: usize) -> Vec<Protrusion> {
+    let mut found = found_protrusions(mesh, body, min_length, max_parts);
+    let searched = searched_vertices(mesh, body);
+    if let Some(map) = mirror_map(&mesh.positions, &searched) {
+        made_alike(&mut found, &map);
+    }
+    for part in &mut found {
+        part.vertices = body.unwelded(&part.vertices);
+    }
+    found
+}
+
+/// The vertices the search runs on: the welded representatives on the body's triangles,
+/// increasing.
+pub fn searched_vertices(mesh: &Mesh, body: &Body) -> Vec<u32> {
+    let mut used = vec![false; mesh.positions.len()];
+    for &v in body.triangles.iter().flatten() {
+        used[v as usize] = true;
+    }
+    (0..mesh.positions.len() as u32).filter(|&v| used[v as usize]).collect()
+}
+
+/// The protrusions found by the search (see the module docs), longest first, as the welded
+/// vertices of the search (welded representatives).
+pub fn found_protrusions(mesh: &Mesh, body: &Body, min_length: f64, max_parts: usize) -> Vec<Protrusion> {
     let (graph, triangles) = (&body.graph, &body.triangles[..]);
     let welded = body.welded_mesh(mesh);
     let mut used = vec![false; mesh.positions.len()];
@@ -101,12 +134,50 @@ pub fn protrusions(mesh: &Mesh, body: &Body, min_length: f64, max_parts: usize) 
     let mut seen = std::collections::HashSet::new();
     found.retain(|part| seen.insert(part.vertices.clone()));
     found.truncate(max_parts);
-    for part in &mut found {
-        // Each welded vertex stands for every vertex welded to it.
-        part.vertices = body.unwelded(&part.vertices);
-    }
     found
 }
+
+/// Mirror twins made alike (see [`super::mirror`]): each part whose mirror image (by `map`, a
+/// vertex's twin) shares at least [`TWIN_OVERLAP`] of the vertices of both with another part,
+/// the most of all, takes that image's vertices too, so that both are the union of one and the
+/// other's image, mirror images of each other.
+pub fn made_alike(found: &mut [Protrusion], map: &[u32]) {
+    let images: Vec<Vec<u32>> = found
+        .iter()
+        .map(|part| {
+            let mut image: Vec<u32> =
+                part.vertices.iter().map(|&v| map[v as usize]).filter(|&w| w != NO_TWIN).collect();
+            image.sort_unstable();
+            image.dedup();
+            image
+        })
+        .collect();
+    let overlap = |a: &[u32], b: &[u32]| {
+        let common = a.iter().filter(|v| b.binary_search(v).is_ok()).count();
+        common as f64 / (a.len() + b.len() - common).max(1) as f64
+    };
+    let twins: Vec<Option<usize>> = (0..found.len())
+        .map(|i| {
+            (0..found.len())
+                .filter(|&j| j != i)
+                .map(|j| (j, overlap(&found[i].vertices, &images[j])))
+                .filter(|&(_, shared)| shared >= TWIN_OVERLAP)
+                .max_by(|a, b| a.1.total_cmp(&b.1).then(b.0.cmp(&a.0)))
+                .map(|(j, _)| j)
+        })
+        .collect();
+    for (i, twin) in twins.into_iter().enumerate() {
+        let Some(j) = twin else { continue };
+        let part = &mut found[i].vertices;
+        part.extend(&images[j]);
+        part.sort_unstable();
+        part.dedup();
+    }
+}
+
+/// See [`made_alike`]: a part and another's mirror image are twins where they share at least
+/// this share of the vertices of both (wuson's front legs share 116 of 117).
+pub const TWIN_OVERLAP: f64 = 0.8;
 
 /// Sorts `found` longest first; lengths within rounding of each other (mirror twins, such as a
 /// pair of legs, whose lengths a rigid motion perturbs in the last bits) by tip index, so that
