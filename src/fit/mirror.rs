@@ -115,21 +115,17 @@ pub fn symmetric_eigenvectors(m: DMat3) -> [DVec3; 3] {
             let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
             let t = if theta == 0.0 { 1.0 } else { t };
             let (c, s) = (1.0 / (t * t + 1.0).sqrt(), t / (t * t + 1.0).sqrt());
-            for k in 0..3 {
-                let (akp, akq) = (a[k][p], a[k][q]);
-                a[k][p] = c * akp - s * akq;
-                a[k][q] = s * akp + c * akq;
-            }
-            for k in 0..3 {
-                let (apk, aqk) = (a[p][k], a[q][k]);
-                a[p][k] = c * apk - s * aqk;
-                a[q][k] = s * apk + c * aqk;
-            }
-            for row in &mut v {
-                let (vp, vq) = (row[p], row[q]);
-                row[p] = c * vp - s * vq;
-                row[q] = s * vp + c * vq;
-            }
+            // A ← Jᵀ·A·J and V ← V·J, J the rotation by (c, s) in the plane of p and q.
+            let turn = |row: &mut [f64; 3]| {
+                let (xp, xq) = (row[p], row[q]);
+                row[p] = c * xp - s * xq;
+                row[q] = s * xp + c * xq;
+            };
+            a.iter_mut().for_each(turn);
+            let (ap, aq) = (a[p], a[q]);
+            a[p] = std::array::from_fn(|k| c * ap[k] - s * aq[k]);
+            a[q] = std::array::from_fn(|k| s * ap[k] + c * aq[k]);
+            v.iter_mut().for_each(turn);
         }
     }
     // The eigenvector of a[k][k] is v's k-th entry of every row: v = J₁·J₂·… applied on the
