@@ -152,8 +152,20 @@ pub fn made_alike(found: &mut [Protrusion], map: &[u32]) {
             image
         })
         .collect();
+    // The share of the vertices of both (both increasing) that they share: merged in one pass,
+    // and not at all where their sizes alone rule out a twin.
     let overlap = |a: &[u32], b: &[u32]| {
-        let common = a.iter().filter(|v| b.binary_search(v).is_ok()).count();
+        if (a.len().min(b.len()) as f64) < TWIN_OVERLAP * a.len().max(b.len()) as f64 {
+            return 0.0;
+        }
+        let (mut i, mut j, mut common) = (0, 0, 0);
+        while i < a.len() && j < b.len() {
+            match a[i].cmp(&b[j]) {
+                std::cmp::Ordering::Less => i += 1,
+                std::cmp::Ordering::Greater => j += 1,
+                std::cmp::Ordering::Equal => (i, j, common) = (i + 1, j + 1, common + 1),
+            }
+        }
         common as f64 / (a.len() + b.len() - common).max(1) as f64
     };
     let twins: Vec<Option<usize>> = (0..found.len())
@@ -372,4 +384,39 @@ fn merge_tree(graph: &EdgeGraph, component: &[u32], g: &[f64]) -> (Vec<Branch>, 
         }
     }
     (branches, order[0])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn part(vertices: &[u32]) -> Protrusion {
+        Protrusion { vertices: vertices.to_vec(), tip: vertices[0], length: 1.0, axis: None }
+    }
+
+    /// Vertices 0–9 mirror 10–19 (v ↔ v + 10), 20–29 lie on the plane (each its own twin).
+    fn map() -> Vec<u32> {
+        (0..30u32).map(|v| if v < 10 { v + 10 } else if v < 20 { v - 10 } else { v }).collect()
+    }
+
+    #[test]
+    fn a_part_takes_its_twins_image_and_each_becomes_the_others_image() {
+        // The left leg 0–8, its twin 10–19 holds the image of vertex 9 too.
+        let mut found = vec![part(&[0, 1, 2, 3, 4, 5, 6, 7, 8]), part(&(10..20).collect::<Vec<_>>())];
+        made_alike(&mut found, &map());
+        assert_eq!(found[0].vertices, (0..10).collect::<Vec<u32>>());
+        assert_eq!(found[1].vertices, (10..20).collect::<Vec<u32>>());
+    }
+
+    #[test]
+    fn parts_that_are_no_ones_image_are_left_as_they_are() {
+        // A tail on the plane (its own image: no twin of another part), and a part whose image
+        // shares under 80% with the other.
+        let tail: Vec<u32> = (20..30).collect();
+        let mut found = vec![part(&tail), part(&[0, 1, 2, 3, 4, 5, 6]), part(&[10, 11, 12, 13, 14, 15, 16, 17, 18, 19])];
+        made_alike(&mut found, &map());
+        assert_eq!(found[0].vertices, tail);
+        assert_eq!(found[1].vertices, vec![0, 1, 2, 3, 4, 5, 6], "7 of 10 shared: no twin");
+        assert_eq!(found[2].vertices, (10..20).collect::<Vec<u32>>());
+    }
 }
