@@ -75,6 +75,25 @@ pub struct RiggedPart {
     pub seconds: f64,
 }
 
+impl RiggedPart {
+    /// Its key sections that are not star-shaped: rays from the section's center cross its
+    /// boundary more than once (a crescent, a hand with its thumb apart).
+    pub fn sections_not_star_shaped(&self) -> usize {
+        self.fit.sections.iter().filter(|s| s.several_crossings > 0).count()
+    }
+
+    /// The RMS |d| (over the mean radius) its fit aims within: [`TARGET`], or
+    /// [`NOT_STAR_TARGET`] where some of its sections are not star-shaped.
+    pub fn target(&self) -> f64 {
+        if self.sections_not_star_shaped() > 0 { NOT_STAR_TARGET } else { TARGET }
+    }
+
+    /// Whether its fit is within its [`RiggedPart::target`] at its vertices.
+    pub fn within_target(&self) -> bool {
+        self.fit.quality.rms_d <= self.target()
+    }
+}
+
 /// A rigged mesh: its parts, longest first.
 #[derive(Clone, Debug)]
 pub struct Autorig {
@@ -461,6 +480,11 @@ pub struct Rejected {
     /// Its fit's folds, where its keys fold back (see [`FOLDED`]).
     pub folded: Option<Folds>,
 }
+
+/// The fit target of a part some of whose key sections are not star-shaped (RMS |d| over the
+/// mean radius; [`TARGET`] otherwise): one sweep's radii from a center cannot follow a
+/// crescent's two sides.
+pub const NOT_STAR_TARGET: f64 = 0.15;
 
 /// A found part whose fitted sweep, with the radii sampled from its key sections
 /// ([`Fit::sections_quality`]), misses its surface by more than this RMS |d| (over the mean

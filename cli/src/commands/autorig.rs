@@ -75,6 +75,9 @@ struct PartReport {
     /// Its key sections that are not star-shaped (rays from the section's center crossing its
     /// boundary more than once): a fit target of 15% rather than 10% RMS |d|.
     sections_not_star_shaped: usize,
+    /// The RMS |d| over the mean radius its fit aims within (0.10, or 0.15 where some sections
+    /// are not star-shaped).
+    target: f64,
     without_root: usize,
     seconds: f64,
 }
@@ -109,7 +112,8 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
             keys: p.fit.keys.len(),
             rms_d: p.fit.quality.rms_d,
             max_d: p.fit.quality.max_d,
-            sections_not_star_shaped: p.fit.sections.iter().filter(|s| s.several_crossings > 0).count(),
+            sections_not_star_shaped: p.sections_not_star_shaped(),
+            target: p.target(),
             without_root: p.fit.quality.without_root,
             seconds: p.seconds,
         })
@@ -192,6 +196,20 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
             100.0 * p.rms_d,
             100.0 * p.max_d,
             p.seconds
+        );
+    }
+    let loose: Vec<String> = parts
+        .iter()
+        .filter(|p| p.rms_d > p.target)
+        .map(|p| format!("{} ({:.1}% of {:.0}%)", p.name, 100.0 * p.rms_d, 100.0 * p.target))
+        .collect();
+    if !loose.is_empty() {
+        note!(
+            "notice: {file}: {} of {} sweeps fit looser than their target RMS |d| (10%, 15% where sections are not \
+             star-shaped): {}",
+            loose.len(),
+            parts.len(),
+            loose.join(", ")
         );
     }
     if !quiet {

@@ -6,7 +6,7 @@ use crate::common;
 
 use glam::{DQuat, DVec3};
 use sweepffd::edit::{Edit, KeyMode, Posing};
-use sweepffd::fit::autorig::{Autorig, AutorigOptions, RiggedPart, autorig};
+use sweepffd::fit::autorig::{Autorig, AutorigOptions, NOT_STAR_TARGET, RiggedPart, TARGET, autorig};
 use sweepffd::fit::least_squares::fitted_radii;
 use sweepffd::fit::part::Part;
 use sweepffd::fit::quality::measure;
@@ -149,12 +149,6 @@ fn extreme(mesh: &Mesh, inside: impl Fn(DVec3) -> bool, score: impl Fn(DVec3) ->
         .unwrap()
 }
 
-/// The issue's fit target: RMS |d| within 10% of the mean radius, or 15% for a part with
-/// sections that are not star-shaped around any center (the fit reports them).
-const TARGET: f64 = 0.10;
-/// See [`TARGET`].
-const NOT_STAR_TARGET: f64 = 0.15;
-
 /// The part of `rigged` holding vertex `tip`, checked against its fit target ([`TARGET`], or
 /// [`NOT_STAR_TARGET`] where the fit reports sections that are not star-shaped), with every
 /// owned vertex binding with a root.
@@ -162,8 +156,7 @@ fn part_at<'a>(mesh: &Mesh, rigged: &'a Autorig, name: &str, tip: u32) -> &'a Ri
     let part = rigged.parts.iter().find(|p| p.vertices.binary_search(&tip).is_ok());
     let part = part.unwrap_or_else(|| panic!("{name}: no part holds its tip, vertex {tip}"));
     let q = part.fit.quality;
-    let crescents = part.fit.sections.iter().filter(|s| s.several_crossings > 0).count();
-    let target = if crescents > 0 { NOT_STAR_TARGET } else { TARGET };
+    let (crescents, target) = (part.sections_not_star_shaped(), part.target());
     eprintln!(
         "{name}: {} ({} vertices), RMS |d| {:.2}% (target {:.0}%), max {:.1}%, {crescents} of {} sections not \
          star-shaped, {} keys, {:.3} s",
