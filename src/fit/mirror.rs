@@ -1,7 +1,7 @@
 //! A mesh's mirror symmetry, so that autorig finds mirror twins alike (`super::protrusions`):
 //! a character's left and right legs, modelled as mirror images, are searched from tips whose
 //! persistences differ (one tip is the elder where the merge tree joins them), so their level
-//! sets, and the vertices each limb search keeps, may differ by a ring's vertex (wuson's front
+//! sets, and the vertices each limb search keeps, may differ by a ring's vertex (wuson's hind
 //! legs: 116 and 117 vertices, fitted at 10.0% and 1.6% RMS |d|).
 //!
 //! A mirror plane of a point set is a plane of symmetry of its covariance, so its normal is an

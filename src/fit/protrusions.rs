@@ -188,7 +188,7 @@ pub fn made_alike(found: &mut [Protrusion], map: &[u32]) {
 }
 
 /// See [`made_alike`]: a part and another's mirror image are twins where they share at least
-/// this share of the vertices of both (wuson's front legs share 116 of 117).
+/// this share of the vertices of both (wuson's hind legs share 116 of 117).
 pub const TWIN_OVERLAP: f64 = 0.8;
 
 /// Sorts `found` longest first; lengths within rounding of each other (mirror twins, such as a
