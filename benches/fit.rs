@@ -4,7 +4,8 @@
 //! counts, and the shared meshes' limbs when `../shared/meshes` is beside the clone; and
 //! `autorig` (protrusions found and each fitted) on the bunny and the armadillo; and the body
 //! autorig searches (seams welded, touching components joined) of a dense tube with small
-//! pieces lying on it, whose contacts are searched per vertex among the pieces' triangles.
+//! pieces lying on it, whose contacts are searched per vertex among the pieces' triangles; and
+//! the mirror map autorig makes twins alike with, against the body search.
 //!
 //! `cargo bench --features internals --bench fit`.
 
@@ -16,6 +17,7 @@ use glam::DVec3;
 use sweepffd::fit::autorig::{AutorigOptions, autorig};
 use sweepffd::fit::axis::principal_axis;
 use sweepffd::fit::body::Body;
+use sweepffd::fit::mirror::mirror_map;
 use sweepffd::fit::{FitOptions, fit, largest_connected};
 use sweepffd::mesh::{Faces, Mesh};
 use sweepffd::synthetic::Tube;
@@ -107,5 +109,24 @@ fn body_contacts(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, tube_parts, shared_limbs, autorig_meshes, body_contacts);
+/// The mirror map autorig makes twins alike with, on the 50,000-vertex tube (a mirror image of
+/// itself end to end: a whole pass over its vertices) and on the tube with 40 pieces along its
+/// wall (no plane: each tried fails at its first vertex with no twin), against the body search
+/// of the same mesh in the same run.
+fn mirror_maps(c: &mut Criterion) {
+    let mut group = c.benchmark_group("autorig_mirror");
+    group.sample_size(10);
+    for (name, mesh) in
+        [("tube", Tube::with_vertex_count(50_000, 6.0, 0.5).mesh()), ("tube_with_pieces", tube_with_pieces(40))]
+    {
+        let vertices: Vec<u32> = (0..mesh.positions.len() as u32).collect();
+        group.bench_function(BenchmarkId::new("mirror_map", name), |b| {
+            b.iter(|| mirror_map(&mesh.positions, &vertices))
+        });
+        group.bench_function(BenchmarkId::new("body", name), |b| b.iter(|| Body::new(&mesh)));
+    }
+    group.finish();
+}
+
+criterion_group!(benches, tube_parts, shared_limbs, autorig_meshes, body_contacts, mirror_maps);
 criterion_main!(benches);
