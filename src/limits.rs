@@ -37,7 +37,7 @@ pub const MAX_GLTF_INSTANCES: usize = 1 << 16;
 
 /// The most vertices `bench` measures on a synthetic tube on any backend (the host builds the
 /// tube, about 100 bytes a vertex); on a GPU the device's largest buffer bounds it further
-/// ([`crate::bench::gpu_vertex_limit`]).
+/// (`bench::gpu_vertex_limit`, feature `bench`).
 pub const MAX_BENCH_VERTICES: usize = 1 << 30;
 
 /// The most timed runs per `bench` figure.

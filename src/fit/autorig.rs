@@ -457,7 +457,7 @@ pub const LINK_FALLOFF_SHARE: f64 = 0.5;
 pub const RESCUED_SHARE: f64 = 0.5;
 
 /// A coarse limb's one sweep that misses it by more than this RMS |d| (over the mean radius) is
-/// trimmed of its attached end where that fits it within [`TARGET`] (see [`rig_limb`]).
+/// trimmed of its attached end where that fits it within [`TARGET`] (see `rig_limb`).
 pub const TRIMMED_OVER: f64 = 0.15;
 
 /// A limb's one sweep within this RMS |d| (over the mean radius) with its fitted radii, and

@@ -18,7 +18,7 @@
 //!    [`OPENING`] with w = [`WINDOW`], sustained (P does not fall back by more than
 //!    1 − [`KEEPS`] over the next [`SUSTAIN`] levels, as it does past a hand or a foot, unless
 //!    the level set falls apart first and stays apart, as past a crotch seen from a foot:
-//!    [`falls_apart_before_falling`]): the limb is the vertices with d < d_{k−w}, where the
+//!    `falls_apart_before_falling`): the limb is the vertices with d < d_{k−w}, where the
 //!    opening began. A widening that falls
 //!    back later, to a wrist and a forearm (`wrist_within`), is a long hand (a cartoon's),
 //!    not the body: the limb runs on through it to the next opening where it is still at most
@@ -81,7 +81,7 @@ pub const FOREARM_SPREAD: f64 = 0.1;
 /// level radius.
 pub const WHOLE_TUBE: f64 = 5.0;
 /// A limb of fewer vertices than this is coarse (fewer than the 6 × 32 radii the fit's first
-/// keys sample): its level sets may cut it obliquely, one triangle deep ([`squared_off`]).
+/// keys sample): its level sets may cut it obliquely, one triangle deep (`squared_off`).
 pub const COARSE: usize = 192;
 /// A coarse limb's rim is oblique where it spreads along the limb's skeleton over at least this
 /// many times its mean radius (a cut at 45° or more off the plane normal to the limb).
@@ -90,9 +90,9 @@ pub const OBLIQUE: f64 = 2.0;
 /// (the eldest branch of a body with short protrusions, such as the bunny's back), not a limb.
 pub const MAX_SHARE: f64 = 0.25;
 /// A coarse limb whose rim is oblique is grown by at most 1/this of its vertices to even it
-/// ([`evened`]): a ring's vertex or two left out by the cut, not a share of the body.
+/// (`evened`): a ring's vertex or two left out by the cut, not a share of the body.
 pub const GROWN_SHARE: usize = 5;
-/// A coarse limb grown to even its rim ([`evened`]) is kept grown only where its rim then
+/// A coarse limb grown to even its rim (`evened`) is kept grown only where its rim then
 /// spreads along its skeleton over at most this many times its radius (a cut within about 27°
 /// of the plane normal to the limb; an oblique one spreads over [`OBLIQUE`] times or more):
 /// a ring completed, not a rim that crept a little way into a crotch.
@@ -100,7 +100,7 @@ pub const EVEN: f64 = 1.0;
 /// A limb is at least this many times as long as the radius of its cut.
 pub const TUBULAR: f64 = 1.5;
 /// A spike of a coarse limb lies farther than this many of its rim's radii from the rim's
-/// centroid ([`without_spikes`]).
+/// centroid (`without_spikes`).
 pub const SPIKE: f64 = 2.0;
 
 /// The limb of the protrusion found at `tip` (see [`limb`]) and its tip, found again: the
@@ -110,8 +110,8 @@ pub const SPIKE: f64 = 2.0;
 /// skeleton's end (from 60% to 90% of its length, [`skeleton`]), and the limb found again
 /// from there, so that its rim is normal to it. A limb of fewer than [`COARSE`] vertices whose
 /// rim is still oblique is then evened where a few more vertices complete the ring its cut
-/// passed through ([`evened`]), and otherwise squared off ([`squared_off`]); then it drops its
-/// spikes ([`without_spikes`]). Indices are the mesh's; `graph` and `triangles` may join
+/// passed through (`evened`), and otherwise squared off (`squared_off`); then it drops its
+/// spikes (`without_spikes`). Indices are the mesh's; `graph` and `triangles` may join
 /// vertices `mesh` keeps apart (welded seams), and `welded` is then `mesh` on `triangles`.
 pub fn aligned_limb(
     mesh: &Mesh,

@@ -337,7 +337,7 @@ fn area_within(mesh: &Mesh, triangles: &[[u32; 3]], vertices: &[u32]) -> f64 {
         .sum()
 }
 
-/// See [`component_protrusions`]: the eldest branch reaching on to the next level where a
+/// See `component_protrusions`: the eldest branch reaching on to the next level where a
 /// branch ends in it is a limb of its own where it holds this many times the vertices.
 pub const ELDEST_GROWTH: f64 = 2.0;
 

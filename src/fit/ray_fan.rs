@@ -5,7 +5,7 @@
 //! as seen from the center, so a fan over S segments costs about S + M tests, not
 //! M·S. A segment seen from (nearly) on its own line, or from (nearly) one of its ends, spans
 //! up to π and is tested against every ray. The tests themselves are the single ray's
-//! ([`ray_hit`]), so the fan's crossings are the ones each ray finds alone, to the bit.
+//! (`ray_hit`), so the fan's crossings are the ones each ray finds alone, to the bit.
 
 use std::f64::consts::{PI, TAU};
 

@@ -58,7 +58,7 @@ impl NormalAdjacency {
     ///
     /// The vertices are split into a few ranges per thread, built in parallel: each range
     /// gathers the edges of its vertices from every triangle and chains them into its rows
-    /// ([`chain_range`]); the rows are then joined in order.
+    /// (`chain_range`); the rows are then joined in order.
     pub fn new(faces: &Faces, vertex_count: usize) -> NormalAdjacency {
         // A triangle list (every face a triangle, as the GPU engine's) is read three indices at
         // a time rather than fanned face by face.

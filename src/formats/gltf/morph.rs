@@ -34,7 +34,7 @@ const UNSIGNED_INT: u32 = 5125;
 const ARRAY_BUFFER: u32 = 34962;
 const ELEMENT_ARRAY_BUFFER: u32 = 34963;
 
-/// A pose of the mesh for [`write_morph_animation`]: its name and deformed positions, one per
+/// A pose of the mesh for `write_morph_animation`: its name and deformed positions, one per
 /// mesh vertex.
 #[derive(Clone, Copy, Debug)]
 pub struct MorphPose<'a> {
