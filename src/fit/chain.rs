@@ -375,12 +375,21 @@ impl Profile {
     pub fn chain(&self, fitter: &impl LinkFitter, target: f64) -> Option<Chain> {
         let depth = if self.s.len() > DENSE { 0 } else { DEPTH };
         let forked = self.branches().and_then(|branches| {
-            let excluded: Vec<bool> = self.marked(&branches);
-            let mut chain = self.stretch_chain(None, None, &excluded, target, depth, fitter)?;
-            for branch in &branches {
-                self.add_branch(&mut chain, branch, fitter)?;
+            let chain = self.forked(&branches, target, depth, fitter)?;
+            // A branch that fits no link (a stubby finger whose fit folds or zigzags) rides
+            // in the stem, where at least two others are links.
+            let first_branch = chain.links.len() - branches.len();
+            let links: Vec<bool> =
+                chain.links[first_branch..].iter().map(|link| fitter.loose(&link.fit).is_finite()).collect();
+            if links.iter().all(|&link| link) {
+                return Some(chain);
             }
-            Some(chain)
+            let kept: Vec<Vec<u32>> =
+                branches.into_iter().zip(links).filter_map(|(branch, link)| link.then_some(branch)).collect();
+            if kept.len() < 2 {
+                return None;
+            }
+            self.forked(&kept, target, depth, fitter)
         });
         // A limb that forks is kept forked where its branches fit and bind: unforked, its last
         // link would hold its toes or fingers.
@@ -389,6 +398,18 @@ impl Profile {
         }
         let none = vec![false; self.s.len()];
         self.stretch_chain(None, None, &none, target, depth, fitter).filter(|chain| chain.links.len() > 1)
+    }
+
+    /// The limb's chain forked at `branches`: its stem without them, cut as a stretch is, and
+    /// each branch a child of the stem's link it meets most; `None` where the stem has no
+    /// chain or a branch's fit is refused or does not bind.
+    fn forked(&self, branches: &[Vec<u32>], target: f64, depth: usize, fitter: &impl LinkFitter) -> Option<Chain> {
+        let excluded: Vec<bool> = self.marked(branches);
+        let mut chain = self.stretch_chain(None, None, &excluded, target, depth, fitter)?;
+        for branch in branches {
+            self.add_branch(&mut chain, branch, fitter)?;
+        }
+        Some(chain)
     }
 
     /// The limb without its attached end, where that end is the body's and not a tube's (a
@@ -676,6 +697,73 @@ mod tests {
     /// sections by over [`MAX_RMS`](crate::fit::autorig::MAX_RMS); trimmed of its first levels it
     /// fits within the target by its sections' radii and keeps at least half its vertices (12
     /// of 19).
+    /// A ball with an arm along +x ending in a round hand and three fingers spread 0.4 apart
+    /// (the figure of the autorig hand test, one arm, its fingers farther apart): the mesh and
+    /// the arm's vertices beyond x = 1.6.
+    fn hand_on_a_ball() -> (Mesh, Vec<u32>) {
+        use crate::common::star::{implicit_mesh, smooth_min};
+        let capsule = |p: DVec3, a: DVec3, b: DVec3, radius: f64| {
+            let t = ((p - a).dot(b - a) / (b - a).length_squared()).clamp(0.0, 1.0);
+            p.distance(a + (b - a) * t) - radius
+        };
+        let figure = |p: DVec3| {
+            let mut d = p.length() - 1.4;
+            d = smooth_min(d, capsule(p, DVec3::ZERO, DVec3::new(2.6, 0.0, 0.0), 0.25));
+            d = smooth_min(d, capsule(p, DVec3::new(2.9, 0.0, 0.0), DVec3::new(3.4, 0.0, 0.0), 0.55));
+            for (y, reach) in [(-0.4, 4.3), (0.0, 4.5), (0.4, 4.3)] {
+                d = smooth_min(d, capsule(p, DVec3::new(3.6, y, 0.0), DVec3::new(reach, y, 0.0), 0.14));
+            }
+            d
+        };
+        let mesh = implicit_mesh(&figure, 4.8, 0.06);
+        let arm = (0..mesh.positions.len() as u32).filter(|&v| mesh.positions[v as usize].x > 1.6).collect();
+        (mesh, arm)
+    }
+
+    /// A finger that fits no link (here: a fitter that takes the middle finger's fits for
+    /// folded) rides in the stem, and the hand keeps the other two as children: with every
+    /// branch a child, as before, the chain's loosest link is infinite and the limb is no chain.
+    #[test]
+    fn a_branch_that_fits_no_link_rides_in_the_stem() {
+        use crate::fit::autorig::TARGET;
+        use crate::fit::{FitOptions, fit};
+
+        struct MiddleFolds<'a>(&'a Mesh);
+        impl LinkFitter for MiddleFolds<'_> {
+            fn fit(&self, vertices: &[u32]) -> Option<(Fit, f64)> {
+                fit(self.0, vertices, &FitOptions::default()).ok().map(|fitted| (fitted, 0.0))
+            }
+            // A finger's link (a finger and its collar: under 600 vertices, the stem over 8,000)
+            // reaching past the other fingers' tips, x = 4.44.
+            fn loose(&self, fitted: &Fit) -> f64 {
+                let middle = fitted.quality.vertices < 2000 && fitted.keys.iter().any(|k| k.center.x > 4.5);
+                if middle { f64::INFINITY } else { fitted.sections_quality().rms_d }
+            }
+        }
+        let (mesh, arm) = hand_on_a_ball();
+        let fitter = MiddleFolds(&mesh);
+        let profile = Profile::new(&mesh, &arm).unwrap();
+        let branches = profile.branches().expect("the hand's fingers");
+        assert_eq!(branches.len(), 3);
+        let middle_tip = *arm.iter().max_by(|&&a, &&b| mesh.positions[a as usize].x.total_cmp(&mesh.positions[b as usize].x)).unwrap();
+        let every = profile.forked(&branches, TARGET, DEPTH, &fitter).expect("forked at every finger");
+        assert!(every.worst.is_infinite(), "the middle finger's link is no link: {}", every.worst);
+        let chain = profile.chain(&fitter, TARGET).expect("a chain");
+        let children: Vec<&FittedLink> = chain.links.iter().filter(|l| l.parent.is_some()).collect();
+        let stem: Vec<u32> = chain.links.iter().filter(|l| l.parent.is_none()).flat_map(|l| l.vertices.clone()).collect();
+        eprintln!(
+            "hand: {} links, the stem {} vertices, children {:?}, loosest {:.3}",
+            chain.links.len(),
+            stem.len(),
+            children.iter().map(|l| l.vertices.len()).collect::<Vec<_>>(),
+            chain.worst
+        );
+        assert!(chain.worst.is_finite());
+        assert_eq!(children.len(), 2, "the other two fingers are children");
+        assert!(stem.contains(&middle_tip), "the middle finger rides in the stem");
+        assert!(children.iter().all(|l| !l.vertices.contains(&middle_tip)));
+    }
+
     #[test]
     fn a_part_that_is_no_tube_at_its_attached_end_is_trimmed() {
         use crate::fit::autorig::{MAX_RMS, TARGET};
