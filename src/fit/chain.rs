@@ -692,11 +692,6 @@ mod tests {
         assert!(far.binary_search(&copy).is_err());
     }
 
-    /// A part that is no tube at its attached end: the faerie's hair, found from its tip, whose
-    /// part holds a piece of the back of her head where it starts. As one sweep it misses its
-    /// sections by over [`MAX_RMS`](crate::fit::autorig::MAX_RMS); trimmed of its first levels it
-    /// fits within the target by its sections' radii and keeps at least half its vertices (12
-    /// of 19).
     /// A ball with an arm along +x ending in a round hand and three fingers spread 0.4 apart
     /// (the figure of the autorig hand test, one arm, its fingers farther apart): the mesh and
     /// the arm's vertices beyond x = 1.6.
@@ -764,6 +759,11 @@ mod tests {
         assert!(children.iter().all(|l| !l.vertices.contains(&middle_tip)));
     }
 
+    /// A part that is no tube at its attached end: the faerie's hair, found from its tip, whose
+    /// part holds a piece of the back of her head where it starts. As one sweep it misses its
+    /// sections by over [`MAX_RMS`](crate::fit::autorig::MAX_RMS); trimmed of its first levels it
+    /// fits within the target by its sections' radii and keeps at least half its vertices (12
+    /// of 19).
     #[test]
     fn a_part_that_is_no_tube_at_its_attached_end_is_trimmed() {
         use crate::fit::autorig::{MAX_RMS, TARGET};
