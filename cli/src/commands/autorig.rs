@@ -198,10 +198,11 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
             p.seconds
         );
     }
-    let loose: Vec<String> = parts
+    let loose: Vec<String> = rigged
+        .parts
         .iter()
-        .filter(|p| p.rms_d > p.target)
-        .map(|p| format!("{} ({:.1}% of {:.0}%)", p.name, 100.0 * p.rms_d, 100.0 * p.target))
+        .filter(|p| !p.within_target())
+        .map(|p| format!("{} ({:.1}% of {:.0}%)", p.name, 100.0 * p.fit.quality.rms_d, 100.0 * p.target()))
         .collect();
     if !loose.is_empty() {
         note!(
