@@ -692,6 +692,17 @@ mod tests {
         assert!(far.binary_search(&copy).is_err());
     }
 
+    /// Fits links with the default options and measures them by their sections' radii.
+    struct Plain<'a>(&'a Mesh);
+    impl LinkFitter for Plain<'_> {
+        fn fit(&self, vertices: &[u32]) -> Option<(Fit, f64)> {
+            crate::fit::fit(self.0, vertices, &crate::fit::FitOptions::default()).ok().map(|fitted| (fitted, 0.0))
+        }
+        fn loose(&self, fitted: &Fit) -> f64 {
+            fitted.sections_quality().rms_d
+        }
+    }
+
     /// A ball with an arm along +x ending in a round hand and three fingers spread 0.4 apart
     /// (the figure of the autorig hand test, one arm, its fingers farther apart): the mesh and
     /// the arm's vertices beyond x = 1.6.
@@ -721,22 +732,21 @@ mod tests {
     #[test]
     fn a_branch_that_fits_no_link_rides_in_the_stem() {
         use crate::fit::autorig::TARGET;
-        use crate::fit::{FitOptions, fit};
 
-        struct MiddleFolds<'a>(&'a Mesh);
+        struct MiddleFolds<'a>(Plain<'a>);
         impl LinkFitter for MiddleFolds<'_> {
             fn fit(&self, vertices: &[u32]) -> Option<(Fit, f64)> {
-                fit(self.0, vertices, &FitOptions::default()).ok().map(|fitted| (fitted, 0.0))
+                self.0.fit(vertices)
             }
             // A finger's link (a finger and its collar: under 600 vertices, the stem over 8,000)
             // reaching past the other fingers' tips, x = 4.44.
             fn loose(&self, fitted: &Fit) -> f64 {
                 let middle = fitted.quality.vertices < 2000 && fitted.keys.iter().any(|k| k.center.x > 4.5);
-                if middle { f64::INFINITY } else { fitted.sections_quality().rms_d }
+                if middle { f64::INFINITY } else { self.0.loose(fitted) }
             }
         }
         let (mesh, arm) = hand_on_a_ball();
-        let fitter = MiddleFolds(&mesh);
+        let fitter = MiddleFolds(Plain(&mesh));
         let profile = Profile::new(&mesh, &arm).unwrap();
         let branches = profile.branches().expect("the hand's fingers");
         assert_eq!(branches.len(), 3);
@@ -771,15 +781,6 @@ mod tests {
         use crate::fit::protrusions::protrusions;
         use crate::fit::{FitOptions, fit};
 
-        struct Plain<'a>(&'a Mesh);
-        impl LinkFitter for Plain<'_> {
-            fn fit(&self, vertices: &[u32]) -> Option<(Fit, f64)> {
-                fit(self.0, vertices, &FitOptions::default()).ok().map(|fitted| (fitted, 0.0))
-            }
-            fn loose(&self, fitted: &Fit) -> f64 {
-                fitted.sections_quality().rms_d
-            }
-        }
         let Some(path) = crate::common::shared_mesh("characters/faerie.obj") else { return };
         let mesh = Mesh::load(&path).unwrap();
         let body = Body::new(&mesh);

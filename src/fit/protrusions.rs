@@ -106,20 +106,14 @@ pub fn searched_vertices(mesh: &Mesh, body: &Body) -> Vec<u32> {
 pub fn found_protrusions(mesh: &Mesh, body: &Body, min_length: f64, max_parts: usize) -> Vec<Protrusion> {
     let (graph, triangles) = (&body.graph, &body.triangles[..]);
     let welded = body.welded_mesh(mesh);
-    let mut used = vec![false; mesh.positions.len()];
-    for t in triangles {
-        for &v in t {
-            used[v as usize] = true;
-        }
-    }
     // Each searched vertex's component size (0: not yet searched).
     let mut sizes = vec![0; mesh.positions.len()];
     let mut found: Vec<Protrusion> = Vec::new();
-    for start in 0..mesh.positions.len() {
-        if !used[start] || sizes[start] > 0 {
+    for start in searched_vertices(mesh, body) {
+        if sizes[start as usize] > 0 {
             continue;
         }
-        let component = flood(graph, start as u32, |_| true);
+        let component = flood(graph, start, |_| true);
         for &v in &component {
             sizes[v as usize] = component.len();
         }
@@ -326,7 +320,7 @@ fn component_protrusions(
 
 /// The area of the triangles of `triangles` whose three vertices are all in `vertices`
 /// (increasing).
-fn area_within(mesh: &Mesh, triangles: &[[u32; 3]], vertices: &[u32]) -> f64 {
+pub fn area_within(mesh: &Mesh, triangles: &[[u32; 3]], vertices: &[u32]) -> f64 {
     triangles
         .iter()
         .filter(|t| t.iter().all(|v| vertices.binary_search(v).is_ok()))

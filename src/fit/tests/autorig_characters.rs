@@ -11,7 +11,7 @@ use sweepffd::fit::autorig::{Autorig, AutorigOptions, MAX_RMS, RiggedPart, TARGE
 use sweepffd::fit::body::Body;
 use sweepffd::fit::limb::MAX_SHARE;
 use sweepffd::fit::mirror::mirror_map;
-use sweepffd::fit::protrusions::{Protrusion, found_protrusions, made_alike, searched_vertices};
+use sweepffd::fit::protrusions::{Protrusion, area_within, found_protrusions, made_alike, searched_vertices};
 use sweepffd::fit::refine::zigzags;
 use sweepffd::mesh::Mesh;
 use sweepffd::rig::{LinkKind, Rig};
@@ -31,18 +31,6 @@ fn extent(mesh: &Mesh, part: &RiggedPart, axis: DVec3) -> f64 {
     let along = part.vertices.iter().map(|&v| mesh.positions[v as usize].dot(axis));
     let (lo, hi) = along.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| (lo.min(x), hi.max(x)));
     hi - lo
-}
-
-/// The area of `mesh`'s triangles whose three vertices are all in `vertices` (increasing).
-fn area_within(mesh: &Mesh, vertices: &[u32]) -> f64 {
-    mesh.faces
-        .triangles()
-        .filter(|t| t.iter().all(|v| vertices.binary_search(v).is_ok()))
-        .map(|t| {
-            let [a, b, c] = t.map(|v| mesh.positions[v as usize]);
-            0.5 * (b - a).cross(c - a).length()
-        })
-        .sum()
 }
 
 /// The blocky man (boxes: a torso, two arms, two legs, a head of three pieces, 1–8% of its
@@ -68,9 +56,10 @@ fn the_blocky_man_gets_two_arms_two_legs_and_the_head() {
     let head =
         rigged.parts.iter().find(|p| p.vertices.binary_search(&top).is_ok()).expect("a part holds the top vertex");
     let all: Vec<u32> = (0..mesh.positions.len() as u32).collect();
+    let triangles: Vec<[u32; 3]> = mesh.faces.triangles().collect();
     let (vertex_share, area_share) = (
         head.vertices.len() as f64 / mesh.positions.len() as f64,
-        area_within(&mesh, &head.vertices) / area_within(&mesh, &all),
+        area_within(&mesh, &triangles, &head.vertices) / area_within(&mesh, &triangles, &all),
     );
     eprintln!(
         "blocky man {}: {:.0}% of the vertices, {:.1}% of the area",
