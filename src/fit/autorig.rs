@@ -13,7 +13,9 @@
 //! fit with the radii of its sections misses its surface by more than [`MAX_RMS`] (a lid's
 //! flange, a ring) is no limb, nor is one whose fitted keys fold back (`folds`: a ball, such
 //! as the faerie's head); each is left out and reported in [`Autorig::rejected`]. At most
-//! `max_parts` limbs are rigged, mirror twins at that limit kept or left out together.
+//! `max_parts` limbs are rigged, mirror twins at that limit kept or left out together. Mirror
+//! twins made of each other's vertices mirrored are rigged alike (`super::twins`): the better
+//! fitted one and its mirror image.
 //!
 //! Data flow: mesh → body → protrusions → **fit** per limb (or chain) → rig document.
 
@@ -28,6 +30,7 @@ use super::chain::{FittedLink, LinkFitter, Profile};
 use super::limb::COARSE;
 use super::protrusions::{Protrusion, protrusions};
 use super::refine::zigzags;
+use super::twins;
 use super::{Fit, FitError, FitOptions, OptionError, fit};
 use crate::mesh::Mesh;
 use crate::parallel::prelude::*;
@@ -137,7 +140,7 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
     super::beyond_rig(mesh, 0..mesh.positions.len() as u32)?;
     let started = Instant::now();
     let body = Body::new(mesh);
-    let found = protrusions(mesh, &body, options.min_length * body.diagonal, 2 * options.max_parts);
+    let (found, mirror) = protrusions(mesh, &body, options.min_length * body.diagonal, 2 * options.max_parts);
     let search_seconds = started.elapsed().as_secs_f64();
     let fit_options = FitOptions { falloff: options.falloff, ..FitOptions::default() };
     // Fitted across welded seams, so that a part's sections close.
@@ -168,6 +171,31 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
         .collect();
     let mut speculative: Vec<Option<Result<Vec<FittedLink>, Option<LeftOut>>>> =
         (0..found.len()).into_par_iter().map(|i| fitted(&found[i], &assumed[i])).collect();
+    // Mirror twins rigged alike: one twin's rig and its mirror image, of the two the pair
+    // whose looser twin fits better.
+    if let Some(mirror) = &mirror {
+        let parts: Vec<Option<&[u32]>> = assumed
+            .iter()
+            .map(|selection| match selection {
+                Selection::Fit(vertices) => Some(&vertices[..]),
+                _ => None,
+            })
+            .collect();
+        for (j, i) in twins::twin_pairs(&parts, &body.weld, mirror) {
+            let mirrored = |from: usize, to: usize| match (&speculative[from], parts[to]) {
+                (Some(Ok(links)), Some(twin)) => twins::mirrored(links, twin, &body.weld, mirror, fitted_on)
+                    .map(|image| (twins::looseness(links).max(twins::looseness(&image)), image)),
+                _ => None,
+            };
+            let (onto_i, onto_j) = (mirrored(j, i), mirrored(i, j));
+            match (onto_i, onto_j) {
+                (Some((a, image)), Some((b, _))) if a <= b => speculative[i] = Some(Ok(image)),
+                (Some((a, image)), None) if a.is_finite() => speculative[i] = Some(Ok(image)),
+                (_, Some((b, image))) if b.is_finite() => speculative[j] = Some(Ok(image)),
+                _ => {}
+            }
+        }
+    }
     let mut parts: Vec<RiggedPart> = Vec::new();
     let mut rejected = Vec::new();
     let mut taken = vec![false; mesh.positions.len()];
@@ -216,7 +244,7 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
         let name = format!("limb{limbs}");
         let names: Vec<String> =
             (0..chain.len()).map(|link| if link == 0 { name.clone() } else { format!("{name}.{link}") }).collect();
-        for (FittedLink { vertices, fit: fitted, seconds, parent }, this) in chain.into_iter().zip(&names) {
+        for (FittedLink { vertices, fit: fitted, seconds, parent, .. }, this) in chain.into_iter().zip(&names) {
             for &v in &vertices {
                 taken[v as usize] = true;
             }
@@ -286,7 +314,9 @@ fn rig_limb(
     let fitter = Fitter { mesh, options, fitted: Default::default() };
     let whole = fitter.fit(vertices);
     let whole_rms = whole.as_ref().map_or(f64::INFINITY, |(fitted, _)| one_sweep_loose(fitted));
-    let one = |(fit, seconds): (Fit, f64)| vec![FittedLink { vertices: vertices.to_vec(), fit, seconds, parent: None }];
+    let one = |(fit, seconds): (Fit, f64)| {
+        vec![FittedLink { vertices: vertices.to_vec(), fitted: vertices.to_vec(), fit, seconds, parent: None }]
+    };
     // Close enough as one sweep: its fitted radii within the target, its sections a tube's.
     let close = whole.as_ref().is_some_and(|(fitted, _)| fitted.quality.rms_d <= TARGET) && whole_rms <= MAX_RMS;
     if close {

@@ -99,6 +99,9 @@ pub const PLANE_REACH: f64 = 2.0;
 pub struct FittedLink {
     /// The link's vertices (the mesh's, increasing).
     pub vertices: Vec<u32>,
+    /// The vertices its sweep was fitted to and measured on (the mesh's, increasing): its own
+    /// and those of its neighbours within the overlap.
+    pub fitted: Vec<u32>,
     /// Its sweep, key 0 where it is attached.
     pub fit: Fit,
     /// Seconds its fit took.
@@ -553,10 +556,17 @@ impl Profile {
         parent: Option<usize>,
         fitter: &impl LinkFitter,
     ) -> Option<FittedLink> {
-        let (fit, seconds) = fitter.fit(&self.mesh_vertices(fitted.iter().copied()))?;
+        let fitted = self.mesh_vertices(fitted.iter().copied());
+        let (fit, seconds) = fitter.fit(&fitted)?;
         let (first, last) = (fit.keys[0].center, fit.keys[fit.keys.len() - 1].center);
         let fit = if last.distance(attached_at) < first.distance(attached_at) { fit.reversed() } else { fit };
-        Some(FittedLink { vertices: self.mesh_vertices(vertices.iter().copied()), fit, seconds, parent })
+        Some(FittedLink {
+            vertices: self.mesh_vertices(vertices.iter().copied()),
+            fitted,
+            fit,
+            seconds,
+            parent,
+        })
     }
 
     /// Adds the branch of local `vertices` to `chain` as a child of the link whose vertices it
@@ -790,6 +800,7 @@ mod tests {
         let height = ys().fold(f64::NEG_INFINITY, f64::max) - ys().fold(f64::INFINITY, f64::min);
         // Her hair hangs behind her (she faces +x), over a quarter of her height.
         let hair = protrusions(&mesh, &body, 0.04 * body.diagonal, 32)
+            .0
             .into_iter()
             .find(|p| {
                 let at = |v: &u32| mesh.positions[*v as usize];

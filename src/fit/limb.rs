@@ -868,7 +868,7 @@ mod tests {
             vertices.iter().flat_map(|a| vertices.iter().map(move |b| at(a).distance(at(b)))).fold(0.0, f64::max)
         };
         // The arms: the protrusions whose tips, the hands, hang at mid height, to either side.
-        let found = protrusions(&mesh, &body, 0.04 * body.diagonal, 32);
+        let (found, _) = protrusions(&mesh, &body, 0.04 * body.diagonal, 32);
         let arms: Vec<_> = found
             .iter()
             .filter(|p| {

@@ -97,6 +97,7 @@ internal_mod! {
     select;
     skeleton;
     star;
+    twins;
 }
 
 use glam::DVec3;

@@ -17,9 +17,11 @@
 //! 3. **Merge tree.** Vertices in decreasing g join the components of their neighbours
 //!    already added (union-find); where two meet, the one with the lower tip ends there at
 //!    level g(v), with persistence g(tip) − g(v). The farthest tip's branch never ends: it
-//!    is closed at the highest level where a kept branch ends in it, and also at the next
-//!    level down where the limb found there holds at least [`ELDEST_GROWTH`] times the
-//!    vertices (the dino's farthest toe meets its other toe first, then its leg the body).
+//!    is closed at the highest level where a kept branch ends in it, and also at each next
+//!    level down (of at most [`ELDEST_ENDS`]) where the limb found there holds at least
+//!    [`ELDEST_GROWTH`] times the vertices of the last one kept (the dino's farthest toe meets
+//!    its other toe first, then its leg the body; an ogre's farthest fingertip meets four
+//!    fingers before its arm meets the body).
 //! 4. **Parts.** Branches with persistence at least `min_length` are kept, the longest first,
 //!    at most `max_parts`; each part is its tip's limb ([`super::limb`]): the vertices nearer
 //!    the tip than where the level sets of distance from it open onto the body, the tip moved
@@ -47,7 +49,7 @@ use glam::DVec3;
 use super::body::Body;
 use super::geodesic::EdgeGraph;
 use super::limb::{MAX_SHARE, aligned_limb};
-use super::mirror::{NO_TWIN, mirror_map};
+use super::mirror::{Mirror, NO_TWIN, mirror_map};
 use crate::mesh::Mesh;
 
 /// A protrusion: a tip and the vertices of its branch.
@@ -78,17 +80,19 @@ struct Branch {
 
 /// The protrusions of `mesh` (see the module docs), longest first: those found
 /// ([`found_protrusions`]), mirror twins made alike where the searched vertices have a mirror
-/// plane ([`made_alike`]), each welded vertex standing for every vertex welded to it.
-pub fn protrusions(mesh: &Mesh, body: &Body, min_length: f64, max_parts: usize) -> Vec<Protrusion> {
+/// plane ([`made_alike`]), each welded vertex standing for every vertex welded to it; and
+/// that plane, if any.
+pub fn protrusions(mesh: &Mesh, body: &Body, min_length: f64, max_parts: usize) -> (Vec<Protrusion>, Option<Mirror>) {
     let mut found = found_protrusions(mesh, body, min_length, max_parts);
     let searched = searched_vertices(mesh, body);
-    if let Some(map) = mirror_map(&mesh.positions, &searched) {
-        made_alike(&mut found, &map);
+    let mirror = mirror_map(&mesh.positions, &searched);
+    if let Some(mirror) = &mirror {
+        made_alike(&mut found, &mirror.map);
     }
     for part in &mut found {
         part.vertices = body.unwelded(&part.vertices);
     }
-    found
+    (found, mirror)
 }
 
 /// The vertices the search runs on: the welded representatives on the body's triangles,
@@ -286,9 +290,11 @@ fn component_protrusions(
         Some(Protrusion { vertices, tip, length, axis: None })
     };
     let mut found: Vec<Protrusion> = kept.filter_map(limb_of).collect();
-    // The eldest branch ends at the highest level where a kept branch ends in it; where it
-    // reaches on to the next such level as a limb of at least [`ELDEST_GROWTH`] times the
-    // vertices, that one too (a leg whose farthest toe meets its other toe first).
+    // The eldest branch ends at the highest level where a kept branch ends in it; and at each
+    // next such level down (at most [`ELDEST_ENDS`] in all) where it reaches on as a limb of
+    // at least [`ELDEST_GROWTH`] times the vertices of the last one kept, until one is more
+    // than a limb's share of the component: a leg whose farthest toe meets its other toe
+    // first, an arm whose farthest finger meets the hand's other fingers one by one.
     let mut ends: Vec<f64> = branches
         .iter()
         .filter(|b| b.into == eldest && g[b.tip as usize] - b.end >= min_length)
@@ -296,15 +302,8 @@ fn component_protrusions(
         .collect();
     ends.sort_by(|a, b| b.total_cmp(a));
     ends.dedup();
-    let ends: Vec<f64> = ends.into_iter().filter(|&end| g[eldest as usize] - end >= min_length).take(2).collect();
-    let first = ends.first().and_then(|&end| limb_of((eldest, end)));
-    let second = ends.get(1).and_then(|&end| limb_of((eldest, end)));
-    let grown = |second: &Protrusion| {
-        first.as_ref().is_none_or(|first| second.vertices.len() as f64 >= ELDEST_GROWTH * first.vertices.len() as f64)
-    };
-    let second = second.filter(grown);
-    found.extend(first);
-    found.extend(second);
+    let ends: Vec<f64> = ends.into_iter().filter(|&end| g[eldest as usize] - end >= min_length).collect();
+    found.extend(eldest_limbs(&ends, |end| limb_of((eldest, end)), component.len()));
     // The component's area, measured only where a part holds more than its share of the
     // vertices.
     let mut component_area = None;
@@ -334,6 +333,35 @@ pub fn area_within(mesh: &Mesh, triangles: &[[u32; 3]], vertices: &[u32]) -> f64
 /// See `component_protrusions`: the eldest branch reaching on to the next level where a
 /// branch ends in it is a limb of its own where it holds this many times the vertices.
 pub const ELDEST_GROWTH: f64 = 2.0;
+
+/// See `component_protrusions`: the eldest branch is tried to at most this many levels where
+/// a branch ends in it (an ogre's farthest fingertip meets the hand's four other fingers
+/// before its arm meets the body).
+pub const ELDEST_ENDS: usize = 6;
+
+/// The limbs of the eldest branch closed at `ends` (levels, highest first), `limb_at` the limb
+/// closed at each: the first, and each next (of at most [`ELDEST_ENDS`] levels) that holds at
+/// least [`ELDEST_GROWTH`] times the vertices of the last one kept, until one holds more than
+/// [`MAX_SHARE`] of the `component_size` vertices.
+fn eldest_limbs(
+    ends: &[f64],
+    limb_at: impl Fn(f64) -> Option<Protrusion>,
+    component_size: usize,
+) -> Vec<Protrusion> {
+    let mut kept: Vec<Protrusion> = Vec::new();
+    for &end in ends.iter().take(ELDEST_ENDS) {
+        let Some(limb) = limb_at(end) else { continue };
+        let count = limb.vertices.len();
+        if kept.last().is_some_and(|last| (count as f64) < ELDEST_GROWTH * last.vertices.len() as f64) {
+            continue;
+        }
+        kept.push(limb);
+        if count as f64 > MAX_SHARE * component_size as f64 {
+            break;
+        }
+    }
+    kept
+}
 
 /// The branches of the merge tree of superlevel sets of `g` over `component` and the
 /// eldest tip (the farthest vertex).
@@ -412,5 +440,42 @@ mod tests {
         assert_eq!(found[0].vertices, tail);
         assert_eq!(found[1].vertices, vec![0, 1, 2, 3, 4, 5, 6], "7 of 10 shared: no twin");
         assert_eq!(found[2].vertices, (10..20).collect::<Vec<u32>>());
+    }
+
+    /// A limb of `count` vertices.
+    fn limb_of(count: usize) -> Protrusion {
+        Protrusion { vertices: (0..count as u32).collect(), tip: 0, length: count as f64, axis: None }
+    }
+
+    /// The eldest branch is an ogre's farthest fingertip: the hand's four other fingers meet it
+    /// at four levels, each closing it to the finger (about 400 vertices), before its arm meets
+    /// the body (about 3,900). Closed at its first two levels only (as it was), it is a finger
+    /// twice and the arm is never found; tried further, the arm is found at the fifth level
+    /// and the search stops past a limb's share (the body's far side).
+    #[test]
+    fn the_eldest_branch_reaches_its_arm_past_the_hands_other_fingers() {
+        let ends = [9.0, 8.9, 8.8, 8.7, 3.0, 1.0];
+        let sizes = |end: f64| match end {
+            e if e > 8.75 => Some(limb_of(400)),
+            e if e > 8.0 => Some(limb_of(410)),
+            e if e > 2.0 => Some(limb_of(3900)),
+            _ => Some(limb_of(30000)),
+        };
+        let counts = |ends: &[f64]| -> Vec<usize> {
+            eldest_limbs(ends, sizes, 62000).iter().map(|limb| limb.vertices.len()).collect()
+        };
+        assert_eq!(counts(&ends[..2]), vec![400], "closed at two levels: a finger alone");
+        assert_eq!(counts(&ends), vec![400, 3900, 30000]);
+        // Past a limb's share, the search stops: the body's far side is the last one tried.
+        let calls = std::cell::Cell::new(0);
+        let counted = |end: f64| {
+            calls.set(calls.get() + 1);
+            if end > 5.0 { Some(limb_of(16000)) } else { Some(limb_of(40000)) }
+        };
+        assert_eq!(eldest_limbs(&ends, counted, 62000).len(), 1);
+        assert_eq!(calls.get(), 1);
+        // A level whose limb is refused (a bump) is passed over.
+        let bumps = |end: f64| (end < 8.0).then(|| limb_of(3900));
+        assert_eq!(eldest_limbs(&ends, bumps, 62000).len(), 1);
     }
 }

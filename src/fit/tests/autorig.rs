@@ -7,10 +7,13 @@ use crate::common;
 use glam::{DQuat, DVec3};
 use sweepffd::edit::{Edit, KeyMode, Posing};
 use sweepffd::fit::autorig::{Autorig, AutorigOptions, NOT_STAR_TARGET, RiggedPart, TARGET, autorig};
+use sweepffd::fit::body::Body;
 use sweepffd::fit::least_squares::fitted_radii;
+use sweepffd::fit::mirror::mirror_map;
 use sweepffd::fit::part::Part;
+use sweepffd::fit::protrusions::searched_vertices;
 use sweepffd::fit::quality::measure;
-use sweepffd::fit::{FitError, OptionError, largest_connected};
+use sweepffd::fit::{FitError, FitOptions, OptionError, fit, largest_connected};
 use sweepffd::mesh::Mesh;
 use sweepffd::rig::Rig;
 use sweepffd::sweep::{Key, Sweep};
@@ -218,6 +221,54 @@ fn spot_gets_its_four_legs() {
     owners.sort();
     owners.dedup();
     assert_eq!(owners.len(), 4, "one part per leg");
+}
+
+/// Spot's legs are mirror twins across its plane x = 0, made of the same vertices mirrored,
+/// but each fitted on its own the fit's key insertion takes its own path: the front legs took
+/// 15 and 6 keys. Each pair is rigged as one leg and that leg's mirror image: the same key
+/// count, each key the reflection of its twin's (centers, frames and radii), the fits within
+/// 0.5% of the mean radius of each other.
+#[test]
+fn spots_mirror_twin_legs_are_rigged_alike() {
+    let Some(path) = common::shared_mesh("spot_triangulated.obj") else { return };
+    let mesh = Mesh::load(&path).unwrap();
+    let rigged = autorig(&mesh, &AutorigOptions::default()).unwrap();
+    let body = Body::new(&mesh);
+    let mirror = mirror_map(&mesh.positions, &searched_vertices(&mesh, &body)).expect("spot's mirror plane");
+    let diagonal = mesh.diagonal();
+    let own_keys = |part: &RiggedPart| fit(&mesh, &part.vertices, &FitOptions::default()).unwrap().keys.len();
+    for (pair, z0) in [("front", 0.06), ("hind", 0.79)] {
+        let leg = |sx: f64| {
+            let hoof = extreme(&mesh, |p| p.x * sx > 0.0 && (p.z - z0).abs() < 0.25, |p| -p.y);
+            rigged.parts.iter().find(|p| p.vertices.binary_search(&hoof).is_ok()).expect("a part holds the hoof")
+        };
+        let (right, left) = (leg(1.0), leg(-1.0));
+        let (own_right, own_left) = (own_keys(right), own_keys(left));
+        eprintln!(
+            "spot's {pair} legs: {} and {} keys at {:.2}% and {:.2}%; fitted each on its own, {own_right} and \
+             {own_left} keys",
+            right.fit.keys.len(),
+            left.fit.keys.len(),
+            100.0 * right.fit.quality.rms_d,
+            100.0 * left.fit.quality.rms_d
+        );
+        if pair == "front" {
+            assert_ne!(own_right, own_left, "fitted each on its own, the front legs differ");
+        }
+        assert_eq!(right.fit.keys.len(), left.fit.keys.len(), "{pair}: the same key count");
+        for (a, b) in right.fit.keys.iter().zip(&left.fit.keys) {
+            let image = mirror.reflect_key(a);
+            assert!(
+                image.center.distance(b.center) <= 1e-9 * diagonal,
+                "{pair}: {} against {}",
+                image.center,
+                b.center
+            );
+            assert!(image.rotation.dot(b.rotation).abs() >= 1.0 - 1e-12, "{pair}: frames");
+            assert_eq!(image.radii, b.radii, "{pair}: radii");
+        }
+        assert!((right.fit.quality.rms_d - left.fit.quality.rms_d).abs() <= 5e-3, "{pair}");
+    }
 }
 
 /// The armadillo's four limbs, two ears and tail, each part holding the limb's extreme vertex

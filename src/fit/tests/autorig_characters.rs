@@ -116,7 +116,7 @@ fn wusons_hind_legs_are_made_alike_and_rigged_alike() {
     let body = Body::new(&mesh);
     let options = AutorigOptions::default();
     let searched = searched_vertices(&mesh, &body);
-    let map = mirror_map(&mesh.positions, &searched).expect("wuson has a mirror plane");
+    let map = mirror_map(&mesh.positions, &searched).expect("wuson has a mirror plane").map;
     // Its head is towards −z; a hind hoof's lowest vertex on each side.
     let hoof = |side: f64| {
         (0..mesh.positions.len() as u32)
