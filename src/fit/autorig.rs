@@ -15,7 +15,8 @@
 //! as the faerie's head); each is left out and reported in [`Autorig::rejected`]. At most
 //! `max_parts` limbs are rigged, mirror twins at that limit kept or left out together. Mirror
 //! twins made of each other's vertices mirrored are rigged alike (`super::twins`): the better
-//! fitted one and its mirror image.
+//! fitted one and its mirror image. Small pieces hanging from a part (a fingernail, an eye)
+//! go with it (`super::hanging`).
 //!
 //! Data flow: mesh → body → protrusions → **fit** per limb (or chain) → rig document.
 
@@ -27,6 +28,7 @@ use glam::DVec3;
 
 use super::body::Body;
 use super::chain::{FittedLink, LinkFitter, Profile};
+use super::hanging;
 use super::limb::COARSE;
 use super::protrusions::{Protrusion, protrusions};
 use super::refine::zigzags;
@@ -264,6 +266,19 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
             });
         }
         limbs += 1;
+    }
+    // Small pieces that hang from a part (a fingernail on a finger) go with it.
+    let mut owner = vec![None; mesh.positions.len()];
+    for (k, part) in parts.iter().enumerate() {
+        for &v in &part.vertices {
+            owner[v as usize] = Some(k);
+        }
+    }
+    for (k, piece) in hanging::hanging_pieces(mesh, &body, &mut owner) {
+        let vertices = &mut parts[k].vertices;
+        vertices.extend(piece);
+        vertices.sort_unstable();
+        vertices.dedup();
     }
     Ok(Autorig { parts, rejected, search_seconds, twins_left_out })
 }

@@ -295,7 +295,7 @@ fn bridges(positions: &[DVec3], triangles: &[[u32; 3]], reach: f64) -> (Vec<[u32
 
 /// Whether a component of `smaller` vertices may be a piece of one of `larger` (see the module
 /// docs).
-fn is_piece(smaller: usize, larger: usize) -> bool {
+pub fn is_piece(smaller: usize, larger: usize) -> bool {
     smaller < SMALL_COMPONENT || smaller as f64 <= SMALL_SHARE * larger as f64
 }
 

@@ -13,14 +13,11 @@
 //! to the lower index), the others to no twin. Everything is measured from the vertices, so a
 //! rigidly moved mesh gets the same map.
 
-use std::collections::HashMap;
-use std::hash::BuildHasherDefault;
-
-use glam::{DMat3, DQuat, DVec3, IVec3};
+use glam::{DMat3, DQuat, DVec3};
 
 use crate::sweep::Key;
 
-use crate::mesh::weld::PositionHasher;
+use super::grid::Grid;
 
 /// A vertex's mirror image lies within this fraction of the bounds' diagonal of its twin: an
 /// approximate symmetry (wuson's is within 8.7·10⁻⁴, the half-built AT-AT's 11% of its vertices
@@ -133,48 +130,6 @@ pub fn mirror_map(positions: &[DVec3], vertices: &[u32]) -> Option<Mirror> {
         }
     }
     Some(Mirror { point, normal, map })
-}
-
-/// Points bucketed in cubes twice as wide as the reach of a search, so that a search looks in
-/// at most two cubes along each axis.
-struct Grid {
-    reach: f64,
-    cells: HashMap<IVec3, Vec<usize>, BuildHasherDefault<PositionHasher>>,
-}
-
-impl Grid {
-    fn new(points: &[DVec3], reach: f64) -> Grid {
-        let mut cells: HashMap<IVec3, Vec<usize>, BuildHasherDefault<PositionHasher>> = HashMap::default();
-        for (i, &p) in points.iter().enumerate() {
-            cells.entry(Grid::cell(p, reach)).or_default().push(i);
-        }
-        Grid { reach, cells }
-    }
-
-    fn cell(p: DVec3, reach: f64) -> IVec3 {
-        (p / (2.0 * reach)).floor().as_ivec3()
-    }
-
-    /// The index of the point of `points` nearest `q` within the reach (the lower index of
-    /// two as near); `None` where none is.
-    fn nearest(&self, points: &[DVec3], q: DVec3) -> Option<usize> {
-        let (lo, hi) = (Grid::cell(q - DVec3::splat(self.reach), self.reach), Grid::cell(q + DVec3::splat(self.reach), self.reach));
-        let mut best: Option<(f64, usize)> = None;
-        for x in lo.x..=hi.x {
-            for y in lo.y..=hi.y {
-                for z in lo.z..=hi.z {
-                    let Some(bucket) = self.cells.get(&IVec3::new(x, y, z)) else { continue };
-                    for &i in bucket {
-                        let d = points[i].distance(q);
-                        if d <= self.reach && best.is_none_or(|(bd, bi)| d < bd || (d == bd && i < bi)) {
-                            best = Some((d, i));
-                        }
-                    }
-                }
-            }
-        }
-        best.map(|(_, i)| i)
-    }
 }
 
 /// The unit eigenvectors of the symmetric matrix `m`, largest eigenvalue first (cyclic Jacobi

@@ -85,6 +85,8 @@ internal_mod! {
     chain;
     frames;
     geodesic;
+    grid;
+    hanging;
     hidden;
     least_squares;
     limb;

@@ -72,10 +72,12 @@ pub fn looseness(links: &[FittedLink]) -> f64 {
 }
 
 /// The mirror image of the limb `links` on its twin, whose vertices are `twin` (increasing, a
-/// twin by [`twin_pairs`]): each link's vertices (and fitted vertices) those of `twin` whose
-/// mirror twins (those of the vertices they are welded to, `weld`) are welded to its own, its
-/// keys and those of each of its steps reflected, its fit measured again on its fitted vertices
-/// of `mesh`. `None` where a reflected sweep cannot be built.
+/// twin by [`twin_pairs`]): each vertex of `twin` goes to the link that holds its mirror twin
+/// (the twin of the vertex it is welded to, `weld`; else a link holding a vertex welded to
+/// that), so that the links stay disjoint; each link's fitted vertices are those of `twin`
+/// whose mirror twins are welded to its own; its keys and those of each of its steps are
+/// reflected, and its fit measured again on its fitted vertices of `mesh`. `None` where a
+/// reflected sweep cannot be built.
 pub fn mirrored(
     links: &[FittedLink],
     twin: &[u32],
@@ -83,20 +85,39 @@ pub fn mirrored(
     mirror: &Mirror,
     mesh: &Mesh,
 ) -> Option<Vec<FittedLink>> {
-    let image = |vertices: &[u32]| {
-        let own = welded(vertices, weld);
-        let image: Vec<u32> = twin
-            .iter()
-            .copied()
-            .filter(|&v| own.binary_search(&mirror.map[weld[v as usize] as usize]).is_ok())
-            .collect();
+    // Per welded vertex of the limb, its link: the one holding it, else one holding a vertex
+    // welded to it.
+    let mut owner: std::collections::HashMap<u32, usize> = Default::default();
+    for (k, link) in links.iter().enumerate() {
+        for &v in &link.vertices {
+            if weld[v as usize] == v {
+                owner.insert(v, k);
+            }
+        }
+    }
+    for (k, link) in links.iter().enumerate() {
+        for &v in &link.vertices {
+            owner.entry(weld[v as usize]).or_insert(k);
+        }
+    }
+    let source = |v: u32| mirror.map[weld[v as usize] as usize];
+    let mut vertices: Vec<Vec<u32>> = vec![Vec::new(); links.len()];
+    for &v in twin {
+        if let Some(&k) = owner.get(&source(v)) {
+            vertices[k].push(v);
+        }
+    }
+    let image = |of: &[u32]| {
+        let own = welded(of, weld);
+        let image: Vec<u32> = twin.iter().copied().filter(|&v| own.binary_search(&source(v)).is_ok()).collect();
         image
     };
     links
         .iter()
-        .map(|link| {
+        .zip(vertices)
+        .map(|(link, vertices)| {
             let started = Instant::now();
-            let (vertices, fitted) = (image(&link.vertices), image(&link.fitted));
+            let fitted = image(&link.fitted);
             let reflect = |keys: &[crate::sweep::Key]| keys.iter().map(|key| mirror.reflect_key(key)).collect::<Vec<_>>();
             let keys = reflect(&link.fit.keys);
             let sweep = Sweep::try_new(&keys, None).ok()?;
