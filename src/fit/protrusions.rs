@@ -290,10 +290,9 @@ fn component_protrusions(
         Some(Protrusion { vertices, tip, length, axis: None })
     };
     let mut found: Vec<Protrusion> = kept.filter_map(limb_of).collect();
-    // The eldest branch ends at the highest level where a kept branch ends in it; and at each
-    // next such level down (at most [`ELDEST_ENDS`] in all) where it reaches on as a limb of
-    // at least [`ELDEST_GROWTH`] times the vertices of the last one kept, until one is more
-    // than a limb's share of the component: a leg whose farthest toe meets its other toe
+    // The eldest branch ends at the highest level where a kept branch ends in it; and at the
+    // next such level down (of at most [`ELDEST_ENDS`]) where it reaches on as a limb of at
+    // least [`ELDEST_GROWTH`] times the vertices: a leg whose farthest toe meets its other toe
     // first, an arm whose farthest finger meets the hand's other fingers one by one.
     let mut ends: Vec<f64> = branches
         .iter()
@@ -340,9 +339,9 @@ pub const ELDEST_GROWTH: f64 = 2.0;
 pub const ELDEST_ENDS: usize = 6;
 
 /// The limbs of the eldest branch closed at `ends` (levels, highest first), `limb_at` the limb
-/// closed at each: the first, and each next (of at most [`ELDEST_ENDS`] levels) that holds at
-/// least [`ELDEST_GROWTH`] times the vertices of the last one kept, until one holds more than
-/// [`MAX_SHARE`] of the `component_size` vertices.
+/// closed at each: the first, and the next (of at most [`ELDEST_ENDS`] levels) that holds at
+/// least [`ELDEST_GROWTH`] times its vertices, where the first holds at most [`MAX_SHARE`] of
+/// the `component_size` vertices (past that, the body's far side, the search stops).
 fn eldest_limbs(
     ends: &[f64],
     limb_at: impl Fn(f64) -> Option<Protrusion>,
@@ -356,7 +355,7 @@ fn eldest_limbs(
             continue;
         }
         kept.push(limb);
-        if count as f64 > MAX_SHARE * component_size as f64 {
+        if kept.len() == 2 || count as f64 > MAX_SHARE * component_size as f64 {
             break;
         }
     }
@@ -450,8 +449,8 @@ mod tests {
     /// The eldest branch is an ogre's farthest fingertip: the hand's four other fingers meet it
     /// at four levels, each closing it to the finger (about 400 vertices), before its arm meets
     /// the body (about 3,900). Closed at its first two levels only (as it was), it is a finger
-    /// twice and the arm is never found; tried further, the arm is found at the fifth level
-    /// and the search stops past a limb's share (the body's far side).
+    /// twice and the arm is never found; tried further, the arm is found at the fifth level,
+    /// and no level below it is tried.
     #[test]
     fn the_eldest_branch_reaches_its_arm_past_the_hands_other_fingers() {
         let ends = [9.0, 8.9, 8.8, 8.7, 3.0, 1.0];
@@ -465,7 +464,7 @@ mod tests {
             eldest_limbs(ends, sizes, 62000).iter().map(|limb| limb.vertices.len()).collect()
         };
         assert_eq!(counts(&ends[..2]), vec![400], "closed at two levels: a finger alone");
-        assert_eq!(counts(&ends), vec![400, 3900, 30000]);
+        assert_eq!(counts(&ends), vec![400, 3900], "the finger and its arm, and no level further");
         // Past a limb's share, the search stops: the body's far side is the last one tried.
         let calls = std::cell::Cell::new(0);
         let counted = |end: f64| {
