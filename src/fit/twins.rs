@@ -1,10 +1,10 @@
 //! Mirror twins rigged alike, for [`super::autorig`]: a character's left and right limbs,
 //! found as mirror images of each other ([`super::protrusions::made_alike`]), are fitted each
 //! on its own, and the fit, whose key insertion stops where a round of keys does not tighten
-//! it, may take a different path on each: the public ogre's arms, made of the same vertices
-//! mirrored, were fitted with 18 and 11 keys, at 15.1% and 17.4% RMS |d|. So the twin whose
-//! links fit better, each measured against its own target, is rigged, and the other gets the
-//! mirror image of its rig: every link's vertices mapped across the plane and its keys
+//! it, may take a different path on each: spot's front legs, made of the same vertices
+//! mirrored, were fitted with 15 and 6 keys, the public ogre's arms' stems with 23 and 16. So
+//! of the two rigs, each with its mirror image on the other twin, the one whose looser twin fits
+//! better (each link measured against its own target) is kept: every link's vertices mapped across the plane and its keys
 //! reflected ([`Mirror::reflect_key`]), its fit measured again on its own vertices. Both are
 //! then posed alike and named in the same order.
 
