@@ -3,10 +3,11 @@
 //! on its own, and the fit, whose key insertion stops where a round of keys does not tighten
 //! it, may take a different path on each: spot's front legs, made of the same vertices
 //! mirrored, were fitted with 15 and 6 keys, the public ogre's arms' stems with 23 and 16. So
-//! of the two rigs, each with its mirror image on the other twin, the one whose looser twin fits
-//! better (each link measured against its own target) is kept: every link's vertices mapped across the plane and its keys
-//! reflected ([`Mirror::reflect_key`]), its fit measured again on its own vertices. Both are
-//! then posed alike and named in the same order.
+//! of the two rigs, each with its mirror image on the other twin, the one whose looser twin
+//! fits better (each link measured against its own target) is kept. The image maps every
+//! link's vertices across the plane and reflects its keys ([`Mirror::reflect_key`]); its fit
+//! is measured again on its own vertices. Both twins are then posed alike and named in the
+//! same order.
 
 use std::time::Instant;
 
@@ -40,7 +41,10 @@ pub fn twin_pairs(parts: &[Option<&[u32]>], weld: &[u32], mirror: &Mirror) -> Ve
         }
         let twin = (0..i).find(|&j| {
             !paired[j]
-                && matches!((parts[j], &welded[j]), (Some(other), Some(theirs)) if lands_in(part, theirs) && lands_in(other, own))
+                && matches!(
+                    (parts[j], &welded[j]),
+                    (Some(other), Some(theirs)) if lands_in(part, theirs) && lands_in(other, own)
+                )
         });
         if let Some(j) = twin {
             paired[j] = true;
@@ -118,7 +122,8 @@ pub fn mirrored(
         .map(|(link, vertices)| {
             let started = Instant::now();
             let fitted = image(&link.fitted);
-            let reflect = |keys: &[crate::sweep::Key]| keys.iter().map(|key| mirror.reflect_key(key)).collect::<Vec<_>>();
+            let reflect =
+                |keys: &[crate::sweep::Key]| keys.iter().map(|key| mirror.reflect_key(key)).collect::<Vec<_>>();
             let keys = reflect(&link.fit.keys);
             let sweep = Sweep::try_new(&keys, None).ok()?;
             let positions: Vec<_> = fitted.iter().map(|&v| mesh.positions[v as usize]).collect();
@@ -149,7 +154,9 @@ mod tests {
     #[test]
     fn parts_that_are_each_others_images_are_twins_and_a_part_on_the_plane_is_none() {
         let weld: Vec<u32> = (0..30).collect();
-        let (left, right, tail): (Vec<u32>, Vec<u32>, Vec<u32>) = ((0..10).collect(), (10..20).collect(), (20..30).collect());
+        let left: Vec<u32> = (0..10).collect();
+        let right: Vec<u32> = (10..20).collect();
+        let tail: Vec<u32> = (20..30).collect();
         let parts = [Some(&tail[..]), Some(&left[..]), None, Some(&right[..])];
         assert_eq!(twin_pairs(&parts, &weld, &mirror()), vec![(1, 3)]);
         // A part short of one vertex's image is no twin.
