@@ -21,9 +21,9 @@ use super::disjoint_sets::DisjointSets;
 use super::grid::Grid;
 use crate::mesh::Mesh;
 
-/// A piece sits on what lies within this fraction of the bounding-box diagonal of its vertices
-/// (the ogre's fingernails lie 3·10⁻⁴ of its diagonal off their fingers, 1.4·10⁻³ at the
-/// median).
+/// A piece sits on the vertices that lie within this fraction of the bounding-box diagonal of
+/// its own (the ogre's fingernails lie 3·10⁻⁴ of its diagonal off their fingers at the
+/// nearest, 1.4·10⁻³ at the median).
 pub const REACH: f64 = 0.005;
 
 /// The pieces of `mesh` (searched as `body`) that sit on a part (see the module docs), given

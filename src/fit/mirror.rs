@@ -110,7 +110,7 @@ pub fn mirror_map(positions: &[DVec3], vertices: &[u32]) -> Option<Mirror> {
         .find_map(|normal| Some((centroid, normal, twins_by(centroid, normal)?)))?;
     // The plane through the pairs' midpoints, normal to their mean difference: the centroid is
     // off the plane by whatever has no twin (an ogre's lopsided grin moves it 10⁻⁴ of the
-    // diagonal, a sixth of a finger's radius in reflected keys).
+    // diagonal, which moved its reflected fingers' keys by a few percent of their radius).
     let (mut midpoints, mut across, mut pairs) = (DVec3::ZERO, DVec3::ZERO, 0);
     for (i, twin) in twins.iter().enumerate() {
         let Some(k) = *twin else { continue };
