@@ -90,13 +90,19 @@ impl RiggedPart {
     /// The RMS |d| (over the mean radius) its fit aims within: [`TARGET`], or
     /// [`NOT_STAR_TARGET`] where some of its sections are not star-shaped.
     pub fn target(&self) -> f64 {
-        if self.sections_not_star_shaped() > 0 { NOT_STAR_TARGET } else { TARGET }
+        target_of(&self.fit)
     }
 
     /// Whether its fit is within its [`RiggedPart::target`] at its vertices.
     pub fn within_target(&self) -> bool {
         self.fit.quality.rms_d <= self.target()
     }
+}
+
+/// The RMS |d| (over the mean radius) `fit` aims within: [`TARGET`], or [`NOT_STAR_TARGET`]
+/// where some of its sections are not star-shaped.
+pub fn target_of(fit: &Fit) -> f64 {
+    if fit.sections.iter().any(|s| s.several_crossings > 0) { NOT_STAR_TARGET } else { TARGET }
 }
 
 /// A rigged mesh: its parts, longest first.
