@@ -29,6 +29,7 @@ use glam::DVec3;
 use super::disjoint_sets::DisjointSets;
 use super::geodesic::EdgeGraph;
 use super::nearest_triangle::NearestTriangle;
+use crate::parallel::prelude::*;
 use crate::mesh::{Faces, Mesh, bounds_of};
 
 /// Vertices nearer each other than this fraction of the bounding-box diagonal are welded.
@@ -311,7 +312,7 @@ fn contacts(
     component: &[u32],
     used: &[bool],
     reach: f64,
-    may_join: impl Fn(u32, u32) -> bool,
+    may_join: impl Fn(u32, u32) -> bool + Sync,
 ) -> Vec<Contact> {
     let (lo, hi) = bounds_of(positions);
     // Cells no smaller than 1/64 of the extent, and coarser while the triangles would fill more
@@ -362,13 +363,15 @@ fn contacts(
     }
     let trees: HashMap<u32, NearestTriangle> =
         by_component.into_iter().map(|(owner, triangles)| (owner, NearestTriangle::new(triangles))).collect();
-    let mut found = Vec::new();
-    for (v, &p) in positions.iter().enumerate() {
+    // Each vertex's contacts, the vertices in parallel and their contacts in vertex order.
+    let of_vertex = |v: usize| -> Vec<Contact> {
+        let p = positions[v];
         if !used[v] {
-            continue;
+            return Vec::new();
         }
         let c = ((p - lo) / size).floor().as_i64vec3().to_array();
-        let Some(list) = grid.get(&c) else { continue };
+        let Some(list) = grid.get(&c) else { return Vec::new() };
+        let mut found = Vec::new();
         for &other in list {
             if other == component[v] || !may_join(component[v], other) {
                 continue;
@@ -381,8 +384,10 @@ fn contacts(
                 .unwrap_or(&t[0]);
             found.push(Contact { gap, components: [component[v], other], edge: [v as u32, corner] });
         }
-    }
-    found
+        found
+    };
+    let per_vertex: Vec<Vec<Contact>> = (0..positions.len()).into_par_iter().map(of_vertex).collect();
+    per_vertex.into_iter().flatten().collect()
 }
 
 /// The point of the triangle `t` nearest `p` (Ericson, "Real-Time Collision Detection", §5.1.5).

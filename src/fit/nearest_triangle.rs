@@ -105,7 +105,7 @@ impl NearestTriangle {
         }
         while let Some(n) = stack.pop() {
             let node = self.nodes[n];
-            let box_gap = (node.lo - p).max(p - node.hi).max(DVec3::ZERO).length();
+            let box_gap = self.box_gap(n, p);
             if box_gap > reach || best.is_some_and(|(gap, _)| box_gap > gap) {
                 continue;
             }
@@ -119,11 +119,24 @@ impl NearestTriangle {
                     }
                 }
             } else {
-                stack.push(node.end as usize);
-                stack.push(node.start as usize);
+                // The nearer child first, so that the best found early prunes the farther one.
+                let (first, second) = (node.start as usize, node.end as usize);
+                if self.box_gap(second, p) < self.box_gap(first, p) {
+                    stack.push(first);
+                    stack.push(second);
+                } else {
+                    stack.push(second);
+                    stack.push(first);
+                }
             }
         }
         best.map(|(gap, index)| (index, gap))
+    }
+
+    /// The distance from `p` to node `n`'s box (0 inside it).
+    fn box_gap(&self, n: usize, p: DVec3) -> f64 {
+        let node = &self.nodes[n];
+        (node.lo - p).max(p - node.hi).max(DVec3::ZERO).length()
     }
 }
 

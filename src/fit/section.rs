@@ -135,16 +135,29 @@ pub fn cut(part: &Part, plane: &Plane) -> Vec<Contour> {
 /// Joins segments sharing end nodes into contours: open chains first (from nodes used once),
 /// then closed loops.
 fn chain(points: &[DVec2], segments: &[[usize; 2]]) -> Vec<Contour> {
-    let mut incident: Vec<Vec<usize>> = vec![Vec::new(); points.len()];
-    for (s, ends) in segments.iter().enumerate() {
-        incident[ends[0]].push(s);
-        incident[ends[1]].push(s);
+    // Each node's segments, in increasing order: `incident[offsets[n]..offsets[n + 1]]`.
+    let mut offsets = vec![0usize; points.len() + 1];
+    for ends in segments {
+        offsets[ends[0] + 1] += 1;
+        offsets[ends[1] + 1] += 1;
     }
+    for n in 0..points.len() {
+        offsets[n + 1] += offsets[n];
+    }
+    let mut filled = offsets.clone();
+    let mut incident = vec![0usize; offsets[points.len()]];
+    for (s, ends) in segments.iter().enumerate() {
+        for &n in ends {
+            incident[filled[n]] = s;
+            filled[n] += 1;
+        }
+    }
+    let incident_to = |n: usize| &incident[offsets[n]..offsets[n + 1]];
     let mut used = vec![false; segments.len()];
     let mut contours = Vec::new();
-    let starts = (0..points.len()).filter(|&n| incident[n].len() == 1).chain(0..points.len());
+    let starts = (0..points.len()).filter(|&n| incident_to(n).len() == 1).chain(0..points.len());
     for start in starts.collect::<Vec<_>>() {
-        while let Some(&first) = incident[start].iter().find(|&&s| !used[s]) {
+        while let Some(&first) = incident_to(start).iter().find(|&&s| !used[s]) {
             let mut nodes = vec![start];
             let (mut at, mut segment) = (start, first);
             loop {
@@ -155,7 +168,7 @@ fn chain(points: &[DVec2], segments: &[[usize; 2]]) -> Vec<Contour> {
                     break;
                 }
                 nodes.push(at);
-                match incident[at].iter().find(|&&s| !used[s]) {
+                match incident_to(at).iter().find(|&&s| !used[s]) {
                     Some(&next) => segment = next,
                     None => break,
                 }
