@@ -51,6 +51,7 @@ use super::geodesic::EdgeGraph;
 use super::limb::{MAX_SHARE, aligned_limb};
 use super::mirror::{Mirror, NO_TWIN, mirror_map};
 use crate::mesh::Mesh;
+use crate::parallel::prelude::*;
 
 /// A protrusion: a tip and the vertices of its branch.
 #[derive(Clone, Debug, PartialEq)]
@@ -83,9 +84,11 @@ struct Branch {
 /// plane ([`made_alike`]), each welded vertex standing for every vertex welded to it; and
 /// that plane, if any.
 pub fn protrusions(mesh: &Mesh, body: &Body, min_length: f64, max_parts: usize) -> (Vec<Protrusion>, Option<Mirror>) {
-    let mut found = found_protrusions(mesh, body, min_length, max_parts);
-    let searched = searched_vertices(mesh, body);
-    let mirror = mirror_map(&mesh.positions, &searched);
+    // The search and the mirror plane, which does not depend on it, side by side.
+    let (mut found, mirror) = crate::parallel::join(
+        || found_protrusions(mesh, body, min_length, max_parts),
+        || mirror_map(&mesh.positions, &searched_vertices(mesh, body)),
+    );
     if let Some(mirror) = &mirror {
         made_alike(&mut found, &mirror.map);
     }
@@ -283,13 +286,15 @@ fn component_protrusions(
         .unwrap_or(component[0]);
     let g = graph.distances(&[center]);
     let (branches, eldest) = merge_tree(graph, component, &g);
-    let kept = branches.iter().filter(|b| g[b.tip as usize] - b.end >= min_length).map(|b| (b.tip, b.end));
+    let kept: Vec<(u32, f64)> =
+        branches.iter().filter(|b| g[b.tip as usize] - b.end >= min_length).map(|b| (b.tip, b.end)).collect();
     let limb_of = |(tip, end): (u32, f64)| {
         let length = g[tip as usize] - end;
         let (vertices, tip) = aligned_limb(mesh, welded, graph, triangles, tip, length, component.len())?;
         Some(Protrusion { vertices, tip, length, axis: None })
     };
-    let mut found: Vec<Protrusion> = kept.filter_map(limb_of).collect();
+    // Each branch's limb on its own, the branches in parallel, kept in their order.
+    let mut found: Vec<Protrusion> = kept.par_iter().filter_map(|&branch| limb_of(branch)).collect();
     // The eldest branch ends at the highest level where a kept branch ends in it; and at the
     // next such level down (of at most [`ELDEST_ENDS`]) where it reaches on as a limb of at
     // least [`ELDEST_GROWTH`] times the vertices: a leg whose farthest toe meets its other toe
