@@ -29,8 +29,8 @@ use glam::DVec3;
 use super::disjoint_sets::DisjointSets;
 use super::geodesic::EdgeGraph;
 use super::nearest_triangle::NearestTriangle;
-use crate::parallel::prelude::*;
 use crate::mesh::{Faces, Mesh, bounds_of};
+use crate::parallel::prelude::*;
 
 /// Vertices nearer each other than this fraction of the bounding-box diagonal are welded.
 pub const WELD: f64 = 1e-5;
@@ -305,7 +305,8 @@ pub fn is_piece(smaller: usize, larger: usize) -> bool {
 /// tie). A grid of cells at least `reach` wide lists the components whose triangles come
 /// within reach of each cell; each component's triangles are searched through their own tree
 /// ([`NearestTriangle`]), so that a vertex near a densely meshed piece visits a few of its
-/// triangles, not every one in its cell (a 62,000-vertex scan of 44 components took 23 s).
+/// triangles, not every one in its cell (a 62,000-vertex scan of 44 components took 23 s). The
+/// vertices are searched in parallel; their contacts come in vertex order.
 fn contacts(
     positions: &[DVec3],
     triangles: &[[u32; 3]],

@@ -1,7 +1,9 @@
 //! The nearest of a set of triangles to a point within a reach, for the body's contacts
 //! (`super::body`): a bounding-volume hierarchy over the triangles (median splits along the
-//! longest axis of their centroids), searched branch and bound, so that a query visits the few
-//! boxes near the point however densely the triangles lie around it.
+//! longest axis of their centroids), searched branch and bound, the nearer child box first, so
+//! that a query visits the few boxes near the point however densely the triangles lie around it.
+//! The order of the visits cannot change the answer: the least distance, the lowest index among
+//! equals.
 
 use glam::DVec3;
 
