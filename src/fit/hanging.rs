@@ -66,6 +66,14 @@ pub fn hanging_pieces(mesh: &Mesh, body: &Body, owner: &mut [Option<usize>]) -> 
     }
     let points: Vec<DVec3> = searched.iter().map(|&v| mesh.positions[v as usize]).collect();
     let grid = Grid::new(&points, REACH * body.diagonal);
+    // Each piece's vertices' nearest vertex of another component, found once: what owns it
+    // may change from round to round, the vertex does not.
+    let nearest: Vec<Vec<Option<usize>>> = unwelded
+        .iter()
+        .map(|(piece, _)| {
+            pieces[piece].iter().map(|&i| grid.nearest_where(&points, points[i], |j| component[j] != *piece)).collect()
+        })
+        .collect();
     let mut given = Vec::new();
     let mut placed = vec![false; unwelded.len()];
     loop {
@@ -76,8 +84,7 @@ pub fn hanging_pieces(mesh: &Mesh, body: &Body, owner: &mut [Option<usize>]) -> 
             }
             let members = &pieces[piece];
             let mut counts: std::collections::BTreeMap<usize, usize> = Default::default();
-            for &i in members {
-                let near = grid.nearest_where(&points, points[i], |j| component[j] != *piece);
+            for near in &nearest[k] {
                 if let Some(part) = near.and_then(|j| owner[searched[j] as usize]) {
                     *counts.entry(part).or_default() += 1;
                 }

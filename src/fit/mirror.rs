@@ -34,7 +34,8 @@ pub const NO_TWIN: u32 = u32::MAX;
 /// A mirror plane of a mesh and the twin of each vertex across it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Mirror {
-    /// A point of the plane (the searched vertices' centroid).
+    /// A point of the plane: the mean of its twin pairs' midpoints (the searched vertices'
+    /// centroid where the plane through them maps too few).
     pub point: DVec3,
     /// Its unit normal.
     pub normal: DVec3,

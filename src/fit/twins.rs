@@ -107,8 +107,7 @@ pub fn mirrored(
     }
     let image = |of: &[u32]| {
         let own = welded(of, weld);
-        let image: Vec<u32> = twin.iter().copied().filter(|&v| own.binary_search(&source(v)).is_ok()).collect();
-        image
+        twin.iter().copied().filter(|&v| own.binary_search(&source(v)).is_ok()).collect::<Vec<u32>>()
     };
     links
         .iter()
