@@ -346,7 +346,7 @@ fn rig_limb(
     let chain = Profile::new(mesh, vertices).and_then(|profile| profile.chain(&fitter, TARGET));
     // A part that is no tube as one sweep becomes a limb only as a chain of tubes.
     let most = if whole_rms <= MAX_RMS { MAX_RMS } else { MAX_RMS.min(RESCUED_SHARE * whole_rms) };
-    if let Some(chain) = chain.filter(|chain| chain.worst <= most && chain.worst < whole_rms) {
+    if let Some(chain) = chain.filter(|chain| kept_as_chain(chain.worst, whole_rms, most)) {
         let mut links = chain.links;
         if options.falloff.is_none() {
             for link in &mut links {
@@ -494,6 +494,23 @@ fn farthest_from_first_key(mesh: &Mesh, vertices: &[u32], fitted: &Fit) -> u32 {
 /// A part of fewer vertices (a quad of a game mesh's face) is no limb.
 pub const MIN_VERTICES: usize = 8;
 
+/// Whether a limb is rigged as its chain, whose loosest link fits with RMS |d| `worst` (over its
+/// mean radius), rather than as its one sweep (`whole`, with its sections' radii): where the
+/// chain fits within `most` and its loosest link within [`CHAIN_MARGIN`] of the one sweep.
+fn kept_as_chain(worst: f64, whole: f64, most: f64) -> bool {
+    worst <= most && worst <= CHAIN_MARGIN * whole
+}
+
+/// A chain is kept over its limb's one sweep where its loosest link fits within this many times
+/// the one sweep's RMS |d| ([`kept_as_chain`]): a chain bends where one sweep cannot (at the
+/// wrist, at each finger), worth a loosest link about as loose as the one sweep. Near-mirror
+/// limbs whose chain and one sweep fit within a few percent of each other are then rigged
+/// alike: the cartoon man's arms, one a chain (its loosest link tighter than its one sweep),
+/// the other a chain whose loosest finger fits at 24% against its one sweep's 23%, not one
+/// sweep. A chain whose loosest link fits 15% looser than its one sweep (the dino's arms'
+/// stems, the palm past the wrist at 25% against 22%) is not kept.
+pub const CHAIN_MARGIN: f64 = 1.1;
+
 /// A chain's links get this share of the default falloff width (a fraction of each link's
 /// length): at a joint the bands of both links meet, each fading half way into the other, so
 /// the blend across it is as wide as a limb's into the body; and a link's neighbour, turned at
@@ -551,6 +568,21 @@ mod tests {
     /// Keys along +z, their planes normal to it, at `zs`.
     fn keys_at(zs: &[f64]) -> Vec<Key> {
         zs.iter().map(|&z| Key::circle(DVec3::new(0.0, 0.0, z), DQuat::IDENTITY, 1.0, 8)).collect()
+    }
+
+    /// The cartoon man's arm whose loosest finger fits at 23.9% against its one sweep's 22.8%
+    /// is a chain, like its other arm; the rule before (strictly tighter) made it one sweep. The
+    /// dino's arm stem cut at the wrist (the palm at 25.2% against 21.9%) stays one sweep, and
+    /// no chain looser than the most a link may miss by is kept, however loose the one sweep.
+    #[test]
+    fn a_chain_about_as_loose_as_the_one_sweep_is_kept() {
+        let strictly_tighter = |worst: f64, whole: f64| worst < whole;
+        assert!(kept_as_chain(0.2391, 0.2279, MAX_RMS));
+        assert!(!strictly_tighter(0.2391, 0.2279));
+        assert!(kept_as_chain(0.2360, 0.2666, MAX_RMS));
+        assert!(!kept_as_chain(0.2524, 0.2187, MAX_RMS));
+        assert!(!kept_as_chain(0.36, 0.5, MAX_RMS));
+        assert!(!kept_as_chain(0.2, 1.0, RESCUED_SHARE * 0.3));
     }
 
     #[test]
