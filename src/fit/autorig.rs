@@ -31,13 +31,14 @@ use super::chain::{FittedLink, LinkFitter, Profile};
 use super::hanging;
 use super::limb::COARSE;
 use super::protrusions::{Protrusion, protrusions};
+use super::quality::{FitQuality, measure};
 use super::refine::zigzags;
 use super::twins;
 use super::{Fit, FitError, FitOptions, OptionError, fit};
 use crate::mesh::Mesh;
 use crate::parallel::prelude::*;
 use crate::rig::{FORMAT, LinkKind, ParentLink, RigDocument, VERSION, VertexSelection};
-use crate::sweep::Key;
+use crate::sweep::{Key, Sweep};
 
 /// How to rig a mesh.
 #[derive(Clone, Debug, PartialEq)]
@@ -76,6 +77,11 @@ pub struct RiggedPart {
     pub length: f64,
     /// The fitted sweep.
     pub fit: Fit,
+    /// How closely the sweep follows the part's own vertices, as the search gave them (the
+    /// small pieces hung on it afterwards, [`hanging`], not among them). A link of a chain is
+    /// fitted to its neighbours' vertices within the overlap too, which they own and deform
+    /// (the fit's own quality, [`Fit::quality`], counts them); one sweep's is its fit's.
+    pub quality: FitQuality,
     /// Seconds the fit took.
     pub seconds: f64,
 }
@@ -93,9 +99,10 @@ impl RiggedPart {
         target_of(&self.fit)
     }
 
-    /// Whether its fit is within its [`RiggedPart::target`] at its vertices.
+    /// Whether it fits its own vertices ([`RiggedPart::quality`]) within its
+    /// [`RiggedPart::target`].
     pub fn within_target(&self) -> bool {
-        self.fit.quality.rms_d <= self.target()
+        self.quality.rms_d <= self.target()
     }
 }
 
@@ -252,7 +259,9 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
         let name = format!("limb{limbs}");
         let names: Vec<String> =
             (0..chain.len()).map(|link| if link == 0 { name.clone() } else { format!("{name}.{link}") }).collect();
-        for (FittedLink { vertices, fit: fitted, seconds, parent, .. }, this) in chain.into_iter().zip(&names) {
+        for (FittedLink { vertices, fitted: fitted_to, fit: fitted, seconds, parent }, this) in
+            chain.into_iter().zip(&names)
+        {
             for &v in &vertices {
                 taken[v as usize] = true;
             }
@@ -261,6 +270,7 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
             } else {
                 farthest_from_first_key(fitted_on, &vertices, &fitted)
             };
+            let quality = own_quality(fitted_on, &vertices, &fitted_to, &fitted);
             parts.push(RiggedPart {
                 name: this.clone(),
                 parent: parent.map(|p| names[p].clone()),
@@ -268,6 +278,7 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
                 length: chord_length(&fitted),
                 vertices,
                 fit: fitted,
+                quality,
                 seconds,
             });
         }
@@ -287,6 +298,20 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
         vertices.dedup();
     }
     Ok(Autorig { parts, rejected, search_seconds, twins_left_out })
+}
+
+/// How closely `fit` follows the part's own `vertices` (of `mesh`), where it was fitted to
+/// `fitted_to` (both increasing): its fit's quality where they are the same vertices, else the
+/// part's own measured again on its sweep ([`RiggedPart::quality`]).
+fn own_quality(mesh: &Mesh, vertices: &[u32], fitted_to: &[u32], fit: &Fit) -> FitQuality {
+    if vertices == fitted_to {
+        return fit.quality;
+    }
+    let positions: Vec<DVec3> = vertices.iter().map(|&v| mesh.positions[v as usize]).collect();
+    match Sweep::try_new(&fit.keys, None) {
+        Ok(sweep) => measure(&sweep, &positions).quality,
+        Err(_) => fit.quality,
+    }
 }
 
 /// What becomes of a protrusion, given the vertices the longer limbs kept have taken.

@@ -70,8 +70,13 @@ struct PartReport {
     tip: u32,
     length: f64,
     keys: usize,
+    /// RMS and largest |d| over the mean radius at its own vertices.
     rms_d: f64,
     max_d: f64,
+    /// The vertices its sweep was fitted to (a chain's link: its own and its neighbours' within
+    /// the overlap, welded seam copies once) and the RMS |d| there.
+    fitted_vertices: usize,
+    fitted_rms_d: f64,
     /// Its key sections that are not star-shaped (rays from the section's center crossing its
     /// boundary more than once): a fit target of 15% rather than 10% RMS |d|.
     sections_not_star_shaped: usize,
@@ -110,11 +115,13 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
             tip: p.tip,
             length: p.length,
             keys: p.fit.keys.len(),
-            rms_d: p.fit.quality.rms_d,
-            max_d: p.fit.quality.max_d,
+            rms_d: p.quality.rms_d,
+            max_d: p.quality.max_d,
+            fitted_vertices: p.fit.quality.vertices,
+            fitted_rms_d: p.fit.quality.rms_d,
             sections_not_star_shaped: p.sections_not_star_shaped(),
             target: p.target(),
-            without_root: p.fit.quality.without_root,
+            without_root: p.quality.without_root,
             seconds: p.seconds,
         })
         .collect();
@@ -186,8 +193,14 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
             0 => String::new(),
             n => format!(" ({n} of its {} sections not star-shaped)", p.keys),
         };
+        // A link fitted with its neighbours' vertices too says how closely it follows them all.
+        let fitted = if p.fitted_rms_d != p.rms_d {
+            format!(" ({:.2}% at the {} vertices it was fitted to)", 100.0 * p.fitted_rms_d, p.fitted_vertices)
+        } else {
+            String::new()
+        };
         out!(
-            "{}{parent}: {} vertices, tip vertex {}, length {:.4}, {} keys, RMS |d| {:.2}%, max {:.1}% of the mean radius{crescents}, {:.3} s",
+            "{}{parent}: {} vertices, tip vertex {}, length {:.4}, {} keys, RMS |d| {:.2}%{fitted}, max {:.1}% of the mean radius{crescents}, {:.3} s",
             p.name,
             p.vertices,
             p.tip,
@@ -202,7 +215,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
         .parts
         .iter()
         .filter(|p| !p.within_target())
-        .map(|p| format!("{} ({:.1}% of {:.0}%)", p.name, 100.0 * p.fit.quality.rms_d, 100.0 * p.target()))
+        .map(|p| format!("{} ({:.1}% of {:.0}%)", p.name, 100.0 * p.quality.rms_d, 100.0 * p.target()))
         .collect();
     if !loose.is_empty() {
         note!(

@@ -124,13 +124,13 @@ fn each_part_reports_its_sections_that_are_not_star_shaped_and_its_target() {
             assert_eq!(line.contains(&said), count > 0, "{line}");
             assert_eq!(line.contains("not star-shaped"), count > 0, "{line}");
             counts.push((file, count));
-            if fitted.fit.quality.rms_d > target {
-                loose.push(format!(
-                    "{} ({:.1}% of {:.0}%)",
-                    fitted.name,
-                    100.0 * fitted.fit.quality.rms_d,
-                    100.0 * target
-                ));
+            // RMS |d| at the part's own vertices, and at those its sweep was fitted to (a
+            // chain's link: its neighbours' within the overlap too).
+            assert_eq!(part["rms_d"].as_f64(), Some(fitted.quality.rms_d), "{file}: {part}");
+            assert_eq!(part["fitted_rms_d"].as_f64(), Some(fitted.fit.quality.rms_d), "{file}: {part}");
+            assert_eq!(part["fitted_vertices"].as_u64(), Some(fitted.fit.quality.vertices as u64), "{file}: {part}");
+            if fitted.quality.rms_d > target {
+                loose.push(format!("{} ({:.1}% of {:.0}%)", fitted.name, 100.0 * fitted.quality.rms_d, 100.0 * target));
             }
         }
         let notice = stderr.lines().find(|l| l.contains("fit looser than their target"));
