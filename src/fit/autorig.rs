@@ -187,7 +187,8 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
     let mut speculative: Vec<Option<Result<Vec<FittedLink>, Option<LeftOut>>>> =
         (0..found.len()).into_par_iter().map(|i| fitted(&found[i], &assumed[i])).collect();
     // Mirror twins rigged alike: one twin's rig and its mirror image, of the two the pair
-    // whose looser twin fits better.
+    // whose looser twin fits better. Where the mesh is only nearly a mirror image of itself,
+    // only where that pair fits no more loosely than the twins each rigged on its own.
     if let Some(mirror) = &mirror {
         let parts: Vec<Option<&[u32]>> = assumed
             .iter()
@@ -203,6 +204,13 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
                 _ => None,
             };
             let (onto_i, onto_j) = (mirrored(j, i), mirrored(i, j));
+            let own = |k: usize| match &speculative[k] {
+                Some(Ok(links)) => twins::looseness(links),
+                _ => f64::INFINITY,
+            };
+            let before = own(i).max(own(j));
+            let no_looser = |(pair, _): &(f64, Vec<FittedLink>)| !mirror.near || *pair <= before;
+            let (onto_i, onto_j) = (onto_i.filter(no_looser), onto_j.filter(no_looser));
             match (onto_i, onto_j) {
                 (Some((a, image)), Some((b, _))) if a <= b => speculative[i] = Some(Ok(image)),
                 (Some((a, image)), None) if a.is_finite() => speculative[i] = Some(Ok(image)),

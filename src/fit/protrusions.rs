@@ -49,7 +49,7 @@ use glam::DVec3;
 use super::body::Body;
 use super::geodesic::EdgeGraph;
 use super::limb::{MAX_SHARE, aligned_limb};
-use super::mirror::{Mirror, NO_TWIN, mirror_map};
+use super::mirror::{Mirror, NO_TWIN, mirror_map, near_mirror_map};
 use crate::mesh::Mesh;
 use crate::parallel::prelude::*;
 
@@ -84,10 +84,14 @@ struct Branch {
 /// plane ([`made_alike`]), each welded vertex standing for every vertex welded to it; and
 /// that plane, if any.
 pub fn protrusions(mesh: &Mesh, body: &Body, min_length: f64, max_parts: usize) -> (Vec<Protrusion>, Option<Mirror>) {
-    // The search and the mirror plane, which does not depend on it, side by side.
+    // The search and the mirror plane, which does not depend on it, side by side; a near one
+    // where the mesh has none.
     let (mut found, mirror) = crate::parallel::join(
         || found_protrusions(mesh, body, min_length, max_parts),
-        || mirror_map(&mesh.positions, &searched_vertices(mesh, body)),
+        || {
+            let searched = searched_vertices(mesh, body);
+            mirror_map(&mesh.positions, &searched).or_else(|| near_mirror_map(&mesh.positions, &searched))
+        },
     );
     if let Some(mirror) = &mirror {
         made_alike(&mut found, &mirror.map);

@@ -141,7 +141,7 @@ mod tests {
     /// Vertices 0–9 mirror 10–19 (v ↔ v + 10), 20–29 lie on the plane (each its own twin).
     fn mirror() -> Mirror {
         let map = (0..30u32).map(|v| if v < 10 { v + 10 } else if v < 20 { v - 10 } else { v }).collect();
-        Mirror { point: DVec3::ZERO, normal: DVec3::X, map }
+        Mirror { point: DVec3::ZERO, normal: DVec3::X, map, near: false }
     }
 
     #[test]

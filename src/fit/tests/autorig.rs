@@ -9,7 +9,7 @@ use sweepffd::edit::{Edit, KeyMode, Posing};
 use sweepffd::fit::autorig::{Autorig, AutorigOptions, NOT_STAR_TARGET, RiggedPart, TARGET, autorig};
 use sweepffd::fit::body::Body;
 use sweepffd::fit::least_squares::fitted_radii;
-use sweepffd::fit::mirror::mirror_map;
+use sweepffd::fit::mirror::{mirror_map, near_mirror_map};
 use sweepffd::fit::part::Part;
 use sweepffd::fit::protrusions::searched_vertices;
 use sweepffd::fit::quality::measure;
@@ -307,7 +307,7 @@ fn the_armadillo_gets_its_limbs_ears_and_tail() {
 /// link before them (§5), every link within the fit target, and turning the leg at its hip
 /// carries its toes. Its arms (56% as one sweep) are chains too, their three fingers children
 /// of the arm, each within the target at its own vertices, mirror arms alike (the same links,
-/// the same keys). Its head and neck are one
+/// the same keys), and so are its legs, the mesh only nearly a mirror image of itself. Its head and neck are one
 /// sweep.
 #[test]
 fn the_dinos_legs_and_arms_are_chains_their_toes_and_fingers_children() {
@@ -317,7 +317,12 @@ fn the_dinos_legs_and_arms_are_chains_their_toes_and_fingers_children() {
     print_parts("dino", &mesh, &rigged);
     let document = rigged.document();
     let rig = Rig::from_document(&document, None).expect("every link binds to its parent");
+    // Modelled symmetric and made lopsided (its dewclaws): no mirror plane, a near one.
+    let searched = searched_vertices(&mesh, &Body::new(&mesh));
+    assert!(mirror_map(&mesh.positions, &searched).is_none());
+    assert!(near_mirror_map(&mesh.positions, &searched).is_some_and(|mirror| mirror.near));
     let mut legs = Vec::new();
+    let mut shapes = Vec::new();
     for side in [-1.0, 1.0] {
         // A toe's tip: the lowest vertex on this side (the legs reach down to z ≈ −2).
         let toe = extreme(&mesh, |p| p.x * side > 0.2, |p| -p.z);
@@ -353,9 +358,15 @@ fn the_dinos_legs_and_arms_are_chains_their_toes_and_fingers_children() {
             let moved = posing.keys()[c][0].center.distance(rig.sweeps()[c].keys[0].center);
             assert!(moved > 1e-3, "{} did not follow {}", link.name, rig.sweeps()[root].name);
         }
+        let stem = links.iter().find(|p| p.parent.is_none()).unwrap();
+        shapes.push((links.len(), toes, stem.fit.keys.len()));
         legs.push(limb);
     }
     assert_ne!(legs[0], legs[1], "two legs");
+    // Found from the near mirror plane's twins, the legs are alike: the same links, toes and
+    // stem's keys (before, one was a stem and two toes, the other a thigh, a shin, a foot and
+    // two toes).
+    assert_eq!(shapes[0], shapes[1], "the legs (links, toes, stem's keys)");
     let mut arms = Vec::new();
     for side in [-1.0, 1.0] {
         // A fingertip: the arms reach towards −y, their hands at |x| ≈ 0.9, z ≈ −0.5.
