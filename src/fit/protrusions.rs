@@ -33,10 +33,11 @@
 //!    dino's head and neck hold 29% of its vertices and 17% of its surface, the blocky man's
 //!    head 52% and 9%).
 //!
-//! 5. **Mirror twins.** Where the searched vertices have a mirror plane ([`super::mirror`]), a
-//!    part that shares most of its vertices with another part's mirror image takes that image's
-//!    vertices too ([`made_alike`]): the limb search from two mirror tips, whose persistences
-//!    differ, may keep a ring's vertex in one limb and not in the other.
+//! 5. **Mirror twins.** Where the searched vertices have a mirror plane ([`super::mirror`]; or
+//!    a near one where they have none, [`super::mirror::near_mirror_map`]: a model made
+//!    lopsided), a part that shares most of its vertices with another part's mirror image takes
+//!    that image's vertices too ([`made_alike`]): the limb search from two mirror tips, whose
+//!    persistences differ, may keep a ring's vertex in one limb and not in the other.
 //!
 //! Everything depends on edge lengths, connectivity, the order of distances (ties broken by
 //! vertex index) and the vertices' own principal axes, so a rigidly moved mesh gives the same
