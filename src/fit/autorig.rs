@@ -585,7 +585,7 @@ fn kept_as_chain(worst: f64, whole: f64, most: f64) -> bool {
 }
 
 /// A chain is kept over its limb's one sweep where its loosest link fits within this many times
-/// the one sweep's RMS |d| ([`kept_as_chain`]): a chain bends where one sweep cannot (at the
+/// the one sweep's RMS |d| (`kept_as_chain`): a chain bends where one sweep cannot (at the
 /// wrist, at each finger), worth a loosest link about as loose as the one sweep. Near-mirror
 /// limbs whose chain and one sweep fit within a few percent of each other are then rigged
 /// alike: the cartoon man's arms, one a chain (its loosest link tighter than its one sweep),
