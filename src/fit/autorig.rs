@@ -459,7 +459,7 @@ impl Fitter<'_> {
     fn fit_whole(&self, vertices: &[u32]) -> Option<TimedFit> {
         let (fitted, seconds) = self.fit(vertices)?;
         let started = Instant::now();
-        let refit = self.with_more_keys(vertices, &fitted);
+        let Some(refit) = self.with_more_keys(vertices, &fitted) else { return Some((fitted, seconds)) };
         let refit = (refit, seconds + started.elapsed().as_secs_f64());
         self.fitted.lock().ok()?.insert(vertices.to_vec(), Some(refit.clone()));
         Some(refit)
@@ -469,25 +469,20 @@ impl Fitter<'_> {
     /// [`MORE_KEYS_WITHIN`] times it: the fit of the same vertices with [`MORE_KEYS`] times as
     /// many keys allowed, where that brings it within the targets of both (a refit whose
     /// sections are no longer all star-shaped is not judged by its looser target alone) and fits
-    /// no more loosely as a link; otherwise `fitted`.
-    fn with_more_keys(&self, vertices: &[u32], fitted: &Fit) -> Fit {
+    /// no more loosely as a link; otherwise `None`.
+    fn with_more_keys(&self, vertices: &[u32], fitted: &Fit) -> Option<Fit> {
         let target = target_of(fitted);
         let missed = fitted.quality.rms_d;
         if fitted.keys.len() < self.options.max_keys || missed <= target || missed > MORE_KEYS_WITHIN * target {
-            return fitted.clone();
+            return None;
         }
         let more = FitOptions {
             max_keys: (self.options.max_keys as f64 * MORE_KEYS).round() as usize,
             ..self.options.clone()
         };
-        match fit(self.mesh, vertices, &more) {
-            Ok(refit)
-                if refit.quality.rms_d <= target.min(target_of(&refit)) && self.loose(&refit) <= self.loose(fitted) =>
-            {
-                refit
-            }
-            _ => fitted.clone(),
-        }
+        let refit = fit(self.mesh, vertices, &more).ok()?;
+        (refit.quality.rms_d <= target.min(target_of(&refit)) && self.loose(&refit) <= self.loose(fitted))
+            .then_some(refit)
     }
 }
 
