@@ -29,10 +29,14 @@
 //!   (`super::limb::fork_levels`: the saddles of the merge tree of s's superlevel sets). From
 //!   the highest down, each piece past a fork that holds no branch yet is a branch (a hand's two
 //!   fingers that part last, then the third where it parts from them), one that holds one
-//!   branch is that branch grown (a finger below a fork at its claw), squared off
-//!   (`Profile::squared_off`): one sweep, a child of the stem's link it meets most, fitted with
-//!   a ring of that link's vertices around its base. A shorter piece (a dewclaw) and the palm
-//!   between two forks ride in the stem, which is cut as a limb is.
+//!   branch is that branch grown (a finger below a fork at its claw): one sweep, a child of the
+//!   stem's link it meets most, fitted with a ring of that link's vertices around its base. A
+//!   shorter piece (a dewclaw) and the palm between two forks ride in the stem, which is cut as
+//!   a limb is. The branches are first squared off (`Profile::squared_off`: what lies before
+//!   a splayed toe's crotch stays in the stem); where that chain's loosest link misses the
+//!   target, the chain forked at the whole branches is tried too, and kept where its loosest
+//!   link fits closer (the dino's foot: squared off, the toes' bases left the stem at 13.9%;
+//!   whole, the stem fits at 9.0%).
 //!
 //! A limb that forks is kept forked where every branch fits and binds (unforked, its last link
 //! would hold its toes); otherwise its best chain unforked, the one whose loosest link fits
@@ -268,9 +272,9 @@ impl Profile {
         levels
     }
 
-    /// The limb's branches (see the module docs), each squared off: from the highest fork
-    /// down, each piece past it that holds no branch yet is a branch, and one that holds one
-    /// branch is that branch, grown (a finger below a fork at its claw); one that holds more
+    /// The limb's branches (see the module docs), whole (each from its fork): from the highest
+    /// fork down, each piece past it that holds no branch yet is a branch, and one that holds
+    /// one branch is that branch, grown (a finger below a fork at its claw); one that holds more
     /// (the palm under two fingers) stays in the stem. `None` where there are fewer than two.
     fn branches(&self) -> Option<Vec<Vec<u32>>> {
         let significant = BRANCH * self.length;
@@ -295,7 +299,7 @@ impl Profile {
                 branches[branch] = piece;
             }
         }
-        (branches.len() >= 2).then(|| branches.into_iter().map(|piece| self.squared_off(piece)).collect())
+        (branches.len() >= 2).then_some(branches)
     }
 
     /// The pieces of the limb past `level` (s > level, finite: a stray piece the distance does
@@ -377,22 +381,18 @@ impl Profile {
     /// all fit.
     pub fn chain(&self, fitter: &impl LinkFitter, target: f64) -> Option<Chain> {
         let depth = if self.s.len() > DENSE { 0 } else { DEPTH };
-        let forked = self.branches().and_then(|branches| {
-            let chain = self.forked(&branches, target, depth, fitter)?;
-            // A branch that fits no link (a stubby finger whose fit folds or zigzags) rides
-            // in the stem, where at least two others are links.
-            let first_branch = chain.links.len() - branches.len();
-            let links: Vec<bool> =
-                chain.links[first_branch..].iter().map(|link| fitter.loose(&link.fit).is_finite()).collect();
-            if links.iter().all(|&link| link) {
-                return Some(chain);
+        // Squared off first; whole only where that misses the target (see the module docs).
+        let forked = self.branches().and_then(|whole| {
+            let squared: Vec<Vec<u32>> = whole.iter().map(|branch| self.squared_off(branch.clone())).collect();
+            let unchanged = squared == whole;
+            let squared = self.forked_with_links(squared, target, depth, fitter);
+            if unchanged || squared.as_ref().is_some_and(|chain| chain.worst <= target) {
+                return squared;
             }
-            let kept: Vec<Vec<u32>> =
-                branches.into_iter().zip(links).filter_map(|(branch, link)| link.then_some(branch)).collect();
-            if kept.len() < 2 {
-                return None;
+            match (squared, self.forked_with_links(whole, target, depth, fitter)) {
+                (Some(squared), Some(whole)) if whole.worst < squared.worst => Some(whole),
+                (squared, whole) => squared.or(whole),
             }
-            self.forked(&kept, target, depth, fitter)
         });
         // A limb that forks is kept forked where its branches fit and bind: unforked, its last
         // link would hold its toes or fingers.
@@ -401,6 +401,31 @@ impl Profile {
         }
         let none = vec![false; self.s.len()];
         self.stretch_chain(None, None, &none, target, depth, fitter).filter(|chain| chain.links.len() > 1)
+    }
+
+    /// The limb's chain forked at `branches` ([`Profile::forked`]), where a branch that fits no
+    /// link (a stubby finger whose fit folds or zigzags) rides in the stem, where at least two
+    /// others are links.
+    fn forked_with_links(
+        &self,
+        branches: Vec<Vec<u32>>,
+        target: f64,
+        depth: usize,
+        fitter: &impl LinkFitter,
+    ) -> Option<Chain> {
+        let chain = self.forked(&branches, target, depth, fitter)?;
+        let first_branch = chain.links.len() - branches.len();
+        let links: Vec<bool> =
+            chain.links[first_branch..].iter().map(|link| fitter.loose(&link.fit).is_finite()).collect();
+        if links.iter().all(|&link| link) {
+            return Some(chain);
+        }
+        let kept: Vec<Vec<u32>> =
+            branches.into_iter().zip(links).filter_map(|(branch, link)| link.then_some(branch)).collect();
+        if kept.len() < 2 {
+            return None;
+        }
+        self.forked(&kept, target, depth, fitter)
     }
 
     /// The limb's chain forked at `branches`: its stem without them, cut as a stretch is, and
@@ -777,6 +802,50 @@ mod tests {
         assert_eq!(children.len(), 2, "the other two fingers are children");
         assert!(stem.contains(&middle_tip), "the middle finger rides in the stem");
         assert!(children.iter().all(|l| !l.vertices.contains(&middle_tip)));
+    }
+
+    /// The dino's leg forks at its two toes. Squared off, each toe leaves the part of it
+    /// before the crotch in the stem: the stem then ends in the bases of both toes, no tube's,
+    /// and misses the target. Kept whole from their fork, the toes leave the stem a tube down
+    /// to the foot, and the chain's loosest link fits closer: the limb is forked so.
+    #[test]
+    fn toes_are_kept_whole_where_the_chain_then_fits_closer() {
+        use crate::fit::autorig::{AutorigOptions, TARGET, autorig};
+
+        let Some(path) = crate::common::shared_mesh("dino.off") else { return };
+        let mesh = Mesh::load(&path).unwrap();
+        let rigged = autorig(&mesh, &AutorigOptions::default()).unwrap();
+        // A toe's tip: the lowest vertex at x < −0.2 (the legs reach down to z ≈ −2).
+        let at = |v: u32| mesh.positions[v as usize];
+        let toe = (0..mesh.positions.len() as u32).filter(|&v| at(v).x < -0.2).min_by(|&a, &b| at(a).z.total_cmp(&at(b).z));
+        let toe = toe.unwrap();
+        let part = rigged.parts.iter().find(|p| p.vertices.binary_search(&toe).is_ok()).expect("a part holds the toe");
+        let leg = part.name.split('.').next().unwrap();
+        let mut limb: Vec<u32> =
+            rigged.parts.iter().filter(|p| p.name.split('.').next() == Some(leg)).flat_map(|p| p.vertices.clone()).collect();
+        limb.sort_unstable();
+        limb.dedup();
+        let profile = Profile::new(&mesh, &limb).expect("a rim");
+        let fitter = Plain(&mesh);
+        let whole = profile.branches().expect("the toes");
+        let squared: Vec<Vec<u32>> = whole.iter().map(|branch| profile.squared_off(branch.clone())).collect();
+        assert_ne!(squared, whole, "the toes' rims are oblique");
+        let old = profile.forked_with_links(squared, TARGET, DEPTH, &fitter).expect("forked at squared toes");
+        let new = profile.forked_with_links(whole, TARGET, DEPTH, &fitter).expect("forked at whole toes");
+        let stem = |chain: &Chain| chain.links.iter().find(|l| l.parent.is_none()).unwrap().fit.quality.rms_d;
+        eprintln!(
+            "dino leg: squared toes, loosest link {:.1}%, stem {:.1}%; whole toes, loosest {:.1}%, stem {:.1}%",
+            100.0 * old.worst,
+            100.0 * stem(&old),
+            100.0 * new.worst,
+            100.0 * stem(&new)
+        );
+        assert!(stem(&old) > TARGET, "with squared toes the stem misses the target");
+        assert!(stem(&new) <= TARGET, "with whole toes the stem is within it");
+        assert!(new.worst < old.worst);
+        let chain = profile.chain(&fitter, TARGET).expect("a chain");
+        let vertices = |chain: &Chain| chain.links.iter().map(|l| l.vertices.clone()).collect::<Vec<_>>();
+        assert_eq!(vertices(&chain), vertices(&new), "the limb is forked at its whole toes");
     }
 
     /// A part that is no tube at its attached end: the faerie's hair, found from its tip, whose
