@@ -34,9 +34,10 @@
 //!   shorter piece (a dewclaw) and the palm between two forks ride in the stem, which is cut as
 //!   a limb is. The branches are first squared off (`Profile::squared_off`: what lies before
 //!   a splayed toe's crotch stays in the stem); where that chain's loosest link misses the
-//!   target, the chain forked at the whole branches is tried too, and kept where its loosest
-//!   link fits closer (the dino's foot: squared off, the toes' bases left the stem at 13.9%;
-//!   whole, the stem fits at 9.0%).
+//!   target, the chain forked at the whole branches is tried too, its stem one sweep, and
+//!   kept where its loosest link fits closer (the dino's foot: squared off, the toes' bases
+//!   left the stem at 13.9%; whole, the stem fits at 9.0%). It is given up at its first link
+//!   that fits no closer than the squared chain's loosest.
 //!
 //! A limb that forks is kept forked where every branch fits and binds (unforked, its last link
 //! would hold its toes); otherwise its best chain unforked, the one whose loosest link fits
@@ -389,10 +390,10 @@ impl Profile {
             if unchanged || squared.as_ref().is_some_and(|chain| chain.worst <= target) {
                 return squared;
             }
-            match (squared, self.forked_with_links(whole, target, depth, fitter)) {
-                (Some(squared), Some(whole)) if whole.worst < squared.worst => Some(whole),
-                (squared, whole) => squared.or(whole),
-            }
+            // Its stem one sweep, given up at its first link that fits no closer than the
+            // squared chain's loosest.
+            let bound = squared.as_ref().map(|chain| chain.worst);
+            self.forked_within(&whole, target, 0, bound, fitter).or(squared)
         });
         // A limb that forks is kept forked where its branches fit and bind: unforked, its last
         // link would hold its toes or fingers.
@@ -432,12 +433,29 @@ impl Profile {
     /// each branch a child of the stem's link it meets most; `None` where the stem has no
     /// chain or a branch's fit is refused or does not bind.
     fn forked(&self, branches: &[Vec<u32>], target: f64, depth: usize, fitter: &impl LinkFitter) -> Option<Chain> {
+        self.forked_within(branches, target, depth, None, fitter)
+    }
+
+    /// [`Profile::forked`], `None` as soon as a link fits no closer than `bound` (its
+    /// [`LinkFitter::loose`]) where there is one.
+    fn forked_within(
+        &self,
+        branches: &[Vec<u32>],
+        target: f64,
+        depth: usize,
+        bound: Option<f64>,
+        fitter: &impl LinkFitter,
+    ) -> Option<Chain> {
+        let within = |chain: &Chain| bound.is_none_or(|bound| chain.worst < bound);
         let excluded: Vec<bool> = self.marked(branches);
         let mut chain = self.stretch_chain(None, None, &excluded, target, depth, fitter)?;
         for branch in branches {
+            if !within(&chain) {
+                return None;
+            }
             self.add_branch(&mut chain, branch, fitter)?;
         }
-        Some(chain)
+        within(&chain).then_some(chain)
     }
 
     /// The limb without its attached end, where that end is the body's and not a tube's (a
