@@ -34,10 +34,11 @@
 //!   shorter piece (a dewclaw) and the palm between two forks ride in the stem, which is cut as
 //!   a limb is. The branches are first squared off (`Profile::squared_off`: what lies before
 //!   a splayed toe's crotch stays in the stem); where that chain's loosest link misses the
-//!   target, the chain forked at the whole branches is tried too, its stem one sweep, and
-//!   kept where its loosest link fits closer (the dino's foot: squared off, the toes' bases
-//!   left the stem at 13.9%; whole, the stem fits at 9.0%). It is given up at its first link
-//!   that fits no closer than the squared chain's loosest.
+//!   target, each branch whose link alone fits closer than that loosest link when whole from
+//!   its fork is taken whole, and the chain so forked, its stem one sweep, is kept where its
+//!   loosest link fits closer (squared off, the toes' or fingers' bases left the dino's stems at
+//!   13.9% and 18.3%; with both toes whole, and two of three fingers, at 9.0% and 6.6%). It is
+//!   given up at its first link that fits no closer than the squared chain's loosest.
 //!
 //! A limb that forks is kept forked where every branch fits and binds (unforked, its last link
 //! would hold its toes); otherwise its best chain unforked, the one whose loosest link fits
@@ -384,16 +385,27 @@ impl Profile {
         let depth = if self.s.len() > DENSE { 0 } else { DEPTH };
         // Squared off first; whole only where that misses the target (see the module docs).
         let forked = self.branches().and_then(|whole| {
-            let squared: Vec<Vec<u32>> = whole.iter().map(|branch| self.squared_off(branch.clone())).collect();
-            let unchanged = squared == whole;
-            let squared = self.forked_with_links(squared, target, depth, fitter);
-            if unchanged || squared.as_ref().is_some_and(|chain| chain.worst <= target) {
+            let squared_off: Vec<Vec<u32>> = whole.iter().map(|branch| self.squared_off(branch.clone())).collect();
+            let squared = self.forked_with_links(squared_off.clone(), target, depth, fitter);
+            if squared_off == whole || squared.as_ref().is_some_and(|chain| chain.worst <= target) {
                 return squared;
             }
-            // Its stem one sweep, given up at its first link that fits no closer than the
-            // squared chain's loosest.
+            // Each branch whole where its link alone fits closer than the squared chain's
+            // loosest (see the module docs).
             let bound = squared.as_ref().map(|chain| chain.worst);
-            self.forked_within(&whole, target, 0, bound, fitter).or(squared)
+            let mixed: Vec<Vec<u32>> = whole
+                .into_iter()
+                .zip(&squared_off)
+                .map(|(whole, squared)| {
+                    let closer = whole != *squared
+                        && bound.is_none_or(|bound| self.branch_link(&whole, None, fitter).is_some_and(|link| fitter.loose(&link.fit) < bound));
+                    if closer { whole } else { squared.clone() }
+                })
+                .collect();
+            if mixed == squared_off {
+                return squared;
+            }
+            self.forked_within(&mixed, target, 0, bound, fitter).or(squared)
         });
         // A limb that forks is kept forked where its branches fit and bind: unforked, its last
         // link would hold its toes or fingers.
@@ -612,6 +624,16 @@ impl Profile {
         })
     }
 
+    /// The link of branch `vertices` (local), a child of link `parent`: fitted with the ring of
+    /// its neighbours around its base (its collar), key 0 at that ring.
+    fn branch_link(&self, vertices: &[u32], parent: Option<usize>, fitter: &impl LinkFitter) -> Option<FittedLink> {
+        let inside = self.marked(&[vertices.to_vec()]);
+        let collar = self.neighbours_where(vertices, |n| !inside[n as usize]);
+        let mut fitted = vertices.to_vec();
+        fitted.extend(&collar);
+        self.fitted_link(vertices, &fitted, self.centroid(&collar), parent, fitter)
+    }
+
     /// Adds the branch of local `vertices` to `chain` as a child of the link whose vertices it
     /// meets most, fitted with a ring of that link's vertices around its base (its collar);
     /// `None` where its fit is refused or its first key does not bind to that link.
@@ -627,9 +649,7 @@ impl Profile {
             votes[link] += 1;
         }
         let parent = (0..votes.len()).max_by_key(|&i| (votes[i], i))?;
-        let mut fitted = vertices.to_vec();
-        fitted.extend(&collar);
-        let link = self.fitted_link(vertices, &fitted, self.centroid(&collar), Some(parent), fitter)?;
+        let link = self.branch_link(vertices, Some(parent), fitter)?;
         binds(&chain.links[parent].fit, &link.fit)?;
         chain.worst = chain.worst.max(fitter.loose(&link.fit));
         chain.links.push(link);
@@ -822,48 +842,68 @@ mod tests {
         assert!(children.iter().all(|l| !l.vertices.contains(&middle_tip)));
     }
 
-    /// The dino's leg forks at its two toes. Squared off, each toe leaves the part of it
-    /// before the crotch in the stem: the stem then ends in the bases of both toes, no tube's,
-    /// and misses the target. Kept whole from their fork, the toes leave the stem a tube down
-    /// to the foot, and the chain's loosest link fits closer: the limb is forked so.
+    /// The dino's legs fork at two toes, its arms at three fingers. Squared off, each branch
+    /// leaves the part of it before its crotch in the stem: the stem then ends in the bases of
+    /// the toes or fingers, no tube's, and misses the target. Kept whole from their fork, the
+    /// toes leave the leg's stem a tube down to the foot; but one of the fingers, whole, is no
+    /// tube (its sections miss by over half its radius), so the arm keeps that finger squared
+    /// off and the other two whole. Either way the stem is within the target and the chain's
+    /// loosest link fits closer: the limb is forked so.
     #[test]
-    fn toes_are_kept_whole_where_the_chain_then_fits_closer() {
+    fn branches_are_kept_whole_where_their_links_then_fit_closer() {
         use crate::fit::autorig::{AutorigOptions, TARGET, autorig};
 
         let Some(path) = crate::common::shared_mesh("dino.off") else { return };
         let mesh = Mesh::load(&path).unwrap();
         let rigged = autorig(&mesh, &AutorigOptions::default()).unwrap();
-        // A toe's tip: the lowest vertex at x < −0.2 (the legs reach down to z ≈ −2).
         let at = |v: u32| mesh.positions[v as usize];
-        let toe = (0..mesh.positions.len() as u32).filter(|&v| at(v).x < -0.2).min_by(|&a, &b| at(a).z.total_cmp(&at(b).z));
-        let toe = toe.unwrap();
-        let part = rigged.parts.iter().find(|p| p.vertices.binary_search(&toe).is_ok()).expect("a part holds the toe");
-        let leg = part.name.split('.').next().unwrap();
-        let mut limb: Vec<u32> =
-            rigged.parts.iter().filter(|p| p.name.split('.').next() == Some(leg)).flat_map(|p| p.vertices.clone()).collect();
-        limb.sort_unstable();
-        limb.dedup();
-        let profile = Profile::new(&mesh, &limb).expect("a rim");
-        let fitter = Plain(&mesh);
-        let whole = profile.branches().expect("the toes");
-        let squared: Vec<Vec<u32>> = whole.iter().map(|branch| profile.squared_off(branch.clone())).collect();
-        assert_ne!(squared, whole, "the toes' rims are oblique");
-        let old = profile.forked_with_links(squared, TARGET, DEPTH, &fitter).expect("forked at squared toes");
-        let new = profile.forked_with_links(whole, TARGET, DEPTH, &fitter).expect("forked at whole toes");
+        let extreme = |inside: &dyn Fn(DVec3) -> bool, score: &dyn Fn(DVec3) -> f64| {
+            (0..mesh.positions.len() as u32).filter(|&v| inside(at(v))).max_by(|&a, &b| score(at(a)).total_cmp(&score(at(b))))
+        };
+        // A toe's tip: the lowest vertex at x < −0.2 (the legs reach down to z ≈ −2); a
+        // fingertip: the arms reach towards −y, their hands at x ≈ −0.9, z ≈ −0.5.
+        let toe = extreme(&|p| p.x < -0.2, &|p| -p.z).unwrap();
+        let fingertip = extreme(&|p| p.x < -0.6 && p.z > -0.8, &|p| -p.y).unwrap();
         let stem = |chain: &Chain| chain.links.iter().find(|l| l.parent.is_none()).unwrap().fit.quality.rms_d;
-        eprintln!(
-            "dino leg: squared toes, loosest link {:.1}%, stem {:.1}%; whole toes, loosest {:.1}%, stem {:.1}%",
-            100.0 * old.worst,
-            100.0 * stem(&old),
-            100.0 * new.worst,
-            100.0 * stem(&new)
-        );
-        assert!(stem(&old) > TARGET, "with squared toes the stem misses the target");
-        assert!(stem(&new) <= TARGET, "with whole toes the stem is within it");
-        assert!(new.worst < old.worst);
-        let chain = profile.chain(&fitter, TARGET).expect("a chain");
-        let vertices = |chain: &Chain| chain.links.iter().map(|l| l.vertices.clone()).collect::<Vec<_>>();
-        assert_eq!(vertices(&chain), vertices(&new), "the limb is forked at its whole toes");
+        for (name, tip, branches) in [("leg", toe, 2), ("arm", fingertip, 3)] {
+            let part = rigged.parts.iter().find(|p| p.vertices.binary_search(&tip).is_ok()).expect("a part holds the tip");
+            let limb_name = part.name.split('.').next().unwrap();
+            let mut limb: Vec<u32> = rigged
+                .parts
+                .iter()
+                .filter(|p| p.name.split('.').next() == Some(limb_name))
+                .flat_map(|p| p.vertices.clone())
+                .collect();
+            limb.sort_unstable();
+            limb.dedup();
+            let profile = Profile::new(&mesh, &limb).expect("a rim");
+            let fitter = Plain(&mesh);
+            let whole = profile.branches().expect("the toes or fingers");
+            assert_eq!(whole.len(), branches, "dino {name}");
+            let squared: Vec<Vec<u32>> = whole.iter().map(|branch| profile.squared_off(branch.clone())).collect();
+            let old = profile.forked_with_links(squared.clone(), TARGET, DEPTH, &fitter).expect("forked at squared branches");
+            let all_whole = profile.forked_with_links(whole.clone(), TARGET, DEPTH, &fitter);
+            let chain = profile.chain(&fitter, TARGET).expect("a chain");
+            let kept_whole = chain.links.iter().filter(|l| whole.iter().any(|w| profile.mesh_vertices(w.iter().copied()) == l.vertices)).count();
+            eprintln!(
+                "dino {name}: squared off, loosest link {:.1}%, stem {:.1}%; every branch whole, loosest {:.1}%; \
+                 kept: {kept_whole} of {branches} branches whole, loosest {:.1}%, stem {:.1}%",
+                100.0 * old.worst,
+                100.0 * stem(&old),
+                100.0 * all_whole.as_ref().map_or(f64::NAN, |c| c.worst),
+                100.0 * chain.worst,
+                100.0 * stem(&chain)
+            );
+            assert!(stem(&old) > TARGET, "dino {name}: with its branches squared off the stem misses the target");
+            assert!(stem(&chain) <= TARGET, "dino {name}: the stem is within it");
+            assert!(chain.worst < old.worst, "dino {name}");
+            if name == "leg" {
+                assert_eq!(kept_whole, branches, "the toes whole");
+            } else {
+                assert_eq!(kept_whole, branches - 1, "two fingers whole, one squared off");
+                assert!(all_whole.is_some_and(|c| c.worst > 0.5), "every finger whole: one is no tube");
+            }
+        }
     }
 
     /// A part that is no tube at its attached end: the faerie's hair, found from its tip, whose

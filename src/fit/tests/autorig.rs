@@ -309,7 +309,7 @@ fn the_armadillo_gets_its_limbs_ears_and_tail() {
 /// sections' radii): each is a chain from the hip to its toes, the toes branch children of the
 /// link before them (§5), every link within the fit target at its own vertices, and turning the leg at its hip
 /// carries its toes. Its arms (56% as one sweep) are chains too, their three fingers children
-/// of the arm, each within the target at its own vertices, mirror arms alike (the same links,
+/// of the arm, every link within the target at its own vertices, mirror arms alike (the same links,
 /// the same keys), and so are its legs, the mesh only nearly a mirror image of itself. Its head and neck are one
 /// sweep.
 #[test]
@@ -384,17 +384,21 @@ fn the_dinos_legs_and_arms_are_chains_their_toes_and_fingers_children() {
         let fingers = links.iter().filter(|p| p.parent.as_deref() == Some(limb)).count();
         eprintln!("dino arm x {side}: {limb}, {} links, {fingers} fingers", links.len());
         assert!(fingers >= 3, "the arm at x {side} has its three fingers as children");
-        // Each finger follows its own vertices within the target. Its fit counts a ring of the
-        // palm's vertices around its base too, its parent's, which it does not deform: with
-        // them two of the three miss the target (11.3% and 13.3%, 7.0% and 7.7% without).
+        // Each link follows its own vertices within the target: the stem a tube to the palm,
+        // two fingers whole from their fork and one squared off (with all three squared off,
+        // the stem held their bases, 18.4%). A finger's fit counts a ring of the palm's
+        // vertices around its base too, its parent's, which it does not deform: with them
+        // every finger misses the target (11.3%, 16.7%, 14.6%; 7.0%, 8.0%, 4.8% without).
         let finger_links: Vec<&&RiggedPart> = links.iter().filter(|p| p.parent.as_deref() == Some(limb)).collect();
         for finger in &finger_links {
             assert_eq!(finger.quality.vertices, finger.vertices.len(), "{}", finger.name);
             assert!(finger.fit.quality.vertices > finger.vertices.len(), "{}", finger.name);
-            assert!(finger.within_target(), "{}: {:?}", finger.name, finger.quality);
+        }
+        for link in &links {
+            assert!(link.within_target(), "{}: {:?}", link.name, link.quality);
         }
         let with_the_ring = finger_links.iter().filter(|f| f.fit.quality.rms_d > f.target()).count();
-        assert_eq!(with_the_ring, 2, "fingers missing the target with the palm's ring");
+        assert_eq!(with_the_ring, 3, "fingers missing the target with the palm's ring");
         for link in &links {
             assert!(link.fit.sections_quality().rms_d <= sweepffd::fit::autorig::MAX_RMS, "{}", link.name);
         }
