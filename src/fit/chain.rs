@@ -405,7 +405,9 @@ impl Profile {
             if mixed == squared_off {
                 return squared;
             }
-            self.forked_within(&mixed, target, 0, bound, fitter).or(squared)
+            // Where the squared chain failed, a whole branch that fits no link leaves no chain
+            // here either: the limb is then cut unforked, as before.
+            self.forked_within(&mixed, target, 0, bound, fitter).filter(|chain| chain.worst.is_finite()).or(squared)
         });
         // A limb that forks is kept forked where its branches fit and bind: unforked, its last
         // link would hold its toes or fingers.
