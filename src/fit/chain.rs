@@ -858,14 +858,10 @@ mod tests {
         let Some(path) = crate::common::shared_mesh("dino.off") else { return };
         let mesh = Mesh::load(&path).unwrap();
         let rigged = autorig(&mesh, &AutorigOptions::default()).unwrap();
-        let at = |v: u32| mesh.positions[v as usize];
-        let extreme = |inside: &dyn Fn(DVec3) -> bool, score: &dyn Fn(DVec3) -> f64| {
-            (0..mesh.positions.len() as u32).filter(|&v| inside(at(v))).max_by(|&a, &b| score(at(a)).total_cmp(&score(at(b))))
-        };
         // A toe's tip: the lowest vertex at x < −0.2 (the legs reach down to z ≈ −2); a
         // fingertip: the arms reach towards −y, their hands at x ≈ −0.9, z ≈ −0.5.
-        let toe = extreme(&|p| p.x < -0.2, &|p| -p.z).unwrap();
-        let fingertip = extreme(&|p| p.x < -0.6 && p.z > -0.8, &|p| -p.y).unwrap();
+        let toe = crate::common::extreme_vertex(&mesh, |p| p.x < -0.2, |p| -p.z);
+        let fingertip = crate::common::extreme_vertex(&mesh, |p| p.x < -0.6 && p.z > -0.8, |p| -p.y);
         let stem = |chain: &Chain| chain.links.iter().find(|l| l.parent.is_none()).unwrap().fit.quality.rms_d;
         for (name, tip, branches) in [("leg", toe, 2), ("arm", fingertip, 3)] {
             let part = rigged.parts.iter().find(|p| p.vertices.binary_search(&tip).is_ok()).expect("a part holds the tip");

@@ -256,10 +256,7 @@ mod tests {
         let (points, half) = mirrored_cloud();
         let vertices: Vec<u32> = (0..points.len() as u32).collect();
         assert!(!mirror_map(&points, &vertices).expect("the cloud's mirror plane").near);
-        let diagonal = {
-            let (lo, hi) = points.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), &p| (l.min(p), h.max(p)));
-            (hi - lo).length()
-        };
+        let diagonal = diagonal(&points);
         let lopsided = |by: f64| {
             let mut moved = points.clone();
             for (i, p) in moved[half..].iter_mut().enumerate() {
@@ -277,10 +274,15 @@ mod tests {
         assert!(near_mirror_map(&lopsided(2.0 * NEAR_TOLERANCE), &vertices).is_none());
     }
 
+    /// The diagonal of the bounds of `points`.
+    fn diagonal(points: &[DVec3]) -> f64 {
+        let (lo, hi) = points.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), &p| (l.min(p), h.max(p)));
+        (hi - lo).length()
+    }
+
     /// `points` with each image `half + i` of `moved` moved off by ten times the tolerance.
     fn with_images_moved(mut points: Vec<DVec3>, half: usize, moved: impl Iterator<Item = usize>) -> Vec<DVec3> {
-        let (lo, hi) = points.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), &p| (l.min(p), h.max(p)));
-        let off = 10.0 * TOLERANCE * (hi - lo).length();
+        let off = 10.0 * TOLERANCE * diagonal(&points);
         for i in moved {
             points[half + i].y += off;
         }

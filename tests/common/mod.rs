@@ -214,3 +214,16 @@ pub fn deformer(
     }
     sweepffd::gpu::GpuDeformer::new(context, &descriptor)
 }
+
+/// The vertex of `mesh` that maximizes `score`, among those that `inside` accepts (a limb's
+/// tip: the lowest vertex on one side); panics where `inside` accepts none.
+pub fn extreme_vertex(
+    mesh: &sweepffd::mesh::Mesh,
+    inside: impl Fn(glam::DVec3) -> bool,
+    score: impl Fn(glam::DVec3) -> f64,
+) -> u32 {
+    (0..mesh.positions.len() as u32)
+        .filter(|&v| inside(mesh.positions[v as usize]))
+        .max_by(|&a, &b| score(mesh.positions[a as usize]).total_cmp(&score(mesh.positions[b as usize])))
+        .expect("a vertex inside")
+}

@@ -19,6 +19,7 @@ use sweepffd::rig::Rig;
 use sweepffd::sweep::{Key, Sweep};
 
 use common::autorig_report::print_parts;
+use common::extreme_vertex as extreme;
 use common::sphere;
 
 #[test]
@@ -142,14 +143,6 @@ fn the_chair_gets_its_four_legs() {
     let legs = rigged.parts.iter().filter(|p| mesh.positions[p.tip as usize].y < 0.05).collect::<Vec<_>>();
     assert_eq!(legs.len(), 4);
     assert!(legs.iter().all(|p| p.fit.quality.rms_d <= 0.10), "the legs fit within 10%");
-}
-
-/// The vertex of `mesh` that maximizes `score`, among those that `inside` accepts.
-fn extreme(mesh: &Mesh, inside: impl Fn(DVec3) -> bool, score: impl Fn(DVec3) -> f64) -> u32 {
-    (0..mesh.positions.len() as u32)
-        .filter(|&v| inside(mesh.positions[v as usize]))
-        .max_by(|&a, &b| score(mesh.positions[a as usize]).total_cmp(&score(mesh.positions[b as usize])))
-        .unwrap()
 }
 
 /// The part of `rigged` holding vertex `tip`, checked at its own vertices
