@@ -36,9 +36,13 @@
 //!   a splayed toe's crotch stays in the stem); where that chain's loosest link misses the
 //!   target, each branch whose link alone fits closer than that loosest link when whole from
 //!   its fork is taken whole, and the chain so forked, its stem one sweep, is kept where its
-//!   loosest link fits closer (squared off, the toes' or fingers' bases left the dino's stems at
-//!   13.9% and 18.3%; with both toes whole, and two of three fingers, at 9.0% and 6.6%). It is
-//!   given up at its first link that fits no closer than the squared chain's loosest.
+//!   links fit closer, loosest first (`fits_closer`: where both chains' loosest link is one
+//!   finger, their stems decide). Squared off, the toes' or fingers' bases left the dino's
+//!   stems at 13.9% and 18.3%; with both toes whole, and two of three fingers, at 9.0% and
+//!   6.6%. The cartoon man's arm stems went from 18.3% and 19.1% to 13.4% and 15.3% by their
+//!   sections (10.75% and 13.7% to 6.95% and 8.2% fitted) with one finger whole each, while
+//!   each chain's loosest link stayed one finger, at 23.6% and 23.9%. The chain is given up as
+//!   soon as its links fit no closer than the squared chain's.
 //!
 //! A limb that forks is kept forked where every branch fits and binds (unforked, its last link
 //! would hold its toes); otherwise its best chain unforked, the one whose loosest link fits
@@ -123,6 +127,29 @@ pub struct Chain {
     pub links: Vec<FittedLink>,
     /// The largest of the links' `loose`.
     pub worst: f64,
+}
+
+impl Chain {
+    /// Its links' [`LinkFitter::loose`], loosest first.
+    fn loosest_first(&self, fitter: &impl LinkFitter) -> Vec<f64> {
+        let mut loose: Vec<f64> = self.links.iter().map(|link| fitter.loose(&link.fit)).collect();
+        loose.sort_by(|a, b| b.total_cmp(a));
+        loose
+    }
+}
+
+/// Whether links as loose as `loose` (loosest first, [`Chain::loosest_first`]) fit closer
+/// than `than`: the loosest that differ decide, so two chains that share their loosest link (a
+/// finger) are told apart by the next (their stems). Where one's are the other's and more, the
+/// one with fewer fits closer: a link added to a chain never makes it fit closer.
+fn fits_closer(loose: &[f64], than: &[f64]) -> bool {
+    for (a, b) in loose.iter().zip(than) {
+        match a.total_cmp(b) {
+            std::cmp::Ordering::Equal => continue,
+            order => return order.is_lt(),
+        }
+    }
+    loose.len() < than.len()
 }
 
 /// How to fit a link: its fitted vertices (the mesh's, increasing) → its fit and seconds.
@@ -392,13 +419,14 @@ impl Profile {
             }
             // Each branch whole where its link alone fits closer than the squared chain's
             // loosest (see the module docs).
-            let bound = squared.as_ref().map(|chain| chain.worst);
+            let bound = squared.as_ref().map(|chain| chain.loosest_first(fitter));
+            let loosest = bound.as_ref().map(|bound| bound[0]);
             let mixed: Vec<Vec<u32>> = whole
                 .into_iter()
                 .zip(&squared_off)
                 .map(|(whole, squared)| {
                     let closer = whole != *squared
-                        && bound.is_none_or(|bound| self.branch_link(&whole, None, fitter).is_some_and(|link| fitter.loose(&link.fit) < bound));
+                        && loosest.is_none_or(|loosest| self.branch_link(&whole, None, fitter).is_some_and(|link| fitter.loose(&link.fit) < loosest));
                     if closer { whole } else { squared.clone() }
                 })
                 .collect();
@@ -407,7 +435,9 @@ impl Profile {
             }
             // Where the squared chain failed, a whole branch that fits no link leaves no chain
             // here either: the limb is then cut unforked, as before.
-            self.forked_within(&mixed, target, 0, bound, fitter).filter(|chain| chain.worst.is_finite()).or(squared)
+            self.forked_within(&mixed, target, 0, bound.as_deref(), fitter)
+                .filter(|chain| chain.worst.is_finite())
+                .or(squared)
         });
         // A limb that forks is kept forked where its branches fit and bind: unforked, its last
         // link would hold its toes or fingers.
@@ -450,17 +480,18 @@ impl Profile {
         self.forked_within(branches, target, depth, None, fitter)
     }
 
-    /// [`Profile::forked`], `None` as soon as a link fits no closer than `bound` (its
-    /// [`LinkFitter::loose`]) where there is one.
+    /// [`Profile::forked`], `None` as soon as its links fit no closer ([`fits_closer`]) than
+    /// links as loose as `bound` (loosest first) where there is one: adding links to a chain
+    /// never makes it fit closer, so it is given up at the first that leaves it no closer.
     fn forked_within(
         &self,
         branches: &[Vec<u32>],
         target: f64,
         depth: usize,
-        bound: Option<f64>,
+        bound: Option<&[f64]>,
         fitter: &impl LinkFitter,
     ) -> Option<Chain> {
-        let within = |chain: &Chain| bound.is_none_or(|bound| chain.worst < bound);
+        let within = |chain: &Chain| bound.is_none_or(|bound| fits_closer(&chain.loosest_first(fitter), bound));
         let excluded: Vec<bool> = self.marked(branches);
         let mut chain = self.stretch_chain(None, None, &excluded, target, depth, fitter)?;
         for branch in branches {
@@ -776,6 +807,80 @@ mod tests {
         fn loose(&self, fitted: &Fit) -> f64 {
             fitted.sections_quality().rms_d
         }
+    }
+
+    #[test]
+    fn chains_are_compared_loosest_link_first_then_the_next() {
+        // The loosest that differ decide: a shared loosest link (one finger) leaves it to the
+        // stems.
+        assert!(fits_closer(&[0.24, 0.13, 0.05], &[0.24, 0.18, 0.05]));
+        assert!(!fits_closer(&[0.24, 0.18, 0.05], &[0.24, 0.13, 0.05]));
+        assert!(fits_closer(&[0.2, 0.19, 0.18], &[0.24, 0.01]));
+        // Equal chains are not closer; with one's links the other's and more, the fewer are.
+        assert!(!fits_closer(&[0.24, 0.13], &[0.24, 0.13]));
+        assert!(fits_closer(&[0.24, 0.13], &[0.24, 0.13, 0.01]));
+        // A link added never makes a chain closer, so a chain no closer than a bound stays so
+        // as links are added (what lets a chain be given up at its first such link).
+        let chain: [f64; 3] = [0.3, 0.2, 0.1];
+        for added in [0.5, 0.3, 0.25, 0.2, 0.15, 0.1, 0.05] {
+            let mut more = chain.to_vec();
+            more.push(added);
+            more.sort_by(|a, b| b.total_cmp(a));
+            assert!(!fits_closer(&more, &chain), "{added}");
+        }
+    }
+
+    /// The armadillo's +x hand: squared off, its loosest link is a finger and its stem misses
+    /// the target. Whole from their fork, two fingers leave that finger the chain's loosest
+    /// link, so the two chains' loosest links tie, and the stems decide: the whole fingers' stem
+    /// fits closer, and the limb is forked so. By its loosest link alone (the rule before), the
+    /// chain fit no closer and the squared one was kept.
+    #[test]
+    fn chains_whose_loosest_links_tie_are_told_apart_by_their_stems() {
+        use crate::fit::autorig::{AutorigOptions, TARGET, autorig};
+
+        let Some(path) = crate::common::shared_mesh("armadillo_50k.obj") else { return };
+        let mesh = Mesh::load(&path).unwrap();
+        let rigged = autorig(&mesh, &AutorigOptions::default()).unwrap();
+        let hand = crate::common::extreme_vertex(&mesh, |p| p.y > 40.0, |p| p.x);
+        let part = rigged.parts.iter().find(|p| p.vertices.binary_search(&hand).is_ok()).expect("a part holds the hand");
+        let limb_name = part.name.split('.').next().unwrap();
+        let mut limb: Vec<u32> = rigged
+            .parts
+            .iter()
+            .filter(|p| p.name.split('.').next() == Some(limb_name))
+            .flat_map(|p| p.vertices.clone())
+            .collect();
+        limb.sort_unstable();
+        limb.dedup();
+        let profile = Profile::new(&mesh, &limb).expect("a rim");
+        let depth = if profile.s.len() > DENSE { 0 } else { DEPTH };
+        let fitter = Plain(&mesh);
+        let whole = profile.branches().expect("the fingers");
+        let squared: Vec<Vec<u32>> = whole.iter().map(|branch| profile.squared_off(branch.clone())).collect();
+        let old = profile.forked_with_links(squared, TARGET, depth, &fitter).expect("forked at squared branches");
+        let chain = profile.chain(&fitter, TARGET).expect("a chain");
+        let stem = |chain: &Chain| fitter.loose(&chain.links.iter().find(|l| l.parent.is_none()).unwrap().fit);
+        let kept_whole = chain
+            .links
+            .iter()
+            .filter(|l| whole.iter().any(|w| profile.mesh_vertices(w.iter().copied()) == l.vertices))
+            .count();
+        eprintln!(
+            "armadillo hand: squared off, loosest link {:.1}%, stem {:.1}%; kept: {kept_whole} of {} fingers whole, \
+             loosest {:.1}%, stem {:.1}%",
+            100.0 * old.worst,
+            100.0 * stem(&old),
+            whole.len(),
+            100.0 * chain.worst,
+            100.0 * stem(&chain)
+        );
+        assert!(stem(&old) > TARGET, "squared off, the stem misses the target");
+        assert!(kept_whole >= 1, "a finger whole");
+        assert_eq!(chain.worst, old.worst, "the loosest links tie");
+        assert!(stem(&chain) < stem(&old), "the stems decide");
+        assert!(fits_closer(&chain.loosest_first(&fitter), &old.loosest_first(&fitter)));
+        assert!(!(chain.worst < old.worst), "by the loosest link alone, the chain was refused");
     }
 
     /// A ball with an arm along +x ending in a round hand and three fingers spread 0.4 apart

@@ -16,13 +16,21 @@ pub fn widest_axis(key: &Key) -> DVec3 {
     key.rotation.normalize() * DVec3::new(theta.cos(), theta.sin(), 0.0)
 }
 
+/// The key of `sweep` nearest the middle of its length (its knot nearest ½): where a limb bends
+/// midway, whichever end its keys crowd to (a finger taken whole from its fork has most of its
+/// keys at its base in the palm).
+pub fn middle_key(sweep: &sweepffd::sweep::Sweep) -> usize {
+    let knots = sweep.knots();
+    (1..knots.len() - 1).min_by(|&a, &b| (knots[a] - 0.5).abs().total_cmp(&(knots[b] - 0.5).abs())).unwrap_or(0)
+}
+
 /// Every sweep's key 0 turned by `degrees` about its local x axis (`middle` false), or its
-/// middle key about its widest diameter (`middle` true); local mode, so the keys after the
-/// edited one follow.
+/// middle key ([`middle_key`]) about its widest diameter (`middle` true); local mode, so the
+/// keys after the edited one follow.
 pub fn turned_keys(rig: &Rig, middle: bool, degrees: f64) -> Vec<Vec<Key>> {
     let mut posing = Posing::new(rig);
-    for sweep in rig.sweeps() {
-        let key = if middle { sweep.keys.len() / 2 } else { 0 };
+    for (sweep, rest) in rig.sweeps().iter().zip(rig.rest()) {
+        let key = if middle { middle_key(rest) } else { 0 };
         let axis = if middle { widest_axis(&sweep.keys[key]) } else { sweep.keys[key].rotation.normalize() * DVec3::X };
         posing
             .apply(&Edit::MoveKey {

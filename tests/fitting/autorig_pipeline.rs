@@ -1,8 +1,9 @@
 //! The whole pipeline on real meshes and the procedural star: `autorig` with the default
-//! falloff, a pose bending every part by 45° at its middle key, then the CPU reference
-//! deformation. Every part moves, nothing tears (largest edge stretch ≤ 2 outside the bends'
-//! creases, whose stretch is the sweep's own and is printed), and the body's unowned vertices
-//! stay exactly put; vertices at one rest position (an unwelded seam's copies) stay together.
+//! falloff, a pose bending every part by 45° at its middle key (the one nearest the middle of
+//! its length), then the CPU reference deformation. Every part moves, nothing tears (largest
+//! edge stretch ≤ 2 outside the bends' creases, whose stretch is the sweep's own and is
+//! printed), and the body's unowned vertices stay exactly put; vertices at one rest position
+//! (an unwelded seam's copies) stay together.
 //!
 //! With `SWEEPFFD_PICTURES_DIR=DIR`, each mesh, its rig and the bent pose are written there
 //! for `sweepffd render --mesh DIR/NAME.obj --rig DIR/NAME-rig.json --pose DIR/NAME-pose.json`.
@@ -20,7 +21,7 @@ use sweepffd::mesh::Mesh;
 use sweepffd::mesh::weld::weld;
 use sweepffd::rig::Rig;
 
-use common::bends::{largest_stretch, turned_keys};
+use common::bends::{largest_stretch, middle_key, turned_keys};
 
 /// Rigs `mesh`, bends every part by 45° at its middle key and checks the deformation; returns
 /// the largest edge stretch.
@@ -56,23 +57,36 @@ fn bend_every_part(name: &str, mesh: &Mesh, expected_parts: usize) -> f64 {
     // A 45° turn of one key bends the sweep within the two knot intervals beside it (R(t)
     // interpolates the keys interval by interval), which stretches the outside of a part as
     // wide as an interval is long: the sweep's own crease, reported apart from the seams. An
-    // edge is in it where the range of its ends' t meets those intervals (a long edge of a
-    // coarse ear may bind on both sides of them).
+    // edge is in it where the range of its ends' t on one sweep meets those intervals (a long
+    // edge of a coarse ear may bind on both sides of them), or one end's t does where only
+    // that end binds to the sweep. A vertex in a band between two sweeps binds to both, so a
+    // child's crease reaches into its parent's vertices there (a finger taken whole from its
+    // fork bends at a middle key inside the palm).
+    let mut second: Vec<Option<sweepffd::bind::Binding>> = vec![None; mesh.positions.len()];
+    for band in &bindings.bands {
+        second[band.vertex as usize] = Some(band.second);
+    }
+    let bound_to = |v: u32| -> Vec<(u32, f64)> {
+        let first = bindings.vertices[v as usize];
+        [Some(first), second[v as usize]]
+            .into_iter()
+            .flatten()
+            .filter(|binding| binding.sweep != u32::MAX)
+            .map(|binding| (binding.sweep, binding.params.t))
+            .collect()
+    };
     let crease = |(a, b): (u32, u32)| {
-        let (ba, bb) = (bindings.vertices[a as usize], bindings.vertices[b as usize]);
         let in_crease = |sweep: u32, lo: f64, hi: f64| {
-            let knots = rig.rest()[sweep as usize].knots();
-            let middle = knots.len() / 2;
+            let rest = &rig.rest()[sweep as usize];
+            let (knots, middle) = (rest.knots(), middle_key(rest));
             lo <= knots[middle + 1] && hi >= knots[middle - 1]
         };
-        let owned = |binding: &sweepffd::bind::Binding| binding.sweep != u32::MAX;
-        match (owned(&ba), owned(&bb)) {
-            (true, true) if ba.sweep == bb.sweep => {
-                let (lo, hi) = (ba.params.t.min(bb.params.t), ba.params.t.max(bb.params.t));
-                in_crease(ba.sweep, lo, hi)
-            }
-            _ => [ba, bb].iter().filter(|b| owned(b)).any(|b| in_crease(b.sweep, b.params.t, b.params.t)),
-        }
+        let ends: Vec<(u32, f64)> = bound_to(a).into_iter().chain(bound_to(b)).collect();
+        ends.iter().any(|&(sweep, _)| {
+            let on_it = ends.iter().filter(|&&(other, _)| other == sweep).map(|&(_, t)| t);
+            let (lo, hi) = on_it.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), t| (lo.min(t), hi.max(t)));
+            in_crease(sweep, lo, hi)
+        })
     };
     // Vertices at one rest position (an unwelded patch seam's two copies, which no edge joins)
     // stay together.
