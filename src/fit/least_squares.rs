@@ -34,10 +34,21 @@ pub const RIDGE: f64 = 1e-3;
 /// Conjugate-gradient iterations per round.
 const ITERATIONS: usize = 60;
 
-/// One vertex's row of the truncated system: (unknown index i·M + j, weight a_i b_j).
-struct Row {
+/// The truncated system's rows, one per vertex, their entries in one list: row i's are
+/// `entries[offsets[i]..offsets[i + 1]]`, each (unknown index i·M + j, weight a_i b_j).
+struct Rows {
     entries: Vec<(usize, f64)>,
-    /// The distance from the axis y_v.
+    offsets: Vec<usize>,
+}
+
+impl Rows {
+    fn iter(&self) -> impl Iterator<Item = &[(usize, f64)]> {
+        self.offsets.windows(2).map(|w| &self.entries[w[0]..w[1]])
+    }
+}
+
+/// Where a vertex binds: its distance from the axis y_v, and (θ_v, t_v).
+struct Bound {
     y: f64,
     theta: f64,
     t: f64,
@@ -66,7 +77,8 @@ pub fn fitted_radii(sweep: &Sweep, keys: &[Key], positions: &[DVec3]) -> Option<
     let basis = |j: usize, (cell, phi): (usize, f64)| around.patch(0, (cell + m - j) % m).value(0.0, phi);
     let binder = SweepBinder::new(sweep);
     let intervals = knots.len() - 1;
-    let rows: Vec<Row> = positions
+    let mut rows = Rows { entries: Vec::new(), offsets: vec![0] };
+    let bound: Vec<Bound> = positions
         .iter()
         .map(|&v| {
             let b = binder.bind(v);
@@ -75,7 +87,6 @@ pub fn fitted_radii(sweep: &Sweep, keys: &[Key], positions: &[DVec3]) -> Option<
             let cell = ((b.theta / std::f64::consts::TAU * m as f64).floor() as usize).min(m - 1);
             let keys_near = segment.saturating_sub(WINDOW - 1)..(segment + 1 + WINDOW).min(n);
             let angle = angular_cell(b.theta, m);
-            let mut entries = Vec::new();
             for i in keys_near {
                 let a = along[i].value(segment, s, 0.0);
                 for offset in 0..2 * WINDOW {
@@ -83,28 +94,27 @@ pub fn fitted_radii(sweep: &Sweep, keys: &[Key], positions: &[DVec3]) -> Option<
                     if offset >= m {
                         break;
                     }
-                    entries.push((i * m + j, a * basis(j, angle)));
+                    rows.entries.push((i * m + j, a * basis(j, angle)));
                 }
             }
-            Row { entries, y: b.d + sweep.radius(b.theta, b.t), theta: b.theta, t: b.t }
+            rows.offsets.push(rows.entries.len());
+            Bound { y: b.d + sweep.radius(b.theta, b.t), theta: b.theta, t: b.t }
         })
         .collect();
     let prior: Vec<f64> = keys.iter().flat_map(|k| k.radii.iter().copied()).collect();
     let mut rho = prior.clone();
     let mut diagonal = vec![0.0; n * m];
-    for row in &rows {
-        for &(k, w) in &row.entries {
-            diagonal[k] += w * w;
-        }
+    for &(k, w) in &rows.entries {
+        diagonal[k] += w * w;
     }
     let ridge = RIDGE * diagonal.iter().sum::<f64>() / diagonal.len() as f64;
     for _ in 0..ROUNDS {
         let current = Sweep::try_new(&with_radii(keys, &rho, m), Some(&knots)).ok()?;
-        let residual: Vec<f64> = rows.iter().map(|r| r.y - current.radius(r.theta, r.t)).collect();
+        let residual: Vec<f64> = bound.iter().map(|b| b.y - current.radius(b.theta, b.t)).collect();
         // (AᵀA + λI) Δ = Aᵀe − λ(ρ − ρ⁰)
         let mut rhs = vec![0.0; n * m];
         for (row, e) in rows.iter().zip(&residual) {
-            for &(k, w) in &row.entries {
+            for &(k, w) in row {
                 rhs[k] += w * e;
             }
         }
@@ -126,12 +136,12 @@ pub fn with_radii(keys: &[Key], rho: &[f64], m: usize) -> Vec<Key> {
 
 /// Solves (AᵀA + λI) x = b, A's rows being `rows`, by Jacobi-preconditioned conjugate
 /// gradients from x = 0.
-fn conjugate_gradients(rows: &[Row], ridge: f64, diagonal: &[f64], b: &[f64]) -> Vec<f64> {
+fn conjugate_gradients(rows: &Rows, ridge: f64, diagonal: &[f64], b: &[f64]) -> Vec<f64> {
     let apply = |x: &[f64]| {
         let mut out: Vec<f64> = x.iter().map(|v| ridge * v).collect();
-        for row in rows {
-            let ax: f64 = row.entries.iter().map(|&(k, w)| w * x[k]).sum();
-            for &(k, w) in &row.entries {
+        for row in rows.iter() {
+            let ax: f64 = row.iter().map(|&(k, w)| w * x[k]).sum();
+            for &(k, w) in row {
                 out[k] += w * ax;
             }
         }
