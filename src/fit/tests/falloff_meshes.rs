@@ -16,7 +16,7 @@ use sweepffd::rig::{Rig, RigSweep, VertexSelection};
 use sweepffd::sweep::Key;
 use sweepffd::synthetic::BendTwistTaper;
 
-use common::bends::{largest_stretch, turned_keys};
+use common::bends::{largest_stretch, middle_key, turned_keys};
 
 /// The bunny's ear that bends towards −z (as the zipper scan is oriented, y up).
 fn bunny_front_ear(p: DVec3) -> bool {
@@ -90,7 +90,7 @@ fn largest_band_normal_turn(mesh: &Mesh, bindings: &MeshBindings, posed: &[DVec3
 }
 
 /// Whether vertex `v` lies in the crease of a bend at the middle key: bound within the two knot
-/// intervals beside its sweep's middle key. A 60° turn of one key bends the sweep within those
+/// intervals beside its sweep's middle key ([`middle_key`], the one turned). A 60° turn of one key bends the sweep within those
 /// intervals alone (R(t) interpolates the keys interval by interval), which stretches the outside
 /// of a part as wide as an interval is long and folds its inside, whatever happens at its
 /// boundary: the sweep's own shape, not a seam.
@@ -99,8 +99,8 @@ fn in_crease(rig: &Rig, bindings: &MeshBindings, v: u32) -> bool {
     if binding.sweep == u32::MAX {
         return false;
     }
-    let knots = rig.rest()[binding.sweep as usize].knots();
-    let middle = knots.len() / 2;
+    let rest = &rig.rest()[binding.sweep as usize];
+    let (knots, middle) = (rest.knots(), middle_key(rest));
     (knots[middle - 1]..=knots[middle + 1]).contains(&binding.params.t)
 }
 
