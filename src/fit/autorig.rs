@@ -30,6 +30,7 @@ use super::body::Body;
 use super::chain::{FittedLink, LinkFitter, Profile};
 use super::hanging;
 use super::limb::COARSE;
+use super::part::Part;
 use super::protrusions::{Protrusion, protrusions};
 use super::quality::{FitQuality, measure};
 use super::refine::zigzags;
@@ -353,7 +354,8 @@ impl Selection {
 /// at most [`TARGET`] and its sections' radii by at most [`MAX_RMS`], otherwise its best chain (`super::chain`) where each link fits within [`MAX_RMS`] and the
 /// loosest better than the one sweep, otherwise the one sweep within [`MAX_RMS`]; a sweep whose
 /// keys fold back ([`folds`]) fits no link; a coarse part that none of those rig well is
-/// trimmed of its attached end where the rest fits. The part is what a longer limb left of its
+/// trimmed of its attached end where the rest fits; a part in a plane
+/// ([`Part::lies_in_a_plane`]) is none of them. The part is what a longer limb left of its
 /// protrusion, `found` (both increasing); it is trimmed as found (a leg and its mirror twin,
 /// found above their crotch, share the pelvis's slab, and the first takes its own hip's ring
 /// out of the other's slab), and the trimmed limb is kept only where it holds none of what
@@ -365,7 +367,12 @@ fn rig_limb(
     found: &[u32],
     options: &FitOptions,
 ) -> Result<Vec<FittedLink>, Option<LeftOut>> {
-    let fitter = Fitter { mesh, options, fitted: Default::default() };
+    rig_limb_with(&Fitter { mesh, options, fitted: Default::default() }, vertices, found)
+}
+
+/// [`rig_limb`] with the links fitted by `fitter`.
+fn rig_limb_with(fitter: &Fitter, vertices: &[u32], found: &[u32]) -> Result<Vec<FittedLink>, Option<LeftOut>> {
+    let (mesh, options) = (fitter.mesh, fitter.options);
     let whole = fitter.fit_whole(vertices);
     let whole_rms = whole.as_ref().map_or(f64::INFINITY, |(fitted, _)| one_sweep_loose(fitted));
     let one = |(fit, seconds): (Fit, f64)| {
@@ -376,28 +383,35 @@ fn rig_limb(
     if close {
         return Ok(whole.map(one).unwrap_or_default());
     }
-    let chain = Profile::new(mesh, vertices).and_then(|profile| profile.chain(&fitter, TARGET));
-    // A part that is no tube as one sweep becomes a limb only as a chain of tubes.
-    let most = if whole_rms <= MAX_RMS { MAX_RMS } else { MAX_RMS.min(RESCUED_SHARE * whole_rms) };
-    if let Some(chain) = chain.filter(|chain| kept_as_chain(chain.worst, whole_rms, most)) {
-        let mut links = chain.links;
-        if options.falloff.is_none() {
-            for link in &mut links {
-                link.fit.falloff *= LINK_FALLOFF_SHARE;
+    // A part in a plane has pieces in it too: no chain of them is a tube, and none is trimmed.
+    let flat = whole_rms > MAX_RMS
+        && whole.as_ref().is_some_and(|(fitted, _)| folds(&fitted.keys).is_none())
+        && Part::new(mesh, vertices).lies_in_a_plane();
+    if !flat {
+        let chain = Profile::new(mesh, vertices).and_then(|profile| profile.chain(fitter, TARGET));
+        // A part that is no tube as one sweep becomes a limb only as a chain of tubes.
+        let most = if whole_rms <= MAX_RMS { MAX_RMS } else { MAX_RMS.min(RESCUED_SHARE * whole_rms) };
+        if let Some(chain) = chain.filter(|chain| kept_as_chain(chain.worst, whole_rms, most)) {
+            let mut links = chain.links;
+            if options.falloff.is_none() {
+                for link in &mut links {
+                    link.fit.falloff *= LINK_FALLOFF_SHARE;
+                }
             }
+            return Ok(links);
         }
-        return Ok(links);
-    }
-    // A coarse part that is no tube for what lies at its attached end (a leg cut above its
-    // crotch, one span of long triangles below it) is a limb without it, where the rest fits
-    // within the target and the one sweep is no limb or misses it by over [`TRIMMED_OVER`].
-    let loose_whole = whole.as_ref().is_none_or(|(fitted, _)| fitted.quality.rms_d > TRIMMED_OVER);
-    if (whole_rms > MAX_RMS || loose_whole)
-        && vertices.len() < COARSE
-        && let Some(trimmed) = Profile::new(mesh, found).and_then(|profile| profile.trimmed(&fitter, TARGET))
-        && trimmed.links[0].vertices.iter().all(|v| vertices.binary_search(v).is_ok())
-    {
-        return Ok(trimmed.links);
+        // A coarse part that is no tube for what lies at its attached end (a leg cut above its
+        // crotch, one span of long triangles below it) is a limb without it, where the rest
+        // fits within the target and the one sweep is no limb or misses it by over
+        // [`TRIMMED_OVER`].
+        let loose_whole = whole.as_ref().is_none_or(|(fitted, _)| fitted.quality.rms_d > TRIMMED_OVER);
+        if (whole_rms > MAX_RMS || loose_whole)
+            && vertices.len() < COARSE
+            && let Some(trimmed) = Profile::new(mesh, found).and_then(|profile| profile.trimmed(fitter, TARGET))
+            && trimmed.links[0].vertices.iter().all(|v| vertices.binary_search(v).is_ok())
+        {
+            return Ok(trimmed.links);
+        }
     }
     match whole {
         Some(whole) if whole_rms <= MAX_RMS => Ok(one(whole)),
@@ -661,6 +675,49 @@ mod tests {
         assert!(!kept_as_chain(0.2524, 0.2187, MAX_RMS));
         assert!(!kept_as_chain(0.36, 0.5, MAX_RMS));
         assert!(!kept_as_chain(0.2, 1.0, RESCUED_SHARE * 0.3));
+    }
+
+    /// An L-shaped strip 6 quads wide meshed in a plane: along x for 66 quads, then up y for
+    /// 60 more at its far end. The part is all of it past its first 10 quads, attached to the
+    /// rest along that column's edge; it bends at its corner.
+    fn flat_l() -> (Mesh, Vec<u32>) {
+        let size = 66u32;
+        let in_l = |i: u32, j: u32| j < 6 || i >= size - 6;
+        let at = |i: u32, j: u32| j * (size + 1) + i;
+        let positions = (0..=size)
+            .flat_map(|j| (0..=size).map(move |i| DVec3::new(0.25 * f64::from(i), 0.25 * f64::from(j), 0.0)))
+            .collect();
+        let mut faces = crate::mesh::Faces::new();
+        for j in 0..size {
+            for i in 0..size {
+                if in_l(i, j) {
+                    faces.push(&[at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]);
+                }
+            }
+        }
+        let mut on_faces: Vec<u32> = faces.triangles().flatten().collect();
+        on_faces.sort_unstable();
+        on_faces.dedup();
+        let mesh = Mesh::from_parts(positions, faces, Vec::new()).unwrap();
+        let part = on_faces.into_iter().filter(|&v| v % (size + 1) >= 10).collect();
+        (mesh, part)
+    }
+
+    /// A flat part is left out after its one sweep: its pieces are flat too, and chains of
+    /// them (what was tried before) fit one set of vertices after another for nothing.
+    #[test]
+    fn a_flat_part_is_left_out_without_trying_chains() {
+        let (mesh, part) = flat_l();
+        let options = FitOptions::default();
+        let fitter = Fitter { mesh: &mesh, options: &options, fitted: Default::default() };
+        let left_out = rig_limb_with(&fitter, &part, &part).err();
+        assert!(matches!(left_out, Some(Some(LeftOut::Loose(rms_d))) if rms_d > MAX_RMS), "left out: {left_out:?}");
+        assert_eq!(fitter.fitted.lock().unwrap().len(), 1, "its one sweep alone is fitted");
+        // The chains tried before fit more, and none is a limb.
+        let before = Fitter { mesh: &mesh, options: &options, fitted: Default::default() };
+        let chain = Profile::new(&mesh, &part).and_then(|profile| profile.chain(&before, TARGET));
+        assert!(before.fitted.lock().unwrap().len() > 1);
+        assert!(chain.is_none_or(|chain| chain.worst > MAX_RMS));
     }
 
     #[test]

@@ -74,11 +74,34 @@ impl Part {
         self.triangles.iter().map(|t| t.iter().map(|&v| self.positions[v as usize]).sum::<DVec3>() / 3.0).collect()
     }
 
+    /// Whether the part's vertices all lie in one plane, to within [`FLAT_WITHIN`] of its
+    /// bounding box's diagonal (a sheet, such as a drawing's outline meshed in a plane): the
+    /// plane of its largest triangle, which a flat part's every triangle lies in. No sweep's
+    /// sections, nor any of its pieces', have area there.
+    pub fn lies_in_a_plane(&self) -> bool {
+        let corners = |t: &[u32; 3]| t.map(|v| self.positions[v as usize]);
+        let largest = self.triangles.iter().map(corners).max_by(|a, b| {
+            let area = |[p, q, r]: [DVec3; 3]| (q - p).cross(r - p).length_squared();
+            area(*a).total_cmp(&area(*b))
+        });
+        let Some([p, q, r]) = largest else { return false };
+        let Some(normal) = (q - p).cross(r - p).try_normalize() else { return false };
+        let (low, high) = self
+            .positions
+            .iter()
+            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(low, high), &v| (low.min(v), high.max(v)));
+        let within = FLAT_WITHIN * low.distance(high);
+        self.positions.iter().all(|&v| (v - p).dot(normal).abs() <= within)
+    }
+
     /// The centroid of the part's vertices.
     pub fn centroid(&self) -> DVec3 {
         self.positions.iter().copied().sum::<DVec3>() / self.positions.len() as f64
     }
 }
+
+/// See [`Part::lies_in_a_plane`].
+pub const FLAT_WITHIN: f64 = 1e-9;
 
 /// The rim edges of the part whose local index of each mesh vertex is `local` (`u32::MAX`:
 /// not selected); see [`Part::rim`].
@@ -132,6 +155,17 @@ mod tests {
         assert_eq!(part.rim, [[0, 1], [2, 3]]);
         // The whole mesh: attached nowhere.
         assert!(Part::new(&mesh, &(0..8).collect::<Vec<_>>()).rim.is_empty());
+    }
+
+    #[test]
+    fn a_strip_in_a_plane_lies_in_it_and_a_bent_one_does_not() {
+        let mesh = strip(3);
+        assert!(Part::new(&mesh, &(0..8).collect::<Vec<_>>()).lies_in_a_plane());
+        let mut bent = mesh.clone();
+        bent.positions[7].z = 1e-3;
+        assert!(!Part::new(&bent, &(0..8).collect::<Vec<_>>()).lies_in_a_plane());
+        // A part with no triangle has no plane.
+        assert!(!Part::new(&mesh, &[0, 7]).lies_in_a_plane());
     }
 
     #[test]
