@@ -336,7 +336,7 @@ pub const DENSER: f64 = 2.0;
 
 /// Whether a part holding `vertex_share` of its component's vertices and `area_share` of its
 /// area is the body's far side: more than [`MAX_SHARE`] of both, unless it is modelled at least
-/// [`DENSER`] times as densely and holds at most twice that share of the area. The far side of
+/// [`DENSER`] times as densely and holds at most twice [`MAX_SHARE`] of the area. The far side of
 /// a body is more of the body, modelled as it is (spot's head with its neck and shoulders: 41%
 /// of the vertices on 36% of the area; the chair's back: 31% on 33%; the McGuire teapot's body:
 /// 38% on 46%); a game figure's head is often modelled far more densely (a 3,273-vertex
