@@ -143,13 +143,8 @@ impl Chain {
 /// finger) are told apart by the next (their stems). Where one's are the other's and more, the
 /// one with fewer fits closer: a link added to a chain never makes it fit closer.
 fn fits_closer(loose: &[f64], than: &[f64]) -> bool {
-    for (a, b) in loose.iter().zip(than) {
-        match a.total_cmp(b) {
-            std::cmp::Ordering::Equal => continue,
-            order => return order.is_lt(),
-        }
-    }
-    loose.len() < than.len()
+    // Slices compare lexicographically, a prefix before what extends it.
+    loose < than
 }
 
 /// How to fit a link: its fitted vertices (the mesh's, increasing) → its fit and seconds.
@@ -809,6 +804,27 @@ mod tests {
         }
     }
 
+    /// The vertices of the limb of `rigged` one of whose parts holds `tip`: every link of its
+    /// chain (the parts named like it), increasing.
+    fn limb_holding(rigged: &crate::fit::autorig::Autorig, tip: u32) -> Vec<u32> {
+        let part = rigged.parts.iter().find(|p| p.vertices.binary_search(&tip).is_ok()).expect("a part holds the tip");
+        let limb_name = part.name.split('.').next().unwrap();
+        let mut limb: Vec<u32> = rigged
+            .parts
+            .iter()
+            .filter(|p| p.name.split('.').next() == Some(limb_name))
+            .flat_map(|p| p.vertices.clone())
+            .collect();
+        limb.sort_unstable();
+        limb.dedup();
+        limb
+    }
+
+    /// How many of `chain`'s links are branches of `whole` (local vertices) taken whole.
+    fn kept_whole(profile: &Profile, chain: &Chain, whole: &[Vec<u32>]) -> usize {
+        chain.links.iter().filter(|l| whole.iter().any(|w| profile.mesh_vertices(w.iter().copied()) == l.vertices)).count()
+    }
+
     #[test]
     fn chains_are_compared_loosest_link_first_then_the_next() {
         // The loosest that differ decide: a shared loosest link (one finger) leaves it to the
@@ -843,17 +859,7 @@ mod tests {
         let mesh = Mesh::load(&path).unwrap();
         let rigged = autorig(&mesh, &AutorigOptions::default()).unwrap();
         let hand = crate::common::extreme_vertex(&mesh, |p| p.y > 40.0, |p| p.x);
-        let part = rigged.parts.iter().find(|p| p.vertices.binary_search(&hand).is_ok()).expect("a part holds the hand");
-        let limb_name = part.name.split('.').next().unwrap();
-        let mut limb: Vec<u32> = rigged
-            .parts
-            .iter()
-            .filter(|p| p.name.split('.').next() == Some(limb_name))
-            .flat_map(|p| p.vertices.clone())
-            .collect();
-        limb.sort_unstable();
-        limb.dedup();
-        let profile = Profile::new(&mesh, &limb).expect("a rim");
+        let profile = Profile::new(&mesh, &limb_holding(&rigged, hand)).expect("a rim");
         let depth = if profile.s.len() > DENSE { 0 } else { DEPTH };
         let fitter = Plain(&mesh);
         let whole = profile.branches().expect("the fingers");
@@ -861,11 +867,7 @@ mod tests {
         let old = profile.forked_with_links(squared, TARGET, depth, &fitter).expect("forked at squared branches");
         let chain = profile.chain(&fitter, TARGET).expect("a chain");
         let stem = |chain: &Chain| fitter.loose(&chain.links.iter().find(|l| l.parent.is_none()).unwrap().fit);
-        let kept_whole = chain
-            .links
-            .iter()
-            .filter(|l| whole.iter().any(|w| profile.mesh_vertices(w.iter().copied()) == l.vertices))
-            .count();
+        let kept_whole = kept_whole(&profile, &chain, &whole);
         eprintln!(
             "armadillo hand: squared off, loosest link {:.1}%, stem {:.1}%; kept: {kept_whole} of {} fingers whole, \
              loosest {:.1}%, stem {:.1}%",
@@ -969,17 +971,7 @@ mod tests {
         let fingertip = crate::common::extreme_vertex(&mesh, |p| p.x < -0.6 && p.z > -0.8, |p| -p.y);
         let stem = |chain: &Chain| chain.links.iter().find(|l| l.parent.is_none()).unwrap().fit.quality.rms_d;
         for (name, tip, branches) in [("leg", toe, 2), ("arm", fingertip, 3)] {
-            let part = rigged.parts.iter().find(|p| p.vertices.binary_search(&tip).is_ok()).expect("a part holds the tip");
-            let limb_name = part.name.split('.').next().unwrap();
-            let mut limb: Vec<u32> = rigged
-                .parts
-                .iter()
-                .filter(|p| p.name.split('.').next() == Some(limb_name))
-                .flat_map(|p| p.vertices.clone())
-                .collect();
-            limb.sort_unstable();
-            limb.dedup();
-            let profile = Profile::new(&mesh, &limb).expect("a rim");
+            let profile = Profile::new(&mesh, &limb_holding(&rigged, tip)).expect("a rim");
             let fitter = Plain(&mesh);
             let whole = profile.branches().expect("the toes or fingers");
             assert_eq!(whole.len(), branches, "dino {name}");
@@ -987,7 +979,7 @@ mod tests {
             let old = profile.forked_with_links(squared.clone(), TARGET, DEPTH, &fitter).expect("forked at squared branches");
             let all_whole = profile.forked_with_links(whole.clone(), TARGET, DEPTH, &fitter);
             let chain = profile.chain(&fitter, TARGET).expect("a chain");
-            let kept_whole = chain.links.iter().filter(|l| whole.iter().any(|w| profile.mesh_vertices(w.iter().copied()) == l.vertices)).count();
+            let kept_whole = kept_whole(&profile, &chain, &whole);
             eprintln!(
                 "dino {name}: squared off, loosest link {:.1}%, stem {:.1}%; every branch whole, loosest {:.1}%; \
                  kept: {kept_whole} of {branches} branches whole, loosest {:.1}%, stem {:.1}%",
