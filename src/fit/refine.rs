@@ -372,7 +372,7 @@ impl Fitter<'_> {
         }
         candidates.into_iter().find_map(|candidate| {
             let turned = DQuat::from_rotation_arc(station.normal, candidate.normal) * rotation;
-            let cut = self.section(candidate.center, turned)?;
+            let cut = self.closed_section(candidate.center, turned)?;
             cut.complete().then_some((candidate, turned, cut))
         })
     }
@@ -417,17 +417,32 @@ impl Fitter<'_> {
     /// grazes it in a single segment (whose rays along the segment meet its ends or not as
     /// rounding falls, so a rigidly moved part would get another fit).
     fn section(&self, origin: DVec3, rotation: DQuat) -> Option<Cut> {
+        self.section_if(origin, rotation, true)
+    }
+
+    /// [`Fitter::section`], `None` also where the section is open: such a section is never
+    /// complete ([`Cut::complete`]), and a search for a complete one need not sample it.
+    fn closed_section(&self, origin: DVec3, rotation: DQuat) -> Option<Cut> {
+        self.section_if(origin, rotation, false)
+    }
+
+    /// [`Fitter::section`]; an open section only where `open_too`.
+    fn section_if(&self, origin: DVec3, rotation: DQuat, open_too: bool) -> Option<Cut> {
         let plane = Plane { origin, x: rotation * DVec3::X, y: rotation * DVec3::Y, normal: rotation * DVec3::Z };
         let contours = cut(self.part, &plane);
         let chosen = around(&contours, DVec2::ZERO)?;
         if chosen.iter().map(|c| c.points.len()).sum::<usize>() < 3 {
             return None;
         }
+        let open = chosen.iter().any(|c| !c.closed);
+        if open && !open_too {
+            return None;
+        }
         let middle = star_center(&chosen, center(&chosen));
         let sampled = sample(&chosen, middle, self.options.radii)?;
         let report = SectionReport {
             cut: true,
-            open: chosen.iter().any(|c| !c.closed),
+            open,
             several_crossings: sampled.several_crossings,
             missed: sampled.missed,
             borrowed: false,
