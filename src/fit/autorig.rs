@@ -246,7 +246,7 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
         let vertices = match selection {
             Selection::Skip => continue,
             Selection::TooSmall(count) => {
-                rejected.push(Rejected { tip: protrusion.tip, vertices: count, rms_d: None, folded: None });
+                rejected.push(Rejected { tip: protrusion.tip, vertices: count, rms_d: None, folded: None, open: None });
                 continue;
             }
             Selection::Fit(vertices) => vertices,
@@ -254,11 +254,12 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
         let chain = match result {
             Some(Ok(chain)) => chain,
             Some(Err(Some(why))) => {
-                let (rms_d, folded) = match why {
-                    LeftOut::Loose(rms_d) => (Some(rms_d), None),
-                    LeftOut::Folded(folds) => (None, Some(folds)),
+                let (rms_d, folded, open) = match why {
+                    LeftOut::Loose(rms_d) => (Some(rms_d), None, None),
+                    LeftOut::Folded(folds) => (None, Some(folds), None),
+                    LeftOut::Open { rms_d, keys } => (Some(rms_d), None, Some(keys)),
                 };
-                rejected.push(Rejected { tip: protrusion.tip, vertices: vertices.len(), rms_d, folded });
+                rejected.push(Rejected { tip: protrusion.tip, vertices: vertices.len(), rms_d, folded, open });
                 continue;
             }
             // A part the fit refuses (too flat for an axis) is no limb, as before fitting.
@@ -378,8 +379,12 @@ fn rig_limb_with(fitter: &Fitter, vertices: &[u32], found: &[u32]) -> Result<Vec
     let one = |(fit, seconds): (Fit, f64)| {
         vec![FittedLink { vertices: vertices.to_vec(), fitted: vertices.to_vec(), fit, seconds, parent: None }]
     };
+    // A part whose every key section is open is a sheet: no tube, however close its sections'
+    // radii (one looser than [`MAX_RMS`] or whose keys fold is left out as before).
+    let sheet = whole_rms <= MAX_RMS && whole.as_ref().is_some_and(|(fitted, _)| all_open(fitted));
     // Close enough as one sweep: its fitted radii within the target, its sections a tube's.
-    let close = whole.as_ref().is_some_and(|(fitted, _)| fitted.quality.rms_d <= TARGET) && whole_rms <= MAX_RMS;
+    let close =
+        !sheet && whole.as_ref().is_some_and(|(fitted, _)| fitted.quality.rms_d <= TARGET) && whole_rms <= MAX_RMS;
     if close {
         return Ok(whole.map(one).unwrap_or_default());
     }
@@ -414,6 +419,7 @@ fn rig_limb_with(fitter: &Fitter, vertices: &[u32], found: &[u32]) -> Result<Vec
         }
     }
     match whole {
+        Some((fitted, _)) if sheet => Err(Some(LeftOut::Open { rms_d: whole_rms, keys: fitted.keys.len() })),
         Some(whole) if whole_rms <= MAX_RMS => Ok(one(whole)),
         Some((fitted, _)) => match folds(&fitted.keys) {
             Some(folded) => Err(Some(LeftOut::Folded(folded))),
@@ -512,6 +518,16 @@ pub const MORE_KEYS: f64 = 4.0 / 3.0;
 /// took half the command's time).
 pub const MORE_KEYS_WITHIN: f64 = 1.5;
 
+/// Whether every key section of `fitted` is open ([`super::SectionReport::open`]): its planes
+/// cut the part's surface in arcs that leave it through its boundary, not in loops around the
+/// axis. Such a part is a sheet (the AT-AT's 8-vertex chin plate, a strip of three quads bent
+/// in a curve, whose every section misses 14 of its 32 rays: 31.8% RMS |d| with its
+/// sections' radii), not a tube, whatever its fit: a limb's sections close at least away
+/// from its rim.
+fn all_open(fitted: &Fit) -> bool {
+    fitted.sections.iter().all(|section| section.open)
+}
+
 /// How loosely a limb's one sweep follows it: the RMS |d| of its sections' radii over the
 /// mean radius, infinite where its keys fold back.
 fn one_sweep_loose(fitted: &Fit) -> f64 {
@@ -525,6 +541,9 @@ enum LeftOut {
     Loose(f64),
     /// Its keys fold back.
     Folded(Folds),
+    /// Every one of its `keys` key sections is open ([`all_open`]): a sheet. `rms_d` as in
+    /// [`LeftOut::Loose`].
+    Open { rms_d: f64, keys: usize },
 }
 
 /// How a fitted sweep's keys fold back: the knot intervals whose end key's center lies behind
@@ -639,6 +658,8 @@ pub struct Rejected {
     pub rms_d: Option<f64>,
     /// Its fit's folds, where its keys fold back (see [`FOLDED`]).
     pub folded: Option<Folds>,
+    /// Where every key section of its fit is open (a sheet, no tube): how many keys it has.
+    pub open: Option<usize>,
 }
 
 /// The fit target of a part some of whose key sections are not star-shaped (RMS |d| over the
@@ -718,6 +739,53 @@ mod tests {
         let chain = Profile::new(&mesh, &part).and_then(|profile| profile.chain(&before, TARGET));
         assert!(before.fitted.lock().unwrap().len() > 1);
         assert!(chain.is_none_or(|chain| chain.worst > MAX_RMS));
+    }
+
+    /// The AT-AT's chin plate (its 8 vertices and 6 triangles as the file has them): a strip
+    /// of three quads bent in a curve, a component of its own.
+    fn chin_plate() -> (Mesh, Vec<u32>) {
+        let positions = vec![
+            DVec3::new(242.965607, -1258.38623, 1429.64954),
+            DVec3::new(251.556717, -1253.07605, 1409.83215),
+            DVec3::new(251.556381, -1165.44177, 1433.31372),
+            DVec3::new(243.016037, -1176.94958, 1457.6875),
+            DVec3::new(251.638046, -1247.63708, 1389.53308),
+            DVec3::new(251.637817, -1160.00269, 1413.01453),
+            DVec3::new(243.20047, -1242.27808, 1369.5332),
+            DVec3::new(243.158478, -1158.01526, 1387.02332),
+        ];
+        let mut faces = crate::mesh::Faces::new();
+        for triangle in [[0, 1, 2], [0, 2, 3], [1, 4, 5], [1, 5, 2], [4, 6, 7], [4, 7, 5]] {
+            faces.push(&triangle);
+        }
+        (Mesh::from_parts(positions, faces, Vec::new()).unwrap(), (0..8).collect())
+    }
+
+    /// A sheet is left out, named as one: its one sweep's sections all open, it fits within
+    /// [`MAX_RMS`] by them (31.8%) and was kept before, over its target.
+    #[test]
+    fn a_sheet_is_left_out_where_its_sweep_would_have_been_kept() {
+        let (mesh, part) = chin_plate();
+        let options = FitOptions::default();
+        let fitter = Fitter { mesh: &mesh, options: &options, fitted: Default::default() };
+        let (whole, _) = fitter.fit_whole(&part).unwrap();
+        assert!(all_open(&whole));
+        let rms_d = one_sweep_loose(&whole);
+        assert!(rms_d > TARGET && rms_d <= MAX_RMS, "{rms_d}: the old rule kept it");
+        let left_out = rig_limb_with(&fitter, &part, &part).err();
+        assert!(
+            matches!(left_out, Some(Some(LeftOut::Open { keys, rms_d: r })) if keys == whole.keys.len() && r == rms_d),
+            "left out: {left_out:?}"
+        );
+        // Two more sides close the strip into a tube (a quad tube of three spans): its sections
+        // are loops, and it is no sheet.
+        let mut tube = mesh.clone();
+        for triangle in [[3, 2, 5], [3, 5, 7], [6, 0, 3], [6, 3, 7]] {
+            tube.faces.push(&triangle);
+        }
+        let fitter = Fitter { mesh: &tube, options: &options, fitted: Default::default() };
+        let (closed, _) = fitter.fit_whole(&part).unwrap();
+        assert!(closed.sections.iter().any(|section| !section.open), "{:?}", closed.sections);
     }
 
     #[test]

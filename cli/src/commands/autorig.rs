@@ -59,6 +59,8 @@ struct LeftOut {
     sections_rms_d: Option<f64>,
     /// For a fit whose keys fold back: its knot intervals that step backwards, of all of them.
     folded: Option<[usize; 2]>,
+    /// For a fit whose every key section is open (a sheet, no tube): its keys.
+    open_keys: Option<usize>,
 }
 
 #[derive(Serialize)]
@@ -134,6 +136,7 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
                 tip: r.tip,
                 sections_rms_d: r.rms_d,
                 folded: r.folded.map(|f| [f.backwards, f.intervals]),
+                open_keys: r.open,
             })
             .collect();
         out!(
@@ -150,6 +153,11 @@ pub fn run(args: &Args, quiet: bool) -> CliResult {
     }
     for r in &rigged.rejected {
         let why = match (r.rms_d, r.folded) {
+            (Some(rms_d), _) if let Some(keys) = r.open => format!(
+                "its sections are no tube's: all {keys} key sections are open, a sheet (RMS |d| {:.0}% of the \
+                 mean radius with their radii)",
+                100.0 * rms_d
+            ),
             // Sections of a flat part (a sheet) have next to no area: their mean radius is
             // near zero, and |d| over it says nothing more.
             (Some(rms_d), _) if rms_d >= FLAT => format!(
