@@ -137,7 +137,12 @@ pub fn run(part: &Part, options: &FitOptions) -> Result<(Fitted, Vec<FitStep>), 
         run.0.measured.quality.rms_d.max(between)
     };
     let mut best_score = score(&best);
-    let others = [(&skeleton.axis, false), (&skeleton.level_axis, true), (&skeleton.level_axis, false)];
+    // Where the level skeleton is the centered one (a fifth of the dino's and the faerie's
+    // coarse parts), its starts are those already tried.
+    let mut others = vec![(&skeleton.axis, false)];
+    if skeleton.level_axis != skeleton.axis {
+        others.extend([(&skeleton.level_axis, true), (&skeleton.level_axis, false)]);
+    }
     for (axis, follows) in others {
         let Ok(run) = run_from(part, options, axis.clone(), skeleton.start_normal, follows) else { continue };
         let run_score = score(&run);
