@@ -15,6 +15,7 @@ use super::section::{Contour, Plane, around, center, cut};
 use super::skeleton::skeleton;
 use super::star::star_center;
 use super::{FitError, FitOptions, FitStep, SectionReport};
+use crate::parallel::prelude::*;
 use crate::sweep::{Key, Sweep};
 
 /// The end planes sit this fraction of the part's length beyond its extreme vertices.
@@ -118,10 +119,24 @@ pub fn run(part: &Part, options: &FitOptions) -> Result<(Fitted, Vec<FitStep>), 
         let axis = Polyline::new(&[centroid - direction, centroid + direction]).ok_or(FitError::Flat)?;
         return run_from(part, options, axis, None, false);
     };
-    let mut best = run_from(part, options, skeleton.axis.clone(), skeleton.start_normal, true)?;
+    let first = || run_from(part, options, skeleton.axis.clone(), skeleton.start_normal, true);
     if part.positions.len() >= options.keys * options.radii {
-        return Ok(best);
+        return first();
     }
+    // Where the level skeleton is the centered one (a fifth of the dino's and the faerie's
+    // coarse parts), its starts are those already tried.
+    let mut others = vec![(&skeleton.axis, false)];
+    if skeleton.level_axis != skeleton.axis {
+        others.extend([(&skeleton.level_axis, true), (&skeleton.level_axis, false)]);
+    }
+    // The starts are fitted side by side, then weighed in order.
+    let (first, runs) = crate::parallel::join(first, || {
+        others
+            .par_iter()
+            .map(|&(axis, follows)| run_from(part, options, axis.clone(), skeleton.start_normal, follows).ok())
+            .collect::<Vec<_>>()
+    });
+    let mut best = first?;
     // Scored at the vertices and at the triangles' centroids, the worse of the two: radii
     // fitted through a coarse part's vertices may bulge between them.
     let centroids = part.triangle_centroids();
@@ -137,14 +152,7 @@ pub fn run(part: &Part, options: &FitOptions) -> Result<(Fitted, Vec<FitStep>), 
         run.0.measured.quality.rms_d.max(between)
     };
     let mut best_score = score(&best);
-    // Where the level skeleton is the centered one (a fifth of the dino's and the faerie's
-    // coarse parts), its starts are those already tried.
-    let mut others = vec![(&skeleton.axis, false)];
-    if skeleton.level_axis != skeleton.axis {
-        others.extend([(&skeleton.level_axis, true), (&skeleton.level_axis, false)]);
-    }
-    for (axis, follows) in others {
-        let Ok(run) = run_from(part, options, axis.clone(), skeleton.start_normal, follows) else { continue };
+    for run in runs.into_iter().flatten() {
         let run_score = score(&run);
         if run_score < (1.0 - OTHER_START_MARGIN) * best_score {
             (best, best_score) = (run, run_score);
