@@ -388,11 +388,12 @@ fn rig_limb_with(fitter: &Fitter, vertices: &[u32], found: &[u32]) -> Result<Vec
     if close {
         return Ok(whole.map(one).unwrap_or_default());
     }
-    // A part in a plane has pieces in it too: no chain of them is a tube, and none is trimmed.
+    // A part in a plane, or a sheet, has pieces in it too: no chain of them is a tube, and
+    // none is trimmed.
     let flat = whole_rms > MAX_RMS
         && whole.as_ref().is_some_and(|(fitted, _)| folds(&fitted.keys).is_none())
         && Part::new(mesh, vertices).lies_in_a_plane();
-    if !flat {
+    if !flat && !sheet {
         let chain = Profile::new(mesh, vertices).and_then(|profile| profile.chain(fitter, TARGET));
         // A part that is no tube as one sweep becomes a limb only as a chain of tubes.
         let most = if whole_rms <= MAX_RMS { MAX_RMS } else { MAX_RMS.min(RESCUED_SHARE * whole_rms) };
