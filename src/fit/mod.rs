@@ -260,6 +260,25 @@ impl Fit {
         }
     }
 
+    /// The fit of the part of `mesh` made of `vertices` (those it was fitted to), its radii
+    /// fitted again to the part's surface with their second differences smoothed
+    /// ([`refine::smoothed`]), where its radii were not fitted by least squares (that loosened
+    /// its triangles' centroids) and this tightens it; `None` otherwise.
+    pub(crate) fn smoothed(&self, mesh: &Mesh, vertices: &[u32]) -> Result<Option<Fit>, FitError> {
+        if self.steps.last().is_some_and(|step| step.label == refine::LEAST_SQUARES_STEP) {
+            return Ok(None);
+        }
+        let part = Part::new(mesh, vertices);
+        let Some((keys, measured)) = refine::smoothed(&part, &self.keys)? else { return Ok(None) };
+        let mut steps = self.steps.clone();
+        steps.push(FitStep {
+            label: refine::LEAST_SQUARES_STEP.to_string(),
+            keys: keys.clone(),
+            quality: measured.quality,
+        });
+        Ok(Some(Fit { keys, quality: measured.quality, steps, ..self.clone() }))
+    }
+
     /// The fitted sweep as a rig file writes it: named `name`, owning `selection`, hanging
     /// from `parent` if given, knots by chord length, with the fit's falloff (absent when 0).
     pub fn sweep_document(
@@ -294,6 +313,18 @@ fn beyond_rig(mesh: &Mesh, vertices: impl Iterator<Item = u32>) -> Result<(), Fi
 
 /// Fits a control sweep to the part of `mesh` made of `vertices` (see the module docs).
 pub fn fit(mesh: &Mesh, vertices: &[u32], options: &FitOptions) -> Result<Fit, FitError> {
+    fit_smoothing(mesh, vertices, options, 0.0)
+}
+
+/// [`fit`], where a least-squares fit of the radii is not kept, fitting them once more with
+/// their second differences weighted by `smoothing` (a fraction of the normal matrix's mean
+/// diagonal; 0 for none).
+pub(crate) fn fit_smoothing(
+    mesh: &Mesh,
+    vertices: &[u32],
+    options: &FitOptions,
+    smoothing: f64,
+) -> Result<Fit, FitError> {
     options.check()?;
     if let Some(&index) = vertices.iter().find(|&&v| v as usize >= mesh.positions.len()) {
         return Err(FitError::VertexOutOfRange { index, count: mesh.positions.len() });
@@ -307,7 +338,7 @@ pub fn fit(mesh: &Mesh, vertices: &[u32], options: &FitOptions) -> Result<Fit, F
         return Err(FitError::NoFaces);
     }
     options.check_for_part(part.positions.len())?;
-    let (mut fitted, mut steps) = refine::run(&part, options)?;
+    let (mut fitted, mut steps) = refine::run(&part, options, smoothing)?;
     let mut rim = attached::rim_lengths(&part, &fitted.sweep);
     if options.axis.is_none() && rim[1] > rim[0] {
         fitted = attached::turned(&part, &fitted, &mut steps)?;

@@ -207,7 +207,7 @@ fn spot_gets_its_four_legs() {
             let before = &part.fit.steps[part.fit.steps.len() - 2].keys;
             let sweep = Sweep::try_new(before, None).unwrap();
             let vertices: Vec<DVec3> = part.vertices.iter().map(|&v| mesh.positions[v as usize]).collect();
-            let radii = fitted_radii(&sweep, before, &vertices).unwrap();
+            let radii = fitted_radii(&sweep, before, &vertices, 0.0).unwrap();
             let keys: Vec<Key> = before.iter().zip(radii).map(|(k, radii)| Key { radii, ..k.clone() }).collect();
             let bulging = centroid_rms(&mesh, part, &keys);
             eprintln!("spot {leg} leg: radii fitted to the vertices alone: {:.2}% at the centroids", 100.0 * bulging);
@@ -381,7 +381,9 @@ fn the_dinos_legs_and_arms_are_chains_their_toes_and_fingers_children() {
         // two fingers whole from their fork and one squared off (with all three squared off,
         // the stem held their bases, 18.4%). A finger's fit counts a ring of the palm's
         // vertices around its base too, its parent's, which it does not deform: with them
-        // every finger misses the target (11.3%, 16.7%, 14.6%; 7.0%, 8.0%, 4.8% without).
+        // two of the three fingers miss the target (11.3%, 5.2%, 14.6%; 7.0%, 2.6%, 4.8%
+        // without; the second's radii smoothed, which plainly missed it with the ring too,
+        // 16.7%).
         let finger_links: Vec<&&RiggedPart> = links.iter().filter(|p| p.parent.as_deref() == Some(limb)).collect();
         for finger in &finger_links {
             assert_eq!(finger.quality.vertices, finger.vertices.len(), "{}", finger.name);
@@ -391,7 +393,7 @@ fn the_dinos_legs_and_arms_are_chains_their_toes_and_fingers_children() {
             assert!(link.within_target(), "{}: {:?}", link.name, link.quality);
         }
         let with_the_ring = finger_links.iter().filter(|f| f.fit.quality.rms_d > f.target()).count();
-        assert_eq!(with_the_ring, 3, "fingers missing the target with the palm's ring");
+        assert_eq!(with_the_ring, 2, "fingers missing the target with the palm's ring");
         for link in &links {
             assert!(link.fit.sections_quality().rms_d <= sweepffd::fit::autorig::MAX_RMS, "{}", link.name);
         }

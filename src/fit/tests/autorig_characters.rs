@@ -7,7 +7,7 @@ use crate::common;
 
 use glam::{DQuat, DVec3};
 use sweepffd::edit::{Edit, KeyMode, Posing};
-use sweepffd::fit::autorig::{Autorig, AutorigOptions, MAX_RMS, RiggedPart, TARGET, autorig};
+use sweepffd::fit::autorig::{Autorig, AutorigOptions, MAX_RMS, RiggedPart, TARGET, autorig, target_of};
 use sweepffd::fit::body::Body;
 use sweepffd::fit::limb::MAX_SHARE;
 use sweepffd::fit::mirror::mirror_map;
@@ -318,9 +318,13 @@ fn the_faerie_gets_two_arms_and_two_legs_as_chains() {
 
 /// The AT-AT walker (133 components, z up): its four lower legs and four upper legs, each a
 /// component of its own. The four legs of each segment are mirror images of one another and
-/// are fitted alike: the same number of keys, the same RMS |d| and chord length within 10⁻⁴,
-/// none of them zigzagging (one upper leg's fit took a start whose keys turned back 13 times
-/// in 22 over 3.3 times the leg's length, at 12% against its three mirror images' 27%).
+/// are fitted alike: the same number of keys, chord length within 10⁻⁴ and RMS |d| within
+/// 10⁻³ (the upper legs' radii are smoothed by least squares, whose conjugate gradients carry
+/// the mirrored positions' rounding to 5·10⁻⁴), none of them zigzagging (one upper leg's fit
+/// took a start whose keys turned back 13 times in 22 over 3.3 times the leg's length, at 12%
+/// against its three mirror images' 27%). Every leg fits within its target: the upper legs,
+/// stacks of plates with open edges, at 8.3% with their radii smoothed, where fitted plainly
+/// they miss it (27.4%: their least squares bulged between the vertices and was not kept).
 #[test]
 fn the_at_at_gets_its_legs() {
     let Some((mesh, rigged)) = rigged("at-at.obj") else { return };
@@ -337,6 +341,12 @@ fn the_at_at_gets_its_legs() {
             let leg = leg.unwrap_or_else(|| panic!("no part is the {segment} leg at x·{sx} > 0, y·{sy} > 0"));
             assert!(leg.fit.sections_quality().rms_d <= MAX_RMS, "{}", leg.name);
             assert!(!zigzags(&leg.fit.keys), "{}", leg.name);
+            assert!(leg.within_target(), "{}: {:?}", leg.name, leg.quality);
+            if segment == "upper" {
+                let welded = Body::new(&mesh).welded_mesh(&mesh);
+                let plain = fit(welded.as_ref().unwrap_or(&mesh), &leg.vertices, &FitOptions::default()).unwrap();
+                assert!(plain.quality.rms_d > target_of(&plain), "{}: fitted plainly {:?}", leg.name, plain.quality);
+            }
             legs.push(leg.name.clone());
             fits.push((leg.fit.keys.len(), leg.fit.quality.rms_d, leg.length));
         }
@@ -346,7 +356,7 @@ fn the_at_at_gets_its_legs() {
         eprintln!("AT-AT {segment} legs (keys, RMS |d|, chord length): {fits:?}");
         for fit in &fits[1..] {
             assert_eq!(fit.0, fits[0].0, "{segment} legs: {fits:?}");
-            assert!((fit.1 - fits[0].1).abs() <= 1e-4 * fits[0].1, "{segment} legs: {fits:?}");
+            assert!((fit.1 - fits[0].1).abs() <= 1e-3 * fits[0].1, "{segment} legs: {fits:?}");
             assert!((fit.2 - fits[0].2).abs() <= 1e-4 * fits[0].2, "{segment} legs: {fits:?}");
         }
     }

@@ -256,7 +256,7 @@ fn the_users_axis_order_wins_over_the_rim() {
 fn turning_a_fit_end_for_end_keeps_its_quality() {
     let mesh = cone(false);
     let part = Part::new(&mesh, &rings(10..=50));
-    let (fitted, mut steps) = super::refine::run(&part, &FitOptions::default()).unwrap();
+    let (fitted, mut steps) = super::refine::run(&part, &FitOptions::default(), 0.0).unwrap();
     let before: Vec<FitQuality> = steps.iter().map(|s| s.quality).collect();
     let turned = super::attached::turned(&part, &fitted, &mut steps).unwrap();
     let (q, p) = (fitted.measured.quality, turned.measured.quality);
