@@ -384,7 +384,8 @@ fn rig_limb(
 /// Once a limb's links are chosen, the fit of `link` with its radii smoothed where its plain
 /// least squares was not kept (the radii bulged between the vertices and edges' midpoints
 /// they were fitted to) and that tightens it: its own radii smoothed ([`Fit::smoothed`]);
-/// failing that, for a limb of `one_sweep`, the limb fitted again with smoothed least squares
+/// failing that, for a limb of `one_sweep` that misses its target ([`target_of`]; a fit costs
+/// as much again), the limb fitted again with smoothed least squares
 /// in each of its starts ([`super::fit_smoothing`]), kept where its keys neither fold nor
 /// zigzag and its sections are not all open and stay within [`MAX_RMS`]. The beast's
 /// 60-vertex knob (a public mesh) went from 30.9% to 6.9%, the AT-AT's upper legs, plates with
@@ -395,7 +396,7 @@ fn smoothed(mesh: &Mesh, link: &FittedLink, options: &FitOptions, one_sweep: boo
         return Some(smoothed);
     }
     let plain = link.fit.steps.last().is_some_and(|step| step.label == super::refine::LEAST_SQUARES_STEP);
-    if !one_sweep || plain {
+    if !one_sweep || plain || link.fit.quality.rms_d <= target_of(&link.fit) {
         return None;
     }
     let refit = super::fit_smoothing(mesh, &link.fitted, options, SMOOTHING).ok()?;

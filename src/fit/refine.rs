@@ -646,6 +646,11 @@ fn radii_fitted_by_least_squares(part: &Part, fitted: &Fitted, smoothing: f64) -
 /// surface. Only after the search: fits compared while chains are searched keep the plain
 /// least squares.
 pub fn smoothed(part: &Part, keys: &[Key]) -> Result<Option<(Vec<Key>, Measured)>, FitError> {
+    // With [`SAMPLES_PER_RADIUS`] vertices per radius, fitted to its vertices alone, a part's
+    // plain least squares was kept wherever it tightened the fit.
+    if part.positions.len() >= SAMPLES_PER_RADIUS * keys.iter().map(|k| k.radii.len()).sum::<usize>() {
+        return Ok(None);
+    }
     let sweep = Sweep::try_new(keys, None)?;
     let measured = measure(&sweep, &part.positions);
     let fitted = Fitted { keys: keys.to_vec(), sections: Vec::new(), sweep, measured };
