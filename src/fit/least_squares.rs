@@ -17,7 +17,11 @@
 //! to the exact residuals d_v, [`ROUNDS`] times (iterative refinement), by conjugate gradients
 //! on the normal equations with a ridge towards the section radii ρ⁰ (weight [`RIDGE`] times
 //! the mean diagonal), so that a radius no vertex sees (a ray through a gap between toes)
-//! keeps its sampled value. Radii stay at least 0.
+//! keeps its sampled value. Where asked, the squares of the radii's second differences, around
+//! each key and along the keys at each node, are added with a weight (a fraction of the mean
+//! diagonal, [`SMOOTHING`] where radii bulged between a coarse part's samples), so that the
+//! radii follow the surface between the samples rather than bend through each. Radii stay at
+//! least 0.
 
 use glam::DVec3;
 
@@ -115,11 +119,7 @@ pub fn fitted_radii(sweep: &Sweep, keys: &[Key], positions: &[DVec3], smoothing:
     let mean_diagonal = diagonal.iter().sum::<f64>() / diagonal.len() as f64;
     let ridge = RIDGE * mean_diagonal;
     let curvature = Curvature { n, m, weight: smoothing * mean_diagonal };
-    let mut lap_diag = vec![0.0; n * m];
-    curvature.add_diagonal(&mut lap_diag);
-    for (d, l) in diagonal.iter_mut().zip(&lap_diag) {
-        *d += l;
-    }
+    curvature.add_diagonal(&mut diagonal);
     for _ in 0..ROUNDS {
         let current = Sweep::try_new(&with_radii(keys, &rho, m), Some(&knots)).ok()?;
         let residual: Vec<f64> = bound.iter().map(|b| b.y - current.radius(b.theta, b.t)).collect();
