@@ -395,8 +395,7 @@ fn smoothed(mesh: &Mesh, link: &FittedLink, options: &FitOptions, one_sweep: boo
     if let Some(smoothed) = link.fit.smoothed(mesh, &link.fitted).ok().flatten() {
         return Some(smoothed);
     }
-    let plain = link.fit.steps.last().is_some_and(|step| step.label == super::refine::LEAST_SQUARES_STEP);
-    if !one_sweep || plain || link.fit.quality.rms_d <= target_of(&link.fit) {
+    if !one_sweep || link.fit.least_squares_kept() || link.fit.quality.rms_d <= target_of(&link.fit) {
         return None;
     }
     let refit = super::fit_smoothing(mesh, &link.fitted, options, SMOOTHING).ok()?;

@@ -260,12 +260,17 @@ impl Fit {
         }
     }
 
+    /// Whether its last step fitted the radii by least squares (the step was kept).
+    pub(crate) fn least_squares_kept(&self) -> bool {
+        self.steps.last().is_some_and(|step| step.label == refine::LEAST_SQUARES_STEP)
+    }
+
     /// The fit of the part of `mesh` made of `vertices` (those it was fitted to), its radii
     /// fitted again to the part's surface with their second differences smoothed
     /// ([`refine::smoothed`]), where its radii were not fitted by least squares (that loosened
     /// its triangles' centroids) and this tightens it; `None` otherwise.
     pub(crate) fn smoothed(&self, mesh: &Mesh, vertices: &[u32]) -> Result<Option<Fit>, FitError> {
-        if self.steps.last().is_some_and(|step| step.label == refine::LEAST_SQUARES_STEP) {
+        if self.least_squares_kept() {
             return Ok(None);
         }
         let part = Part::new(mesh, vertices);
