@@ -20,6 +20,7 @@ use std::f64::consts::TAU;
 use crate::parallel::prelude::*;
 use glam::DVec3;
 
+use crate::sweep::curve::CurvePiece;
 use crate::sweep::plane_polynomial::PlanePolynomial;
 use crate::sweep::{AxisPoint, Sweep};
 
@@ -62,13 +63,47 @@ impl Binding {
 pub struct SweepBinder<'a> {
     sweep: &'a Sweep,
     planes: Vec<PlanePolynomial>,
+    /// A sphere around each interval's piece of C(t), to skip intervals whose every point lies
+    /// farther from a vertex than a root already found.
+    bounds: Vec<Bound>,
+}
+
+/// A sphere enclosing one piece of C(t): the sphere around its Bézier control points (a cubic
+/// piece lies in their convex hull), widened by a margin that rounding cannot cross.
+#[derive(Clone, Copy, Debug)]
+struct Bound {
+    center: DVec3,
+    radius: f64,
+    /// The size of the piece's coordinates, which scales the rounding of its points.
+    magnitude: f64,
+}
+
+impl Bound {
+    /// Relative slack for rounding: far above the few units in the last place by which a point
+    /// evaluated on the piece, or its squared distance from a vertex, can be off.
+    const SLACK: f64 = 1e-9;
+
+    fn of(piece: &CurvePiece) -> Bound {
+        let [a0, a1, a2, a3] = piece.power_coefficients();
+        let control = [a0, a0 + a1 / 3.0, a0 + (2.0 * a1 + a2) / 3.0, a0 + a1 + a2 + a3];
+        let center = 0.5 * (control[0] + control[3]);
+        let radius = control.iter().map(|p| p.distance(center)).fold(0.0, f64::max);
+        let magnitude = control.iter().map(|p| p.length()).sum::<f64>() + a1.length() + a2.length() + a3.length();
+        Bound { center, radius, magnitude }
+    }
+
+    /// A distance from `v` that no point of the piece comes nearer than; at most 0 when unsure.
+    fn nearest_possible(&self, v: DVec3) -> f64 {
+        v.distance(self.center) - self.radius * (1.0 + Self::SLACK) - Self::SLACK * (self.magnitude + v.length())
+    }
 }
 
 impl<'a> SweepBinder<'a> {
     /// Precomputes the per-interval plane polynomials of `sweep`.
     pub fn new(sweep: &'a Sweep) -> SweepBinder<'a> {
         let planes = sweep.segments().iter().map(PlanePolynomial::new).collect();
-        SweepBinder { sweep, planes }
+        let bounds = sweep.segments().iter().map(|segment| Bound::of(&segment.curve)).collect();
+        SweepBinder { sweep, planes, bounds }
     }
 
     /// Every root t of ⟨v − C(t), N(t)⟩ in [0, 1], as axis points, increasing.
@@ -88,14 +123,32 @@ impl<'a> SweepBinder<'a> {
         self.nearest_root(v).unwrap_or_else(|| self.nearer_end(v))
     }
 
-    /// The root of ⟨v − C(t), N(t)⟩ on [0, 1] nearest to v, if there is one.
+    /// The root of ⟨v − C(t), N(t)⟩ on [0, 1] nearest to v, if there is one; of roots equally
+    /// near, the first along the axis.
+    ///
+    /// The interval whose piece of C(t) may come nearest to v is searched first; then every
+    /// other, in order, but for those whose bounding sphere lies farther from v than the
+    /// nearest root found so far, which hold no nearer root. The result is that of searching
+    /// every interval in order.
     pub fn nearest_root(&self, v: DVec3) -> Option<AxisPoint> {
         let segments = self.sweep.segments();
+        let first = (0..segments.len())
+            .min_by(|&a, &b| self.bounds[a].nearest_possible(v).total_cmp(&self.bounds[b].nearest_possible(v)))?;
         let mut best: Option<(AxisPoint, f64)> = None;
-        for (segment, plane) in self.planes.iter().enumerate() {
+        for segment in std::iter::once(first).chain((0..segments.len()).filter(|&k| k != first)) {
+            let nearest_possible = self.bounds[segment].nearest_possible(v);
+            if let Some((_, best_d2)) = best
+                && nearest_possible > 0.0
+                && nearest_possible * nearest_possible > best_d2
+            {
+                continue;
+            }
+            let plane = &self.planes[segment];
             plane_roots::for_each_root(&plane.for_vertex(v)[..=plane.degree], &mut |s| {
                 let d2 = segments[segment].curve.value(s).distance_squared(v);
-                if best.is_none_or(|(_, best_d2)| d2 < best_d2) {
+                let nearer = best
+                    .is_none_or(|(at, best_d2)| d2 < best_d2 || (d2 == best_d2 && (segment, s) < (at.segment, at.s)));
+                if nearer {
                     best = Some((AxisPoint { segment, s }, d2));
                 }
             });

@@ -152,3 +152,70 @@ fn bind_vertices_leaves_unowned_vertices_unbound() {
     assert_eq!(bindings[0].sweep, 0);
     assert_eq!(bindings[1], Binding::UNOWNED);
 }
+
+/// The nearest root as found by searching every interval in order: the first root along the
+/// axis of those nearest to v, what [`SweepBinder::nearest_root`] must return.
+fn nearest_root_of_every_interval(sweep: &Sweep, binder: &SweepBinder, v: DVec3) -> Option<AxisPoint> {
+    let mut best: Option<(AxisPoint, f64)> = None;
+    for at in binder.roots(v) {
+        let d2 = sweep.segments()[at.segment].curve.value(at.s).distance_squared(v);
+        if best.is_none_or(|(_, best_d2)| d2 < best_d2) {
+            best = Some((at, d2));
+        }
+    }
+    best.map(|(at, _)| at)
+}
+
+/// A long sweep winding in three dimensions, 24 keys.
+fn long_wave() -> Sweep {
+    let keys: Vec<Key> = (0..24)
+        .map(|i| {
+            let s = i as f64 * 0.4;
+            let center = DVec3::new(s, 0.8 * (0.7 * s).sin(), 0.5 * (0.4 * s).cos());
+            Key { center, rotation: DQuat::from_rotation_y(0.3 * (0.5 * s).sin()), radii: vec![0.3, 0.35, 0.25, 0.3] }
+        })
+        .collect();
+    Sweep::try_new(&keys, None).unwrap()
+}
+
+#[test]
+fn skipping_far_intervals_finds_the_root_every_interval_would() {
+    let mut compared = 0;
+    for sweep in [u_bend(), long_wave(), straight()] {
+        let binder = SweepBinder::new(&sweep);
+        let (lo, hi) = sweep
+            .segments()
+            .iter()
+            .flat_map(|segment| [segment.curve.value(0.0), segment.curve.value(1.0)])
+            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| (lo.min(p), hi.max(p)));
+        let (lo, hi) = (lo - DVec3::ONE, hi + DVec3::ONE);
+        for i in 0..4000 {
+            let f = |k: f64| (i as f64 * k).fract();
+            let v = lo + (hi - lo) * DVec3::new(f(0.618_034), f(0.754_878), f(0.569_840));
+            let expected = nearest_root_of_every_interval(&sweep, &binder, v);
+            assert_eq!(binder.nearest_root(v), expected, "{v}");
+            compared += usize::from(expected.is_some());
+        }
+    }
+    assert!(compared > 3000, "only {compared} points had a root");
+}
+
+#[test]
+fn an_intervals_bounding_sphere_holds_its_piece_and_rules_out_far_intervals() {
+    let sweep = long_wave();
+    let binder = SweepBinder::new(&sweep);
+    for (segment, bound) in sweep.segments().iter().zip(&binder.bounds) {
+        for k in 0..=100 {
+            let p = segment.curve.value(k as f64 / 100.0);
+            for v in [p, p + DVec3::new(0.3, -2.0, 1.0), DVec3::new(50.0, 3.0, -2.0)] {
+                assert!(bound.nearest_possible(v) <= v.distance(p), "{v} nearer than the bound allows");
+            }
+        }
+    }
+    // Near key 3, the root is at most a radius away, and most intervals lie farther than that.
+    let v = sweep.segments()[3].curve.value(0.0) + DVec3::new(0.0, 0.2, 0.1);
+    let at = binder.nearest_root(v).unwrap();
+    let d2 = sweep.segments()[at.segment].curve.value(at.s).distance_squared(v);
+    let skipped = binder.bounds.iter().filter(|b| b.nearest_possible(v).max(0.0).powi(2) > d2).count();
+    assert!(skipped >= 18, "{skipped} of {} intervals ruled out", binder.bounds.len());
+}
