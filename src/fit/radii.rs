@@ -5,7 +5,7 @@
 use glam::DVec2;
 
 use super::hidden::mean_radii;
-use super::ray_fan::RayFan;
+use super::ray_fan::{RayFan, with_fan};
 use super::section::Contour;
 
 /// The radii of one key and how the section met the rays.
@@ -25,7 +25,11 @@ pub struct SampledRadii {
 /// Samples `count` radii of the section made of `contours` around `center` (all in in-plane
 /// coordinates); `None` when no ray meets the boundary.
 pub fn sample(contours: &[&Contour], center: DVec2, count: usize) -> Option<SampledRadii> {
-    let mut fan = RayFan::new(count);
+    with_fan(count, |fan| sample_with(fan, contours, center, count))
+}
+
+/// [`sample`] with `fan` of `count` rays.
+fn sample_with(fan: &mut RayFan, contours: &[&Contour], center: DVec2, count: usize) -> Option<SampledRadii> {
     fan.cast(contours, center);
     let mut several = Vec::new();
     let mut found: Vec<Option<f64>> = (0..count)

@@ -5,16 +5,19 @@
 //! as seen from the center, so a fan over S segments costs about S + M tests, not
 //! M·S. A segment seen from (nearly) on its own line, or from (nearly) one of its ends, spans
 //! up to π and is tested against every ray. The tests themselves are the single ray's
-//! (`ray_hit`), so the fan's crossings are the ones each ray finds alone, to the bit.
+//! (`ray_hit`), so the fan's crossings are the ones each ray finds alone, to the bit: which
+//! rays a segment is tested against only has to include every ray it may meet. Angles are
+//! compared as pseudo-angles (`pseudo_angle`, increasing with the angle, no arctangent), and
+//! the rays a segment spans are found by search among the rays' own.
 
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::TAU;
 
 use glam::DVec2;
 
 use super::section::Contour;
 
-/// A segment whose angle seen from the center comes within this of π is tested against
-/// every ray.
+/// A segment whose angle seen from the center comes within about this (radians) of π is tested
+/// against every ray: the tangent of its angle's difference from π is at most this.
 const NEARLY_STRAIGHT: f64 = 0.01;
 /// A segment whose nearer end lies within this fraction of its length from the center is
 /// tested against every ray (the single ray's end slack then spans a wide angle).
@@ -23,21 +26,24 @@ const NEAR_END: f64 = 1e-6;
 /// `count` rays and the crossings each found on the last [`RayFan::cast`].
 pub struct RayFan {
     directions: Vec<DVec2>,
+    /// The rays' pseudo-angles, increasing from 0 (ray 0).
+    ray_angles: Vec<f64>,
     crossings: Vec<Vec<f64>>,
-    /// The angles of a contour's points seen from the center, one contour at a time.
+    /// The pseudo-angles of a contour's points seen from the center, one contour at a time.
     angles: Vec<f64>,
 }
 
 impl RayFan {
     /// A fan of `count` rays, ray j at θ_j = 2πj/count.
     pub fn new(count: usize) -> Self {
-        let directions = (0..count)
+        let directions: Vec<DVec2> = (0..count)
             .map(|j| {
                 let angle = TAU * j as f64 / count as f64;
                 DVec2::new(angle.cos(), angle.sin())
             })
             .collect();
-        RayFan { directions, crossings: vec![Vec::new(); count], angles: Vec::new() }
+        let ray_angles = directions.iter().map(|&d| pseudo_angle(d)).collect();
+        RayFan { directions, ray_angles, crossings: vec![Vec::new(); count], angles: Vec::new() }
     }
 
     /// Casts the fan from `center` (in-plane coordinates) onto the contours.
@@ -48,14 +54,14 @@ impl RayFan {
         let count = self.directions.len();
         for contour in contours {
             self.angles.clear();
-            self.angles.extend(contour.points.iter().map(|p| (*p - center).to_angle()));
+            self.angles.extend(contour.points.iter().map(|p| pseudo_angle(*p - center)));
             let n = contour.points.len();
             for (i, (a, b)) in contour.segments().enumerate() {
-                let (first, rays) = self
-                    .spanned(a - center, b - center, self.angles[i], self.angles[(i + 1) % n])
-                    .unwrap_or((0, count));
+                let next = if i + 1 == n { 0 } else { i + 1 };
+                let (first, rays) =
+                    self.spanned(a - center, b - center, self.angles[i], self.angles[next]).unwrap_or((0, count));
                 for k in 0..rays {
-                    let j = (first + k) % count;
+                    let j = if first + k >= count { first + k - count } else { first + k };
                     if let Some(distance) = ray_hit(center, self.directions[j], a, b) {
                         self.crossings[j].push(distance);
                     }
@@ -72,29 +78,70 @@ impl RayFan {
         &self.crossings[j]
     }
 
-    /// The rays a segment from `a` to `b` (relative to the center, at angles `angle_a` and
-    /// `angle_b`) may meet: the first and how many, around the fan; `None` when it may meet any.
+    /// The rays a segment from `a` to `b` (relative to the center, at pseudo-angles `angle_a`
+    /// and `angle_b`) may meet: the first and how many, around the fan; `None` when it may meet
+    /// any. Those are the rays whose angle lies on the arc the segment spans, and one more on
+    /// either side for rounding.
     fn spanned(&self, a: DVec2, b: DVec2, angle_a: f64, angle_b: f64) -> Option<(usize, usize)> {
         let count = self.directions.len();
         let near = NEAR_END * a.distance(b);
         if a.length() <= near || b.length() <= near {
             return None;
         }
-        let swept = match angle_b - angle_a {
-            d if d > PI => d - TAU,
-            d if d <= -PI => d + TAU,
-            d => d,
-        };
-        if swept.abs() >= PI - NEARLY_STRAIGHT {
+        let (cross, dot) = (a.perp_dot(b), a.dot(b));
+        if dot < 0.0 && cross.abs() <= NEARLY_STRAIGHT * -dot {
             return None;
         }
-        let step = TAU / count as f64;
-        let start = angle_a + swept.min(0.0);
-        let first = (start / step - 1.0).ceil() as i64;
-        let last = ((start + swept.abs()) / step + 1.0).floor() as i64;
+        // Counter-clockwise from `from` to `to`: the arc of less than π.
+        let (from, to) = if cross >= 0.0 { (angle_a, angle_b) } else { (angle_b, angle_a) };
+        let first = self.ray_angles.partition_point(|&r| r < from) as i64 - 1;
+        let last = self.ray_angles.partition_point(|&r| r <= to) as i64;
+        let last = if to < from { last + count as i64 } else { last };
         let rays = (last - first + 1) as usize;
         (rays < count).then(|| (first.rem_euclid(count as i64) as usize, rays))
     }
+}
+
+/// An angle-like measure of the direction of `d`, in [0, 4): increasing with its angle from the
+/// x axis counter-clockwise, as the arctangent's is, and cheaper; 0 for the zero vector.
+fn pseudo_angle(d: DVec2) -> f64 {
+    let sum = d.x.abs() + d.y.abs();
+    if sum == 0.0 {
+        return 0.0;
+    }
+    let (x, y) = (d.x / sum, d.y / sum);
+    match (y >= 0.0, x >= 0.0) {
+        (true, true) => y,
+        (true, false) => 1.0 - x,
+        (false, false) => 2.0 - y,
+        (false, true) => 3.0 + x,
+    }
+}
+
+/// Fans kept for reuse on a thread, at most this many.
+const KEPT_FANS: usize = 4;
+
+thread_local! {
+    /// Fans this thread has cast and may cast again: a fit samples thousands of sections with
+    /// fans of the same few sizes, and a new fan computes its directions and allocates its
+    /// rays' lists.
+    static KEPT: std::cell::RefCell<Vec<RayFan>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+/// Calls `cast_with` with a fan of `count` rays, one this thread used before where it has one.
+pub fn with_fan<R>(count: usize, cast_with: impl FnOnce(&mut RayFan) -> R) -> R {
+    let kept = KEPT.with_borrow_mut(|kept| {
+        let index = kept.iter().position(|fan| fan.directions.len() == count)?;
+        Some(kept.swap_remove(index))
+    });
+    let mut fan = kept.unwrap_or_else(|| RayFan::new(count));
+    let result = cast_with(&mut fan);
+    KEPT.with_borrow_mut(|kept| {
+        if kept.len() < KEPT_FANS {
+            kept.push(fan);
+        }
+    });
+    result
 }
 
 /// The distances along the single ray from `center` at `angle` to each crossing of the
@@ -159,7 +206,10 @@ mod tests {
                 // Centers inside, outside, on a vertex, on an edge's midpoint and near a vertex.
                 let p = shape.points[5];
                 let mid = 0.5 * (shape.points[7] + shape.points[8]);
-                for center in [DVec2::ZERO, DVec2::new(3.5, 1.0), p, mid, p + DVec2::splat(1e-9), DVec2::new(1.2, 0.4)] {
+                // And a grid over the shape and around it.
+                let grid = (0..49).map(|k| DVec2::new((k % 7) as f64 - 3.0, (k / 7) as f64 - 3.0) * 0.9);
+                let special = [DVec2::ZERO, DVec2::new(3.5, 1.0), p, mid, p + DVec2::splat(1e-9), DVec2::new(1.2, 0.4)];
+                for center in special.into_iter().chain(grid) {
                     fan.cast(&contours, center);
                     for j in 0..count {
                         let alone = ray_hits(&contours, center, TAU * j as f64 / count as f64);
@@ -177,7 +227,7 @@ mod tests {
         let fan = RayFan::new(8);
         // From the origin, (1, 0.1) to (0.1, 1) spans θ from 0.0997 to 1.4711 rad, which holds
         // ray 1 (π/4); within a step (π/4) of it lie rays 0 and 2 as well, not 7 or 3.
-        let spanned = |a: DVec2, b: DVec2| fan.spanned(a, b, a.to_angle(), b.to_angle());
+        let spanned = |a: DVec2, b: DVec2| fan.spanned(a, b, pseudo_angle(a), pseudo_angle(b));
         assert_eq!(spanned(DVec2::new(1.0, 0.1), DVec2::new(0.1, 1.0)), Some((0, 3)));
         assert_eq!(spanned(DVec2::new(0.1, 1.0), DVec2::new(1.0, 0.1)), Some((0, 3)));
         // Across θ = 0: from -0.5 to 0.5 rad, rays 7, 0 and 1.
@@ -187,5 +237,16 @@ mod tests {
         // Seen from on its own line, a segment may meet any ray.
         assert_eq!(spanned(DVec2::new(-1.0, 0.0), DVec2::new(1.0, 0.0)), None);
         assert_eq!(spanned(DVec2::ZERO, DVec2::new(1.0, 0.0)), None);
+    }
+
+    #[test]
+    fn the_pseudo_angle_increases_with_the_angle() {
+        let angles: Vec<f64> = (0..10_000).map(|k| TAU * k as f64 / 10_000.0).collect();
+        let pseudo: Vec<f64> = angles.iter().map(|&a| pseudo_angle(DVec2::from_angle(a) * 3.7)).collect();
+        assert!(pseudo.windows(2).all(|pair| pair[0] < pair[1]), "not increasing");
+        assert!(pseudo[0] == 0.0 && pseudo[9_999] < 4.0);
+        assert_eq!(pseudo_angle(DVec2::new(0.0, 2.0)), 1.0);
+        assert_eq!(pseudo_angle(DVec2::new(-2.0, 0.0)), 2.0);
+        assert_eq!(pseudo_angle(DVec2::new(0.0, -2.0)), 3.0);
     }
 }

@@ -10,7 +10,7 @@ use super::least_squares::{SMOOTHING, fitted_radii};
 use super::part::Part;
 use super::quality::{Measured, measure};
 use super::radii::sample;
-use super::ray_fan::RayFan;
+use super::ray_fan::with_fan;
 use super::section::{Contour, Plane, around, center, cut};
 use super::skeleton::skeleton;
 use super::star::star_center;
@@ -81,9 +81,10 @@ fn inner_neighbours(complete: &[usize], i: usize, last: usize) -> Vec<usize> {
 fn partial_radii(cut: &Cut, center: DVec3, neighbour: &[f64]) -> Vec<f64> {
     let contours: Vec<&Contour> = cut.contours.iter().collect();
     let q = cut.plane.coordinates_of(center);
-    let mut fan = RayFan::new(neighbour.len());
-    fan.cast(&contours, q);
-    neighbour.iter().enumerate().map(|(j, &r)| fan.crossings(j).last().copied().unwrap_or(r)).collect()
+    with_fan(neighbour.len(), |fan| {
+        fan.cast(&contours, q);
+        neighbour.iter().enumerate().map(|(j, &r)| fan.crossings(j).last().copied().unwrap_or(r)).collect()
+    })
 }
 
 /// Where the line through the centers `a` (nearer) and `b` meets the station's plane; `None`

@@ -101,9 +101,12 @@ fn segment_distance(q: DVec2, a: DVec2, b: DVec2) -> f64 {
 pub fn cut(part: &Part, plane: &Plane) -> Vec<Contour> {
     let heights: Vec<f64> = part.positions.iter().map(|p| (*p - plane.origin).dot(plane.normal)).collect();
     // Edge keys are no adversary's: the multiply-rotate hash, not the default SipHash.
-    let mut nodes: HashMap<(u32, u32), usize, BuildHasherDefault<PositionHasher>> = HashMap::default();
-    let mut points: Vec<DVec2> = Vec::new();
-    let mut segments: Vec<[usize; 2]> = Vec::new();
+    // Room for a limb's section without growing.
+    let room = 64;
+    let mut nodes: HashMap<(u32, u32), usize, BuildHasherDefault<PositionHasher>> =
+        HashMap::with_capacity_and_hasher(room, BuildHasherDefault::default());
+    let mut points: Vec<DVec2> = Vec::with_capacity(room);
+    let mut segments: Vec<[usize; 2]> = Vec::with_capacity(room);
     let mut node = |a: u32, b: u32| -> usize {
         let key = (a.min(b), a.max(b));
         *nodes.entry(key).or_insert_with(|| {

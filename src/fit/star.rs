@@ -11,7 +11,7 @@
 
 use glam::DVec2;
 
-use super::ray_fan::RayFan;
+use super::ray_fan::{RayFan, with_fan};
 use super::section::Contour;
 
 /// Probe rays per candidate center.
@@ -24,8 +24,12 @@ pub fn star_center(contours: &[&Contour], centroid: DVec2) -> DVec2 {
     if contours.iter().any(|c| !c.closed) {
         return centroid;
     }
-    let mut fan = RayFan::new(PROBES);
-    let mut best = (hidden_depth(&mut fan, contours, centroid), 0.0, centroid);
+    with_fan(PROBES, |fan| search_from(fan, contours, centroid))
+}
+
+/// [`star_center`] with `fan` of [`PROBES`] rays.
+fn search_from(fan: &mut RayFan, contours: &[&Contour], centroid: DVec2) -> DVec2 {
+    let mut best = (hidden_depth(fan, contours, centroid), 0.0, centroid);
     if best.0 == 0.0 {
         return centroid;
     }
@@ -38,7 +42,7 @@ pub fn star_center(contours: &[&Contour], centroid: DVec2) -> DVec2 {
                 if !contours.iter().any(|c| c.encloses(q)) {
                     continue;
                 }
-                let candidate = (hidden_depth(&mut fan, contours, q), q.distance(centroid), q);
+                let candidate = (hidden_depth(fan, contours, q), q.distance(centroid), q);
                 if (candidate.0, candidate.1) < (best.0, best.1) {
                     *best = candidate;
                 }
