@@ -102,8 +102,9 @@ impl RayFan {
     }
 }
 
-/// An angle-like measure of the direction of `d`, in [0, 4): increasing with its angle from the
-/// x axis counter-clockwise, as the arctangent's is, and cheaper; 0 for the zero vector.
+/// An angle-like measure of the direction of `d`, in [0, 4] (4 only where rounding meets a
+/// direction just below the x axis): increasing with its angle from the x axis
+/// counter-clockwise, as the arctangent's is, and cheaper; 0 for the zero vector.
 fn pseudo_angle(d: DVec2) -> f64 {
     let sum = d.x.abs() + d.y.abs();
     if sum == 0.0 {

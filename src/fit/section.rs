@@ -99,88 +99,122 @@ fn segment_distance(q: DVec2, a: DVec2, b: DVec2) -> f64 {
 /// each crossing point is computed from its edge's endpoints in a fixed order: neighbouring
 /// triangles agree on it bit for bit.
 pub fn cut(part: &Part, plane: &Plane) -> Vec<Contour> {
-    let heights: Vec<f64> = part.positions.iter().map(|p| (*p - plane.origin).dot(plane.normal)).collect();
-    // Edge keys are no adversary's: the multiply-rotate hash, not the default SipHash.
-    // Room for a limb's section without growing.
-    let room = 64;
-    let mut nodes: HashMap<(u32, u32), usize, BuildHasherDefault<PositionHasher>> =
-        HashMap::with_capacity_and_hasher(room, BuildHasherDefault::default());
-    let mut points: Vec<DVec2> = Vec::with_capacity(room);
-    let mut segments: Vec<[usize; 2]> = Vec::with_capacity(room);
-    let mut node = |a: u32, b: u32| -> usize {
-        let key = (a.min(b), a.max(b));
-        *nodes.entry(key).or_insert_with(|| {
-            let (ha, hb) = (heights[key.0 as usize], heights[key.1 as usize]);
-            let (pa, pb) = (part.positions[key.0 as usize], part.positions[key.1 as usize]);
-            points.push(plane.coordinates_of(pa + (pb - pa) * (ha / (ha - hb))));
-            points.len() - 1
-        })
-    };
-    for triangle in &part.triangles {
-        let above = triangle.map(|v| heights[v as usize] >= 0.0);
-        if above[0] == above[1] && above[1] == above[2] {
-            continue;
-        }
-        let mut ends = [0usize; 2];
-        let mut found = 0;
-        for k in 0..3 {
-            let (a, b) = (triangle[k], triangle[(k + 1) % 3]);
-            if above[k] != above[(k + 1) % 3] {
-                ends[found] = node(a, b);
-                found += 1;
-            }
-        }
-        segments.push(ends);
-    }
-    chain(&points, &segments)
+    SCRATCH.with_borrow_mut(|scratch| scratch.cut(part, plane))
 }
 
-/// Joins segments sharing end nodes into contours: open chains first (from nodes used once),
-/// then closed loops.
-fn chain(points: &[DVec2], segments: &[[usize; 2]]) -> Vec<Contour> {
-    // Each node's segments, in increasing order: `incident[offsets[n]..offsets[n + 1]]`.
-    let mut offsets = vec![0usize; points.len() + 1];
-    for ends in segments {
-        offsets[ends[0] + 1] += 1;
-        offsets[ends[1] + 1] += 1;
-    }
-    for n in 0..points.len() {
-        offsets[n + 1] += offsets[n];
-    }
-    let mut filled = offsets.clone();
-    let mut incident = vec![0usize; offsets[points.len()]];
-    for (s, ends) in segments.iter().enumerate() {
-        for &n in ends {
-            incident[filled[n]] = s;
-            filled[n] += 1;
-        }
-    }
-    let incident_to = |n: usize| &incident[offsets[n]..offsets[n + 1]];
-    let mut used = vec![false; segments.len()];
-    let mut contours = Vec::new();
-    let starts = (0..points.len()).filter(|&n| incident_to(n).len() == 1).chain(0..points.len());
-    for start in starts.collect::<Vec<_>>() {
-        while let Some(&first) = incident_to(start).iter().find(|&&s| !used[s]) {
-            let mut nodes = vec![start];
-            let (mut at, mut segment) = (start, first);
-            loop {
-                used[segment] = true;
-                let [a, b] = segments[segment];
-                at = if a == at { b } else { a };
-                if at == start {
-                    break;
-                }
-                nodes.push(at);
-                match incident_to(at).iter().find(|&&s| !used[s]) {
-                    Some(&next) => segment = next,
-                    None => break,
+thread_local! {
+    /// A thread's working lists for [`cut`]: a fit cuts its part thousands of times.
+    static SCRATCH: std::cell::RefCell<CutScratch> = std::cell::RefCell::new(CutScratch::default());
+}
+
+/// The working lists of one cut, kept from cut to cut (cleared, not freed).
+#[derive(Default)]
+struct CutScratch {
+    heights: Vec<f64>,
+    /// Each crossed edge's node. Edge keys are no adversary's: the multiply-rotate hash, not
+    /// the default SipHash.
+    nodes: HashMap<(u32, u32), usize, BuildHasherDefault<PositionHasher>>,
+    points: Vec<DVec2>,
+    segments: Vec<[usize; 2]>,
+    /// [`chain`]'s lists.
+    offsets: Vec<usize>,
+    filled: Vec<usize>,
+    incident: Vec<usize>,
+    used: Vec<bool>,
+    starts: Vec<usize>,
+    path: Vec<usize>,
+}
+
+impl CutScratch {
+    fn cut(&mut self, part: &Part, plane: &Plane) -> Vec<Contour> {
+        let CutScratch { heights, nodes, points, segments, .. } = self;
+        heights.clear();
+        heights.extend(part.positions.iter().map(|p| (*p - plane.origin).dot(plane.normal)));
+        nodes.clear();
+        points.clear();
+        segments.clear();
+        let mut node = |a: u32, b: u32| -> usize {
+            let key = (a.min(b), a.max(b));
+            *nodes.entry(key).or_insert_with(|| {
+                let (ha, hb) = (heights[key.0 as usize], heights[key.1 as usize]);
+                let (pa, pb) = (part.positions[key.0 as usize], part.positions[key.1 as usize]);
+                points.push(plane.coordinates_of(pa + (pb - pa) * (ha / (ha - hb))));
+                points.len() - 1
+            })
+        };
+        for triangle in &part.triangles {
+            let above = triangle.map(|v| heights[v as usize] >= 0.0);
+            if above[0] == above[1] && above[1] == above[2] {
+                continue;
+            }
+            let mut ends = [0usize; 2];
+            let mut found = 0;
+            for k in 0..3 {
+                let (a, b) = (triangle[k], triangle[(k + 1) % 3]);
+                if above[k] != above[(k + 1) % 3] {
+                    ends[found] = node(a, b);
+                    found += 1;
                 }
             }
-            let closed = at == start;
-            contours.push(Contour { points: nodes.iter().map(|&n| points[n]).collect(), closed });
+            segments.push(ends);
         }
+        self.chain()
     }
-    contours
+
+    /// Joins the segments sharing end nodes into contours: open chains first (from nodes used
+    /// once), then closed loops.
+    fn chain(&mut self) -> Vec<Contour> {
+        let CutScratch { points, segments, offsets, filled, incident, used, starts, path, .. } = self;
+        // Each node's segments, in increasing order: `incident[offsets[n]..offsets[n + 1]]`.
+        offsets.clear();
+        offsets.resize(points.len() + 1, 0);
+        for ends in segments.iter() {
+            offsets[ends[0] + 1] += 1;
+            offsets[ends[1] + 1] += 1;
+        }
+        for n in 0..points.len() {
+            offsets[n + 1] += offsets[n];
+        }
+        filled.clear();
+        filled.extend_from_slice(offsets);
+        incident.clear();
+        incident.resize(offsets[points.len()], 0);
+        for (s, ends) in segments.iter().enumerate() {
+            for &n in ends {
+                incident[filled[n]] = s;
+                filled[n] += 1;
+            }
+        }
+        let incident_to = |n: usize| &incident[offsets[n]..offsets[n + 1]];
+        used.clear();
+        used.resize(segments.len(), false);
+        let mut contours = Vec::new();
+        starts.clear();
+        starts.extend((0..points.len()).filter(|&n| incident_to(n).len() == 1).chain(0..points.len()));
+        for &start in starts.iter() {
+            while let Some(&first) = incident_to(start).iter().find(|&&s| !used[s]) {
+                path.clear();
+                path.push(start);
+                let (mut at, mut segment) = (start, first);
+                loop {
+                    used[segment] = true;
+                    let [a, b] = segments[segment];
+                    at = if a == at { b } else { a };
+                    if at == start {
+                        break;
+                    }
+                    path.push(at);
+                    match incident_to(at).iter().find(|&&s| !used[s]) {
+                        Some(&next) => segment = next,
+                        None => break,
+                    }
+                }
+                let closed = at == start;
+                contours.push(Contour { points: path.iter().map(|&n| points[n]).collect(), closed });
+            }
+        }
+        contours
+    }
 }
 
 /// The contours that make up the section around `q` (in-plane coordinates of the key's current
