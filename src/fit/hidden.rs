@@ -29,16 +29,11 @@ use super::section::Contour;
 const PIECE: f64 = 0.25;
 
 /// The length-weighted mean distance from `center` of the boundary of `contours` within one
-/// angular spacing of θ_j = 2πj/`count` (see the module docs), for each `j` in `rays` (distinct);
+/// angular spacing of θ_j = 2πj/`count` (see the module docs), for each `j` in `rays`;
 /// `None` for a ray with no boundary in its window.
 pub fn mean_radii(contours: &[&Contour], center: DVec2, count: usize, rays: &[usize]) -> Vec<Option<f64>> {
     let spacing = TAU / count as f64;
     let mut sums = vec![(0.0, 0.0); rays.len()];
-    // Where each ray's sums are, if it is one of `rays`.
-    let mut slot = vec![usize::MAX; count];
-    for (k, &j) in rays.iter().enumerate() {
-        slot[j] = k;
-    }
     for (a, b) in contours.iter().flat_map(|c| c.segments()) {
         let (pa, pb) = (a - center, b - center);
         let swept = angle_between(pa, pb);
@@ -52,12 +47,7 @@ pub fn mean_radii(contours: &[&Contour], center: DVec2, count: usize, rays: &[us
                 continue;
             }
             let theta = m.y.atan2(m.x);
-            // Only the rays within one spacing of θ weigh the piece: the two either side of it,
-            // and for rounding the next ones out.
-            let below = (theta / spacing).floor() as i64;
-            for step in 0..count.min(4) as i64 {
-                let j = (below - 1 + step).rem_euclid(count as i64) as usize;
-                let Some(sum) = sums.get_mut(slot[j]) else { continue };
+            for (sum, &j) in sums.iter_mut().zip(rays) {
                 let offset = angle_difference(theta, spacing * j as f64);
                 let weight = 1.0 - offset / spacing;
                 if weight > 0.0 {
@@ -112,47 +102,5 @@ mod tests {
     fn a_window_with_no_boundary_gives_none() {
         let far = circle(DVec2::new(10.0, 0.0), 1.0, 50);
         assert_eq!(mean_radii(&[&far], DVec2::ZERO, 8, &[4]), vec![None]);
-    }
-
-    /// Each ray's mean as the sum over every ray of the fan would take it: only the rays near
-    /// each piece of the boundary are weighed, to the bit, and so for a fan of fewer rays than
-    /// that neighbourhood.
-    #[test]
-    fn only_the_rays_near_each_piece_are_weighed() {
-        let wobbly = Contour {
-            points: (0..37)
-                .map(|k| {
-                    let a = TAU * k as f64 / 37.0;
-                    DVec2::from_angle(a) * (2.0 + 0.7 * (3.0 * a).sin()) + DVec2::new(0.4, -0.3)
-                })
-                .collect(),
-            closed: true,
-        };
-        for count in [3, 4, 5, 16, 32] {
-            let rays: Vec<usize> = (0..count).collect();
-            let every: Vec<Option<f64>> = rays
-                .iter()
-                .map(|&j| {
-                    let spacing = TAU / count as f64;
-                    let (mut moment, mut weight) = (0.0, 0.0);
-                    for (a, b) in wobbly.segments() {
-                        let (pa, pb) = (a - DVec2::new(0.1, 0.2), b - DVec2::new(0.1, 0.2));
-                        let pieces = ((angle_between(pa, pb) / (PIECE * spacing)).ceil() as usize).clamp(1, 4 * count);
-                        for k in 0..pieces {
-                            let p = pa + (pb - pa) * (k as f64 / pieces as f64);
-                            let q = pa + (pb - pa) * ((k + 1) as f64 / pieces as f64);
-                            let (m, length) = (0.5 * (p + q), p.distance(q));
-                            let w = 1.0 - angle_difference(m.y.atan2(m.x), spacing * j as f64) / spacing;
-                            if w > 0.0 {
-                                moment += w * length * m.length();
-                                weight += w * length;
-                            }
-                        }
-                    }
-                    (weight > 0.0).then(|| moment / weight)
-                })
-                .collect();
-            assert_eq!(mean_radii(&[&wobbly], DVec2::new(0.1, 0.2), count, &rays), every, "{count} rays");
-        }
     }
 }
