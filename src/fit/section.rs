@@ -116,7 +116,7 @@ struct CutScratch {
     nodes: HashMap<(u32, u32), usize, BuildHasherDefault<PositionHasher>>,
     points: Vec<DVec2>,
     segments: Vec<[usize; 2]>,
-    /// [`chain`]'s lists.
+    /// [`CutScratch::chain`]'s lists.
     offsets: Vec<usize>,
     filled: Vec<usize>,
     incident: Vec<usize>,
