@@ -4,8 +4,10 @@
 //! Data flow: rig → sweep → sweep coefficients → **bind** → deform → normals → output.
 //!
 //! For a vertex v, t is the root of f(t) = ⟨v − C(t), N(t)⟩ on [0, 1] nearest to v (smallest
-//! |v − C(t)|); every root is found (`plane_roots`). A vertex with no root lies beyond an end of
-//! the sweep and takes the nearer end, t ∈ {0, 1}. Then, with v̂ = R(t)ᵀ·(v − C(t)):
+//! |v − C(t)|); every root that may be the nearest is found (`plane_roots`; a knot interval
+//! whose piece of C(t) lies farther from v than a root already found holds none, and is
+//! skipped). A vertex with no root lies beyond an end of the sweep and takes the nearer end,
+//! t ∈ {0, 1}. Then, with v̂ = R(t)ᵀ·(v − C(t)):
 //! θ = atan2(v̂_y, v̂_x) ∈ [0, 2π), d = |(v̂_x, v̂_y)| − r(θ, t) and h = v̂_z. For a root h is zero
 //! up to round-off; beyond an end it is the axial offset, so caps follow their sweep.
 
