@@ -66,8 +66,10 @@ impl Rows {
 
 /// Keys, and angular nodes, apart by at most this much share a row of the truncated system.
 const REACH: usize = 2 * WINDOW - 1;
+/// Keys, and nodes, within [`REACH`] of an unknown's own.
+const SIDE: usize = 2 * REACH + 1;
 /// Entries of AᵀA per unknown: the keys and nodes within [`REACH`] of its own.
-const STENCIL: usize = (2 * REACH + 1) * (2 * REACH + 1);
+const STENCIL: usize = SIDE * SIDE;
 
 /// AᵀA of the truncated system, formed: for unknown i·M + j, its entry with each unknown
 /// (i + di)·M + (j + dj) mod M, |di|, |dj| ≤ [`REACH`] (a row's keys and nodes lie within
@@ -78,7 +80,7 @@ const STENCIL: usize = (2 * REACH + 1) * (2 * REACH + 1);
 struct Normal {
     n: usize,
     m: usize,
-    /// Unknown by unknown, [`STENCIL`] entries, (di, dj) at (di + REACH)·(2·REACH + 1) + dj + REACH.
+    /// Unknown by unknown, [`STENCIL`] entries, (di, dj) at (di + REACH)·[`SIDE`] + dj + REACH.
     entries: Vec<f64>,
 }
 
@@ -94,18 +96,18 @@ impl Normal {
     /// lie (e′ / L − e / L) and (e′ % L − e % L) apart.
     fn of(rows: &Rows, n: usize, m: usize) -> Normal {
         let nodes = (2 * WINDOW).min(m);
-        let side = 2 * REACH + 1;
         let mut entries = vec![0.0; n * m * STENCIL];
         // Where entry e's (di, dj) from an entry of key 0 and node 0 of its row lies.
         let mut offsets: Vec<usize> = Vec::new();
         for row in rows.iter() {
             offsets.clear();
-            offsets.extend((0..row.len()).map(|e| (e / nodes) * side + e % nodes));
+            offsets.extend((0..row.len()).map(|e| (e / nodes) * SIDE + e % nodes));
+            let span = offsets.last().map_or(0, |last| last + 1);
             for (&(p, wp), &from) in row.iter().zip(&offsets) {
-                // (di, dj) = (0, 0) is at REACH·side + REACH; entry e′ lies `offsets[e′]` past
+                // (di, dj) = (0, 0) is at REACH·SIDE + REACH; entry e′ lies `offsets[e′]` past
                 // the slot of (−key, −node) of entry e.
-                let base = p * STENCIL + REACH * side + REACH - from;
-                let slots = &mut entries[base..base + offsets.last().map_or(0, |last| last + 1)];
+                let base = p * STENCIL + REACH * SIDE + REACH - from;
+                let slots = &mut entries[base..base + span];
                 for (&(_, wq), &to) in row.iter().zip(&offsets) {
                     slots[to] += wp * wq;
                 }
@@ -117,8 +119,7 @@ impl Normal {
     /// out += AᵀA x.
     fn apply(&self, x: &[f64], out: &mut [f64]) {
         let (n, m) = (self.n, self.m);
-        let side = 2 * REACH + 1;
-        let mut nodes = [0usize; 2 * REACH + 1];
+        let mut nodes = [0usize; SIDE];
         for j in 0..m {
             for (dj, node) in nodes.iter_mut().enumerate() {
                 *node = (j + 2 * m + dj - REACH) % m;
@@ -128,7 +129,7 @@ impl Normal {
                 let stencil = &self.entries[k * STENCIL..(k + 1) * STENCIL];
                 let mut sum = 0.0;
                 for di in i.saturating_sub(REACH)..(i + REACH + 1).min(n) {
-                    let weights = &stencil[(di + REACH - i) * side..][..side];
+                    let weights = &stencil[(di + REACH - i) * SIDE..][..SIDE];
                     let x_row = &x[di * m..(di + 1) * m];
                     sum += weights.iter().zip(&nodes).map(|(w, &node)| w * x_row[node]).sum::<f64>();
                 }
