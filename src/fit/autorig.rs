@@ -11,12 +11,12 @@
 //! attached end (a leg cut above its crotch) where it fits without it. The rest of the mesh (the body)
 //! stays unowned. The fits run on the welded mesh, so a part's sections close; a part whose
 //! fit with the radii of its sections misses its surface by more than [`MAX_RMS`] (a lid's
-//! flange, a ring) is no limb, nor is one whose fitted keys fold back (`folds`: a ball, such
-//! as the faerie's head); each is left out and reported in [`Autorig::rejected`]. At most
+//! flange, a ring) is no limb, nor is one whose fitted keys fold back (`folds`: a ball keyed
+//! back and forth); each is left out and reported in [`Autorig::rejected`]. At most
 //! `max_parts` limbs are rigged, mirror twins at that limit kept or left out together. Mirror
 //! twins made of each other's vertices mirrored are rigged alike (`super::twins`): the better
 //! fitted one and its mirror image. Small pieces hanging from a part (a fingernail, an eye)
-//! go with it (`super::hanging`).
+//! or lying around it (a lock of hair) go with it (`super::hanging`).
 //!
 //! Data flow: mesh → body → protrusions → **fit** per limb (or chain) → rig document.
 
@@ -29,18 +29,19 @@ use glam::DVec3;
 use super::body::Body;
 use super::chain::{FittedLink, LinkFitter, Profile};
 use super::hanging;
+pub use super::key_path::{FOLDED, Folds};
+use super::key_path::{folds, zigzags};
 use super::least_squares::SMOOTHING;
 use super::limb::COARSE;
 use super::part::Part;
 use super::protrusions::{Protrusion, protrusions};
 use super::quality::{FitQuality, measure};
-use super::refine::zigzags;
 use super::twins;
 use super::{Fit, FitError, FitOptions, OptionError, fit};
 use crate::mesh::Mesh;
 use crate::parallel::prelude::*;
 use crate::rig::{FORMAT, LinkKind, ParentLink, RigDocument, VERSION, VertexSelection};
-use crate::sweep::{Key, Sweep};
+use crate::sweep::Sweep;
 
 /// How to rig a mesh.
 #[derive(Clone, Debug, PartialEq)]
@@ -302,7 +303,8 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
             owner[v as usize] = Some(k);
         }
     }
-    for (k, piece) in hanging::hanging_pieces(mesh, &body, &mut owner) {
+    let radii: Vec<f64> = parts.iter().map(|part| part.fit.quality.mean_radius).collect();
+    for (k, piece) in hanging::hanging_pieces(mesh, &body, &mut owner, &radii) {
         let vertices = &mut parts[k].vertices;
         vertices.extend(piece);
         vertices.sort_unstable();
@@ -583,40 +585,6 @@ enum LeftOut {
     Open { rms_d: f64, keys: usize },
 }
 
-/// How a fitted sweep's keys fold back: the knot intervals whose end key's center lies behind
-/// the plane of their start key (the sweep runs backwards there), of all its intervals.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Folds {
-    /// Intervals that step backwards.
-    pub backwards: usize,
-    /// Intervals.
-    pub intervals: usize,
-}
-
-/// `keys`' folds where they fold the sweep: at least a third of the intervals step backwards
-/// and the centers travel back at least [`FOLDED`] of the way they travel forward (along each
-/// key's normal). A ball fitted as a limb (the faerie's head: 9 of 22 intervals, 39%) keys
-/// back and forth around its middle; a coarse limb's fit may step back now and then (wuson's
-/// front leg: 4 of 17, 36%; spot's: 4 of 14, 8%) and still follow it.
-fn folds(keys: &[Key]) -> Option<Folds> {
-    let (mut forward, mut back, mut backwards) = (0.0, 0.0, 0);
-    for pair in keys.windows(2) {
-        let step = (pair[1].center - pair[0].center).dot(pair[0].rotation.normalize() * DVec3::Z);
-        if step >= 0.0 {
-            forward += step;
-        } else {
-            back -= step;
-            backwards += 1;
-        }
-    }
-    let intervals = keys.len().saturating_sub(1);
-    (3 * backwards >= intervals && intervals > 0 && back >= FOLDED * forward).then_some(Folds { backwards, intervals })
-}
-
-/// A fit folds where its centers travel back at least this share of the way they travel forward
-/// (with a third of its knot intervals or more running backwards).
-pub const FOLDED: f64 = 0.3;
-
 /// Two protrusions whose lengths differ by at most this fraction are mirror twins, kept or
 /// left out together at the `max_parts` limit (the blocky man's legs differ by 0.02%).
 pub const TWINS: f64 = 1e-3;
@@ -713,12 +681,6 @@ pub const MAX_RMS: f64 = 0.35;
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::DQuat;
-
-    /// Keys along +z, their planes normal to it, at `zs`.
-    fn keys_at(zs: &[f64]) -> Vec<Key> {
-        zs.iter().map(|&z| Key::circle(DVec3::new(0.0, 0.0, z), DQuat::IDENTITY, 1.0, 8)).collect()
-    }
 
     /// The cartoon man's arm whose loosest finger fits at 23.9% against its one sweep's 22.8%
     /// is a chain, like its other arm; the rule before (strictly tighter) made it one sweep. The
@@ -823,15 +785,5 @@ mod tests {
         let fitter = Fitter { mesh: &tube, options: &options, fitted: Default::default() };
         let (closed, _) = fitter.fit_whole(&part).unwrap();
         assert!(closed.sections.iter().any(|section| !section.open), "{:?}", closed.sections);
-    }
-
-    #[test]
-    fn keys_that_march_on_do_not_fold_and_keys_that_turn_back_do() {
-        assert_eq!(folds(&keys_at(&[0.0, 1.0, 2.0, 3.0, 4.0])), None);
-        // One small step back in eight: a coarse fit's wobble.
-        assert_eq!(folds(&keys_at(&[0.0, 1.0, 2.0, 1.9, 3.0, 4.0, 5.0, 6.0, 7.0])), None);
-        // Back and forth around the middle: 3 of 6 intervals, back 2.5 for 4.5 forward.
-        let zigzag = keys_at(&[0.0, 2.0, 1.0, 2.0, 1.0, 2.5, 2.0]);
-        assert_eq!(folds(&zigzag), Some(Folds { backwards: 3, intervals: 6 }));
     }
 }

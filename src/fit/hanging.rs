@@ -1,6 +1,6 @@
 //! Small pieces that sit on a rigged part go with it, for [`super::autorig`]: a game
 //! character's fingernails, a cartoon's eyes, a strap are components of their own lying on the
-//! surface of a limb. Where such a piece lies along the surface (more than half its vertices
+//! surface of a limb; its hair or a helmet lies around it, off its surface ([`AROUND`]). Where such a piece lies along the surface (more than half its vertices
 //! touching it) `super::body` does not join it for the search, which takes it for a shell, and
 //! the fit runs on the part's own surface; so the piece was owned by no sweep, and posing the
 //! limb left it in the air (the public ogre's ten fingernails, 258 vertices each, 3·10⁻⁴ of its
@@ -26,10 +26,24 @@ use crate::mesh::Mesh;
 /// nearest, 1.4·10⁻³ at the median).
 pub const REACH: f64 = 0.005;
 
+/// A piece also goes with a part where it lies around it within this fraction of the part's
+/// mean radius (its sweep's): a game figure's hair, a helmet or a sleeve, a shell of its own
+/// modelled off the surface it covers (the faerie's fringe and side locks, 28 vertices, lie
+/// 0.5–2.5 off her head, of mean radius 2.5, and 0.3 of her mesh's diagonal is 0.31). Left
+/// behind, they stayed in the air when the part moved.
+pub const AROUND: f64 = 1.0;
+
 /// The pieces of `mesh` (searched as `body`) that sit on a part (see the module docs), given
-/// `owner`: per mesh vertex, the part that owns it. Each as the part and the piece's mesh
-/// vertices (with every vertex welded to them), increasing; `owner` is updated to match.
-pub fn hanging_pieces(mesh: &Mesh, body: &Body, owner: &mut [Option<usize>]) -> Vec<(usize, Vec<u32>)> {
+/// `owner`: per mesh vertex, the part that owns it, and `radii`: per part, its mean radius (a
+/// piece within [`AROUND`] of it of the part goes with it too). Each as the part and the
+/// piece's mesh vertices (with every vertex welded to them), increasing; `owner` is updated to
+/// match.
+pub fn hanging_pieces(
+    mesh: &Mesh,
+    body: &Body,
+    owner: &mut [Option<usize>],
+    radii: &[f64],
+) -> Vec<(usize, Vec<u32>)> {
     let count = mesh.positions.len();
     let unowned = |v: u32| owner[v as usize].is_none();
     let mut sets = DisjointSets::new(count);
@@ -65,7 +79,10 @@ pub fn hanging_pieces(mesh: &Mesh, body: &Body, owner: &mut [Option<usize>]) -> 
         return Vec::new();
     }
     let points: Vec<DVec3> = searched.iter().map(|&v| mesh.positions[v as usize]).collect();
-    let grid = Grid::new(&points, REACH * body.diagonal);
+    // How near a piece's vertex lies to a vertex of part k for that vertex to go with it.
+    let on = REACH * body.diagonal;
+    let reach_of = |k: usize| radii.get(k).map_or(on, |&radius| on.max(AROUND * radius));
+    let grid = Grid::new(&points, (0..radii.len()).map(reach_of).fold(on, f64::max));
     // Each piece's vertices' nearest vertex of another component, found once: what owns it
     // may change from round to round, the vertex does not.
     let nearest: Vec<Vec<Option<usize>>> = unwelded
@@ -84,8 +101,9 @@ pub fn hanging_pieces(mesh: &Mesh, body: &Body, owner: &mut [Option<usize>]) -> 
             }
             let members = &pieces[piece];
             let mut counts: std::collections::BTreeMap<usize, usize> = Default::default();
-            for near in &nearest[k] {
-                if let Some(part) = near.and_then(|j| owner[searched[j] as usize]) {
+            for (&i, near) in members.iter().zip(&nearest[k]) {
+                let Some(j) = *near else { continue };
+                if let Some(part) = owner[searched[j] as usize].filter(|&part| points[j].distance(points[i]) <= reach_of(part)) {
                     *counts.entry(part).or_default() += 1;
                 }
             }
@@ -145,7 +163,7 @@ mod tests {
         for &v in finger {
             owner[v as usize] = Some(0);
         }
-        let given = hanging_pieces(&mesh, &body, &mut owner);
+        let given = hanging_pieces(&mesh, &body, &mut owner, &[0.3]);
         assert_eq!(given, vec![(0, nail.clone())]);
         assert!(nail.iter().all(|&v| owner[v as usize] == Some(0)));
         for piece in [body_ball, wart, speck] {
@@ -153,5 +171,35 @@ mod tests {
         }
         // Before, nothing took the nail: the body does not join a piece lying along a surface.
         assert!(body.bridges.iter().flatten().all(|v| nail.binary_search(v).is_err()));
+    }
+
+    /// A shell around a finger of radius 0.3, half its radius off its surface (a helmet, a
+    /// game figure's hair), goes with the finger; the rule on its own reach alone (0.005 of the
+    /// diagonal) left it behind. The same shell around the body, which no part owns, stays.
+    #[test]
+    fn a_shell_around_a_part_within_its_radius_goes_with_it() {
+        let (mesh, members) = spheres(&[
+            (DVec3::ZERO, 1.0, 24),
+            (DVec3::new(3.0, 0.0, 0.0), 0.3, 48),
+            (DVec3::new(3.0, 0.0, 0.0), 0.45, 6),
+            (DVec3::ZERO, 1.15, 6),
+        ]);
+        let [finger, shell, body_shell] = [1, 2, 3].map(|k| &members[k]);
+        let body = Body::new(&mesh);
+        let owned_finger = || {
+            let mut owner = vec![None; mesh.positions.len()];
+            for &v in finger {
+                owner[v as usize] = Some(0);
+            }
+            owner
+        };
+        let mut owner = owned_finger();
+        let given = hanging_pieces(&mesh, &body, &mut owner, &[0.3]);
+        assert_eq!(given, vec![(0, shell.clone())]);
+        assert!(body_shell.iter().all(|&v| owner[v as usize].is_none()));
+        // Measured by the reach alone (a part of no radius), the shell stays where it was.
+        let mut owner = owned_finger();
+        assert_eq!(hanging_pieces(&mesh, &body, &mut owner, &[0.0]), vec![]);
+        assert!(shell.iter().all(|&v| owner[v as usize].is_none()));
     }
 }

@@ -17,9 +17,8 @@
 //!    by the worse of its RMS |d| at the vertices and at the triangles' centroids (each start
 //!    costs milliseconds there, and the fit of a part so coarse swings by several percent of
 //!    its radius with small changes of its first guess; scored at its vertices alone, the
-//!    choice would favour radii that wave between them; on a part with no rim, a whole
-//!    component, a start whose keys zigzag through it, `refine::zigzags`, is kept only where
-//!    every start does). Key 0's plane
+//!    choice would favour radii that wave between them; a start whose keys fold back or zigzag
+//!    through the part, `key_path::astray`, is kept only where every start's do). Key 0's plane
 //!    is the plane of that loop; θ = 0 comes from the part's shape
 //!    (`frames::reference_direction`), so the fit of a rigidly moved part is the moved fit.
 //! 2. **Rough sweep** (Fig. 3a): circles along the axis enclosing every vertex, recorded as
@@ -88,6 +87,7 @@ internal_mod! {
     grid;
     hanging;
     hidden;
+    key_path;
     least_squares;
     limb;
     mirror;

@@ -6,13 +6,14 @@ use glam::{DQuat, DVec2, DVec3};
 
 use super::axis::{Polyline, principal_axis};
 use super::frames::{first_x_axis, reference_direction, transported_frames};
+use super::key_path::astray;
 use super::least_squares::{SMOOTHING, fitted_radii};
 use super::part::Part;
 use super::quality::{Measured, measure};
 use super::radii::sample;
 use super::ray_fan::with_fan;
 use super::section::{Contour, Plane, around, center, cut};
-use super::skeleton::skeleton;
+use super::skeleton::{Skeleton, skeleton};
 use super::star::star_center;
 use super::{FitError, FitOptions, FitStep, SectionReport};
 use crate::parallel::prelude::*;
@@ -35,8 +36,8 @@ pub const LEAST_SQUARES_STEP: &str = "radii fitted to the surface by least squar
 /// midpoints too.
 const SAMPLES_PER_RADIUS: usize = 4;
 /// How much tighter (relative RMS |d|) a coarse part's fit from another start must be than the
-/// fit from the centered skeleton with planes normal to it, to be kept: a margin that rounding
-/// in a rigidly moved copy of the part cannot cross.
+/// one kept so far (first, that from the centered skeleton with the planes following it), to be
+/// kept: a margin that rounding in a rigidly moved copy of the part cannot cross.
 const OTHER_START_MARGIN: f64 = 0.01;
 /// Insertion rounds in a row that may fail to tighten the fit before insertion stops.
 const STALE_ROUNDS: usize = 2;
@@ -120,66 +121,72 @@ pub fn run(part: &Part, options: &FitOptions, smoothing: f64) -> Result<(Fitted,
         let axis = Polyline::new(&[centroid - direction, centroid + direction]).ok_or(FitError::Flat)?;
         return run_from(part, options, axis, None, false, smoothing);
     };
-    let first = || run_from(part, options, skeleton.axis.clone(), skeleton.start_normal, true, smoothing);
     if part.positions.len() >= options.keys * options.radii {
-        return first();
+        return run_from(part, options, skeleton.axis.clone(), skeleton.start_normal, true, smoothing);
     }
-    // Where the level skeleton is the centered one (a fifth of the dino's and the faerie's
-    // coarse parts), its starts are those already tried.
-    let mut others = vec![(&skeleton.axis, false)];
+    let mut starts = coarse_starts(part, options, &skeleton, smoothing);
+    let first = starts.remove(0)?;
+    Ok(tightest_start(part, first, starts.into_iter().filter_map(Result::ok)))
+}
+
+/// A fit and its steps.
+pub type Run = (Fitted, Vec<FitStep>);
+
+/// A coarse part's fits from its starts, fitted side by side (see the [module docs](super)):
+/// the centered skeleton with the keys' planes following it, then normal to it, then the level
+/// skeleton (its points before centering) each way. Where the level skeleton is the centered
+/// one (a fifth of the dino's and the faerie's coarse parts), its starts are those already
+/// tried, and there are two.
+pub fn coarse_starts(
+    part: &Part,
+    options: &FitOptions,
+    skeleton: &Skeleton,
+    smoothing: f64,
+) -> Vec<Result<Run, FitError>> {
+    let mut starts = vec![(&skeleton.axis, true), (&skeleton.axis, false)];
     if skeleton.level_axis != skeleton.axis {
-        others.extend([(&skeleton.level_axis, true), (&skeleton.level_axis, false)]);
+        starts.extend([(&skeleton.level_axis, true), (&skeleton.level_axis, false)]);
     }
-    // The starts are fitted side by side, then weighed in order.
-    let (first, runs) = crate::parallel::join(first, || {
-        others
-            .par_iter()
-            .map(|&(axis, follows)| {
-                run_from(part, options, axis.clone(), skeleton.start_normal, follows, smoothing).ok()
-            })
-            .collect::<Vec<_>>()
-    });
-    let mut best = first?;
-    // Scored at the vertices and at the triangles' centroids, the worse of the two: radii
-    // fitted through a coarse part's vertices may bulge between them.
+    starts
+        .par_iter()
+        .map(|&(axis, follows)| run_from(part, options, axis.clone(), skeleton.start_normal, follows, smoothing))
+        .collect()
+}
+
+/// Of a coarse part's fits from its starts, in order (`first`, then `others`), the one kept:
+/// weighed by [`start_score`], another start is kept where its keys stay on the part and the
+/// kept one's run astray, or where both or neither do and it is tighter by
+/// [`OTHER_START_MARGIN`].
+pub fn tightest_start(part: &Part, first: Run, others: impl IntoIterator<Item = Run>) -> Run {
     let centroids = part.triangle_centroids();
-    // Where the part has no rim to start from (a whole component), a start whose keys zigzag
-    // through it loses to any that does not: its skeleton starts at an extreme vertex that
-    // rounding picks among near ties, and mirror images of one part took different starts.
-    let rimless = part.rim.is_empty();
-    let score = |run: &(Fitted, Vec<FitStep>)| {
-        if rimless && zigzags(&run.0.keys) {
-            return f64::INFINITY;
-        }
-        let between = measure(&run.0.sweep, &centroids).quality.rms_d;
-        run.0.measured.quality.rms_d.max(between)
-    };
-    let mut best_score = score(&best);
-    for run in runs.into_iter().flatten() {
-        let run_score = score(&run);
-        if run_score < (1.0 - OTHER_START_MARGIN) * best_score {
+    let first_score = start_score(&first, &centroids);
+    let (mut best, mut best_score) = (first, first_score);
+    for run in others {
+        let run_score = start_score(&run, &centroids);
+        let beats = match (run_score.0, best_score.0) {
+            (false, true) => true,
+            (true, false) => false,
+            _ => run_score.1 < (1.0 - OTHER_START_MARGIN) * best_score.1,
+        };
+        if beats {
             (best, best_score) = (run, run_score);
         }
     }
-    Ok(best)
+    best
 }
 
-/// Whether `keys`' centers zigzag through the part rather than run along it: the path from
-/// center to center turns back (a step against the one before it) at more than half of its
-/// keys, and is over [`ZIGZAG_PATH`] times as long as the farthest two centers are apart. A
-/// coarse part's fit may do so from one start and not from another (one of the AT-AT's four
-/// upper legs, whose three mirror images ran down their legs, turned back 13 times in 22 keys
-/// over 3.3 times its reach; the faerie's 12-vertex hand 11 times in 20 over 4.6).
-pub fn zigzags(keys: &[Key]) -> bool {
-    let steps: Vec<DVec3> = keys.windows(2).map(|pair| pair[1].center - pair[0].center).collect();
-    let turns = steps.windows(2).filter(|pair| pair[0].dot(pair[1]) < 0.0).count();
-    let path: f64 = steps.iter().map(|step| step.length()).sum();
-    let reach = keys.iter().flat_map(|a| keys.iter().map(move |b| a.center.distance(b.center))).fold(0.0, f64::max);
-    2 * turns > steps.len().saturating_sub(1) && path > ZIGZAG_PATH * reach
+/// How a start's fit is weighed ([`tightest_start`]): whether its keys run astray of the part
+/// ([`astray`]: they fold back or zigzag), and its RMS |d| at the vertices or at the
+/// triangles' `centroids`, the worse of the two (radii fitted through a coarse part's vertices
+/// may bulge between them). A start whose keys run astray loses to any whose keys do not: the
+/// faerie's head, a coarse ball, was fitted tightest from its level skeleton by keys that
+/// zigzag through it (and was left out as folded), and along it from its centered skeleton;
+/// and a whole component's skeleton starts at an extreme vertex that rounding picks among
+/// near ties, so mirror images of one part took different starts.
+pub fn start_score(run: &Run, centroids: &[DVec3]) -> (bool, f64) {
+    let between = measure(&run.0.sweep, centroids).quality.rms_d;
+    (astray(&run.0.keys), run.0.measured.quality.rms_d.max(between))
 }
-
-/// See [`zigzags`].
-pub const ZIGZAG_PATH: f64 = 2.0;
 
 /// Fits a sweep to `part` from the first guess `axis`; `follows`: the keys' planes stay normal
 /// to it.
@@ -682,36 +689,4 @@ fn fill_missing_keys(radii: Vec<Option<Vec<f64>>>) -> Option<Vec<Vec<f64>>> {
         })
         .collect();
     Some(filled)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn keys_through(points: &[[f64; 3]]) -> Vec<Key> {
-        points.iter().map(|&p| Key::circle(DVec3::from(p), DQuat::IDENTITY, 1.0, 8)).collect()
-    }
-
-    /// A path that turns back at most of its keys and travels far more than it reaches
-    /// zigzags. A straight one does not; nor does a handle's arc over 1.6π, which travels 2.5
-    /// times as far as it reaches but never turns back; nor a coarse leg's wobble, which turns
-    /// back at every key but by a tenth of a step.
-    #[test]
-    fn keys_that_turn_back_at_most_keys_zigzag_and_others_do_not() {
-        let straight: Vec<[f64; 3]> = (0..8).map(|k| [0.0, 0.0, k as f64]).collect();
-        assert!(!zigzags(&keys_through(&straight)));
-        let zigzag: Vec<[f64; 3]> =
-            (0..12).map(|k| [0.0, 0.0, if k % 2 == 0 { 0.1 * k as f64 } else { 3.0 }]).collect();
-        assert!(zigzags(&keys_through(&zigzag)));
-        let handle: Vec<[f64; 3]> = (0..=10)
-            .map(|k| {
-                let a = std::f64::consts::PI * k as f64 / 10.0 * 1.6;
-                [a.cos(), a.sin(), 0.0]
-            })
-            .collect();
-        assert!(!zigzags(&keys_through(&handle)));
-        let wobble =
-            [[0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 0.0, 0.9], [0.0, 0.0, 2.0], [0.0, 0.0, 1.9], [0.0, 0.0, 3.0]];
-        assert!(!zigzags(&keys_through(&wobble)));
-    }
 }

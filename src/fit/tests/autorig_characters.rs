@@ -9,10 +9,15 @@ use glam::{DQuat, DVec3};
 use sweepffd::edit::{Edit, KeyMode, Posing};
 use sweepffd::fit::autorig::{Autorig, AutorigOptions, MAX_RMS, RiggedPart, TARGET, autorig, target_of};
 use sweepffd::fit::body::Body;
+use sweepffd::fit::disjoint_sets::DisjointSets;
+use sweepffd::fit::hanging;
+use sweepffd::fit::key_path::{astray, zigzags};
 use sweepffd::fit::limb::MAX_SHARE;
 use sweepffd::fit::mirror::mirror_map;
+use sweepffd::fit::part::Part;
 use sweepffd::fit::protrusions::{Protrusion, area_within, found_protrusions, made_alike, searched_vertices};
-use sweepffd::fit::refine::zigzags;
+use sweepffd::fit::refine::{Run, coarse_starts, start_score, tightest_start};
+use sweepffd::fit::skeleton::skeleton;
 use sweepffd::fit::{FitOptions, fit};
 use sweepffd::mesh::Mesh;
 use sweepffd::rig::{LinkKind, Rig};
@@ -234,10 +239,11 @@ fn wuson_gets_four_legs_and_its_tail() {
 /// its forearm's link at 21%). Its legs meet
 /// at a coarse crotch: each is cut at the fork where the body and the other leg part, its
 /// rim squared off. Its arms' rims are evened (their shoulders' rings completed) and not cut
-/// down to the elbow; each ends in its hand, a child link. Its head, a ball whose fitted keys
-/// fold back and forth, is left out.
+/// down to the elbow; each ends in its hand, a child link. Her head is a limb of one sweep, from
+/// her neck to her crown, within its target, its keys running along it; the locks of her
+/// fringe, four components of their own around it, go with it.
 #[test]
-fn the_faerie_gets_two_arms_and_two_legs_as_chains() {
+fn the_faerie_gets_two_arms_and_two_legs_as_chains_and_her_head() {
     let Some((mesh, rigged)) = rigged("faerie.obj") else { return };
     let ys = mesh.positions.iter().map(|p| p.y);
     let (bottom, top) = (ys.clone().fold(f64::INFINITY, f64::min), ys.fold(f64::NEG_INFINITY, f64::max));
@@ -247,10 +253,15 @@ fn the_faerie_gets_two_arms_and_two_legs_as_chains() {
     let behind = |p: &&RiggedPart| {
         p.vertices.iter().all(|&v| mesh.positions[v as usize].x < -2.0) && extent(&mesh, p, DVec3::Y) >= 0.25 * height
     };
-    let (hair, limbs): (Vec<&RiggedPart>, Vec<&RiggedPart>) =
+    let (hair, others): (Vec<&RiggedPart>, Vec<&RiggedPart>) =
         rigged.parts.iter().filter(|p| p.parent.is_none()).partition(behind);
     assert_eq!(hair.len(), 1, "{:?}", hair.iter().map(|p| &p.name).collect::<Vec<_>>());
     assert!(hair[0].fit.sections_quality().rms_d <= TARGET, "hair: {:?}", hair[0].fit.quality);
+    let crown = faerie_crown(&mesh);
+    let (heads, limbs): (Vec<&RiggedPart>, Vec<&RiggedPart>) =
+        others.into_iter().partition(|p| p.vertices.binary_search(&crown).is_ok());
+    assert_eq!(heads.len(), 1, "{:?}", heads.iter().map(|p| &p.name).collect::<Vec<_>>());
+    faerie_head(&mesh, heads[0], &rigged, bottom + 0.75 * height);
     assert_eq!(limbs.len(), 4, "{:?}", limbs.iter().map(|p| &p.name).collect::<Vec<_>>());
     let (mut arms, mut legs, mut tips) = (0, 0, Vec::new());
     for limb in limbs {
@@ -306,14 +317,116 @@ fn the_faerie_gets_two_arms_and_two_legs_as_chains() {
     tips.sort_unstable();
     tips.dedup();
     assert_eq!(tips.len(), 4, "distinct tips");
-    // Its head, a ball with a bun of hair, is no tube: the fit's keys fold back and forth
-    // inside it, and it is left out, named.
-    let crown = (0..mesh.positions.len() as u32)
+}
+
+/// The faerie's crown: her highest vertex in front of her hair (x > −2; her wings, behind,
+/// reach higher).
+fn faerie_crown(mesh: &Mesh) -> u32 {
+    (0..mesh.positions.len() as u32)
         .filter(|&v| mesh.positions[v as usize].x > -2.0)
         .max_by(|&a, &b| mesh.positions[a as usize].y.total_cmp(&mesh.positions[b as usize].y))
-        .unwrap();
-    assert!(rigged.parts.iter().all(|p| p.vertices.binary_search(&crown).is_err()));
-    assert!(rigged.rejected.iter().any(|r| r.folded.is_some()), "{:?}", rigged.rejected);
+        .unwrap()
+}
+
+/// Checks the faerie's `head`: one sweep with no children, all of it above `neck` (the top
+/// quarter of her height; her wings reach higher), within its target, its keys running along
+/// it, key 0 at her neck; and the locks of her fringe ([`faerie_locks`]) its own. Before, no lock went
+/// with it: most of each lock's vertices lie farther from the head than a piece sitting on a
+/// part (`hanging::REACH` of the diagonal).
+fn faerie_head(mesh: &Mesh, head: &RiggedPart, rigged: &Autorig, neck: f64) {
+    let y = |v: u32| mesh.positions[v as usize].y;
+    let chin = head.vertices.iter().map(|&v| y(v)).fold(f64::INFINITY, f64::min);
+    eprintln!("faerie head {}: {} vertices from y = {chin:.2}, {:?}", head.name, head.vertices.len(), head.fit.quality);
+    assert!(rigged.parts.iter().all(|p| p.parent.as_deref() != Some(head.name.as_str())), "one sweep");
+    assert!(chin >= neck, "{}: reaches down to {chin}", head.name);
+    assert!(head.fit.quality.rms_d <= target_of(&head.fit), "{}: {:?}", head.name, head.fit.quality);
+    assert!(!astray(&head.fit.keys), "{}", head.name);
+    let (first, last) = (head.fit.keys[0].center, head.fit.keys.last().unwrap().center);
+    assert!(first.y < last.y, "the head's key 0 at the neck: {first}, the last at {last}");
+    let (lo, hi) = mesh.bounds();
+    let diagonal = lo.distance(hi);
+    let locks = faerie_locks(mesh);
+    assert_eq!(locks.len(), 4, "{locks:?}");
+    let all_locks = locks.concat();
+    let own: Vec<u32> = head.vertices.iter().copied().filter(|v| !all_locks.contains(v)).collect();
+    for lock in &locks {
+        assert!(lock.iter().all(|v| head.vertices.binary_search(v).is_ok()), "{lock:?}");
+        let on_head = lock
+            .iter()
+            .filter(|&&v| {
+                let p = mesh.positions[v as usize];
+                own.iter().any(|&u| mesh.positions[u as usize].distance(p) <= hanging::REACH * diagonal)
+            })
+            .count();
+        assert!(2 * on_head <= lock.len(), "{lock:?}: {on_head} on the head");
+    }
+}
+
+/// The locks of the faerie's fringe: the components of the mesh lying wholly in front of her
+/// hair (x > −2) and in the top quarter of her height, other than the one holding her crown.
+fn faerie_locks(mesh: &Mesh) -> Vec<Vec<u32>> {
+    let (lo, hi) = mesh.bounds();
+    let neck = lo.y + 0.75 * (hi.y - lo.y);
+    let crown = faerie_crown(mesh);
+    components(mesh)
+        .into_iter()
+        .filter(|c| c.iter().all(|&v| mesh.positions[v as usize].y > neck && mesh.positions[v as usize].x > -2.0))
+        .filter(|c| !c.contains(&crown))
+        .collect()
+}
+
+/// The mesh's components (joined by its faces), each its vertices increasing.
+fn components(mesh: &Mesh) -> Vec<Vec<u32>> {
+    let mut sets = DisjointSets::new(mesh.positions.len());
+    for t in mesh.faces.triangles() {
+        for k in 1..3 {
+            let (a, b) = (sets.root(t[0]), sets.root(t[k]));
+            if a != b {
+                sets.attach(b, a);
+            }
+        }
+    }
+    let mut by_root: std::collections::BTreeMap<u32, Vec<u32>> = Default::default();
+    for v in 0..mesh.positions.len() as u32 {
+        by_root.entry(sets.root(v)).or_default().push(v);
+    }
+    by_root.into_values().collect()
+}
+
+/// The faerie's head, a coarse ball (31 vertices), fitted from its four starts: the tightest
+/// start's keys (the level skeleton's, planes normal to it: 23 keys) zigzag through it. The
+/// rule before (the tightest start by RMS |d|, the first unless another is 1% tighter) kept
+/// that fit, and autorig left the head out, its keys folding back. The start kept now is one
+/// whose keys run along it.
+#[test]
+fn the_faeries_head_is_fitted_from_a_start_whose_keys_run_along_it() {
+    let Some((mesh, rigged)) = rigged("faerie.obj") else { return };
+    let crown = faerie_crown(&mesh);
+    let head = rigged.parts.iter().find(|p| p.vertices.binary_search(&crown).is_ok()).expect("her head");
+    // The vertices it was fitted to: its own, without the locks that went with it.
+    let locks: Vec<u32> = faerie_locks(&mesh).concat();
+    let fitted: Vec<u32> = head.vertices.iter().copied().filter(|v| !locks.contains(v)).collect();
+    assert_eq!(fitted.len(), 31);
+    let welded = Body::new(&mesh).welded_mesh(&mesh).unwrap_or_else(|| mesh.clone());
+    let part = Part::new(&welded, &fitted);
+    let skeleton = skeleton(&part).expect("a skeleton");
+    let starts: Vec<Run> = coarse_starts(&part, &FitOptions::default(), &skeleton, 0.0)
+        .into_iter()
+        .map(|run| run.expect("a fit"))
+        .collect();
+    let centroids = part.triangle_centroids();
+    let scores: Vec<(bool, f64)> = starts.iter().map(|run| start_score(run, &centroids)).collect();
+    eprintln!("faerie head's starts (astray, RMS |d|): {scores:?}");
+    // The rule before: by RMS |d| alone.
+    let mut before = 0;
+    for (i, score) in scores.iter().enumerate().skip(1) {
+        if score.1 < 0.99 * scores[before].1 {
+            before = i;
+        }
+    }
+    assert!(astray(&starts[before].0.keys), "the fit kept before runs astray: {:?}", scores[before]);
+    let kept = tightest_start(&part, starts[0].clone(), starts[1..].iter().cloned());
+    assert!(!astray(&kept.0.keys));
 }
 
 /// The AT-AT walker (133 components, z up): its four lower legs and four upper legs, each a
