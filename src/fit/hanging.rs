@@ -12,25 +12,30 @@
 //! an island of surface a part surrounds. Each of its vertices looks for the nearest vertex of
 //! another component within [`REACH`] of the diagonal, owned or not; where one part owns the
 //! vertices found for more than half of the piece's, the piece goes to that part. A piece
-//! sitting on such a piece follows it in a later round.
+//! sitting on such a piece follows it in a later round. Where no piece goes so, a piece that
+//! rests on no surface goes to the part it lies around ([`AROUND`]), searched farther.
+
+use std::collections::HashMap;
 
 use glam::DVec3;
 
 use super::body::{Body, is_piece};
 use super::disjoint_sets::DisjointSets;
 use super::grid::Grid;
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, bounds_of};
 
 /// A piece sits on the vertices that lie within this fraction of the bounding-box diagonal of
 /// its own (the ogre's fingernails lie 3·10⁻⁴ of its diagonal off their fingers at the
 /// nearest, 1.4·10⁻³ at the median).
 pub const REACH: f64 = 0.005;
 
-/// A piece also goes with a part where it lies around it within this fraction of the part's
-/// mean radius (its sweep's): a game figure's hair, a helmet or a sleeve, a shell of its own
-/// modelled off the surface it covers (the faerie's fringe and side locks, 28 vertices, lie
-/// 0.5–2.5 off her head, of mean radius 2.5, and 0.3 of her mesh's diagonal is 0.31). Left
-/// behind, they stayed in the air when the part moved.
+/// A piece that rests on no surface (most of its vertices farther than [`REACH`] from every
+/// other component) goes with a part where it lies around it: the nearest vertex of another
+/// component of most of its vertices is the part's and within this fraction of the part's
+/// mean radius (its sweep's). A game figure's hair, a helmet or a sleeve is a shell of its own
+/// modelled off the surface it covers: the faerie's fringe, four locks of 7 vertices, lies
+/// 0.5–2.5 off her head, of mean radius about 2.5, where [`REACH`] of her diagonal is 0.31.
+/// Left behind, the locks stayed in the air when her head moved.
 pub const AROUND: f64 = 1.0;
 
 /// The pieces of `mesh` (searched as `body`) that sit on a part (see the module docs), given
@@ -79,10 +84,8 @@ pub fn hanging_pieces(
         return Vec::new();
     }
     let points: Vec<DVec3> = searched.iter().map(|&v| mesh.positions[v as usize]).collect();
-    // How near a piece's vertex lies to a vertex of part k for that vertex to go with it.
     let on = REACH * body.diagonal;
-    let reach_of = |k: usize| radii.get(k).map_or(on, |&radius| on.max(AROUND * radius));
-    let grid = Grid::new(&points, (0..radii.len()).map(reach_of).fold(on, f64::max));
+    let grid = Grid::new(&points, on);
     // Each piece's vertices' nearest vertex of another component, found once: what owns it
     // may change from round to round, the vertex does not.
     let nearest: Vec<Vec<Option<usize>>> = unwelded
@@ -94,33 +97,140 @@ pub fn hanging_pieces(
     let mut given = Vec::new();
     let mut placed = vec![false; unwelded.len()];
     loop {
-        let mut changed = false;
-        for (k, (piece, vertices)) in unwelded.iter().enumerate() {
-            if placed[k] {
-                continue;
-            }
-            let members = &pieces[piece];
+        // Pieces on a part first; where none goes, pieces around one (the wider search).
+        let mut found: Vec<(usize, usize)> = Vec::new();
+        for (k, (piece, _)) in unwelded.iter().enumerate().filter(|&(k, _)| !placed[k]) {
             let mut counts: std::collections::BTreeMap<usize, usize> = Default::default();
-            for (&i, near) in members.iter().zip(&nearest[k]) {
-                let Some(j) = *near else { continue };
-                if let Some(part) = owner[searched[j] as usize].filter(|&part| points[j].distance(points[i]) <= reach_of(part)) {
-                    *counts.entry(part).or_default() += 1;
-                }
+            for part in nearest[k].iter().filter_map(|near| near.and_then(|j| owner[searched[j] as usize])) {
+                *counts.entry(part).or_default() += 1;
             }
             let best = counts.into_iter().max_by_key(|&(part, n)| (n, std::cmp::Reverse(part)));
-            let Some((part, _)) = best.filter(|&(_, n)| 2 * n > members.len()) else { continue };
-            for &v in vertices {
-                owner[v as usize] = Some(part);
+            if let Some((part, _)) = best.filter(|&(_, n)| 2 * n > pieces[piece].len()) {
+                found.push((k, part));
+                // A piece sitting on this one follows it in a later round.
+                for &v in &unwelded[k].1 {
+                    owner[v as usize] = Some(part);
+                }
             }
-            placed[k] = true;
-            changed = true;
-            given.push((part, vertices.clone()));
         }
-        if !changed {
+        if found.is_empty() {
+            let around = PartsAround::new(&points, &searched, owner, radii, on);
+            for (k, (piece, _)) in unwelded.iter().enumerate().filter(|&(k, _)| !placed[k]) {
+                // A piece resting on a surface (most of its vertices within [`REACH`] of
+                // another component: the body's, where no part took it) lies around no part.
+                let floating = nearest[k].iter().filter(|near| near.is_none()).count();
+                if 2 * floating > nearest[k].len()
+                    && let Some(part) = around.part_around(&pieces[piece], |j| component[j] != *piece, owner)
+                {
+                    found.push((k, part));
+                }
+            }
+            for &(k, part) in &found {
+                for &v in &unwelded[k].1 {
+                    owner[v as usize] = Some(part);
+                }
+            }
+        }
+        if found.is_empty() {
             break;
+        }
+        for (k, part) in found {
+            placed[k] = true;
+            given.push((part, unwelded[k].1.clone()));
         }
     }
     given
+}
+
+/// A part's vertices bucketed for the search of the pieces lying around it ([`AROUND`]).
+struct Around {
+    part: usize,
+    /// How far from its vertices a piece's vertex may lie: [`AROUND`] of its mean radius.
+    reach: f64,
+    positions: Vec<DVec3>,
+    bounds: (DVec3, DVec3),
+    grid: Grid,
+}
+
+/// The parts a piece may lie around, and every searched vertex bucketed for their reaches.
+struct PartsAround<'a> {
+    points: &'a [DVec3],
+    searched: &'a [u32],
+    /// The parts whose reach is wider than that of a piece on a part.
+    parts: Vec<Around>,
+    /// Per reach (its bits), the searched vertices bucketed for it, built where first needed.
+    everything: std::cell::RefCell<HashMap<u64, Grid>>,
+}
+
+impl<'a> PartsAround<'a> {
+    /// The parts of `radii` (per part, its mean radius) whose reach is wider than `on`, with the
+    /// searched vertices (`points`, the positions of `searched`) each owns (`owner`, per mesh
+    /// vertex).
+    fn new(
+        points: &'a [DVec3],
+        searched: &'a [u32],
+        owner: &[Option<usize>],
+        radii: &[f64],
+        on: f64,
+    ) -> PartsAround<'a> {
+        let mut owned: Vec<Vec<DVec3>> = vec![Vec::new(); radii.len()];
+        for (i, &v) in searched.iter().enumerate() {
+            if let Some(part) = owner[v as usize].filter(|&part| part < radii.len()) {
+                owned[part].push(points[i]);
+            }
+        }
+        let parts = owned
+            .into_iter()
+            .enumerate()
+            .filter(|(part, positions)| AROUND * radii[*part] > on && !positions.is_empty())
+            .map(|(part, positions)| {
+                let reach = AROUND * radii[part];
+                let (bounds, grid) = (bounds_of(&positions), Grid::new(&positions, reach));
+                Around { part, reach, positions, bounds, grid }
+            })
+            .collect();
+        PartsAround { points, searched, parts, everything: Default::default() }
+    }
+
+    /// The part the piece of searched vertices `members` lies around, if any: of the parts
+    /// within whose reach more than half of its vertices lie (the one most do first, the lowest
+    /// of as many), the first that owns (`owner`) the nearest vertex of another component
+    /// (`other`, by searched index) within that reach of more than half of them.
+    fn part_around(&self, members: &[usize], other: impl Fn(usize) -> bool, owner: &[Option<usize>]) -> Option<usize> {
+        let piece: Vec<DVec3> = members.iter().map(|&i| self.points[i]).collect();
+        let (lo, hi) = bounds_of(&piece);
+        let mut near: Vec<(&Around, usize)> = self
+            .parts
+            .iter()
+            .filter(|around| {
+                let (plo, phi) = around.bounds;
+                let reach = DVec3::splat(around.reach);
+                (lo - reach).cmple(phi).all() && (hi + reach).cmpge(plo).all()
+            })
+            .map(|around| (around, piece.iter().filter(|&&p| around.grid.nearest(&around.positions, p).is_some()).count()))
+            .filter(|&(_, count)| 2 * count > piece.len())
+            .collect();
+        near.sort_by_key(|&(around, count)| (std::cmp::Reverse(count), around.part));
+        let mut everything = self.everything.borrow_mut();
+        near.into_iter().map(|(around, _)| around).find(|around| {
+            let grid = everything.entry(around.reach.to_bits()).or_insert_with(|| Grid::new(self.points, around.reach));
+            // Counted until the count decides.
+            let (mut owned, mut others) = (0, 0);
+            for &p in &piece {
+                let nearest = grid.nearest_where(self.points, p, &other);
+                if nearest.is_some_and(|j| owner[self.searched[j] as usize] == Some(around.part)) {
+                    owned += 1;
+                } else {
+                    others += 1;
+                }
+                if 2 * owned > piece.len() || 2 * others >= piece.len() {
+                    break;
+                }
+            }
+            2 * owned > piece.len()
+        })
+        .map(|around| around.part)
+    }
 }
 
 #[cfg(test)]
