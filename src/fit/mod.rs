@@ -18,7 +18,7 @@
 //!    costs milliseconds there, and the fit of a part so coarse swings by several percent of
 //!    its radius with small changes of its first guess; scored at its vertices alone, the
 //!    choice would favour radii that wave between them; a start whose keys fold back or zigzag
-//!    through the part, `key_path::astray`, is kept only where every start's do). Key 0's plane
+//!    through the part, `key_path::astray`, is kept only where every start's keys do). Key 0's plane
 //!    is the plane of that loop; θ = 0 comes from the part's shape
 //!    (`frames::reference_direction`), so the fit of a rigidly moved part is the moved fit.
 //! 2. **Rough sweep** (Fig. 3a): circles along the axis enclosing every vertex, recorded as

@@ -126,7 +126,7 @@ pub fn run(part: &Part, options: &FitOptions, smoothing: f64) -> Result<(Fitted,
     }
     let mut starts = coarse_starts(part, options, &skeleton, smoothing);
     let first = starts.remove(0)?;
-    Ok(tightest_start(part, first, starts.into_iter().filter_map(Result::ok)))
+    Ok(kept_start(part, first, starts.into_iter().filter_map(Result::ok)))
 }
 
 /// A fit and its steps.
@@ -157,7 +157,7 @@ pub fn coarse_starts(
 /// weighed by [`start_score`], another start is kept where its keys stay on the part and the
 /// kept one's run astray, or where both or neither do and it is tighter by
 /// [`OTHER_START_MARGIN`].
-pub fn tightest_start(part: &Part, first: Run, others: impl IntoIterator<Item = Run>) -> Run {
+pub fn kept_start(part: &Part, first: Run, others: impl IntoIterator<Item = Run>) -> Run {
     let centroids = part.triangle_centroids();
     let first_score = start_score(&first, &centroids);
     let (mut best, mut best_score) = (first, first_score);
@@ -175,7 +175,7 @@ pub fn tightest_start(part: &Part, first: Run, others: impl IntoIterator<Item = 
     best
 }
 
-/// How a start's fit is weighed ([`tightest_start`]): whether its keys run astray of the part
+/// How a start's fit is weighed ([`kept_start`]): whether its keys run astray of the part
 /// ([`astray`]: they fold back or zigzag), and its RMS |d| at the vertices or at the
 /// triangles' `centroids`, the worse of the two (radii fitted through a coarse part's vertices
 /// may bulge between them). A start whose keys run astray loses to any whose keys do not: the

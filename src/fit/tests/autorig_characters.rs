@@ -16,7 +16,7 @@ use sweepffd::fit::limb::MAX_SHARE;
 use sweepffd::fit::mirror::mirror_map;
 use sweepffd::fit::part::Part;
 use sweepffd::fit::protrusions::{Protrusion, area_within, found_protrusions, made_alike, searched_vertices};
-use sweepffd::fit::refine::{Run, coarse_starts, start_score, tightest_start};
+use sweepffd::fit::refine::{Run, coarse_starts, kept_start, start_score};
 use sweepffd::fit::skeleton::skeleton;
 use sweepffd::fit::{FitOptions, fit};
 use sweepffd::mesh::Mesh;
@@ -425,7 +425,7 @@ fn the_faeries_head_is_fitted_from_a_start_whose_keys_run_along_it() {
         }
     }
     assert!(astray(&starts[before].0.keys), "the fit kept before runs astray: {:?}", scores[before]);
-    let kept = tightest_start(&part, starts[0].clone(), starts[1..].iter().cloned());
+    let kept = kept_start(&part, starts[0].clone(), starts[1..].iter().cloned());
     assert!(!astray(&kept.0.keys));
 }
 
