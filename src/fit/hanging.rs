@@ -114,7 +114,7 @@ pub fn hanging_pieces(
             }
         }
         if found.is_empty() {
-            let around = PartsAround::new(&points, &searched, owner, radii, on);
+            let mut around = PartsAround::new(&points, &searched, owner, radii, on);
             for (k, (piece, _)) in unwelded.iter().enumerate().filter(|&(k, _)| !placed[k]) {
                 // A piece resting on a surface (most of its vertices within [`REACH`] of
                 // another component: the body's, where no part took it) lies around no part.
@@ -159,7 +159,7 @@ struct PartsAround<'a> {
     /// The parts whose reach is wider than that of a piece on a part.
     parts: Vec<Around>,
     /// Per reach (its bits), the searched vertices bucketed for it, built where first needed.
-    everything: std::cell::RefCell<HashMap<u64, Grid>>,
+    everything: HashMap<u64, Grid>,
 }
 
 impl<'a> PartsAround<'a> {
@@ -196,11 +196,11 @@ impl<'a> PartsAround<'a> {
     /// within whose reach more than half of its vertices lie (the one most do first, the lowest
     /// of as many), the first that owns (`owner`) the nearest vertex of another component
     /// (`other`, by searched index) within that reach of more than half of them.
-    fn part_around(&self, members: &[usize], other: impl Fn(usize) -> bool, owner: &[Option<usize>]) -> Option<usize> {
-        let piece: Vec<DVec3> = members.iter().map(|&i| self.points[i]).collect();
+    fn part_around(&mut self, members: &[usize], other: impl Fn(usize) -> bool, owner: &[Option<usize>]) -> Option<usize> {
+        let PartsAround { points, searched, parts, everything } = self;
+        let piece: Vec<DVec3> = members.iter().map(|&i| points[i]).collect();
         let (lo, hi) = bounds_of(&piece);
-        let mut near: Vec<(&Around, usize)> = self
-            .parts
+        let mut near: Vec<(&Around, usize)> = parts
             .iter()
             .filter(|around| {
                 let (plo, phi) = around.bounds;
@@ -211,14 +211,13 @@ impl<'a> PartsAround<'a> {
             .filter(|&(_, count)| 2 * count > piece.len())
             .collect();
         near.sort_by_key(|&(around, count)| (std::cmp::Reverse(count), around.part));
-        let mut everything = self.everything.borrow_mut();
         near.into_iter().map(|(around, _)| around).find(|around| {
-            let grid = everything.entry(around.reach.to_bits()).or_insert_with(|| Grid::new(self.points, around.reach));
+            let grid = everything.entry(around.reach.to_bits()).or_insert_with(|| Grid::new(points, around.reach));
             // Counted until the count decides.
             let (mut owned, mut others) = (0, 0);
             for &p in &piece {
-                let nearest = grid.nearest_where(self.points, p, &other);
-                if nearest.is_some_and(|j| owner[self.searched[j] as usize] == Some(around.part)) {
+                let nearest = grid.nearest_where(points, p, &other);
+                if nearest.is_some_and(|j| owner[searched[j] as usize] == Some(around.part)) {
                     owned += 1;
                 } else {
                     others += 1;
@@ -255,6 +254,15 @@ mod tests {
         (Mesh::from_parts(positions, faces, Vec::new()).unwrap(), members)
     }
 
+    /// Per vertex of `mesh`, its owner: part 0 for `vertices`, none for the others.
+    fn owned_by_part_0(mesh: &Mesh, vertices: &[u32]) -> Vec<Option<usize>> {
+        let mut owner = vec![None; mesh.positions.len()];
+        for &v in vertices {
+            owner[v as usize] = Some(0);
+        }
+        owner
+    }
+
     /// A body (unowned), a finger (owned by part 0), a nail lying on the finger, a wart on the
     /// body and a speck far from both: the nail goes with the finger; the wart stays with the
     /// unowned body and the speck, touching nothing, stays unowned.
@@ -269,10 +277,7 @@ mod tests {
         ]);
         let [body_ball, finger, nail, wart, speck] = [0, 1, 2, 3, 4].map(|k| &members[k]);
         let body = Body::new(&mesh);
-        let mut owner = vec![None; mesh.positions.len()];
-        for &v in finger {
-            owner[v as usize] = Some(0);
-        }
+        let mut owner = owned_by_part_0(&mesh, finger);
         let given = hanging_pieces(&mesh, &body, &mut owner, &[0.3]);
         assert_eq!(given, vec![(0, nail.clone())]);
         assert!(nail.iter().all(|&v| owner[v as usize] == Some(0)));
@@ -296,19 +301,12 @@ mod tests {
         ]);
         let [finger, shell, body_shell] = [1, 2, 3].map(|k| &members[k]);
         let body = Body::new(&mesh);
-        let owned_finger = || {
-            let mut owner = vec![None; mesh.positions.len()];
-            for &v in finger {
-                owner[v as usize] = Some(0);
-            }
-            owner
-        };
-        let mut owner = owned_finger();
+        let mut owner = owned_by_part_0(&mesh, finger);
         let given = hanging_pieces(&mesh, &body, &mut owner, &[0.3]);
         assert_eq!(given, vec![(0, shell.clone())]);
         assert!(body_shell.iter().all(|&v| owner[v as usize].is_none()));
         // Measured by the reach alone (a part of no radius), the shell stays where it was.
-        let mut owner = owned_finger();
+        let mut owner = owned_by_part_0(&mesh, finger);
         assert_eq!(hanging_pieces(&mesh, &body, &mut owner, &[0.0]), vec![]);
         assert!(shell.iter().all(|&v| owner[v as usize].is_none()));
     }
