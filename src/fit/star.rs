@@ -7,7 +7,9 @@
 //! one. Each is scored by how much boundary its rays cannot see: for each probe ray, the
 //! depth between its first and its outermost crossing (the |d| a vertex on a hidden wall
 //! gets), relative to the mean outermost distance, with a ray that meets nothing counting
-//! as fully hidden. The best point wins, ties going to the point nearest the centroid.
+//! as fully hidden. The best point wins, ties going to the point nearest the centroid; so once
+//! a point sees the whole boundary, only points nearer the centroid are scored (on the beast,
+//! a public mesh, that skips nearly half the points its fits would score).
 
 use glam::DVec2;
 
@@ -39,10 +41,15 @@ fn search_from(fan: &mut RayFan, contours: &[&Contour], centroid: DVec2) -> DVec
         for i in 0..GRID {
             for j in 0..GRID {
                 let q = origin + DVec2::new(i as f64 * step.x, j as f64 * step.y);
+                let distance = q.distance(centroid);
+                // Once a point sees the whole boundary, only a nearer one can win.
+                if best.0 == 0.0 && distance >= best.1 {
+                    continue;
+                }
                 if !contours.iter().any(|c| c.encloses(q)) {
                     continue;
                 }
-                let candidate = (hidden_depth(fan, contours, q), q.distance(centroid), q);
+                let candidate = (hidden_depth(fan, contours, q), distance, q);
                 if (candidate.0, candidate.1) < (best.0, best.1) {
                     *best = candidate;
                 }
