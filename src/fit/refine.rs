@@ -2,6 +2,9 @@
 //! planes along the axis, re-centering of the keys on their sections, and key insertion where
 //! the fit is loose, with the end keys kept just past the part.
 
+use std::cell::RefCell;
+use std::collections::HashMap;
+
 use glam::{DQuat, DVec2, DVec3};
 
 use super::axis::{Polyline, principal_axis};
@@ -206,7 +209,16 @@ fn run_from(
     }
     let reference = reference_direction(&part.positions, axis.point(0.0), axis.tangent(0.0), axis.length());
     let skeleton = follows.then(|| axis.clone());
-    let fitter = Fitter { part, options, length, reference, start_normal, skeleton, smoothing };
+    let fitter = Fitter {
+        part,
+        options,
+        length,
+        reference,
+        start_normal,
+        skeleton,
+        smoothing,
+        end_sections: RefCell::default(),
+    };
     let margin = END_MARGIN * length;
     let count = options.keys;
     let stations: Vec<Station> = (0..count)
@@ -263,6 +275,10 @@ struct Fitter<'a> {
     /// The weight of the radii's second differences in a second least-squares fit where the
     /// first is not kept ([`fitted_radii`]); 0 for none.
     smoothing: f64,
+    /// The end sections found so far, by their station, frame and inward direction: an end
+    /// key's plane often stays put from pass to pass (key 0 in the plane of the part's rim; on
+    /// the beast, a public mesh, three in five end sections were found before).
+    end_sections: RefCell<HashMap<[u64; 10], Option<Cut>>>,
 }
 
 impl Fitter<'_> {
@@ -408,8 +424,24 @@ impl Fitter<'_> {
     /// the first complete section found inside it (see [`END_INSETS`]), moved back onto the
     /// end plane; where a second complete section lies further in, the radii are extrapolated
     /// linearly to the end plane, never growing and never below zero, so that a part narrowing
-    /// to a tip gets a narrow end.
+    /// to a tip gets a narrow end. Found once per station, frame and direction
+    /// ([`Fitter::end_sections`]).
     fn end_section(&self, station: &Station, rotation: DQuat, inward: DVec3) -> Option<Cut> {
+        let mut key = [0u64; 10];
+        let values = station.center.to_array().into_iter().chain(rotation.to_array()).chain(inward.to_array());
+        for (slot, value) in key.iter_mut().zip(values) {
+            *slot = value.to_bits();
+        }
+        if let Some(found) = self.end_sections.borrow().get(&key) {
+            return found.clone();
+        }
+        let found = self.end_section_anew(station, rotation, inward);
+        self.end_sections.borrow_mut().insert(key, found.clone());
+        found
+    }
+
+    /// [`Fitter::end_section`], found anew.
+    fn end_section_anew(&self, station: &Station, rotation: DQuat, inward: DVec3) -> Option<Cut> {
         let mut complete: Vec<(f64, Cut)> = Vec::new();
         let mut partial: Option<Cut> = None;
         for &inset in &END_INSETS {
