@@ -28,6 +28,10 @@ pub struct RayFan {
     directions: Vec<DVec2>,
     /// The rays' pseudo-angles, increasing from 0 (ray 0).
     ray_angles: Vec<f64>,
+    /// For each of `count` equal steps of pseudo-angle per unit (4·`count` in all, and one
+    /// for 4 itself), how many rays lie below the step before it: where a count of the rays
+    /// below a pseudo-angle in that step may start ([`RayFan::rays_below`]).
+    rays_before_step: Vec<usize>,
     crossings: Vec<Vec<f64>>,
     /// The pseudo-angles of a contour's points seen from the center, one contour at a time.
     angles: Vec<f64>,
@@ -42,8 +46,23 @@ impl RayFan {
                 DVec2::new(angle.cos(), angle.sin())
             })
             .collect();
-        let ray_angles = directions.iter().map(|&d| pseudo_angle(d)).collect();
-        RayFan { directions, ray_angles, crossings: vec![Vec::new(); count], angles: Vec::new() }
+        let ray_angles: Vec<f64> = directions.iter().map(|&d| pseudo_angle(d)).collect();
+        let rays_before_step = (0..=4 * count)
+            .map(|step| ray_angles.partition_point(|&r| r < (step as f64 - 1.0) / count as f64))
+            .collect();
+        RayFan { directions, ray_angles, rays_before_step, crossings: vec![Vec::new(); count], angles: Vec::new() }
+    }
+
+    /// How many rays lie at pseudo-angles below `angle`, or also at it where `or_at`: the
+    /// count a search among the rays' angles gives, from the first ray of its step on.
+    fn rays_below(&self, angle: f64, or_at: bool) -> usize {
+        let count = self.ray_angles.len();
+        let step = ((angle * count as f64) as usize).min(4 * count);
+        let mut below = self.rays_before_step[step];
+        while below < count && (self.ray_angles[below] < angle || (or_at && self.ray_angles[below] == angle)) {
+            below += 1;
+        }
+        below
     }
 
     /// Casts the fan from `center` (in-plane coordinates) onto the contours.
@@ -84,8 +103,8 @@ impl RayFan {
     /// either side for rounding.
     fn spanned(&self, a: DVec2, b: DVec2, angle_a: f64, angle_b: f64) -> Option<(usize, usize)> {
         let count = self.directions.len();
-        let near = NEAR_END * a.distance(b);
-        if a.length() <= near || b.length() <= near {
+        let near_squared = NEAR_END * NEAR_END * a.distance_squared(b);
+        if a.length_squared() <= near_squared || b.length_squared() <= near_squared {
             return None;
         }
         let (cross, dot) = (a.perp_dot(b), a.dot(b));
@@ -94,8 +113,8 @@ impl RayFan {
         }
         // Counter-clockwise from `from` to `to`: the arc of less than π.
         let (from, to) = if cross >= 0.0 { (angle_a, angle_b) } else { (angle_b, angle_a) };
-        let first = self.ray_angles.partition_point(|&r| r < from) as i64 - 1;
-        let last = self.ray_angles.partition_point(|&r| r <= to) as i64;
+        let first = self.rays_below(from, false) as i64 - 1;
+        let last = self.rays_below(to, true) as i64;
         let last = if to < from { last + count as i64 } else { last };
         let rays = (last - first + 1) as usize;
         (rays < count).then(|| (first.rem_euclid(count as i64) as usize, rays))
@@ -238,6 +257,22 @@ mod tests {
         // Seen from on its own line, a segment may meet any ray.
         assert_eq!(spanned(DVec2::new(-1.0, 0.0), DVec2::new(1.0, 0.0)), None);
         assert_eq!(spanned(DVec2::ZERO, DVec2::new(1.0, 0.0)), None);
+    }
+
+    #[test]
+    fn the_rays_below_an_angle_are_those_a_search_among_them_finds() {
+        for count in [1, 3, 4, 7, 32, 48] {
+            let fan = RayFan::new(count);
+            let mut angles: Vec<f64> = (0..=4000).map(|k| k as f64 / 1000.0).collect();
+            angles.extend(fan.ray_angles.iter().flat_map(|&r| [r, r.next_down(), r.next_up()]));
+            angles.extend([-0.5, 4.5, f64::NAN]);
+            for angle in angles {
+                let below = fan.ray_angles.partition_point(|&r| r < angle);
+                let at_or_below = fan.ray_angles.partition_point(|&r| r <= angle);
+                assert_eq!(fan.rays_below(angle, false), below, "{count} rays, below {angle}");
+                assert_eq!(fan.rays_below(angle, true), at_or_below, "{count} rays, at or below {angle}");
+            }
+        }
     }
 
     #[test]
