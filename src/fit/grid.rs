@@ -106,7 +106,7 @@ mod tests {
         for _ in 0..400 {
             let snapped = |v: f64| (v * 9.0).round() / 9.0 * reach * 3.0;
             let p = DVec3::new(random(), random(), random()) * 2.0 - 1.0;
-            points.push(if points.len() % 2 == 0 { p.map(snapped) } else { p });
+            points.push(if points.len().is_multiple_of(2) { p.map(snapped) } else { p });
         }
         points.push(points[10]);
         let grid = Grid::new(&points, reach);
