@@ -119,6 +119,68 @@ mod tests {
     }
 
     #[test]
+    fn points_no_nearer_than_one_that_sees_everything_are_passed_over_with_the_same_result() {
+        // The search scoring every point inside the section, as it first did.
+        let every_point = |contours: &[&Contour], centroid: DVec2| -> DVec2 {
+            let mut fan = RayFan::new(PROBES);
+            let mut best = (hidden_depth(&mut fan, contours, centroid), 0.0, centroid);
+            if best.0 == 0.0 {
+                return centroid;
+            }
+            let (lo, hi) = bounds(contours);
+            let mut step = (hi - lo) / (GRID - 1) as f64;
+            let mut search = |origin: DVec2, step: DVec2, best: &mut (f64, f64, DVec2)| {
+                for i in 0..GRID {
+                    for j in 0..GRID {
+                        let q = origin + DVec2::new(i as f64 * step.x, j as f64 * step.y);
+                        if contours.iter().any(|c| c.encloses(q)) {
+                            let candidate = (hidden_depth(&mut fan, contours, q), q.distance(centroid), q);
+                            if (candidate.0, candidate.1) < (best.0, best.1) {
+                                *best = candidate;
+                            }
+                        }
+                    }
+                }
+            };
+            search(lo, step, &mut best);
+            step /= (GRID - 1) as f64 / 2.0;
+            search(best.2 - step * ((GRID - 1) as f64 / 2.0), step, &mut best);
+            best.2
+        };
+        // Crescents of several thicknesses and openings, and a crescent with a separate blob,
+        // searched from their centroids and from points off them.
+        let (mut sections, mut seen_whole) = (0, 0);
+        for (k, (inner, shift, opening)) in [(1.2, 0.9, 0.6), (1.5, 0.4, 0.3), (0.8, 1.1, 1.0), (1.7, 0.2, 0.9)].into_iter().enumerate() {
+            let mut points = Vec::new();
+            for s in 0..=30 {
+                let a = opening + (TAU - 2.0 * opening) * s as f64 / 30.0;
+                points.push(DVec2::from_angle(a) * 2.0);
+            }
+            for s in (0..=30).rev() {
+                let a = opening + (TAU - 2.0 * opening) * s as f64 / 30.0;
+                points.push(DVec2::from_angle(a) * inner + DVec2::new(shift, 0.0));
+            }
+            let crescent = Contour { points, closed: true };
+            let blob = Contour {
+                points: (0..12).map(|s| DVec2::from_angle(TAU * s as f64 / 12.0) * 0.3 + DVec2::new(3.0, k as f64 * 0.2)).collect(),
+                closed: true,
+            };
+            for contours in [vec![&crescent], vec![&crescent, &blob]] {
+                let centroid = crate::fit::section::center(&contours);
+                for from in [centroid, centroid + DVec2::new(0.3, -0.2), DVec2::new(-1.6, 0.1)] {
+                    let chosen = star_center(&contours, from);
+                    assert_eq!(chosen, every_point(&contours, from), "section {k} from {from}");
+                    sections += 1;
+                    seen_whole += usize::from(hidden_depth(&mut RayFan::new(PROBES), &contours, chosen) == 0.0);
+                }
+            }
+        }
+        assert_eq!(sections, 24);
+        // Where a point sees the whole boundary, the points after it were passed over.
+        assert!(seen_whole >= 3, "{seen_whole} sections seen whole from their center");
+    }
+
+    #[test]
     fn a_convex_section_keeps_its_centroid() {
         let c = Contour {
             points: vec![DVec2::new(-1.0, -1.0), DVec2::new(2.0, -1.0), DVec2::new(2.0, 1.0), DVec2::new(-1.0, 1.0)],
