@@ -8,7 +8,8 @@
 //! (`ray_hit`), so the fan's crossings are the ones each ray finds alone, to the bit: which
 //! rays a segment is tested against only has to include every ray it may meet. Angles are
 //! compared as pseudo-angles (`pseudo_angle`, increasing with the angle, no arctangent), and
-//! the rays a segment spans are found by search among the rays' own.
+//! the rays a segment spans are counted from a table of the rays below each of 4M equal steps
+//! of pseudo-angle (a ray or so per step), as a search among the rays' own would count them.
 
 use std::f64::consts::TAU;
 
