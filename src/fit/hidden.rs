@@ -33,6 +33,10 @@ const PIECE: f64 = 0.25;
 /// `None` for a ray with no boundary in its window.
 pub fn mean_radii(contours: &[&Contour], center: DVec2, count: usize, rays: &[usize]) -> Vec<Option<f64>> {
     let spacing = TAU / count as f64;
+    // No ray crosses more than once (a star-shaped section): nothing to weigh.
+    if rays.is_empty() {
+        return Vec::new();
+    }
     let mut sums = vec![(0.0, 0.0); rays.len()];
     for (a, b) in contours.iter().flat_map(|c| c.segments()) {
         let (pa, pb) = (a - center, b - center);
@@ -96,6 +100,11 @@ mod tests {
         let (outer, inner) = (circle(DVec2::ZERO, 3.0, 600), circle(DVec2::ZERO, 1.0, 200));
         let r = mean_radii(&[&outer, &inner], DVec2::ZERO, 8, &[2])[0].unwrap();
         assert!((r - 2.5).abs() < 1e-3, "{r}");
+    }
+
+    #[test]
+    fn no_rays_to_weigh_give_no_radii() {
+        assert!(mean_radii(&[&circle(DVec2::ZERO, 2.0, 40)], DVec2::ZERO, 8, &[]).is_empty());
     }
 
     #[test]
