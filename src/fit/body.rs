@@ -22,13 +22,15 @@
 //! Everything depends on distances and vertex order only, so a rigidly moved mesh gives the
 //! same body (up to rounding at the reach itself).
 
-use std::collections::HashMap;
+use std::collections::HashSet;
+use std::hash::BuildHasherDefault;
 
 use glam::DVec3;
 
 use super::disjoint_sets::DisjointSets;
 use super::geodesic::EdgeGraph;
 use super::nearest_triangle::NearestTriangle;
+use crate::mesh::weld::{PositionHasher, PositionMap};
 use crate::mesh::{Faces, Mesh, bounds_of};
 use crate::parallel::prelude::*;
 
@@ -113,13 +115,14 @@ impl Body {
 fn without_membranes(triangles: Vec<[u32; 3]>) -> Vec<[u32; 3]> {
     let edge = |a: u32, b: u32| (a.min(b), a.max(b));
     let edges_of = |t: &[u32; 3]| [edge(t[0], t[1]), edge(t[1], t[2]), edge(t[2], t[0])];
-    let mut uses: HashMap<(u32, u32), u32> = HashMap::with_capacity(3 * triangles.len() / 2);
+    let mut uses: PositionMap<(u32, u32), u32> =
+        PositionMap::with_capacity_and_hasher(3 * triangles.len() / 2, Default::default());
     for t in &triangles {
         for e in edges_of(t) {
             *uses.entry(e).or_default() += 1;
         }
     }
-    let non_manifold: std::collections::HashSet<u32> =
+    let non_manifold: HashSet<u32, BuildHasherDefault<PositionHasher>> =
         uses.iter().filter(|&(_, &n)| n > 2).flat_map(|(&(a, b), _)| [a, b]).collect();
     if non_manifold.is_empty() {
         return triangles;
@@ -140,7 +143,7 @@ fn weld_within(positions: &[DVec3], reach: f64) -> Vec<u32> {
         return crate::mesh::weld::weld(positions);
     }
     let cell = |p: DVec3| (p / reach).floor().as_i64vec3().to_array();
-    let mut grid: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
+    let mut grid: PositionMap<[i64; 3], Vec<u32>> = PositionMap::default();
     let mut weld = Vec::with_capacity(positions.len());
     for (v, &p) in positions.iter().enumerate() {
         let c = cell(p);
@@ -208,7 +211,7 @@ fn bridges(positions: &[DVec3], triangles: &[[u32; 3]], reach: f64) -> (Vec<[u32
     if !(reach > 0.0 && reach.is_finite()) || triangles.iter().all(|t| Some(component[t[0] as usize]) == first) {
         return (Vec::new(), Vec::new());
     }
-    let mut sizes: HashMap<u32, usize> = HashMap::new();
+    let mut sizes: PositionMap<u32, usize> = PositionMap::default();
     for v in (0..positions.len()).filter(|&v| used[v]) {
         *sizes.entry(component[v]).or_default() += 1;
     }
@@ -218,7 +221,7 @@ fn bridges(positions: &[DVec3], triangles: &[[u32; 3]], reach: f64) -> (Vec<[u32
     });
     // Kruskal over the components: each pair's contacts join them if they are not yet one.
     let mut joined = DisjointSets::new(positions.len());
-    let mut by_pair: HashMap<[u32; 2], (f64, Vec<[u32; 2]>)> = HashMap::new();
+    let mut by_pair: PositionMap<[u32; 2], (f64, Vec<[u32; 2]>)> = PositionMap::default();
     for c in &contacts {
         let key = [c.components[0].min(c.components[1]), c.components[0].max(c.components[1])];
         let entry = by_pair.entry(key).or_insert((f64::INFINITY, Vec::new()));
@@ -241,7 +244,7 @@ fn bridges(positions: &[DVec3], triangles: &[[u32; 3]], reach: f64) -> (Vec<[u32
     let mut pairs: Vec<([u32; 2], f64)> = by_pair.iter().map(|(&key, &(gap, _))| (key, gap)).collect();
     // A piece hangs from the largest component it touches (an arm from the torso, not from
     // the leg its hand passes): pairs by the larger surface area first, then closest first.
-    let mut area: HashMap<u32, f64> = HashMap::new();
+    let mut area: PositionMap<u32, f64> = PositionMap::default();
     for t in triangles {
         let [a, b, c] = t.map(|v| positions[v as usize]);
         *area.entry(component[t[0] as usize]).or_default() += (b - a).cross(c - a).length() / 2.0;
@@ -249,7 +252,7 @@ fn bridges(positions: &[DVec3], triangles: &[[u32; 3]], reach: f64) -> (Vec<[u32
     let larger = |key: [u32; 2]| area[&key[0]].max(area[&key[1]]);
     pairs.sort_by(|a, b| larger(b.0).total_cmp(&larger(a.0)).then(a.1.total_cmp(&b.1)).then(a.0.cmp(&b.0)));
     let mut bridges = Vec::new();
-    let mut joins: HashMap<u32, Vec<usize>> = HashMap::new();
+    let mut joins: PositionMap<u32, Vec<usize>> = PositionMap::default();
     for (key, _) in pairs {
         let (a, b) = (joined.root(key[0]), joined.root(key[1]));
         if a == b {
@@ -341,8 +344,8 @@ fn contacts(
         size *= 2.0;
     }
     // Per cell, the components whose triangles come within reach of it, each once.
-    let mut grid: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
-    let mut by_component: HashMap<u32, Vec<(u32, [DVec3; 3])>> = HashMap::new();
+    let mut grid: PositionMap<[i64; 3], Vec<u32>> = PositionMap::default();
+    let mut by_component: PositionMap<u32, Vec<(u32, [DVec3; 3])>> = PositionMap::default();
     for (i, t) in triangles.iter().enumerate() {
         let owner = component[t[0] as usize];
         by_component.entry(owner).or_default().push((i as u32, t.map(|v| positions[v as usize])));
@@ -362,7 +365,7 @@ fn contacts(
         list.sort_unstable();
         list.dedup();
     }
-    let trees: HashMap<u32, NearestTriangle> =
+    let trees: PositionMap<u32, NearestTriangle> =
         by_component.into_iter().map(|(owner, triangles)| (owner, NearestTriangle::new(triangles))).collect();
     // Each vertex's contacts, the vertices in parallel and their contacts in vertex order.
     let of_vertex = |v: usize| -> Vec<Contact> {

@@ -300,8 +300,6 @@ fn component_protrusions(
         let (vertices, tip) = aligned_limb(mesh, welded, graph, triangles, tip, length, component.len())?;
         Some(Protrusion { vertices, tip, length, axis: None })
     };
-    // Each branch's limb on its own, the branches in parallel, kept in their order.
-    let mut found: Vec<Protrusion> = kept.par_iter().filter_map(|&branch| limb_of(branch)).collect();
     // The eldest branch ends at the highest level where a kept branch ends in it; and at the
     // next such level down (of at most [`ELDEST_ENDS`]) where it reaches on as a limb of at
     // least [`ELDEST_GROWTH`] times the vertices: a leg whose farthest toe meets its other toe
@@ -314,7 +312,13 @@ fn component_protrusions(
     ends.sort_by(|a, b| b.total_cmp(a));
     ends.dedup();
     let ends: Vec<f64> = ends.into_iter().filter(|&end| g[eldest as usize] - end >= min_length).collect();
-    found.extend(eldest_limbs(&ends, |end| limb_of((eldest, end)), component.len()));
+    // Each branch's limb on its own, the branches in parallel, kept in their order, and beside
+    // them the eldest branch's limbs, which are tried one end after the other.
+    let (mut found, eldest_found): (Vec<Protrusion>, Vec<Protrusion>) = crate::parallel::join(
+        || kept.par_iter().filter_map(|&branch| limb_of(branch)).collect(),
+        || eldest_limbs(&ends, |end| limb_of((eldest, end)), component.len()),
+    );
+    found.extend(eldest_found);
     // The component's area, measured only where a part holds more than its share of the
     // vertices.
     let mut component_area = None;
