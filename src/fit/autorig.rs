@@ -15,7 +15,8 @@
 //! back and forth); each is left out and reported in [`Autorig::rejected`]. At most
 //! `max_parts` limbs are rigged, mirror twins at that limit kept or left out together. Mirror
 //! twins made of each other's vertices mirrored are rigged alike (`super::twins`): the better
-//! fitted one and its mirror image. Small pieces hanging from a part (a fingernail, an eye)
+//! fitted one and its mirror image; other limbs alike in shape are keyed alike
+//! (`super::alike`): each pair of matched links with the same key count. Small pieces hanging from a part (a fingernail, an eye)
 //! or lying around it (a lock of hair) go with it (`super::hanging`).
 //!
 //! Data flow: mesh → body → protrusions → **fit** per limb (or chain) → rig document.
@@ -26,6 +27,7 @@ use std::time::Instant;
 
 use glam::DVec3;
 
+use super::alike;
 use super::body::Body;
 use super::chain::{FittedLink, LinkFitter, Profile};
 use super::hanging;
@@ -37,7 +39,7 @@ use super::part::Part;
 use super::protrusions::{Protrusion, protrusions};
 use super::quality::{FitQuality, measure};
 use super::twins;
-use super::{Fit, FitError, FitOptions, OptionError, fit};
+use super::{Fit, FitError, FitOptions, Layout, OptionError, fit};
 use crate::mesh::Mesh;
 use crate::parallel::prelude::*;
 use crate::rig::{FORMAT, LinkKind, ParentLink, RigDocument, VERSION, VertexSelection};
@@ -192,6 +194,8 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
     // Mirror twins rigged alike: one twin's rig and its mirror image, of the two the pair
     // whose looser twin fits better. Where the mesh is only nearly a mirror image of itself,
     // only where that pair fits no more loosely than the twins each rigged on its own.
+    // Per limb, whether it is a twin so rigged.
+    let mut mirror_twins = vec![false; found.len()];
     if let Some(mirror) = &mirror {
         let parts: Vec<Option<&[u32]>> = assumed
             .iter()
@@ -214,13 +218,40 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
             let before = own(i).max(own(j));
             let no_looser = |(pair, _): &(f64, Vec<FittedLink>)| !mirror.near || *pair <= before;
             let (onto_i, onto_j) = (onto_i.filter(no_looser), onto_j.filter(no_looser));
-            match (onto_i, onto_j) {
-                (Some((a, image)), Some((b, _))) if a <= b => speculative[i] = Some(Ok(image)),
-                (Some((a, image)), None) if a.is_finite() => speculative[i] = Some(Ok(image)),
-                (_, Some((b, image))) if b.is_finite() => speculative[j] = Some(Ok(image)),
-                _ => {}
+            let imaged = match (onto_i, onto_j) {
+                (Some((a, image)), Some((b, _))) if a <= b => Some((i, image)),
+                (Some((a, image)), None) if a.is_finite() => Some((i, image)),
+                (_, Some((b, image))) if b.is_finite() => Some((j, image)),
+                _ => None,
+            };
+            if let Some((k, image)) = imaged {
+                speculative[k] = Some(Ok(image));
+                (mirror_twins[i], mirror_twins[j]) = (true, true);
             }
         }
+    }
+    // Shape twins keyed alike: limbs alike in shape that are not mirror twins (a lopsided
+    // pose, a model not modelled symmetric), each matched link keyed as its twin is where
+    // that fits. A piece joined to the body, fitted along its own axis, is left as it is.
+    let limbs: Vec<Option<&[FittedLink]>> = (0..found.len())
+        .map(|i| match &speculative[i] {
+            Some(Ok(links)) if !mirror_twins[i] && found[i].axis.is_none() => Some(&links[..]),
+            _ => None,
+        })
+        .collect();
+    let refitter = AlikeRefitter { mesh: fitted_on, options: &fit_options };
+    let pairs = alike::shape_twins(&limbs);
+    let alike: Vec<(Vec<FittedLink>, Vec<FittedLink>)> = (0..pairs.len())
+        .into_par_iter()
+        .map(|k| {
+            let pair = &pairs[k];
+            let (first, second) = (limbs[pair.first].unwrap_or_default(), limbs[pair.second].unwrap_or_default());
+            alike::rigged_alike(first.to_vec(), second.to_vec(), &pair.links, &refitter)
+        })
+        .collect();
+    for (pair, (first, second)) in pairs.iter().zip(alike) {
+        speculative[pair.first] = Some(Ok(first));
+        speculative[pair.second] = Some(Ok(second));
     }
     let mut parts: Vec<RiggedPart> = Vec::new();
     let mut rejected = Vec::new();
@@ -400,7 +431,7 @@ fn smoothed(mesh: &Mesh, link: &FittedLink, options: &FitOptions, one_sweep: boo
     if !one_sweep || link.fit.least_squares_kept() || link.fit.quality.rms_d <= target_of(&link.fit) {
         return None;
     }
-    let refit = super::fit_smoothing(mesh, &link.fitted, options, SMOOTHING).ok()?;
+    let refit = super::fit_with(mesh, &link.fitted, options, SMOOTHING, Layout::Inserted).ok()?;
     let tighter = refit.quality.rms_d < link.fit.quality.rms_d
         && folds(&refit.keys).is_none()
         && !zigzags(&refit.keys)
@@ -583,6 +614,48 @@ enum LeftOut {
     /// Every one of its `keys` key sections is open ([`all_open`]): a sheet. `rms_d` as in
     /// [`LeftOut::Loose`].
     Open { rms_d: f64, keys: usize },
+}
+
+/// Fits shape twins' links again alike ([`alike::rigged_alike`]) as a limb's links are fitted
+/// ([`Fitter`], then their radii smoothed where that tightens them), and keeps a refit that
+/// neither folds nor zigzags, fits within its target or no looser than the fit it replaces,
+/// and whose sections are still a tube's.
+struct AlikeRefitter<'a> {
+    mesh: &'a Mesh,
+    options: &'a FitOptions,
+}
+
+impl alike::Refitter for AlikeRefitter<'_> {
+    fn refit(&self, links: &[FittedLink], link: usize, keys: usize) -> Option<Fit> {
+        let old = &links[link];
+        let vertices = &old.fitted;
+        let mut fit = super::fit_with(self.mesh, vertices, self.options, 0.0, Layout::Counted(keys)).ok()?;
+        // Key 0 where it was: a link's key 0 was turned to where it is attached.
+        let start = old.fit.keys[0].center;
+        let last = fit.keys.last()?.center;
+        if last.distance(start) < fit.keys[0].center.distance(start) {
+            fit = fit.reversed();
+        }
+        if let Some(smoothed) = fit.smoothed(self.mesh, vertices).ok().flatten() {
+            fit = smoothed;
+        }
+        if links.len() > 1 && self.options.falloff.is_none() {
+            fit.falloff *= LINK_FALLOFF_SHARE;
+        }
+        Some(fit)
+    }
+
+    fn accepts(&self, refit: &Fit, old: &Fit) -> bool {
+        let loose = |fit: &Fit| self.looseness(fit);
+        folds(&refit.keys).is_none()
+            && !zigzags(&refit.keys)
+            && (loose(refit) <= 1.0 || loose(refit) <= loose(old))
+            && one_sweep_loose(refit) <= MAX_RMS.max(one_sweep_loose(old))
+    }
+
+    fn looseness(&self, fit: &Fit) -> f64 {
+        fit.quality.rms_d / target_of(fit)
+    }
 }
 
 /// Two protrusions whose lengths differ by at most this fraction are mirror twins, kept or

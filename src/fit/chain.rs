@@ -707,7 +707,7 @@ fn copies_take_distances(part: &Part, s: &mut [f64], reach: f64) {
 }
 
 /// `Some` where the first key of `child` lies on a cross-section of `parent`.
-fn binds(parent: &Fit, child: &Fit) -> Option<()> {
+pub fn binds(parent: &Fit, child: &Fit) -> Option<()> {
     let parent = Sweep::try_new(&parent.keys, None).ok()?;
     KeyBinding::new(&parent, &child.keys[0]).map(|_| ())
 }

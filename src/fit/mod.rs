@@ -78,6 +78,7 @@ pub mod quality;
 mod refine;
 
 internal_mod! {
+    alike;
     attached;
     axis;
     body;
@@ -114,6 +115,7 @@ use crate::limits::{MAX_KEYS_PER_SWEEP, MAX_RADII_PER_KEY};
 use crate::mesh::Mesh;
 use crate::rig::{KeyDocument, ParentLink, SweepDocument, VertexSelection};
 use crate::sweep::Key;
+pub(crate) use refine::Layout;
 
 /// How to fit a sweep.
 #[derive(Clone, Debug, PartialEq)]
@@ -318,19 +320,25 @@ fn beyond_rig(mesh: &Mesh, vertices: impl Iterator<Item = u32>) -> Result<(), Fi
 
 /// Fits a control sweep to the part of `mesh` made of `vertices` (see the module docs).
 pub fn fit(mesh: &Mesh, vertices: &[u32], options: &FitOptions) -> Result<Fit, FitError> {
-    fit_smoothing(mesh, vertices, options, 0.0)
+    fit_with(mesh, vertices, options, 0.0, Layout::Inserted)
 }
 
 /// [`fit`], where a least-squares fit of the radii is not kept, fitting them once more with
 /// their second differences weighted by `smoothing` (a fraction of the normal matrix's mean
-/// diagonal; 0 for none).
-pub(crate) fn fit_smoothing(
+/// diagonal; 0 for none), its keys laid out by `layout`.
+pub(crate) fn fit_with(
     mesh: &Mesh,
     vertices: &[u32],
     options: &FitOptions,
     smoothing: f64,
+    layout: Layout,
 ) -> Result<Fit, FitError> {
-    options.check()?;
+    // A counted fit's keys are checked as a fit's most keys are.
+    let counted = match layout {
+        Layout::Counted(keys) => FitOptions { keys: options.keys.min(keys), max_keys: keys, ..options.clone() },
+        Layout::Inserted => options.clone(),
+    };
+    counted.check()?;
     if let Some(&index) = vertices.iter().find(|&&v| v as usize >= mesh.positions.len()) {
         return Err(FitError::VertexOutOfRange { index, count: mesh.positions.len() });
     }
@@ -342,8 +350,8 @@ pub(crate) fn fit_smoothing(
     if part.triangles.is_empty() {
         return Err(FitError::NoFaces);
     }
-    options.check_for_part(part.positions.len())?;
-    let (mut fitted, mut steps) = refine::run(&part, options, smoothing)?;
+    counted.check_for_part(part.positions.len())?;
+    let (mut fitted, mut steps) = refine::run(&part, options, smoothing, layout)?;
     let mut rim = attached::rim_lengths(&part, &fitted.sweep);
     if options.axis.is_none() && rim[1] > rim[0] {
         fitted = attached::turned(&part, &fitted, &mut steps)?;

@@ -112,22 +112,42 @@ pub struct Fitted {
     pub measured: Measured,
 }
 
+/// How many keys a fit takes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Layout {
+    /// [`FitOptions::keys`] evenly spaced, then keys inserted where the fit is loose, up to
+    /// [`FitOptions::max_keys`], until a round of them no longer tightens it (the paper's loop,
+    /// Fig. 3).
+    Inserted,
+    /// Exactly this many (at least 2, at most [`crate::limits::MAX_KEYS_PER_SWEEP`]): at most
+    /// [`FitOptions::keys`] evenly spaced, then keys inserted where the fit is loosest until
+    /// there are this many, however little they tighten it; a twin keyed as its twin is
+    /// (`super::alike`).
+    Counted(usize),
+}
+
 /// Fits a sweep to `part`, recording each step: from the user's axis, else from the part's
 /// skeleton (a coarse part from its four starts, see the [module docs](super)), else from its
-/// principal axis.
-pub fn run(part: &Part, options: &FitOptions, smoothing: f64) -> Result<(Fitted, Vec<FitStep>), FitError> {
+/// principal axis; its keys laid out by `layout`.
+pub fn run(
+    part: &Part,
+    options: &FitOptions,
+    smoothing: f64,
+    layout: Layout,
+) -> Result<(Fitted, Vec<FitStep>), FitError> {
     if let Some(points) = &options.axis {
-        return run_from(part, options, Polyline::new(points).ok_or(FitError::Axis)?, None, false, smoothing);
+        let axis = Polyline::new(points).ok_or(FitError::Axis)?;
+        return run_from(part, options, axis, None, false, smoothing, layout);
     }
     let Some(skeleton) = skeleton(part) else {
         let (centroid, direction) = principal_axis(&part.positions);
         let axis = Polyline::new(&[centroid - direction, centroid + direction]).ok_or(FitError::Flat)?;
-        return run_from(part, options, axis, None, false, smoothing);
+        return run_from(part, options, axis, None, false, smoothing, layout);
     };
     if part.positions.len() >= options.keys * options.radii {
-        return run_from(part, options, skeleton.axis.clone(), skeleton.start_normal, true, smoothing);
+        return run_from(part, options, skeleton.axis.clone(), skeleton.start_normal, true, smoothing, layout);
     }
-    let mut starts = coarse_starts(part, options, &skeleton, smoothing);
+    let mut starts = coarse_starts(part, options, &skeleton, smoothing, layout);
     let first = starts.remove(0)?;
     Ok(kept_start(part, first, starts.into_iter().filter_map(Result::ok)))
 }
@@ -145,6 +165,7 @@ pub fn coarse_starts(
     options: &FitOptions,
     skeleton: &Skeleton,
     smoothing: f64,
+    layout: Layout,
 ) -> Vec<Result<Run, FitError>> {
     let mut starts = vec![(&skeleton.axis, true), (&skeleton.axis, false)];
     if skeleton.level_axis != skeleton.axis {
@@ -152,7 +173,9 @@ pub fn coarse_starts(
     }
     starts
         .par_iter()
-        .map(|&(axis, follows)| run_from(part, options, axis.clone(), skeleton.start_normal, follows, smoothing))
+        .map(|&(axis, follows)| {
+            run_from(part, options, axis.clone(), skeleton.start_normal, follows, smoothing, layout)
+        })
         .collect()
 }
 
@@ -192,7 +215,7 @@ pub fn start_score(run: &Run, centroids: &[DVec3]) -> (bool, f64) {
 }
 
 /// Fits a sweep to `part` from the first guess `axis`; `follows`: the keys' planes stay normal
-/// to it.
+/// to it; its keys laid out by `layout`.
 fn run_from(
     part: &Part,
     options: &FitOptions,
@@ -200,6 +223,7 @@ fn run_from(
     start_normal: Option<DVec3>,
     follows: bool,
     smoothing: f64,
+    layout: Layout,
 ) -> Result<(Fitted, Vec<FitStep>), FitError> {
     let along: Vec<f64> = part.positions.iter().map(|&p| axis.project(p)).collect();
     let (lo, hi) = along.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &s| (lo.min(s), hi.max(s)));
@@ -220,7 +244,10 @@ fn run_from(
         end_sections: RefCell::default(),
     };
     let margin = END_MARGIN * length;
-    let count = options.keys;
+    let (count, most_keys) = match layout {
+        Layout::Inserted => (options.keys, options.max_keys),
+        Layout::Counted(count) => (options.keys.min(count), count),
+    };
     let stations: Vec<Station> = (0..count)
         .map(|k| {
             let s = lo - margin + (length + 2.0 * margin) * k as f64 / (count - 1) as f64;
@@ -237,10 +264,22 @@ fn run_from(
 
     // Insertion goes on through one round that does not tighten the fit (a key inserted at a
     // bend may need its neighbours' before it pays), keeping the tightest fit seen.
+    let forced = matches!(layout, Layout::Counted(_));
     let mut trial = fitted.clone();
     let mut stale = 0;
-    while trial.keys.len() < options.max_keys && stale < STALE_ROUNDS {
-        let Some(refined) = fitter.insert_keys(&trial)? else { break };
+    while trial.keys.len() < most_keys && (forced || stale < STALE_ROUNDS) {
+        let Some(refined) = fitter.insert_keys(&trial, most_keys, forced)? else { break };
+        if forced {
+            if refined.keys.len() <= trial.keys.len() {
+                break;
+            }
+            let inserted = refined.keys.len() - fitted.keys.len();
+            fitted = refined.clone();
+            trial = refined;
+            let label = format!("{inserted} keys inserted where the fit was loosest, {} in all", fitted.keys.len());
+            steps.push(fitter.step(label, &fitted));
+            continue;
+        }
         trial = refined;
         if trial.measured.quality.rms_d >= fitted.measured.quality.rms_d {
             stale += 1;
@@ -602,16 +641,19 @@ impl Fitter<'_> {
     }
 
     /// Inserts a key in the middle of each loose knot interval (RMS d above the tolerance),
-    /// loosest first, up to the key limit, then re-centers all keys. `None` when no interval
-    /// is loose.
-    fn insert_keys(&self, fitted: &Fitted) -> Result<Option<Fitted>, FitError> {
+    /// loosest first, up to `most_keys`, then re-centers all keys. `None` when no interval is
+    /// loose; where `forced`, every interval is loose then, loosest first.
+    fn insert_keys(&self, fitted: &Fitted, most_keys: usize, forced: bool) -> Result<Option<Fitted>, FitError> {
         let rms = &fitted.measured.interval_rms;
         let mut loose: Vec<usize> = (0..rms.len()).filter(|&k| rms[k] > self.options.tolerance).collect();
+        if loose.is_empty() && forced {
+            loose = (0..rms.len()).collect();
+        }
         if loose.is_empty() {
             return Ok(None);
         }
-        loose.sort_by(|&a, &b| rms[b].total_cmp(&rms[a]));
-        loose.truncate(self.options.max_keys - fitted.keys.len());
+        loose.sort_by(|&a, &b| rms[b].total_cmp(&rms[a]).then(a.cmp(&b)));
+        loose.truncate(most_keys - fitted.keys.len());
         loose.sort_unstable();
         let knots = fitted.sweep.knots();
         let mut stations = Vec::with_capacity(fitted.keys.len() + loose.len());

@@ -92,6 +92,29 @@ fn the_bunny_gets_its_two_ears_each_with_its_tip() {
     }
 }
 
+/// The bunny's ears are alike in shape but not mirror images of each other: fitted each on its
+/// own they take different key counts, rigged they take the same (`fit::alike`), each within
+/// its target.
+#[test]
+fn the_bunnys_ears_are_keyed_alike() {
+    let Some(path) = common::shared_mesh("bunny_stanford_zipper.obj") else { return };
+    let mesh = Mesh::load(&path).unwrap();
+    let rigged = autorig(&mesh, &AutorigOptions::default()).unwrap();
+    let [first, second] = &rigged.parts[..] else { panic!("{} parts", rigged.parts.len()) };
+    let own_keys = |part: &RiggedPart| fit(&mesh, &part.vertices, &FitOptions::default()).unwrap().keys.len();
+    let (own_first, own_second) = (own_keys(first), own_keys(second));
+    eprintln!(
+        "the bunny's ears: {} and {} keys at {:.2}% and {:.2}%; fitted each on its own, {own_first} and {own_second}",
+        first.fit.keys.len(),
+        second.fit.keys.len(),
+        100.0 * first.quality.rms_d,
+        100.0 * second.quality.rms_d
+    );
+    assert_ne!(own_first, own_second, "fitted each on its own, the ears differ");
+    assert_eq!(first.fit.keys.len(), second.fit.keys.len(), "rigged, the same key count");
+    assert!(first.within_target() && second.within_target());
+}
+
 /// `mesh` (named `name`) and a rigidly moved copy give the same parts, with the moved keys
 /// (centers within `tolerance` of each part's length), and the same mesh twice the same rig.
 pub(super) fn moved_mesh_gets_the_moved_rig(name: &str, mesh: &Mesh, tolerance: f64) {
@@ -143,6 +166,9 @@ fn the_chair_gets_its_four_legs() {
     let legs = rigged.parts.iter().filter(|p| mesh.positions[p.tip as usize].y < 0.05).collect::<Vec<_>>();
     assert_eq!(legs.len(), 4);
     assert!(legs.iter().all(|p| p.fit.quality.rms_d <= 0.10), "the legs fit within 10%");
+    // Keyed alike in pairs (`fit::alike`): every leg has another with as many keys.
+    let keys: Vec<usize> = legs.iter().map(|p| p.fit.keys.len()).collect();
+    assert!(keys.iter().all(|k| keys.iter().filter(|&other| other == k).count() >= 2), "keys {keys:?}");
 }
 
 /// The part of `rigged` holding vertex `tip`, checked at its own vertices

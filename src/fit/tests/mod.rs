@@ -256,7 +256,8 @@ fn the_users_axis_order_wins_over_the_rim() {
 fn turning_a_fit_end_for_end_keeps_its_quality() {
     let mesh = cone(false);
     let part = Part::new(&mesh, &rings(10..=50));
-    let (fitted, mut steps) = super::refine::run(&part, &FitOptions::default(), 0.0).unwrap();
+    let (fitted, mut steps) =
+        super::refine::run(&part, &FitOptions::default(), 0.0, super::refine::Layout::Inserted).unwrap();
     let before: Vec<FitQuality> = steps.iter().map(|s| s.quality).collect();
     let turned = super::attached::turned(&part, &fitted, &mut steps).unwrap();
     let (q, p) = (fitted.measured.quality, turned.measured.quality);
@@ -278,6 +279,38 @@ fn turning_a_fit_end_for_end_keeps_its_quality() {
         assert!(close(measured.rms_d, quality.rms_d), "{}: {measured:?} but {quality:?}", step.label);
     }
     assert_eq!(steps.last().unwrap().keys, turned.keys);
+}
+
+#[test]
+fn a_counted_fit_takes_exactly_its_keys_and_still_follows_the_part() {
+    // Rings 10 to 50 of the cone: from z = 1 to z = 5.
+    let mesh = cone(false);
+    let part = rings(10..=50);
+    let inserted = fit(&mesh, &part, &FitOptions::default()).unwrap();
+    let length = |fit: &Fit| fit.keys.windows(2).map(|w| w[0].center.distance(w[1].center)).sum::<f64>();
+    for keys in [3, 6, 11, 24, 40] {
+        let counted = fit_with(&mesh, &part, &FitOptions::default(), 0.0, Layout::Counted(keys)).unwrap();
+        eprintln!(
+            "{keys} keys: RMS |d| {:.3}%, key path {:.3} (inserted: {} keys, {:.3}%, {:.3})",
+            100.0 * counted.quality.rms_d,
+            length(&counted),
+            inserted.keys.len(),
+            100.0 * inserted.quality.rms_d,
+            length(&inserted)
+        );
+        assert_eq!(counted.keys.len(), keys);
+        assert!(counted.quality.rms_d <= 0.01 && counted.quality.without_root == 0, "{:?}", counted.quality);
+        // Along the axis, from the wide cut to the narrow one, each key past the one before.
+        assert!((length(&counted) - 4.0).abs() <= 0.1, "{keys} keys run {}", length(&counted));
+        assert!(counted.keys.windows(2).all(|w| w[1].center.z > w[0].center.z), "{keys} keys");
+    }
+    // The fit left to itself stops at a count of its own.
+    assert!(![3, 11, 24, 40].contains(&inserted.keys.len()), "{}", inserted.keys.len());
+    // A count is checked as the most keys are.
+    let counted = |keys| fit_with(&mesh, &part, &FitOptions::default(), 0.0, Layout::Counted(keys));
+    assert!(matches!(counted(1), Err(FitError::Options(OptionError::TooFewKeys(1)))));
+    let most = crate::limits::MAX_KEYS_PER_SWEEP + 1;
+    assert!(matches!(counted(most), Err(FitError::Options(OptionError::TooManyMaxKeys(m))) if m == most));
 }
 
 #[test]
