@@ -1,17 +1,19 @@
-//! Shape twins rigged alike, for [`super::autorig`]: a character's left and right limbs that
-//! are not each other's exact mirror images ([`super::twins`] pairs those), because the model
-//! is posed lopsided or was never modelled symmetric, are still the same kind of limb, and a
-//! user expects them keyed alike: the same number of keys on each, where its twin has them.
-//! Each limb's fit inserts keys where its own fit is loose and stops where a round of keys no
-//! longer tightens it, so such twins took different counts: the public cartoon man's legs 11
-//! and 13, the bunny's ears 15 and 11.
+//! Shape twins keyed alike, for [`super::autorig`]: a character's left and right limbs that
+//! are not rigged as each other's mirror images ([`super::twins`] does that for exact ones),
+//! because the model is posed lopsided, was never modelled symmetric, or its near twins'
+//! images fit looser, are still the same kind of limb, and a user expects them keyed alike:
+//! as many keys on each. Each limb's fit inserts keys where its own fit is loose and stops
+//! where a round of keys no longer tightens it, so such twins took different counts: the public
+//! cartoon man's legs 11 and 13, the bunny's ears 15 and 11.
 //!
 //! Two rigged limbs are **shape twins** ([`shape_twins`]) where their chains have the same
-//! shape (as many links, each hanging from the matching link) and their first links are
-//! within [`LIKENESS`] of each other in vertex count and in length; each limb is in at most one
-//! pair, the likest pairs first. Each matched pair of links as alike, keyed differently, is then fitted alike
-//! ([`rigged_alike`]): each is fitted again with its twin's keys, at the same fractions of its
-//! length ([`layout`]; `super::refine::Layout::Fixed`), and of the two refits the one whose
+//! shape (as many links, each hanging from the matching link; a hand's fingers matched in
+//! whichever order is likest) and their first links are alike ([`alike`]: attached at the same
+//! ends, within [`LIKE_COUNTS`] of each other in vertex count, mean radius and straightness,
+//! [`LIKE_LENGTHS`] in length: a teapot's spout and handle are not). Each limb is in
+//! at most one pair, the likest pairs first. Each pair of matched links alike but keyed
+//! differently is then keyed alike ([`rigged_alike`]): each link is fitted again with exactly
+//! its twin's key count (`super::refine::Layout::Counted`), and of the two refits the one whose
 //! pair's looser link fits better is kept. A refit is a candidate only where the caller accepts
 //! it (within its target, or no looser than the fit it replaces), its keys stay on course
 //! ([`KEY_PATH`]) and its chain still binds: its first key on its parent's sweep, its
@@ -23,9 +25,13 @@ use super::Fit;
 use super::chain::{FittedLink, binds};
 use crate::sweep::Key;
 
-/// Matched links differ in vertex count and in length (the chord of their key centers) by at
-/// most this factor.
-pub const LIKENESS: f64 = 1.25;
+/// Matched links differ in vertex count by at most this factor…
+pub const LIKE_COUNTS: f64 = 1.25;
+
+/// …and in length, the chord of their key centers, by at most this one: a fit's extra keys
+/// lengthen its key path where they step aside (the dino's mirror twin toes, 120 vertices each,
+/// ran 0.63 with 24 keys and 0.47 with 10; keyed alike, 0.59 and 0.47).
+pub const LIKE_LENGTHS: f64 = 1.4;
 
 /// A refit whose key centers run more than this many times as far as those of the fit it
 /// would replace has keys off the link's axis: the public cartoon man's leg, laid out as its
@@ -74,23 +80,41 @@ pub fn shape_twins(limbs: &[Option<&[FittedLink]>]) -> Vec<TwinLimbs> {
     pairs
 }
 
-/// How unlike links `a` and `b` are: the sum of the logarithms of their vertex counts' ratio
-/// and of their lengths' ratio (0 for the same).
+/// How unlike links `a` and `b` are: the sum of the logarithms of the ratios of their vertex
+/// counts, lengths, mean radii and straightness (0 for the same).
 fn unlikeness(a: &FittedLink, b: &FittedLink) -> f64 {
     counts_and_lengths(a, b).into_iter().sum()
 }
 
-/// The logarithms of the ratios of `a`'s and `b`'s vertex counts and lengths, each at least 0.
-fn counts_and_lengths(a: &FittedLink, b: &FittedLink) -> [f64; 2] {
-    let counts = (a.vertices.len() as f64 / b.vertices.len().max(1) as f64).ln().abs();
-    let lengths = (chord(&a.fit.keys) / chord(&b.fit.keys)).ln().abs();
-    [counts, lengths]
+/// The logarithms of the ratios of `a`'s and `b`'s vertex counts, lengths, mean radii and
+/// straightness ([`straightness`]), each at least 0.
+fn counts_and_lengths(a: &FittedLink, b: &FittedLink) -> [f64; 4] {
+    let ratio = |x: f64, y: f64| (x / y).ln().abs();
+    [
+        ratio(a.vertices.len() as f64, b.vertices.len().max(1) as f64),
+        ratio(chord(&a.fit.keys), chord(&b.fit.keys)),
+        ratio(a.fit.quality.mean_radius, b.fit.quality.mean_radius),
+        ratio(straightness(&a.fit.keys), straightness(&b.fit.keys)),
+    ]
 }
 
-/// Whether links `a` and `b` are alike: within [`LIKENESS`] of each other in vertex count and
-/// in length.
+/// How straight `keys` run: the distance between the first and last centers over the chord of
+/// all of them (1 for a straight sweep; the Newell teapot's handle 0.51, its spout 0.93).
+fn straightness(keys: &[Key]) -> f64 {
+    keys[0].center.distance(keys[keys.len() - 1].center) / chord(keys)
+}
+
+/// Whether links `a` and `b` are alike: attached at the same ends (a whole component at
+/// neither), within [`LIKE_COUNTS`] of each other in vertex count, mean radius and
+/// straightness, and [`LIKE_LENGTHS`] in length.
 pub fn alike(a: &FittedLink, b: &FittedLink) -> bool {
-    counts_and_lengths(a, b).iter().all(|&ratio| ratio <= LIKENESS.ln())
+    let [counts, lengths, radii, straight] = counts_and_lengths(a, b);
+    let attached = |link: &FittedLink| link.fit.rim.map(|rim| rim > 0.0);
+    attached(a) == attached(b)
+        && counts <= LIKE_COUNTS.ln()
+        && lengths <= LIKE_LENGTHS.ln()
+        && radii <= LIKE_COUNTS.ln()
+        && straight <= LIKE_COUNTS.ln()
 }
 
 /// The order of `b`'s links that matches `a`'s, link 0 to link 0 and each link's parent to
@@ -255,6 +279,18 @@ mod tests {
                 TwinLimbs { first: 0, second: 3, links: vec![0, 2, 1] }
             ]
         );
+        // A handle as long, as thick and of as many vertices as a leg, but bent in a half circle
+        // or attached at both ends, is no leg's twin.
+        let mut handle = [link(100, 10, 5.0, None)];
+        for (k, key) in handle[0].fit.keys.iter_mut().enumerate() {
+            let angle = std::f64::consts::PI * k as f64 / 9.0;
+            key.center = DVec3::new(angle.cos(), angle.sin(), 0.0) * (5.0 / std::f64::consts::PI);
+        }
+        assert_eq!(shape_twins(&[Some(&leg[..]), Some(&handle[..])]), []);
+        let mut attached_at_both_ends = [link(100, 10, 5.0, None)];
+        attached_at_both_ends[0].fit.rim = [1.0, 1.0];
+        assert_eq!(shape_twins(&[Some(&leg[..]), Some(&attached_at_both_ends[..])]), []);
+        assert_eq!(shape_twins(&[Some(&leg[..]), Some(&shorter_leg[..])]).len(), 1);
         // Chains of different shapes are no twins.
         let forked_once = [link(100, 10, 5.0, None), link(20, 6, 1.0, Some(0)), link(30, 6, 2.0, Some(1))];
         assert_eq!(shape_twins(&[Some(&arm[..]), Some(&forked_once[..])]), []);
