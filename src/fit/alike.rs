@@ -190,20 +190,23 @@ pub fn rigged_alike(
         if first[a].fit.keys.len() == second[b].fit.keys.len() || !alike(&first[a], &second[b]) {
             continue;
         }
-        let started = Instant::now();
-        let (refit_first, refit_second) = crate::parallel::join(
-            || keyed_like(&first, a, &second[b].fit, refitter),
-            || keyed_like(&second, b, &first[a].fit, refitter),
-        );
-        let seconds = started.elapsed().as_secs_f64();
+        // Each link's seconds count its refit, kept or not.
+        let timed = |links: &[FittedLink], link: usize, twin: &Fit| {
+            let started = Instant::now();
+            (keyed_like(links, link, twin, refitter), started.elapsed().as_secs_f64())
+        };
+        let ((refit_first, first_seconds), (refit_second, second_seconds)) =
+            crate::parallel::join(|| timed(&first, a, &second[b].fit), || timed(&second, b, &first[a].fit));
+        first[a].seconds += first_seconds;
+        second[b].seconds += second_seconds;
         // Of the two, the pair whose looser link fits better.
         let pair = |one: &Fit, other: &Fit| refitter.looseness(one).max(refitter.looseness(other));
         let with_first = refit_first.map(|fit| (pair(&fit, &second[b].fit), fit));
         let with_second = refit_second.map(|fit| (pair(&first[a].fit, &fit), fit));
         match (with_first, with_second) {
-            (Some((one, fit)), Some((other, _))) if one <= other => (first[a].fit, first[a].seconds) = (fit, seconds),
-            (Some((_, fit)), None) => (first[a].fit, first[a].seconds) = (fit, seconds),
-            (_, Some((_, fit))) => (second[b].fit, second[b].seconds) = (fit, seconds),
+            (Some((one, fit)), Some((other, _))) if one <= other => first[a].fit = fit,
+            (Some((_, fit)), None) => first[a].fit = fit,
+            (_, Some((_, fit))) => second[b].fit = fit,
             (None, None) => {}
         }
     }
