@@ -13,7 +13,7 @@
 //! [`LIKE_LENGTHS`] in length: a teapot's spout and handle are not). Each limb is in
 //! at most one pair, the likest pairs first. Each pair of matched links alike but keyed
 //! differently is then keyed alike ([`rigged_alike`]): each link is fitted again with exactly
-//! its twin's key count (`super::refine::Layout::Counted`), and of the two refits the one whose
+//! its twin's key count (`super::refine::KeyCount::Exactly`), and of the two refits the one whose
 //! pair's looser link fits better is kept. A refit is a candidate only where the caller accepts
 //! it (within its target, or no looser than the fit it replaces), its keys stay on course
 //! ([`KEY_PATH`]) and its chain still binds: its first key on its parent's sweep, its

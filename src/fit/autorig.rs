@@ -16,8 +16,8 @@
 //! `max_parts` limbs are rigged, mirror twins at that limit kept or left out together. Mirror
 //! twins made of each other's vertices mirrored are rigged alike (`super::twins`): the better
 //! fitted one and its mirror image; other limbs alike in shape are keyed alike
-//! (`super::alike`): each pair of matched links with the same key count. Small pieces hanging from a part (a fingernail, an eye)
-//! or lying around it (a lock of hair) go with it (`super::hanging`).
+//! (`super::alike`): their matched links with as many keys. Small pieces hanging from a part
+//! (a fingernail, an eye) or lying around it (a lock of hair) go with it (`super::hanging`).
 //!
 //! Data flow: mesh → body → protrusions → **fit** per limb (or chain) → rig document.
 
@@ -39,7 +39,7 @@ use super::part::Part;
 use super::protrusions::{Protrusion, protrusions};
 use super::quality::{FitQuality, measure};
 use super::twins;
-use super::{Fit, FitError, FitOptions, Layout, OptionError, fit};
+use super::{Fit, FitError, FitOptions, KeyCount, OptionError, fit};
 use crate::mesh::Mesh;
 use crate::parallel::prelude::*;
 use crate::rig::{FORMAT, LinkKind, ParentLink, RigDocument, VERSION, VertexSelection};
@@ -230,9 +230,9 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
             }
         }
     }
-    // Shape twins keyed alike: limbs alike in shape that are not mirror twins (a lopsided
-    // pose, a model not modelled symmetric), each matched link keyed as its twin is where
-    // that fits. A piece joined to the body, fitted along its own axis, is left as it is.
+    // Shape twins keyed alike: limbs alike in shape not rigged as mirror images (a lopsided
+    // pose, a model never modelled symmetric), each matched link with as many keys as its twin
+    // where that fits. A piece joined to the body, fitted along its own axis, is left as it is.
     let limbs: Vec<Option<&[FittedLink]>> = (0..found.len())
         .map(|i| match &speculative[i] {
             Some(Ok(links)) if !mirror_twins[i] && found[i].axis.is_none() => Some(&links[..]),
@@ -431,7 +431,7 @@ fn smoothed(mesh: &Mesh, link: &FittedLink, options: &FitOptions, one_sweep: boo
     if !one_sweep || link.fit.least_squares_kept() || link.fit.quality.rms_d <= target_of(&link.fit) {
         return None;
     }
-    let refit = super::fit_with(mesh, &link.fitted, options, SMOOTHING, Layout::Inserted).ok()?;
+    let refit = super::fit_with(mesh, &link.fitted, options, SMOOTHING, KeyCount::Inserted).ok()?;
     let tighter = refit.quality.rms_d < link.fit.quality.rms_d
         && folds(&refit.keys).is_none()
         && !zigzags(&refit.keys)
@@ -629,7 +629,7 @@ impl alike::Refitter for AlikeRefitter<'_> {
     fn refit(&self, links: &[FittedLink], link: usize, keys: usize) -> Option<Fit> {
         let old = &links[link];
         let vertices = &old.fitted;
-        let mut fit = super::fit_with(self.mesh, vertices, self.options, 0.0, Layout::Counted(keys)).ok()?;
+        let mut fit = super::fit_with(self.mesh, vertices, self.options, 0.0, KeyCount::Exactly(keys)).ok()?;
         // Key 0 where it was: a link's key 0 was turned to where it is attached.
         let start = old.fit.keys[0].center;
         let last = fit.keys.last()?.center;

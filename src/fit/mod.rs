@@ -115,7 +115,7 @@ use crate::limits::{MAX_KEYS_PER_SWEEP, MAX_RADII_PER_KEY};
 use crate::mesh::Mesh;
 use crate::rig::{KeyDocument, ParentLink, SweepDocument, VertexSelection};
 use crate::sweep::Key;
-pub(crate) use refine::Layout;
+pub(crate) use refine::KeyCount;
 
 /// How to fit a sweep.
 #[derive(Clone, Debug, PartialEq)]
@@ -320,23 +320,23 @@ fn beyond_rig(mesh: &Mesh, vertices: impl Iterator<Item = u32>) -> Result<(), Fi
 
 /// Fits a control sweep to the part of `mesh` made of `vertices` (see the module docs).
 pub fn fit(mesh: &Mesh, vertices: &[u32], options: &FitOptions) -> Result<Fit, FitError> {
-    fit_with(mesh, vertices, options, 0.0, Layout::Inserted)
+    fit_with(mesh, vertices, options, 0.0, KeyCount::Inserted)
 }
 
 /// [`fit`], where a least-squares fit of the radii is not kept, fitting them once more with
 /// their second differences weighted by `smoothing` (a fraction of the normal matrix's mean
-/// diagonal; 0 for none), its keys laid out by `layout`.
+/// diagonal; 0 for none), its keys counted as `key_count` says.
 pub(crate) fn fit_with(
     mesh: &Mesh,
     vertices: &[u32],
     options: &FitOptions,
     smoothing: f64,
-    layout: Layout,
+    key_count: KeyCount,
 ) -> Result<Fit, FitError> {
     // A counted fit's keys are checked as a fit's most keys are.
-    let counted = match layout {
-        Layout::Counted(keys) => FitOptions { keys: options.keys.min(keys), max_keys: keys, ..options.clone() },
-        Layout::Inserted => options.clone(),
+    let counted = match key_count {
+        KeyCount::Exactly(keys) => FitOptions { keys: options.keys.min(keys), max_keys: keys, ..options.clone() },
+        KeyCount::Inserted => options.clone(),
     };
     counted.check()?;
     if let Some(&index) = vertices.iter().find(|&&v| v as usize >= mesh.positions.len()) {
@@ -351,7 +351,7 @@ pub(crate) fn fit_with(
         return Err(FitError::NoFaces);
     }
     counted.check_for_part(part.positions.len())?;
-    let (mut fitted, mut steps) = refine::run(&part, options, smoothing, layout)?;
+    let (mut fitted, mut steps) = refine::run(&part, options, smoothing, key_count)?;
     let mut rim = attached::rim_lengths(&part, &fitted.sweep);
     if options.axis.is_none() && rim[1] > rim[0] {
         fitted = attached::turned(&part, &fitted, &mut steps)?;

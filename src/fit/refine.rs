@@ -114,7 +114,7 @@ pub struct Fitted {
 
 /// How many keys a fit takes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Layout {
+pub enum KeyCount {
     /// [`FitOptions::keys`] evenly spaced, then keys inserted where the fit is loose, up to
     /// [`FitOptions::max_keys`], until a round of them no longer tightens it (the paper's loop,
     /// Fig. 3).
@@ -123,31 +123,31 @@ pub enum Layout {
     /// [`FitOptions::keys`] evenly spaced, then keys inserted where the fit is loosest until
     /// there are this many, however little they tighten it; a twin keyed as its twin is
     /// (`super::alike`).
-    Counted(usize),
+    Exactly(usize),
 }
 
 /// Fits a sweep to `part`, recording each step: from the user's axis, else from the part's
 /// skeleton (a coarse part from its four starts, see the [module docs](super)), else from its
-/// principal axis; its keys laid out by `layout`.
+/// principal axis; its keys counted as `key_count` says.
 pub fn run(
     part: &Part,
     options: &FitOptions,
     smoothing: f64,
-    layout: Layout,
+    key_count: KeyCount,
 ) -> Result<(Fitted, Vec<FitStep>), FitError> {
     if let Some(points) = &options.axis {
         let axis = Polyline::new(points).ok_or(FitError::Axis)?;
-        return run_from(part, options, axis, None, false, smoothing, layout);
+        return run_from(part, options, axis, None, false, smoothing, key_count);
     }
     let Some(skeleton) = skeleton(part) else {
         let (centroid, direction) = principal_axis(&part.positions);
         let axis = Polyline::new(&[centroid - direction, centroid + direction]).ok_or(FitError::Flat)?;
-        return run_from(part, options, axis, None, false, smoothing, layout);
+        return run_from(part, options, axis, None, false, smoothing, key_count);
     };
     if part.positions.len() >= options.keys * options.radii {
-        return run_from(part, options, skeleton.axis.clone(), skeleton.start_normal, true, smoothing, layout);
+        return run_from(part, options, skeleton.axis.clone(), skeleton.start_normal, true, smoothing, key_count);
     }
-    let mut starts = coarse_starts(part, options, &skeleton, smoothing, layout);
+    let mut starts = coarse_starts(part, options, &skeleton, smoothing, key_count);
     let first = starts.remove(0)?;
     Ok(kept_start(part, first, starts.into_iter().filter_map(Result::ok)))
 }
@@ -165,7 +165,7 @@ pub fn coarse_starts(
     options: &FitOptions,
     skeleton: &Skeleton,
     smoothing: f64,
-    layout: Layout,
+    key_count: KeyCount,
 ) -> Vec<Result<Run, FitError>> {
     let mut starts = vec![(&skeleton.axis, true), (&skeleton.axis, false)];
     if skeleton.level_axis != skeleton.axis {
@@ -174,7 +174,7 @@ pub fn coarse_starts(
     starts
         .par_iter()
         .map(|&(axis, follows)| {
-            run_from(part, options, axis.clone(), skeleton.start_normal, follows, smoothing, layout)
+            run_from(part, options, axis.clone(), skeleton.start_normal, follows, smoothing, key_count)
         })
         .collect()
 }
@@ -215,7 +215,7 @@ pub fn start_score(run: &Run, centroids: &[DVec3]) -> (bool, f64) {
 }
 
 /// Fits a sweep to `part` from the first guess `axis`; `follows`: the keys' planes stay normal
-/// to it; its keys laid out by `layout`.
+/// to it; its keys counted as `key_count` says.
 fn run_from(
     part: &Part,
     options: &FitOptions,
@@ -223,7 +223,7 @@ fn run_from(
     start_normal: Option<DVec3>,
     follows: bool,
     smoothing: f64,
-    layout: Layout,
+    key_count: KeyCount,
 ) -> Result<(Fitted, Vec<FitStep>), FitError> {
     let along: Vec<f64> = part.positions.iter().map(|&p| axis.project(p)).collect();
     let (lo, hi) = along.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &s| (lo.min(s), hi.max(s)));
@@ -244,9 +244,9 @@ fn run_from(
         end_sections: RefCell::default(),
     };
     let margin = END_MARGIN * length;
-    let (count, most_keys) = match layout {
-        Layout::Inserted => (options.keys, options.max_keys),
-        Layout::Counted(count) => (options.keys.min(count), count),
+    let (count, most_keys) = match key_count {
+        KeyCount::Inserted => (options.keys, options.max_keys),
+        KeyCount::Exactly(count) => (options.keys.min(count), count),
     };
     let stations: Vec<Station> = (0..count)
         .map(|k| {
@@ -264,7 +264,7 @@ fn run_from(
 
     // Insertion goes on through one round that does not tighten the fit (a key inserted at a
     // bend may need its neighbours' before it pays), keeping the tightest fit seen.
-    let forced = matches!(layout, Layout::Counted(_));
+    let forced = matches!(key_count, KeyCount::Exactly(_));
     let mut trial = fitted.clone();
     let mut stale = 0;
     while trial.keys.len() < most_keys && (forced || stale < STALE_ROUNDS) {

@@ -16,7 +16,7 @@ use sweepffd::fit::limb::MAX_SHARE;
 use sweepffd::fit::mirror::mirror_map;
 use sweepffd::fit::part::Part;
 use sweepffd::fit::protrusions::{Protrusion, area_within, found_protrusions, made_alike, searched_vertices};
-use sweepffd::fit::refine::{Layout, Run, coarse_starts, kept_start, start_score};
+use sweepffd::fit::refine::{KeyCount, Run, coarse_starts, kept_start, start_score};
 use sweepffd::fit::skeleton::skeleton;
 use sweepffd::fit::{FitOptions, fit};
 use sweepffd::mesh::Mesh;
@@ -410,7 +410,7 @@ fn the_faeries_head_is_fitted_from_a_start_whose_keys_run_along_it() {
     let welded = Body::new(&mesh).welded_mesh(&mesh).unwrap_or_else(|| mesh.clone());
     let part = Part::new(&welded, &fitted);
     let skeleton = skeleton(&part).expect("a skeleton");
-    let starts: Vec<Run> = coarse_starts(&part, &FitOptions::default(), &skeleton, 0.0, Layout::Inserted)
+    let starts: Vec<Run> = coarse_starts(&part, &FitOptions::default(), &skeleton, 0.0, KeyCount::Inserted)
         .into_iter()
         .map(|run| run.expect("a fit"))
         .collect();

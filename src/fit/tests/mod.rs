@@ -257,7 +257,7 @@ fn turning_a_fit_end_for_end_keeps_its_quality() {
     let mesh = cone(false);
     let part = Part::new(&mesh, &rings(10..=50));
     let (fitted, mut steps) =
-        super::refine::run(&part, &FitOptions::default(), 0.0, super::refine::Layout::Inserted).unwrap();
+        super::refine::run(&part, &FitOptions::default(), 0.0, super::refine::KeyCount::Inserted).unwrap();
     let before: Vec<FitQuality> = steps.iter().map(|s| s.quality).collect();
     let turned = super::attached::turned(&part, &fitted, &mut steps).unwrap();
     let (q, p) = (fitted.measured.quality, turned.measured.quality);
@@ -289,7 +289,7 @@ fn a_counted_fit_takes_exactly_its_keys_and_still_follows_the_part() {
     let inserted = fit(&mesh, &part, &FitOptions::default()).unwrap();
     let length = |fit: &Fit| fit.keys.windows(2).map(|w| w[0].center.distance(w[1].center)).sum::<f64>();
     for keys in [3, 6, 11, 24, 40] {
-        let counted = fit_with(&mesh, &part, &FitOptions::default(), 0.0, Layout::Counted(keys)).unwrap();
+        let counted = fit_with(&mesh, &part, &FitOptions::default(), 0.0, KeyCount::Exactly(keys)).unwrap();
         eprintln!(
             "{keys} keys: RMS |d| {:.3}%, key path {:.3} (inserted: {} keys, {:.3}%, {:.3})",
             100.0 * counted.quality.rms_d,
@@ -307,7 +307,7 @@ fn a_counted_fit_takes_exactly_its_keys_and_still_follows_the_part() {
     // The fit left to itself stops at a count of its own.
     assert!(![3, 11, 24, 40].contains(&inserted.keys.len()), "{}", inserted.keys.len());
     // A count is checked as the most keys are.
-    let counted = |keys| fit_with(&mesh, &part, &FitOptions::default(), 0.0, Layout::Counted(keys));
+    let counted = |keys| fit_with(&mesh, &part, &FitOptions::default(), 0.0, KeyCount::Exactly(keys));
     assert!(matches!(counted(1), Err(FitError::Options(OptionError::TooFewKeys(1)))));
     let most = crate::limits::MAX_KEYS_PER_SWEEP + 1;
     assert!(matches!(counted(most), Err(FitError::Options(OptionError::TooManyMaxKeys(m))) if m == most));
