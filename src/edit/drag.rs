@@ -15,10 +15,11 @@ use serde::{Deserialize, Serialize};
 
 use super::EditError;
 use super::controls::Controls;
-use super::rigid::{Motion, chord_length};
+use super::rigid::Motion;
 use super::shapes::Shape;
 use crate::bind::VertexBinding;
 use crate::sweep::Key;
+use crate::sweep::chord_length;
 
 /// Which parts of the difference a drag applies.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -31,7 +31,7 @@ mod tests {
 
     use super::*;
     use crate::edit::keys::{KeyMode, move_key};
-    use crate::edit::rigid::chord_length;
+    use crate::sweep::chord_length;
 
     fn column() -> Vec<Key> {
         (0..5).map(|i| Key::circle(DVec3::new(0.0, 0.0, i as f64 * 0.5), DQuat::IDENTITY, 0.1, 8)).collect()

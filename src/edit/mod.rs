@@ -22,6 +22,7 @@ mod shapes;
 mod volume;
 mod warnings;
 
+pub use crate::sweep::chord_length;
 pub use bend::{TAPER as BEND_TAPER, bend, bend_share};
 pub use controls::Controls;
 pub use drag::{DEFAULT_DRAG_KEYS, DragMode, drag_point};
@@ -33,7 +34,7 @@ pub use hierarchy::{propagate, propagate_down};
 pub use keep_length::keep_chord_lengths;
 pub use keys::{KeyMode, move_key, scale_radii};
 pub use posing::Posing;
-pub use rigid::{Motion, angle_between, chord_length};
+pub use rigid::{Motion, angle_between};
 pub use section::{SectionTarget, move_sections};
 pub use volume::{BoundMesh, VolumeRule, Volumes};
 pub use warnings::{PoseWarning, WORSE, pose_warnings};

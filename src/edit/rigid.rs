@@ -75,11 +75,6 @@ pub fn angle_between(a: DQuat, b: DQuat) -> f64 {
     2.0 * dot.acos()
 }
 
-/// The chord length of `keys`' centers: the sweep's length for tolerances.
-pub fn chord_length(keys: &[Key]) -> f64 {
-    keys.windows(2).map(|pair| pair[0].center.distance(pair[1].center)).sum()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -11,9 +11,10 @@ use glam::{DQuat, DVec3};
 
 use super::EditError;
 use super::controls::Controls;
-use super::rigid::{Motion, angle_between, chord_length};
+use super::rigid::{Motion, angle_between};
 use super::shapes::Shape;
 use crate::sweep::Key;
+use crate::sweep::chord_length;
 
 /// Where the cross-section at `t` should go.
 #[derive(Clone, Copy, Debug, PartialEq)]

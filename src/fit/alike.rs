@@ -23,7 +23,7 @@ use std::time::Instant;
 
 use super::Fit;
 use super::chain::{FittedLink, binds};
-use crate::sweep::Key;
+use crate::sweep::{Key, chord_length};
 
 /// Matched links differ in vertex count by at most this factor…
 pub const LIKE_COUNTS: f64 = 1.25;
@@ -83,16 +83,16 @@ pub fn shape_twins(limbs: &[Option<&[FittedLink]>]) -> Vec<TwinLimbs> {
 /// How unlike links `a` and `b` are: the sum of the logarithms of the ratios of their vertex
 /// counts, lengths, mean radii and straightness (0 for the same).
 fn unlikeness(a: &FittedLink, b: &FittedLink) -> f64 {
-    counts_and_lengths(a, b).into_iter().sum()
+    log_ratios(a, b).into_iter().sum()
 }
 
 /// The logarithms of the ratios of `a`'s and `b`'s vertex counts, lengths, mean radii and
 /// straightness ([`straightness`]), each at least 0.
-fn counts_and_lengths(a: &FittedLink, b: &FittedLink) -> [f64; 4] {
+fn log_ratios(a: &FittedLink, b: &FittedLink) -> [f64; 4] {
     let ratio = |x: f64, y: f64| (x / y).ln().abs();
     [
         ratio(a.vertices.len() as f64, b.vertices.len().max(1) as f64),
-        ratio(chord(&a.fit.keys), chord(&b.fit.keys)),
+        ratio(chord_length(&a.fit.keys), chord_length(&b.fit.keys)),
         ratio(a.fit.quality.mean_radius, b.fit.quality.mean_radius),
         ratio(straightness(&a.fit.keys), straightness(&b.fit.keys)),
     ]
@@ -101,14 +101,14 @@ fn counts_and_lengths(a: &FittedLink, b: &FittedLink) -> [f64; 4] {
 /// How straight `keys` run: the distance between the first and last centers over the chord of
 /// all of them (1 for a straight sweep; the Newell teapot's handle 0.51, its spout 0.93).
 fn straightness(keys: &[Key]) -> f64 {
-    keys[0].center.distance(keys[keys.len() - 1].center) / chord(keys)
+    keys[0].center.distance(keys[keys.len() - 1].center) / chord_length(keys)
 }
 
 /// Whether links `a` and `b` are alike: attached at the same ends (a whole component at
 /// neither), within [`LIKE_COUNTS`] of each other in vertex count, mean radius and
 /// straightness, and [`LIKE_LENGTHS`] in length.
 pub fn alike(a: &FittedLink, b: &FittedLink) -> bool {
-    let [counts, lengths, radii, straight] = counts_and_lengths(a, b);
+    let [counts, lengths, radii, straight] = log_ratios(a, b);
     let attached = |link: &FittedLink| link.fit.rim.map(|rim| rim > 0.0);
     attached(a) == attached(b)
         && counts <= LIKE_COUNTS.ln()
@@ -158,11 +158,6 @@ fn next_order(order: &mut [usize]) -> bool {
     order.swap(i - 1, j);
     order[i..].reverse();
     true
-}
-
-/// The chord length of `keys`' centers.
-fn chord(keys: &[Key]) -> f64 {
-    keys.windows(2).map(|pair| pair[0].center.distance(pair[1].center)).sum()
 }
 
 /// How [`rigged_alike`] fits a link again and judges the result.
@@ -218,13 +213,12 @@ pub fn rigged_alike(
 fn keyed_like(links: &[FittedLink], link: usize, twin: &Fit, refitter: &impl Refitter) -> Option<Fit> {
     let old = &links[link].fit;
     let fit = refitter.refit(links, link, twin.keys.len()).filter(|fit| fit.keys.len() == twin.keys.len())?;
-    let on_course = chord(&fit.keys) <= KEY_PATH * chord(&old.keys);
+    let on_course = chord_length(&fit.keys) <= KEY_PATH * chord_length(&old.keys);
     let parent_binds = links[link].parent.is_none_or(|parent| binds(&links[parent].fit, &fit).is_some());
     let children_bind =
         links.iter().filter(|child| child.parent == Some(link)).all(|child| binds(&fit, &child.fit).is_some());
     (on_course && parent_binds && children_bind && refitter.accepts(&fit, old)).then_some(fit)
 }
-
 
 #[cfg(test)]
 mod tests {
@@ -306,7 +300,7 @@ mod tests {
 
     impl Refitter for Counting {
         fn refit(&self, links: &[FittedLink], link: usize, keys: usize) -> Option<Fit> {
-            Some(fit(keys, chord(&links[link].fit.keys), (self.loose)(keys)))
+            Some(fit(keys, chord_length(&links[link].fit.keys), (self.loose)(keys)))
         }
 
         fn accepts(&self, refit: &Fit, old: &Fit) -> bool {
@@ -342,8 +336,8 @@ mod tests {
         struct Wandering;
         impl Refitter for Wandering {
             fn refit(&self, links: &[FittedLink], link: usize, keys: usize) -> Option<Fit> {
-                let mut fit = fit(keys, chord(&links[link].fit.keys), 0.01);
-                fit.keys[1].center.y += 0.5 * chord(&links[link].fit.keys);
+                let mut fit = fit(keys, chord_length(&links[link].fit.keys), 0.01);
+                fit.keys[1].center.y += 0.5 * chord_length(&links[link].fit.keys);
                 Some(fit)
             }
             fn accepts(&self, _: &Fit, _: &Fit) -> bool {

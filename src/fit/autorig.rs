@@ -43,7 +43,7 @@ use super::{Fit, FitError, FitOptions, KeyCount, OptionError, fit};
 use crate::mesh::Mesh;
 use crate::parallel::prelude::*;
 use crate::rig::{FORMAT, LinkKind, ParentLink, RigDocument, VERSION, VertexSelection};
-use crate::sweep::Sweep;
+use crate::sweep::{Sweep, chord_length};
 
 /// How to rig a mesh.
 #[derive(Clone, Debug, PartialEq)]
@@ -115,6 +115,12 @@ impl RiggedPart {
 /// where some of its sections are not star-shaped.
 pub fn target_of(fit: &Fit) -> f64 {
     if fit.sections.iter().any(|s| s.several_crossings > 0) { NOT_STAR_TARGET } else { TARGET }
+}
+
+/// How loosely `fit` follows the vertices it was fitted to: its RMS |d| over its target
+/// ([`target_of`]; 1 at the target).
+pub fn looseness_of(fit: &Fit) -> f64 {
+    fit.quality.rms_d / target_of(fit)
 }
 
 /// A rigged mesh: its parts, longest first.
@@ -318,7 +324,7 @@ pub fn autorig(mesh: &Mesh, options: &AutorigOptions) -> Result<Autorig, FitErro
                 name: this.clone(),
                 parent: parent.map(|p| names[p].clone()),
                 tip,
-                length: chord_length(&fitted),
+                length: chord_length(&fitted.keys),
                 vertices,
                 fit: fitted,
                 quality,
@@ -646,26 +652,20 @@ impl alike::Refitter for AlikeRefitter<'_> {
     }
 
     fn accepts(&self, refit: &Fit, old: &Fit) -> bool {
-        let loose = |fit: &Fit| self.looseness(fit);
         folds(&refit.keys).is_none()
             && !zigzags(&refit.keys)
-            && (loose(refit) <= 1.0 || loose(refit) <= loose(old))
+            && (looseness_of(refit) <= 1.0 || looseness_of(refit) <= looseness_of(old))
             && one_sweep_loose(refit) <= MAX_RMS.max(one_sweep_loose(old))
     }
 
     fn looseness(&self, fit: &Fit) -> f64 {
-        fit.quality.rms_d / target_of(fit)
+        looseness_of(fit)
     }
 }
 
 /// Two protrusions whose lengths differ by at most this fraction are mirror twins, kept or
 /// left out together at the `max_parts` limit (the blocky man's legs differ by 0.02%).
 pub const TWINS: f64 = 1e-3;
-
-/// The chord length of a fit's key centers.
-fn chord_length(fitted: &Fit) -> f64 {
-    fitted.keys.windows(2).map(|w| w[0].center.distance(w[1].center)).sum()
-}
 
 /// The vertex of `vertices` farthest along the fitted sweep from its first key.
 fn farthest_from_first_key(mesh: &Mesh, vertices: &[u32], fitted: &Fit) -> u32 {

@@ -2,7 +2,7 @@
 //! part's boundary, over which its deformation fades into the rest of the mesh (rig field
 //! `falloff`, see [`crate::bind::falloff`]).
 
-use crate::sweep::Key;
+use crate::sweep::{Key, chord_length};
 
 /// The default falloff width as a fraction of the part's length, the chord length
 /// L = Σ_i |p_i − p_{i−1}| of the fitted key centers: W = 0.3 L.
@@ -11,10 +11,7 @@ pub const DEFAULT_FALLOFF_FRACTION: f64 = 0.3;
 /// W: `requested` where given (0 is a hard boundary), else [`DEFAULT_FALLOFF_FRACTION`] × the
 /// chord length of the centers of `keys` (0 for fewer than two keys).
 pub fn falloff_width(requested: Option<f64>, keys: &[Key]) -> f64 {
-    requested.unwrap_or_else(|| {
-        let length: f64 = keys.windows(2).map(|pair| pair[0].center.distance(pair[1].center)).sum();
-        DEFAULT_FALLOFF_FRACTION * length
-    })
+    requested.unwrap_or_else(|| DEFAULT_FALLOFF_FRACTION * chord_length(keys))
 }
 
 #[cfg(test)]

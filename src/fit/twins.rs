@@ -11,7 +11,7 @@
 
 use std::time::Instant;
 
-use super::autorig::target_of;
+use super::autorig::looseness_of;
 use super::chain::FittedLink;
 use super::mirror::{Mirror, NO_TWIN};
 use super::quality::measure;
@@ -63,10 +63,10 @@ fn welded(vertices: &[u32], weld: &[u32]) -> Vec<u32> {
     welded
 }
 
-/// How loosely a limb's links fit: the largest RMS |d| of a link over its target
-/// ([`target_of`]).
+/// How loosely a limb's links fit: the largest of its links' [`looseness_of`] (RMS |d| over
+/// the target).
 pub fn looseness(links: &[FittedLink]) -> f64 {
-    links.iter().map(|link| link.fit.quality.rms_d / target_of(&link.fit)).fold(0.0, f64::max)
+    links.iter().map(|link| looseness_of(&link.fit)).fold(0.0, f64::max)
 }
 
 /// The mirror image of the limb `links` on its twin, whose vertices are `twin` (increasing, a

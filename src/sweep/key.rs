@@ -25,3 +25,9 @@ impl Key {
         Key { center, rotation, radii: vec![radius; samples] }
     }
 }
+
+/// The chord length L = Σ |p_i − p_{i−1}| of `keys`' centers: a sweep's length for tolerances,
+/// falloff widths and likeness.
+pub fn chord_length(keys: &[Key]) -> f64 {
+    keys.windows(2).map(|pair| pair[0].center.distance(pair[1].center)).sum()
+}

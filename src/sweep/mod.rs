@@ -39,6 +39,7 @@ use glam::{DQuat, DVec3};
 pub use error::SweepError;
 pub use folds::{FLIP_DEGREES, Fold, FoldKind, SAMPLES_PER_INTERVAL};
 pub use key::Key;
+pub use key::chord_length;
 pub use orientation::RotationInterpolation;
 pub(crate) use rebuild::{RebuildScratch, SweepSystems};
 
