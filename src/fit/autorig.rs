@@ -493,6 +493,21 @@ fn rig_limb_with(fitter: &Fitter, vertices: &[u32], found: &[u32]) -> Result<Vec
         {
             return Ok(trimmed.links);
         }
+        // A coarse limb that no chain of cuts rigs may be one with its end branched: a hand
+        // fitted as a finger is, past its widening.
+        if whole_rms > MAX_RMS
+            && vertices.len() < COARSE
+            && let Some(chain) =
+                Profile::new(mesh, vertices).and_then(|profile| profile.with_end_branched(fitter, TARGET, most))
+        {
+            let mut links = chain.links;
+            if options.falloff.is_none() {
+                for link in &mut links {
+                    link.fit.falloff *= LINK_FALLOFF_SHARE;
+                }
+            }
+            return Ok(links);
+        }
     }
     match whole {
         Some((fitted, _)) if sheet => Err(Some(LeftOut::Open { rms_d: whole_rms, keys: fitted.keys.len() })),

@@ -97,6 +97,9 @@ pub const GROWN_SHARE: usize = 5;
 /// of the plane normal to the limb; an oblique one spreads over [`OBLIQUE`] times or more):
 /// a ring completed, not a rim that crept a little way into a crotch.
 pub const EVEN: f64 = 1.0;
+/// A component reached whole from a tip, its level sets never opening (see [`limb`]), is cut at
+/// its fork where the limb so cut holds at most this share of it.
+pub const FORKED_SHARE: f64 = 0.5;
 /// A limb is at least this many times as long as the radius of its cut.
 pub const TUBULAR: f64 = 1.5;
 /// A spike of a coarse limb lies farther than this many of its rim's radii from the rim's
@@ -479,7 +482,14 @@ fn limb_through_hands(
             // A component that is a tube everywhere: no level set's radius over
             // 1/WHOLE_TUBE of its length.
             let widest = perimeter[1..last].iter().copied().fold(0.0, f64::max) / TAU;
-            (whole && far >= WHOLE_TUBE * widest).then(|| within(f64::INFINITY))
+            if !(whole && far >= WHOLE_TUBE * widest) {
+                return None;
+            }
+            let limb = match fork_level(graph, &d, limit, START * length) {
+                Some(level) if level >= START * length => cut((level / h).floor() as usize),
+                _ => None,
+            };
+            Some(limb.filter(|limb| limb.len() as f64 <= FORKED_SHARE * component_size as f64).unwrap_or_else(|| within(f64::INFINITY)))
         }
     }
 }

@@ -12,7 +12,7 @@ use sweepffd::fit::body::Body;
 use sweepffd::fit::disjoint_sets::DisjointSets;
 use sweepffd::fit::hanging;
 use sweepffd::fit::key_path::{astray, zigzags};
-use sweepffd::fit::limb::MAX_SHARE;
+use sweepffd::fit::limb::{FORKED_SHARE, LEVELS_PER_LENGTH, MAX_SHARE, REACH, WHOLE_TUBE, limb, perimeters};
 use sweepffd::fit::mirror::mirror_map;
 use sweepffd::fit::part::Part;
 use sweepffd::fit::protrusions::{Protrusion, area_within, found_protrusions, made_alike, searched_vertices};
@@ -518,4 +518,120 @@ fn the_at_at_gets_its_legs() {
 fn a_rigidly_moved_wuson_gets_the_same_limbs() {
     let Some(path) = common::shared_mesh("characters/wuson.obj") else { return };
     super::autorig::moved_mesh_gets_the_moved_rig("wuson", &Mesh::load(&path).unwrap(), 1e-4);
+}
+
+/// Sydney (`tests/meshes/sydney.obj`): a low-poly game character of one component (332 of her
+/// 342 vertices), facing +x, one hand on her hip and the other raised to her face, her braid
+/// down her back.
+fn sydney() -> Mesh {
+    Mesh::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/meshes/sydney.obj")).unwrap()
+}
+
+/// Seen from either foot, the level sets of a figure of one component never open onto her body
+/// fast enough for long enough (her waist narrows past her hips), and the component reaches
+/// whole from the foot: it is the tube the old rule took whole (over [`WHOLE_TUBE`] times as
+/// long as its widest level radius), so her legs and the arm on her hip were the whole
+/// figure, and left out. Cut at the fork where her other leg and her body part, each leg holds
+/// at most [`FORKED_SHARE`] of the figure.
+#[test]
+fn sydneys_legs_are_cut_at_her_fork_not_taken_whole() {
+    let mesh = sydney();
+    let body = Body::new(&mesh);
+    let searched = searched_vertices(&mesh, &body);
+    let feet: Vec<u32> = {
+        let mut by_height = searched.clone();
+        by_height.sort_by(|&a, &b| mesh.positions[a as usize].y.total_cmp(&mesh.positions[b as usize].y));
+        // The lowest vertex, and the lowest one far from it: her two feet.
+        let first = by_height[0];
+        let far = |v: &&u32| mesh.positions[**v as usize].distance(mesh.positions[first as usize]) > 3.0;
+        vec![first, *by_height.iter().find(far).unwrap()]
+    };
+    let component = sweepffd::fit::protrusions::flood(&body.graph, feet[0], |_| true);
+    assert_eq!(component.len(), 332);
+    let length = 27.0;
+    for foot in feet {
+        // The old rule's test: the distance from the foot reaches the whole component, which is
+        // WHOLE_TUBE times as long as its widest level radius.
+        let limit = REACH * length;
+        let d = body.graph.distances_within(&[foot], limit);
+        let reached = d.iter().filter(|&&x| x <= limit).count();
+        let far = d.iter().copied().filter(|&x| x <= limit).fold(0.0, f64::max);
+        let h = length / LEVELS_PER_LENGTH;
+        let levels = (limit / h).ceil() as usize;
+        let perimeter = perimeters(&mesh.positions, &body.triangles, &d, h, levels, limit);
+        let last = ((far / h).floor() as usize).min(levels);
+        let widest = perimeter[1..last].iter().copied().fold(0.0, f64::max) / std::f64::consts::TAU;
+        assert_eq!(reached, component.len(), "foot {foot}");
+        assert!(far >= WHOLE_TUBE * widest, "foot {foot}: {far} against {widest}");
+        let leg = limb(&mesh.positions, &body.graph, &body.triangles, foot, length, component.len()).expect("a leg");
+        eprintln!("sydney foot {foot}: the leg cut at the fork holds {} of {}", leg.len(), component.len());
+        assert!(leg.len() as f64 <= FORKED_SHARE * component.len() as f64, "foot {foot}: {}", leg.len());
+    }
+}
+
+/// Sydney gets two legs, two arms as chains (the arm on her hip an upper arm, forearm and hand;
+/// the raised one its upper arm and forearm as one link, its V at the elbow cut by no link that
+/// binds, and its hand, thumb apart, a branch of it), her braid and her head. Every limb
+/// reaches at least a quarter of her height along its links, their tips distinct; no link zigzags, every vertex binds
+/// with a root, and every link fits within the sections' bound ([`MAX_RMS`]); the legs, the arm
+/// on her hip and the raised hand within 15%.
+#[test]
+fn sydney_gets_two_arms_and_two_legs_as_chains_her_braid_and_head() {
+    let mesh = sydney();
+    let rigged = autorig(&mesh, &AutorigOptions::default()).unwrap();
+    print_parts("sydney", &mesh, &rigged);
+    let ys = mesh.positions.iter().map(|p| p.y);
+    let (bottom, top) = (ys.clone().fold(f64::INFINITY, f64::min), ys.fold(f64::NEG_INFINITY, f64::max));
+    let height = top - bottom;
+    let crown = (0..mesh.positions.len() as u32)
+        .max_by(|&a, &b| mesh.positions[a as usize].y.total_cmp(&mesh.positions[b as usize].y))
+        .unwrap();
+    let roots: Vec<&RiggedPart> = rigged.parts.iter().filter(|p| p.parent.is_none()).collect();
+    let (heads, others): (Vec<&RiggedPart>, Vec<&RiggedPart>) =
+        roots.into_iter().partition(|p| p.vertices.binary_search(&crown).is_ok());
+    assert_eq!(heads.len(), 1, "the head");
+    // Her braid hangs down her back (behind her, x < −3).
+    let (braids, limbs): (Vec<&RiggedPart>, Vec<&RiggedPart>) =
+        others.into_iter().partition(|p| p.vertices.iter().all(|&v| mesh.positions[v as usize].x < -3.0));
+    assert_eq!(braids.len(), 1, "{:?}", braids.iter().map(|p| &p.name).collect::<Vec<_>>());
+    assert_eq!(limbs.len(), 4, "{:?}", limbs.iter().map(|p| &p.name).collect::<Vec<_>>());
+    let (mut arms, mut legs, mut tips) = (Vec::new(), 0, Vec::new());
+    for limb in limbs {
+        let chain: Vec<&RiggedPart> = rigged
+            .parts
+            .iter()
+            .filter(|p| p.name == limb.name || p.name.starts_with(&format!("{}.", limb.name)))
+            .collect();
+        let points: Vec<DVec3> =
+            chain.iter().flat_map(|p| p.vertices.iter().map(|&v| mesh.positions[v as usize])).collect();
+        let lowest = points.iter().map(|p| p.y).fold(f64::INFINITY, f64::min);
+        // How far the chain reaches along the limb: its links' key chords (the raised arm
+        // folds at its elbow, its hand back by her face: 11.8 between its farthest vertices).
+        let reach: f64 = chain.iter().map(|p| p.length).sum();
+        let tip = chain.last().unwrap().tip;
+        eprintln!("sydney {}: {} links, reaches {reach:.2} of {height:.2}", limb.name, chain.len());
+        assert!(reach >= 0.25 * height, "{}: reaches {reach} of {height}", limb.name);
+        let leg = lowest < bottom + 0.05 * height;
+        let raised = mesh.positions[tip as usize].y > bottom + 0.75 * height;
+        for link in &chain {
+            assert!(link.fit.quality.rms_d <= MAX_RMS, "{}: {:?}", link.name, link.fit.quality);
+            assert!(!zigzags(&link.fit.keys), "{}", link.name);
+            assert_eq!(link.fit.quality.without_root, 0, "{}", link.name);
+            if !raised || link.parent.is_some() {
+                assert!(link.fit.quality.rms_d <= 1.5 * TARGET, "{}: {:?}", link.name, link.fit.quality);
+            }
+        }
+        if leg {
+            legs += 1;
+        } else {
+            assert!(chain.len() >= 2, "{}: an arm ends in its hand, a child link", limb.name);
+            arms.push(raised);
+        }
+        tips.push(tip);
+    }
+    arms.sort();
+    assert_eq!((arms, legs), (vec![false, true], 2));
+    tips.sort_unstable();
+    tips.dedup();
+    assert_eq!(tips.len(), 4, "distinct tips");
 }
