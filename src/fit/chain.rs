@@ -101,6 +101,9 @@ pub const DENSE: usize = 2000;
 /// A link's sweep is fitted to the vertices within this many radii of the cut beyond each of
 /// its cuts too.
 pub const OVERLAP: f64 = 0.5;
+/// A limb's end is branched ([`Profile::with_end_branched`]) past at most this many widenings,
+/// each of the stretch past the one before (each at least [`FIRST`] of the way along it).
+pub const ENDS: usize = 8;
 /// Near its level, within this many radii, a cut is a plane.
 pub const PLANE_REACH: f64 = 2.0;
 
@@ -526,17 +529,18 @@ impl Profile {
     /// chained as a limb is ([`Profile::stretch_chain`]), where the stem's links fit within
     /// `most` and the end's fit is not refused (it neither folds nor zigzags), however loosely
     /// it fits. The widenings are the limb's, the one of the stretch past it, and so on towards
-    /// the tip, the last tried first; an end of fewer than [`MIN_LINK`] vertices is none. For a
-    /// coarse limb that no chain of cuts rigs, whose hand would otherwise take its arm out of
-    /// the rig: Sydney's arm raised to her face (a public game mesh, 38 vertices; 65% as one
-    /// sweep), its hand cut at its wrist fitting at 57.8%, as a branch at 41.7% and at 2.8%
-    /// with its radii smoothed. `None` where no widening leaves such a chain.
+    /// the tip (at most [`ENDS`]), the last tried first; an end of fewer than [`MIN_LINK`]
+    /// vertices is none. For a coarse limb that no chain of cuts rigs, whose hand would
+    /// otherwise take its arm out of the rig: Sydney's arm raised to her face (a public game
+    /// mesh, 38 vertices; 65% as one sweep), its hand cut at its wrist fitting at 57.8%, as a
+    /// branch at 41.7% and at 2.8% with its radii smoothed, its stem at 25.4%. `None` where no
+    /// widening leaves such a chain.
     pub fn with_end_branched(&self, fitter: &impl LinkFitter, target: f64, most: f64) -> Option<Chain> {
-        let mut widenings = Vec::new();
-        let mut from = 0.0;
-        while let Some(level) = self.widening(from, self.length).filter(|&level| level > from) {
+        let mut widenings: Vec<f64> = Vec::new();
+        while widenings.len() < ENDS {
+            let from = widenings.last().copied().unwrap_or(0.0);
+            let Some(level) = self.widening(from, self.length).filter(|&level| level > from) else { break };
             widenings.push(level);
-            from = level;
         }
         widenings.into_iter().rev().find_map(|level| {
             let cut = self.cut(level)?;
