@@ -52,6 +52,9 @@
 //! - **Trimmed** ([`Profile::trimmed`]): a coarse limb that is no tube only at its attached end
 //!   (a leg cut above its crotch, holding the pelvis's slab) is the stretch past the first of
 //!   its first [`TRIMMED`] levels from which it fits.
+//! - **End branched** ([`Profile::with_end_branched`]): a coarse limb that is rigged none of
+//!   these ways may be its stem chained without its end past a widening, and the end (a hand
+//!   with its thumb apart, raised to the face) a branch, fitted as a finger is.
 //!
 //! A seam's copy of a vertex (on none of the welded part's triangles) takes its twin's s.
 

@@ -31,7 +31,10 @@
 //! 5. Tubularity: a limb shorter than [`TUBULAR`] × the radius P/2π of its cut is a bump,
 //!    not a limb. Where no level opens and d reaches the whole component (a spout or a handle
 //!    that is a component of its own, a snake), the component is the limb if it is that
-//!    tubular.
+//!    tubular; where it forks as in 4, into a limb of at most [`FORKED_SHARE`] of it, it is cut
+//!    at the fork instead (a slim figure of one piece seen from her foot, whose waist narrows
+//!    past her hips so that her level sets never open for long: her other leg and her body
+//!    part there).
 //!
 //! Everything depends on edge lengths and connectivity, so a rigidly moved mesh gives the
 //! same limb.
@@ -480,7 +483,8 @@ fn limb_through_hands(
             let last = ((far / h).floor() as usize).min(levels);
             let whole = reached == component_size && last > 1;
             // A component that is a tube everywhere: no level set's radius over
-            // 1/WHOLE_TUBE of its length.
+            // 1/WHOLE_TUBE of its length. One that forks far enough from its far end (a figure
+            // of one piece seen from her foot) is cut at the fork.
             let widest = perimeter[1..last].iter().copied().fold(0.0, f64::max) / TAU;
             if !(whole && far >= WHOLE_TUBE * widest) {
                 return None;
