@@ -469,17 +469,12 @@ fn rig_limb_with(fitter: &Fitter, vertices: &[u32], found: &[u32]) -> Result<Vec
         && whole.as_ref().is_some_and(|(fitted, _)| folds(&fitted.keys).is_none())
         && Part::new(mesh, vertices).lies_in_a_plane();
     if !flat && !sheet {
-        let chain = Profile::new(mesh, vertices).and_then(|profile| profile.chain(fitter, TARGET));
+        let profile = Profile::new(mesh, vertices);
+        let chain = profile.as_ref().and_then(|profile| profile.chain(fitter, TARGET));
         // A part that is no tube as one sweep becomes a limb only as a chain of tubes.
         let most = if whole_rms <= MAX_RMS { MAX_RMS } else { MAX_RMS.min(RESCUED_SHARE * whole_rms) };
         if let Some(chain) = chain.filter(|chain| kept_as_chain(chain.worst, whole_rms, most)) {
-            let mut links = chain.links;
-            if options.falloff.is_none() {
-                for link in &mut links {
-                    link.fit.falloff *= LINK_FALLOFF_SHARE;
-                }
-            }
-            return Ok(links);
+            return Ok(with_link_falloff(chain.links, options));
         }
         // A coarse part that is no tube for what lies at its attached end (a leg cut above its
         // crotch, one span of long triangles below it) is a limb without it, where the rest
@@ -497,16 +492,9 @@ fn rig_limb_with(fitter: &Fitter, vertices: &[u32], found: &[u32]) -> Result<Vec
         // fitted as a finger is, past its widening.
         if whole_rms > MAX_RMS
             && vertices.len() < COARSE
-            && let Some(chain) =
-                Profile::new(mesh, vertices).and_then(|profile| profile.with_end_branched(fitter, TARGET, most))
+            && let Some(chain) = profile.as_ref().and_then(|profile| profile.with_end_branched(fitter, TARGET, most))
         {
-            let mut links = chain.links;
-            if options.falloff.is_none() {
-                for link in &mut links {
-                    link.fit.falloff *= LINK_FALLOFF_SHARE;
-                }
-            }
-            return Ok(links);
+            return Ok(with_link_falloff(chain.links, options));
         }
     }
     match whole {
@@ -519,6 +507,17 @@ fn rig_limb_with(fitter: &Fitter, vertices: &[u32], found: &[u32]) -> Result<Vec
         },
         None => Err(None),
     }
+}
+
+/// A chain's `links` with [`LINK_FALLOFF_SHARE`] of their falloff, where `options` leave it at
+/// the default (a width given by `--falloff` is every sweep's).
+fn with_link_falloff(mut links: Vec<FittedLink>, options: &FitOptions) -> Vec<FittedLink> {
+    if options.falloff.is_none() {
+        for link in &mut links {
+            link.fit.falloff *= LINK_FALLOFF_SHARE;
+        }
+    }
+    links
 }
 
 /// A fit and the seconds it took.

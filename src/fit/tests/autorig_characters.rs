@@ -265,14 +265,8 @@ fn the_faerie_gets_two_arms_and_two_legs_as_chains_and_her_head() {
     assert_eq!(limbs.len(), 4, "{:?}", limbs.iter().map(|p| &p.name).collect::<Vec<_>>());
     let (mut arms, mut legs, mut tips) = (0, 0, Vec::new());
     for limb in limbs {
-        // The limb's chain: its links are named after it.
-        let chain: Vec<&RiggedPart> = rigged
-            .parts
-            .iter()
-            .filter(|p| p.name == limb.name || p.name.starts_with(&format!("{}.", limb.name)))
-            .collect();
-        let points: Vec<DVec3> =
-            chain.iter().flat_map(|p| p.vertices.iter().map(|&v| mesh.positions[v as usize])).collect();
+        let chain = chain_of(&rigged, limb);
+        let points = chain_points(&mesh, &chain);
         let lowest = points.iter().map(|p| p.y).fold(f64::INFINITY, f64::min);
         // How far the chain reaches: the largest distance between two of its vertices (an arm
         // whose hand is raised forward spans less height than its length).
@@ -317,6 +311,17 @@ fn the_faerie_gets_two_arms_and_two_legs_as_chains_and_her_head() {
     tips.sort_unstable();
     tips.dedup();
     assert_eq!(tips.len(), 4, "distinct tips");
+}
+
+/// The chain of `limb`, a root part of `rigged`: the limb and its links, named after it.
+fn chain_of<'a>(rigged: &'a Autorig, limb: &RiggedPart) -> Vec<&'a RiggedPart> {
+    let prefix = format!("{}.", limb.name);
+    rigged.parts.iter().filter(|p| p.name == limb.name || p.name.starts_with(&prefix)).collect()
+}
+
+/// The positions of the vertices of every link of `chain`.
+fn chain_points(mesh: &Mesh, chain: &[&RiggedPart]) -> Vec<DVec3> {
+    chain.iter().flat_map(|p| p.vertices.iter().map(|&v| mesh.positions[v as usize])).collect()
 }
 
 /// The faerie's crown: her highest vertex in front of her hair (x > −2; her wings, behind,
@@ -603,13 +608,8 @@ fn sydney_gets_two_arms_and_two_legs_as_chains_her_braid_and_head() {
     assert_eq!(limbs.len(), 4, "{:?}", limbs.iter().map(|p| &p.name).collect::<Vec<_>>());
     let (mut arms, mut legs, mut tips) = (Vec::new(), 0, Vec::new());
     for limb in limbs {
-        let chain: Vec<&RiggedPart> = rigged
-            .parts
-            .iter()
-            .filter(|p| p.name == limb.name || p.name.starts_with(&format!("{}.", limb.name)))
-            .collect();
-        let points: Vec<DVec3> =
-            chain.iter().flat_map(|p| p.vertices.iter().map(|&v| mesh.positions[v as usize])).collect();
+        let chain = chain_of(&rigged, limb);
+        let points = chain_points(&mesh, &chain);
         let lowest = points.iter().map(|p| p.y).fold(f64::INFINITY, f64::min);
         // How far the chain reaches along the limb: its links' key chords (the raised arm
         // folds at its elbow, its hand back by her face: 11.8 between its farthest vertices).
