@@ -7,9 +7,12 @@
 //! diagonal off its fingers).
 //!
 //! A piece is a component of the welded mesh's unowned vertices (joined by the triangles whose
-//! corners no part owns), small beside the largest (the body, `super::body::is_piece`): a
-//! fingernail, even where one of its corners is welded to its finger's (two of the ogre's), or
-//! an island of surface a part surrounds. Each of its vertices looks for the nearest vertex of
+//! corners no part owns), other than the largest (the body's rest), and small beside the
+//! welded mesh's largest component, owned vertices and all (`super::body::is_piece`): a
+//! fingernail, even where one of its corners is welded to its finger's (two of the ogre's), an
+//! eye inside a head, or an island of surface a part surrounds. (Weighed against the body's
+//! unowned rest, BCN_Epileptic's eyes, 81 vertices each beside 472, were no pieces, and stayed
+//! in place when its head moved.) Each of its vertices looks for the nearest vertex of
 //! another component within [`REACH`] of the diagonal, owned or not; where one part owns the
 //! vertices found for more than half of the piece's, the piece goes to that part. A piece
 //! sitting on such a piece follows it in a later round. Where no piece goes so, a piece that
@@ -52,10 +55,19 @@ pub fn hanging_pieces(
     let count = mesh.positions.len();
     let unowned = |v: u32| owner[v as usize].is_none();
     let mut sets = DisjointSets::new(count);
+    // The welded mesh's components, owned vertices and all: a piece is small beside the body
+    // as the file has it, not beside what the parts leave of it.
+    let mut whole = DisjointSets::new(count);
     let mut used = vec![false; count];
     for t in &body.triangles {
         for &v in t {
             used[v as usize] = true;
+        }
+        for k in 1..3 {
+            let (a, b) = (whole.root(t[0]), whole.root(t[k]));
+            if a != b {
+                whole.attach(b, a);
+            }
         }
         if t.iter().all(|&v| unowned(v)) {
             for k in 1..3 {
@@ -74,9 +86,14 @@ pub fn hanging_pieces(
         pieces.entry(c).or_default().push(i);
     }
     let largest = pieces.values().map(Vec::len).max().unwrap_or(0);
+    let mut sizes: HashMap<u32, usize> = HashMap::new();
+    for &v in &searched {
+        *sizes.entry(whole.root(v)).or_default() += 1;
+    }
+    let body_size = sizes.values().copied().max().unwrap_or(0);
     let unwelded: Vec<(u32, Vec<u32>)> = pieces
         .iter()
-        .filter(|(_, members)| members.len() < largest && is_piece(members.len(), largest))
+        .filter(|(_, members)| members.len() < largest && is_piece(members.len(), body_size))
         .map(|(&c, members)| (c, body.unwelded(&members.iter().map(|&i| searched[i]).collect::<Vec<_>>())))
         .filter(|(_, vertices)| vertices.iter().all(|&v| owner[v as usize].is_none()))
         .collect();

@@ -171,3 +171,13 @@ fn sydney_bends_every_chain_without_tearing() {
     let stretch = bend_every_part("sydney", &Mesh::load(&path).unwrap(), 9);
     assert!(stretch <= 2.0, "sydney: largest edge stretch {stretch:.3}");
 }
+
+/// BCN_Epileptic (`tests/meshes/bcn_epileptic.obj`, a public game character of three meshes,
+/// kept with the tests): both legs, both arms with their fingers, the head with its neck (its
+/// eyes and teeth with it) and the ponytail, every sweep bent.
+#[test]
+fn the_game_man_bends_every_chain_without_tearing() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/meshes/bcn_epileptic.obj");
+    let stretch = bend_every_part("bcn_epileptic", &Mesh::load(&path).unwrap(), 16);
+    assert!(stretch <= 2.0, "bcn_epileptic: largest edge stretch {stretch:.3}");
+}

@@ -1,5 +1,6 @@
 mod autorig;
 mod autorig_characters;
+mod autorig_game_man;
 mod autorig_hand;
 mod autorig_star;
 pub(crate) mod bent_tube;
