@@ -724,8 +724,11 @@ pub const LINK_FALLOFF_SHARE: f64 = 0.5;
 /// A part whose one sweep is no limb (looser than [`MAX_RMS`]) is rigged as a chain only where
 /// each link's sections fit within this share of the one sweep's RMS |d| (and [`MAX_RMS`]): the
 /// dino's legs, their toes splayed (19% and 15% against 101% and 134%), and arms (22% against
-/// 56%) are; a teapot handle's junction (25% against 39%) is not.
-pub const RESCUED_SHARE: f64 = 0.5;
+/// 56%) are; so are Mr. Fixit's T-posed arms, ending in mittens (their loosest links, a finger
+/// each fitted with a ring of its palm, 27% against 54% and 28% against 50%; each link within
+/// its target at its own vertices); a teapot handle's junction (25% against 39%) is not. At
+/// half, the share before, those arms were left out and their fingertips rigged in their place.
+pub const RESCUED_SHARE: f64 = 0.6;
 
 /// A coarse limb's one sweep that misses it by more than this RMS |d| (over the mean radius) is
 /// trimmed of its attached end where that fits it within [`TARGET`] (see `rig_limb`).

@@ -181,3 +181,13 @@ fn the_game_man_bends_every_chain_without_tearing() {
     let stretch = bend_every_part("bcn_epileptic", &Mesh::load(&path).unwrap(), 16);
     assert!(stretch <= 2.0, "bcn_epileptic: largest edge stretch {stretch:.3}");
 }
+
+/// Mr. Fixit (`tests/meshes/mrfixit.obj`, a public T-posed game character of one surface, kept
+/// with the tests): both legs, both arms as chains with their thumbs and fingers, the head,
+/// every sweep bent.
+#[test]
+fn mr_fixit_bends_every_chain_without_tearing() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/meshes/mrfixit.obj");
+    let stretch = bend_every_part("mrfixit", &Mesh::load(&path).unwrap(), 13);
+    assert!(stretch <= 2.0, "mrfixit: largest edge stretch {stretch:.3}");
+}

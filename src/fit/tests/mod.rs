@@ -3,6 +3,7 @@ mod autorig_characters;
 mod autorig_game_man;
 mod autorig_hand;
 mod autorig_star;
+mod autorig_t_pose;
 pub(crate) mod bent_tube;
 mod falloff;
 mod falloff_meshes;
