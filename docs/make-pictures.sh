@@ -28,25 +28,29 @@ for spec in spot_triangulated.obj:spot:110,10 bunny_closed.obj:bunny:20,15 chair
   ./target/release/sweepffd render --mesh "../shared/meshes/$mesh" --rig "$work/$name-rig.json" --show-sweeps \
     --size 640x480 --view "$view" --out "docs/autorig/$name.png" --quiet
 done
-# Sydney and the game man (BCN_Epileptic), game characters kept with the tests.
+# Sydney, the game man (BCN_Epileptic) and Mr. Fixit, game characters kept with the tests.
 ./target/release/sweepffd autorig --mesh tests/meshes/sydney.obj --out "$work/sydney-rig.json" --quiet > /dev/null
 ./target/release/sweepffd render --mesh tests/meshes/sydney.obj --rig "$work/sydney-rig.json" --show-sweeps \
   --size 640x480 --view 60,10 --out docs/autorig/sydney.png --quiet
 ./target/release/sweepffd autorig --mesh tests/meshes/bcn_epileptic.obj --out "$work/game-man-rig.json" --quiet > /dev/null
 ./target/release/sweepffd render --mesh tests/meshes/bcn_epileptic.obj --rig "$work/game-man-rig.json" --show-sweeps \
   --size 640x480 --view 30,10 --out docs/autorig/game-man.png --quiet
+./target/release/sweepffd autorig --mesh tests/meshes/mrfixit.obj --out "$work/mrfixit-rig.json" --quiet > /dev/null
+./target/release/sweepffd render --mesh tests/meshes/mrfixit.obj --rig "$work/mrfixit-rig.json" --show-sweeps \
+  --size 640x480 --view 60,10 --out docs/autorig/mrfixit.png --quiet
 ./target/release/sweepffd autorig --mesh ../shared/meshes/armadillo_50k.obj --out "$work/armadillo-rig.json" --quiet > /dev/null
 ./target/release/sweepffd render --mesh ../shared/meshes/armadillo_50k.obj --rig "$work/armadillo-rig.json" \
   --show-sweeps --size 1200x900 --out docs/autorig-armadillo.png --quiet
-# The faerie, the dino, wuson, Sydney and the game man at rest and with every sweep bent 45° at its middle key: the
+# The faerie, the dino, wuson, Sydney, the game man and Mr. Fixit at rest and with every sweep bent 45° at its middle key: the
 # autorig pipeline test's poses (tests/fitting/autorig_pipeline.rs).
 mkdir -p "$work/pipeline"
 SWEEPFFD_PICTURES_DIR="$work/pipeline" cargo test --release --test fitting meshes_no_constant --quiet > /dev/null
 SWEEPFFD_PICTURES_DIR="$work/pipeline" cargo test --release --test fitting sydney_bends --quiet > /dev/null
 SWEEPFFD_PICTURES_DIR="$work/pipeline" cargo test --release --test fitting game_man_bends --quiet > /dev/null
+SWEEPFFD_PICTURES_DIR="$work/pipeline" cargo test --release --test fitting mr_fixit_bends --quiet > /dev/null
 # Wuson's with its sweeps drawn.
 for spec in characters-faerie.obj:faerie:90,10: dino.off:dino:150,-30: characters-wuson.obj:wuson:60,15:--show-sweeps \
-  sydney:sydney:60,10: bcn_epileptic:game-man:30,10:; do
+  sydney:sydney:60,10: bcn_epileptic:game-man:30,10: mrfixit:mrfixit:60,10:; do
   IFS=: read -r mesh name view sweeps <<< "$spec"
   ./target/release/sweepffd render --mesh "$work/pipeline/$mesh.obj" --rig "$work/pipeline/$mesh-rig.json" \
     --pose "$work/pipeline/$mesh-pose.json" --compare $sweeps --view "$view" --size 450x400 \
