@@ -41,16 +41,19 @@ done
 ./target/release/sweepffd autorig --mesh ../shared/meshes/armadillo_50k.obj --out "$work/armadillo-rig.json" --quiet > /dev/null
 ./target/release/sweepffd render --mesh ../shared/meshes/armadillo_50k.obj --rig "$work/armadillo-rig.json" \
   --show-sweeps --size 1200x900 --out docs/autorig-armadillo.png --quiet
-# The faerie, the dino, wuson, Sydney, the game man and Mr. Fixit at rest and with every sweep bent 45° at its middle key: the
+# The faerie, the dino, wuson, Sydney, the game man, Mr. Fixit and the star at rest and with every sweep bent 45° at its middle key: the
 # autorig pipeline test's poses (tests/fitting/autorig_pipeline.rs).
 mkdir -p "$work/pipeline"
 SWEEPFFD_PICTURES_DIR="$work/pipeline" cargo test --release --test fitting meshes_no_constant --quiet > /dev/null
+SWEEPFFD_PICTURES_DIR="$work/pipeline" cargo test --release --test fitting the_star_bends --quiet > /dev/null
+./target/release/sweepffd render --mesh "$work/pipeline/star.obj" --rig "$work/pipeline/star-rig.json" --show-sweeps \
+  --size 640x480 --view 30,20 --out docs/autorig/star.png --quiet
 SWEEPFFD_PICTURES_DIR="$work/pipeline" cargo test --release --test fitting sydney_bends --quiet > /dev/null
 SWEEPFFD_PICTURES_DIR="$work/pipeline" cargo test --release --test fitting game_man_bends --quiet > /dev/null
 SWEEPFFD_PICTURES_DIR="$work/pipeline" cargo test --release --test fitting mr_fixit_bends --quiet > /dev/null
 # Wuson's with its sweeps drawn.
 for spec in characters-faerie.obj:faerie:90,10: dino.off:dino:150,-30: characters-wuson.obj:wuson:60,15:--show-sweeps \
-  sydney:sydney:60,10: bcn_epileptic:game-man:30,10: mrfixit:mrfixit:60,10:; do
+  sydney:sydney:60,10: bcn_epileptic:game-man:30,10: mrfixit:mrfixit:60,10: star:star:30,20:; do
   IFS=: read -r mesh name view sweeps <<< "$spec"
   ./target/release/sweepffd render --mesh "$work/pipeline/$mesh.obj" --rig "$work/pipeline/$mesh-rig.json" \
     --pose "$work/pipeline/$mesh-pose.json" --compare $sweeps --view "$view" --size 450x400 \
