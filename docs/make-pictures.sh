@@ -41,8 +41,9 @@ done
 ./target/release/sweepffd autorig --mesh ../shared/meshes/armadillo_50k.obj --out "$work/armadillo-rig.json" --quiet > /dev/null
 ./target/release/sweepffd render --mesh ../shared/meshes/armadillo_50k.obj --rig "$work/armadillo-rig.json" \
   --show-sweeps --size 1200x900 --out docs/autorig-armadillo.png --quiet
-# The faerie, the dino, wuson, Sydney, the game man, Mr. Fixit and the star at rest and with every sweep bent 45° at its middle key: the
-# autorig pipeline test's poses (tests/fitting/autorig_pipeline.rs).
+# The faerie, the dino, wuson, Sydney, the game man, Mr. Fixit and the star at rest and with
+# every sweep bent 45° at its middle key: the autorig pipeline test's poses
+# (tests/fitting/autorig_pipeline.rs).
 mkdir -p "$work/pipeline"
 SWEEPFFD_PICTURES_DIR="$work/pipeline" cargo test --release --test fitting meshes_no_constant --quiet > /dev/null
 SWEEPFFD_PICTURES_DIR="$work/pipeline" cargo test --release --test fitting the_star_bends --quiet > /dev/null

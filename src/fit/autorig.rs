@@ -553,13 +553,20 @@ impl LinkFitter for Fitter<'_> {
     /// sections by 106%. A limb's one sweep is always measured by its sections
     /// ([`one_sweep_loose`]), so what is no tube is still no limb.
     fn loose(&self, fitted: &Fit) -> f64 {
-        if folds(&fitted.keys).is_some() || zigzags(&fitted.keys) {
-            f64::INFINITY
-        } else if fitted.quality.vertices < COARSE && fitted.sections.iter().any(|s| s.several_crossings > 0) {
-            fitted.quality.rms_d.min(fitted.sections_quality().rms_d)
-        } else {
-            fitted.sections_quality().rms_d
-        }
+        if folds(&fitted.keys).is_some() || zigzags(&fitted.keys) { f64::INFINITY } else { link_looseness(fitted) }
+    }
+}
+
+/// How loosely a link's fit follows its part where a chain is weighed against its limb's one
+/// sweep ([`LinkFitter::loose`], for a fit that neither folds nor zigzags): its sections' RMS
+/// |d|, or for a coarse link whose sections are not all star-shaped its fitted radii's where
+/// they fit closer.
+pub fn link_looseness(fitted: &Fit) -> f64 {
+    let sections = fitted.sections_quality().rms_d;
+    if fitted.quality.vertices < COARSE && fitted.sections.iter().any(|s| s.several_crossings > 0) {
+        fitted.quality.rms_d.min(sections)
+    } else {
+        sections
     }
 }
 

@@ -305,6 +305,24 @@ mod tests {
         assert!(body.bridges.iter().flatten().all(|v| nail.binary_search(v).is_err()));
     }
 
+    /// An eye inside a head: a ball whose part (the head) owns all but a cap of it (the body's
+    /// rest), and a small ball inside it, under the part's surface. The eye goes with the part:
+    /// it is small beside the ball ([`super::super::body::SMALL_SHARE`] of it), though not beside
+    /// the cap the part leaves unowned, which the rule before weighed it against (a game
+    /// figure's eyes stayed in place when its head moved).
+    #[test]
+    fn an_eye_inside_a_part_goes_with_it_however_little_of_the_body_is_left_unowned() {
+        let (mesh, members) = spheres(&[(DVec3::ZERO, 1.0, 24), (DVec3::new(0.8, 0.0, 0.0), 0.05, 4)]);
+        let (ball, eye) = (&members[0], &members[1]);
+        let head: Vec<u32> = ball.iter().copied().filter(|&v| mesh.positions[v as usize].x > -0.9).collect();
+        let rest = ball.len() - head.len();
+        let body = Body::new(&mesh);
+        let mut owner = owned_by_part_0(&mesh, &head);
+        assert_eq!(hanging_pieces(&mesh, &body, &mut owner, &[1.0]), vec![(0, eye.clone())]);
+        assert!(is_piece(eye.len(), ball.len()));
+        assert!(!is_piece(eye.len(), rest), "an eye of {} beside a rest of {rest}", eye.len());
+    }
+
     /// A shell around a finger of radius 0.3, half its radius off its surface (a helmet, a
     /// game figure's hair), goes with the finger; the rule on its own reach alone (0.005 of the
     /// diagonal) left it behind. The same shell around the body, which no part owns, stays.

@@ -9,7 +9,6 @@ use glam::{DQuat, DVec3};
 use sweepffd::edit::{Edit, KeyMode, Posing};
 use sweepffd::fit::autorig::{Autorig, AutorigOptions, MAX_RMS, RiggedPart, TARGET, autorig, target_of};
 use sweepffd::fit::body::Body;
-use sweepffd::fit::disjoint_sets::DisjointSets;
 use sweepffd::fit::hanging;
 use sweepffd::fit::key_path::{astray, zigzags};
 use sweepffd::fit::limb::{FORKED_SHARE, LEVELS_PER_LENGTH, MAX_SHARE, REACH, WHOLE_TUBE, limb, perimeters};
@@ -23,6 +22,8 @@ use sweepffd::mesh::Mesh;
 use sweepffd::rig::{LinkKind, Rig};
 
 use common::autorig_report::print_parts;
+
+use super::rigged_parts::{chain_of, chain_points, components};
 
 fn rigged(file: &str) -> Option<(Mesh, Autorig)> {
     let path = common::shared_mesh(&format!("characters/{file}"))?;
@@ -313,17 +314,6 @@ fn the_faerie_gets_two_arms_and_two_legs_as_chains_and_her_head() {
     assert_eq!(tips.len(), 4, "distinct tips");
 }
 
-/// The chain of `limb`, a root part of `rigged`: the limb and its links, named after it.
-fn chain_of<'a>(rigged: &'a Autorig, limb: &RiggedPart) -> Vec<&'a RiggedPart> {
-    let prefix = format!("{}.", limb.name);
-    rigged.parts.iter().filter(|p| p.name == limb.name || p.name.starts_with(&prefix)).collect()
-}
-
-/// The positions of the vertices of every link of `chain`.
-fn chain_points(mesh: &Mesh, chain: &[&RiggedPart]) -> Vec<DVec3> {
-    chain.iter().flat_map(|p| p.vertices.iter().map(|&v| mesh.positions[v as usize])).collect()
-}
-
 /// The faerie's crown: her highest vertex in front of her hair (x > −2; her wings, behind,
 /// reach higher).
 fn faerie_crown(mesh: &Mesh) -> u32 {
@@ -378,24 +368,6 @@ fn faerie_locks(mesh: &Mesh) -> Vec<Vec<u32>> {
         .filter(|c| c.iter().all(|&v| mesh.positions[v as usize].y > neck && mesh.positions[v as usize].x > -2.0))
         .filter(|c| !c.contains(&crown))
         .collect()
-}
-
-/// The mesh's components (joined by its faces), each its vertices increasing.
-fn components(mesh: &Mesh) -> Vec<Vec<u32>> {
-    let mut sets = DisjointSets::new(mesh.positions.len());
-    for t in mesh.faces.triangles() {
-        for k in 1..3 {
-            let (a, b) = (sets.root(t[0]), sets.root(t[k]));
-            if a != b {
-                sets.attach(b, a);
-            }
-        }
-    }
-    let mut by_root: std::collections::BTreeMap<u32, Vec<u32>> = Default::default();
-    for v in 0..mesh.positions.len() as u32 {
-        by_root.entry(sets.root(v)).or_default().push(v);
-    }
-    by_root.into_values().collect()
 }
 
 /// The faerie's head, a coarse ball (31 vertices), fitted from its four starts: the tightest

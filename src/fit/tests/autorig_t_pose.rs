@@ -4,28 +4,17 @@
 
 use crate::common;
 
-use sweepffd::fit::autorig::{AutorigOptions, RESCUED_SHARE, RiggedPart, autorig, target_of};
+use sweepffd::fit::autorig::{AutorigOptions, RESCUED_SHARE, RiggedPart, autorig, link_looseness, target_of};
 use sweepffd::fit::key_path::zigzags;
-use sweepffd::fit::limb::COARSE;
-use sweepffd::fit::{Fit, FitOptions, fit};
+use sweepffd::fit::{FitOptions, fit};
 use sweepffd::mesh::Mesh;
 
 use common::autorig_report::print_parts;
 
+use super::rigged_parts::chain_of;
+
 fn mr_fixit() -> Mesh {
     Mesh::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/meshes/mrfixit.obj")).unwrap()
-}
-
-/// How loosely a chain's link fits where the chain is weighed against its limb's one sweep:
-/// by its sections' radii, or a coarse link whose sections are not all star-shaped by its
-/// fitted radii where they fit closer (the link fitter's measure).
-fn link_looseness(fitted: &Fit) -> f64 {
-    let sections = fitted.sections_quality().rms_d;
-    if fitted.quality.vertices < COARSE && fitted.sections.iter().any(|s| s.several_crossings > 0) {
-        fitted.quality.rms_d.min(sections)
-    } else {
-        sections
-    }
 }
 
 /// Each of the T-posed arms is a chain from the shoulder to the hand, its thumb and fingers
@@ -40,19 +29,16 @@ fn mr_fixits_arms_are_chains_from_the_shoulder_with_their_fingers() {
     let rigged = autorig(&mesh, &AutorigOptions::default()).unwrap();
     print_parts("mrfixit", &mesh, &rigged);
     let position = |v: u32| mesh.positions[v as usize];
-    let chain = |root: &RiggedPart| -> Vec<&RiggedPart> {
-        let prefix = format!("{}.", root.name);
-        rigged.parts.iter().filter(|p| p.name == root.name || p.name.starts_with(&prefix)).collect()
-    };
     let reach = |part: &RiggedPart| part.vertices.iter().map(|&v| position(v).z.abs()).fold(0.0, f64::max);
     let inner = |part: &RiggedPart| part.vertices.iter().map(|&v| position(v).z.abs()).fold(f64::INFINITY, f64::min);
     // The hands reach past |z| = 4.5; the torso lies within |z| < 1.3.
-    let chain_reach = |root: &RiggedPart| chain(root).iter().map(|l| reach(l)).fold(0.0, f64::max);
+    let chain_reach = |root: &RiggedPart| chain_of(&rigged, root).iter().map(|l| reach(l)).fold(0.0, f64::max);
     let arms: Vec<&RiggedPart> = rigged.parts.iter().filter(|p| p.parent.is_none() && chain_reach(p) > 4.5).collect();
     assert_eq!(arms.len(), 2, "{:?}", rigged.parts.iter().map(|p| &p.name).collect::<Vec<_>>());
     for arm in &arms {
-        let links = chain(arm);
-        assert!(links.len() >= 4, "{}: {} links, an arm and its thumb and fingers", arm.name, links.len());
+        let links = chain_of(&rigged, arm);
+        assert_eq!(links.len(), 5, "{}: an arm, its thumb and three fingers", arm.name);
+        assert!(links[1..].iter().all(|finger| finger.parent.as_ref() == Some(&arm.name)));
         assert!(inner(arm) < 1.6, "{}: starts at |z| {}, not at the shoulder", arm.name, inner(arm));
         for link in &links {
             let target = target_of(&link.fit);
@@ -79,13 +65,10 @@ fn mr_fixits_arms_are_chains_from_the_shoulder_with_their_fingers() {
     let side = |p: &RiggedPart| p.vertices.iter().map(|&v| position(v).z).sum::<f64>().signum();
     assert_eq!(side(a), -side(b), "one arm on either side");
     assert_eq!(a.fit.keys.len(), b.fit.keys.len());
-    let (qa, qb) = (a.quality.rms_d, b.quality.rms_d);
+    let (qa, qb) = (a.fit.quality.rms_d, b.fit.quality.rms_d);
     assert!(qa.max(qb) <= 1.25 * qa.min(qb), "{qa} and {qb}");
     // Both legs, from the hip to the sole.
     let bottom = mesh.positions.iter().map(|p| p.y).fold(f64::INFINITY, f64::min);
     let legs = rigged.parts.iter().filter(|p| p.vertices.iter().any(|&v| position(v).y < bottom + 0.1));
     assert_eq!(legs.count(), 2);
-    // No fingertip is rigged on its own: every part reaching a hand is a link of an arm.
-    let in_arm = |p: &&RiggedPart| arms.iter().any(|arm| chain(arm).iter().any(|l| l.name == p.name));
-    assert!(rigged.parts.iter().filter(|p| reach(p) > 4.5).all(|p| in_arm(&p)));
 }

@@ -10,6 +10,7 @@ mod falloff_meshes;
 mod falloff_rebind;
 mod fit_sections;
 mod fit_skeleton;
+mod rigged_parts;
 mod twin;
 
 use std::f64::consts::TAU;
