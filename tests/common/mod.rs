@@ -29,6 +29,14 @@ pub fn shared_mesh(name: &str) -> Option<PathBuf> {
     None
 }
 
+/// A test mesh kept with the code, `tests/meshes/{name}` at the workspace root (every clone has
+/// it), loaded.
+pub fn kept_mesh(name: &str) -> Mesh {
+    let package = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = package.ancestors().find(|dir| dir.join("Cargo.lock").is_file()).unwrap_or(package);
+    Mesh::load(&root.join("tests/meshes").join(name)).unwrap()
+}
+
 use glam::{DMat3, DQuat, DVec3};
 use sweepffd::mesh::{Faces, Mesh};
 use sweepffd::rig::{Rig, RigSweep, VertexSelection};

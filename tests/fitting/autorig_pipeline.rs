@@ -162,14 +162,20 @@ fn meshes_no_constant_was_tuned_on_bend_without_tearing() {
     }
 }
 
+/// Bends every part of the kept test mesh `file` (`tests/meshes`), rigged into at least
+/// `expected_parts` parts, and checks its largest edge stretch outside the bends.
+fn kept_mesh_bends(file: &str, expected_parts: usize) {
+    let name = file.trim_end_matches(".obj");
+    let stretch = bend_every_part(name, &common::kept_mesh(file), expected_parts);
+    assert!(stretch <= 2.0, "{name}: largest edge stretch {stretch:.3}");
+}
+
 /// Sydney (`tests/meshes/sydney.obj`, a public low-poly game character of one component, kept
 /// with the tests): her legs cut at her fork, her arms as chains (the raised one with its hand
 /// a branch of its upper arm and forearm), her braid and her head, every link bent.
 #[test]
 fn sydney_bends_every_chain_without_tearing() {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/meshes/sydney.obj");
-    let stretch = bend_every_part("sydney", &Mesh::load(&path).unwrap(), 9);
-    assert!(stretch <= 2.0, "sydney: largest edge stretch {stretch:.3}");
+    kept_mesh_bends("sydney.obj", 9);
 }
 
 /// BCN_Epileptic (`tests/meshes/bcn_epileptic.obj`, a public game character of three meshes,
@@ -177,9 +183,7 @@ fn sydney_bends_every_chain_without_tearing() {
 /// eyes and teeth with it) and the ponytail, every sweep bent.
 #[test]
 fn the_game_man_bends_every_chain_without_tearing() {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/meshes/bcn_epileptic.obj");
-    let stretch = bend_every_part("bcn_epileptic", &Mesh::load(&path).unwrap(), 16);
-    assert!(stretch <= 2.0, "bcn_epileptic: largest edge stretch {stretch:.3}");
+    kept_mesh_bends("bcn_epileptic.obj", 16);
 }
 
 /// Mr. Fixit (`tests/meshes/mrfixit.obj`, a public T-posed game character of one surface, kept
@@ -187,7 +191,5 @@ fn the_game_man_bends_every_chain_without_tearing() {
 /// every sweep bent.
 #[test]
 fn mr_fixit_bends_every_chain_without_tearing() {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/meshes/mrfixit.obj");
-    let stretch = bend_every_part("mrfixit", &Mesh::load(&path).unwrap(), 13);
-    assert!(stretch <= 2.0, "mrfixit: largest edge stretch {stretch:.3}");
+    kept_mesh_bends("mrfixit.obj", 13);
 }

@@ -505,7 +505,7 @@ fn a_rigidly_moved_wuson_gets_the_same_limbs() {
 /// 342 vertices), facing +x, one hand on her hip and the other raised to her face, her braid
 /// down her back.
 fn sydney() -> Mesh {
-    Mesh::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/meshes/sydney.obj")).unwrap()
+    common::kept_mesh("sydney.obj")
 }
 
 /// Seen from either foot, the level sets of a figure of one component never open onto her body

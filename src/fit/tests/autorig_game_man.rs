@@ -16,8 +16,7 @@ use super::rigged_parts::{chain_of, chain_points, components};
 
 /// The game man, rigged, his highest vertex (his crown) and his height.
 fn rigged_game_man() -> (Mesh, Autorig, u32, f64) {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/meshes/bcn_epileptic.obj");
-    let mesh = Mesh::load(&path).unwrap();
+    let mesh = common::kept_mesh("bcn_epileptic.obj");
     let rigged = autorig(&mesh, &AutorigOptions::default()).unwrap();
     print_parts("bcn_epileptic", &mesh, &rigged);
     let y = |v: u32| mesh.positions[v as usize].y;

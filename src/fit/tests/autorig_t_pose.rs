@@ -14,7 +14,7 @@ use common::autorig_report::print_parts;
 use super::rigged_parts::chain_of;
 
 fn mr_fixit() -> Mesh {
-    Mesh::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/meshes/mrfixit.obj")).unwrap()
+    common::kept_mesh("mrfixit.obj")
 }
 
 /// Each of the T-posed arms is a chain from the shoulder to the hand, its thumb and fingers
